@@ -1,0 +1,137 @@
+// The robot as the simulator sees it: the URDF (parsed by urdfdom) plus the Gazebo extension
+// tags and transmissions (parsed by tinyxml2) as plain structs. ROS-free.
+#ifndef TIANRACER_SIM_MODEL_ROBOT_MODEL_H
+#define TIANRACER_SIM_MODEL_ROBOT_MODEL_H
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <urdf_model/model.h>
+
+namespace tianracer_sim {
+
+/// Errors in a model file; the message names the file, element and value.
+class ModelError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Receives each warning once (unknown tag, unknown plugin, defaulted value...).
+using WarningSink = std::function<void(const std::string&)>;
+
+/// A <plugin> element: filename, name and its child elements as text (whitespace trimmed).
+struct PluginSpec {
+  std::string name;
+  std::string filename;
+  std::map<std::string, std::string> params;
+  int line = 0;
+};
+
+/// A <sensor> inside <gazebo reference="link">. Kept whole for the sensor code: its pose,
+/// rate, the raw XML of the element (parsed by the lidar/camera loaders) and its plugins.
+struct SensorSpec {
+  std::string name;
+  std::string type;  // ray, camera, depth, ...
+  std::string link;
+  Eigen::Isometry3d X_LS = Eigen::Isometry3d::Identity();  // sensor pose in its link frame
+  double update_rate = 0.0;
+  bool always_on = true;
+  std::string xml;  // the <sensor> element, printed back
+  std::vector<PluginSpec> plugins;
+  int line = 0;
+};
+
+/// <gazebo reference="link"> surface, material and sensors. Unset optionals mean "Gazebo's default".
+struct LinkExtension {
+  std::optional<double> mu1, mu2, kp, kd, max_vel, min_depth;
+  std::optional<Eigen::Vector3d> fdir1;
+  std::optional<bool> self_collide;
+  std::string material;  // e.g. "Gazebo/Red"
+  std::vector<SensorSpec> sensors;
+};
+
+enum class JointInterface { kEffort, kVelocity, kPosition };
+
+/// "EffortJointInterface" or "hardware_interface/EffortJointInterface" -> kEffort; nullopt if unknown.
+std::optional<JointInterface> parseJointInterface(const std::string& text);
+const char* toString(JointInterface iface);
+
+/// transmission_interface/SimpleTransmission: joint = actuator / reduction.
+struct TransmissionSpec {
+  std::string name;
+  std::string type;
+  std::string joint;
+  std::vector<JointInterface> joint_interfaces;
+  std::string actuator;
+  std::vector<JointInterface> actuator_interfaces;
+  double mechanical_reduction = 1.0;
+  int line = 0;
+};
+
+/// libgazebo_ros_control.so parameters.
+struct RosControlSpec {
+  std::string robot_namespace;                    // e.g. "/tianracer"
+  std::string robot_param = "robot_description";
+  double control_period = 0.0;                    // seconds; 0 = every physics step
+};
+
+/// libgazebo_ros_joint_state_publisher.so parameters (joint names with all whitespace removed).
+struct JointStatePublisherSpec {
+  std::vector<std::string> joint_names;
+  double update_rate = 100.0;
+  std::string robot_namespace;
+};
+
+struct RobotExtensions {
+  std::map<std::string, LinkExtension> links;  // by link name
+  std::vector<PluginSpec> model_plugins;       // every <gazebo><plugin> (also the known ones)
+  std::optional<RosControlSpec> ros_control;
+  std::optional<JointStatePublisherSpec> joint_state_publisher;
+  std::vector<TransmissionSpec> transmissions;
+};
+
+/// Resolves mesh URIs: package:// through find_package, file:// and absolute paths as given,
+/// relative paths against base_dir (the model file's folder).
+struct MeshResolver {
+  std::function<std::string(const std::string& package)> find_package;  // "" when unknown
+  std::string base_dir;
+  /// Returns the absolute path, or throws ModelError naming the URI.
+  std::string resolve(const std::string& uri) const;
+};
+
+struct RobotModel {
+  urdf::ModelInterfaceSharedPtr urdf;
+  RobotExtensions ext;
+  std::string source;                              // file path, or the parameter name
+  std::map<std::string, std::string> mesh_paths;   // URI as written -> resolved absolute path
+};
+
+struct LoadOptions {
+  MeshResolver resolver;
+  WarningSink warn;                    // may be empty: warnings are then dropped
+  bool require_meshes = true;          // a missing mesh file is an error (link and path named)
+};
+
+/// Parses a URDF string (already expanded) and its extensions; validates masses, inertias,
+/// transmissions and mesh files. `source` names the input in error messages.
+RobotModel loadRobotModel(const std::string& urdf_xml, const std::string& source,
+                          const LoadOptions& options);
+
+/// Loads a .urdf, or expands a .xacro by running the xacro tool first.
+RobotModel loadRobotModelFile(const std::string& path, LoadOptions options);
+
+/// Runs `xacro <path> [args...]` and returns the URDF; throws ModelError with xacro's stderr.
+std::string expandXacro(const std::string& path, const std::vector<std::string>& args = {});
+
+/// Parses only the extension tags (gazebo, transmission) of a URDF string; used by the fuzzer.
+RobotExtensions parseExtensions(const std::string& urdf_xml, const std::string& source,
+                                const WarningSink& warn);
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_MODEL_ROBOT_MODEL_H
