@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# The run command: installs what is missing, builds, and runs the main job.
+# For now the main job loads the tianracer model exactly as the simulator does and prints
+# its link/joint tree, transmissions, plugins and sensors (topics and rates).
+set -euo pipefail
+REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+
+bash "$REPO/scripts/setup.sh"
+
+export PATH="/usr/bin:$PATH"
+# shellcheck disable=SC1091
+source "$REPO/.build/devel/setup.bash"
+echo "==> [run] tianracer model as the simulator loads it"
+exec rosrun tianracer_sim model_info "$@"

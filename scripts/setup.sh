@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# Installs what tianracer sim needs on Debian 12 (apt + pip), then builds the catkin workspace.
+#   scripts/setup.sh            install missing dependencies, build
+#   scripts/setup.sh --no-build install only
+# Idempotent: installed packages are skipped; sudo is used when not root.
+# Build output: <repo>/.build/{build,devel} (hidden and git-ignored).
+set -euo pipefail
+
+REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+WS="$REPO/.build"
+LOG_DIR="$WS/logs"
+BUILD=1
+[[ "${1:-}" == "--no-build" ]] && BUILD=0
+
+# Debian packages. The first block is shared/TOOLCHAIN.md's checked recipe; the rest are the
+# libraries and tools the packages use (tinyxml2, yaml, gtest, msgs, rendering, tests).
+APT_PACKAGES=(
+  catkin ros-core-dev python3-rostest librostest-dev rosbash python3-rostopic
+  libsensor-msgs-dev python3-sensor-msgs libgeometry-msgs-dev libnav-msgs-dev python3-nav-msgs
+  libtf2-ros-dev python3-tf2-ros liburdf-dev liburdfdom-dev libbullet-dev libbullet-extras-dev
+  libeigen3-dev libassimp-dev libosmesa6-dev ros-robot-state-publisher python3-pip g++ cmake make
+  git pkg-config libtinyxml2-dev libyaml-cpp-dev libgtest-dev libgmock-dev liburdfdom-tools
+  libstd-srvs-dev python3-std-srvs libdiagnostic-msgs-dev python3-diagnostic-msgs
+  librosgraph-msgs-dev python3-numpy python3-yaml python3-catkin-pkg python3-nose
+)
+PIP_PACKAGES=(xacro==1.13.3)   # ROS 1 xacro; 2.x is the ROS 2 one (TOOLCHAIN.md)
+
+say()  { printf '==> [setup] %s\n' "$*"; }
+fail() { printf '\nERROR [setup] %s\n' "$*" >&2; exit 1; }
+
+SUDO=()
+if [[ "$(id -u)" -ne 0 ]]; then
+  command -v sudo >/dev/null || fail "step 'apt': not root and sudo is not installed"
+  SUDO=(sudo)
+fi
+
+# --- apt ---------------------------------------------------------------------------------
+missing=()
+for pkg in "${APT_PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$pkg")
+  fi
+done
+if ((${#missing[@]})); then
+  say "apt: installing ${#missing[@]} missing package(s): ${missing[*]}"
+  "${SUDO[@]}" apt-get update -qq || fail "step 'apt': apt-get update failed"
+  DEBIAN_FRONTEND=noninteractive "${SUDO[@]}" apt-get install -y -qq --no-install-recommends \
+    "${missing[@]}" || fail "step 'apt': apt-get install failed for: ${missing[*]}"
+else
+  say "apt: all ${#APT_PACKAGES[@]} packages present"
+fi
+
+# --- pip (system Python: ROS's Python is /usr/bin/python3) ---------------------------------
+for spec in "${PIP_PACKAGES[@]}"; do
+  name="${spec%%==*}"; want="${spec#*==}"
+  have="$(/usr/bin/python3 -m pip show "$name" 2>/dev/null | sed -n 's/^Version: //p' || true)"
+  if [[ "$have" == "$want" ]]; then
+    say "pip: $name $have present"
+  else
+    say "pip: installing $spec (found: ${have:-none})"
+    "${SUDO[@]}" /usr/bin/python3 -m pip install -q --break-system-packages "$spec" \
+      || fail "step 'pip': pip install $spec failed"
+  fi
+done
+command -v xacro >/dev/null || fail "step 'pip': xacro is not on PATH after installing it"
+
+((BUILD)) || exit 0
+
+# --- build -------------------------------------------------------------------------------
+# ROS tools want the system Python first on PATH (TOOLCHAIN.md: python3 may be a pyenv).
+export PATH="/usr/bin:$PATH"
+mkdir -p "$LOG_DIR"
+say "build: catkin_make in $WS (log: $LOG_DIR/build.log)"
+start=$(date +%s)
+if ! catkin_make -C "$WS" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+      -DCMAKE_BUILD_TYPE=RelWithDebInfo -j"$(nproc)" >"$LOG_DIR/build.log" 2>&1; then
+  # Name the failing package and step: a CMake error follows the package's add_subdirectory
+  # line; a compile error shows as 'make[N]: *** [<package>/CMakeFiles/...'.
+  pkg="$(grep -oE 'make\[[0-9]+\]: \*\*\* \[[^/]+' "$LOG_DIR/build.log" | head -1 | sed 's/.*\[//')"
+  step="compile/link"
+  if [[ -z "$pkg" ]] && grep -q "CMake Error" "$LOG_DIR/build.log"; then
+    step="configure (cmake)"
+    pkg="$(sed -n '1,/CMake Error/p' "$LOG_DIR/build.log" | grep -oE 'add_subdirectory\([^)]+\)' \
+           | tail -1 | sed 's/add_subdirectory(//; s/)//')"
+  fi
+  tail -40 "$LOG_DIR/build.log" >&2
+  fail "step 'build' ($step) failed in package '${pkg:-unknown}'; full log: $LOG_DIR/build.log"
+fi
+say "build: done in $(( $(date +%s) - start )) s"

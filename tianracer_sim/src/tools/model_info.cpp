@@ -1,0 +1,51 @@
+// model_info: expands a xacro/URDF, loads it as the simulator does and prints its summary.
+//   rosrun tianracer_sim model_info [path.xacro|path.urdf] [--no-meshes]
+#include <cstdio>
+#include <iostream>
+#include <set>
+#include <string>
+
+#include <ros/package.h>
+
+#include "tianracer_sim/model/robot_model.h"
+#include "tianracer_sim/model/sensor_topics.h"
+
+int main(int argc, char** argv) {
+  std::string path;
+  bool require_meshes = true;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--no-meshes") {
+      require_meshes = false;
+    } else if (arg == "-h" || arg == "--help") {
+      std::cout << "usage: model_info [MODEL.xacro|MODEL.urdf] [--no-meshes]\n";
+      return 0;
+    } else {
+      path = arg;
+    }
+  }
+  if (path.empty()) {
+    const std::string pkg = ros::package::getPath("tianracer_description");
+    if (pkg.empty()) {
+      std::cerr << "model_info: no model given and package tianracer_description not found\n";
+      return 2;
+    }
+    path = pkg + "/urdf/tianracer_description.xacro";
+  }
+
+  tianracer_sim::LoadOptions options;
+  options.require_meshes = require_meshes;
+  options.resolver.find_package = [](const std::string& p) { return ros::package::getPath(p); };
+  std::set<std::string> warnings;
+  options.warn = [&](const std::string& w) {
+    if (warnings.insert(w).second) std::cerr << "warning: " << w << "\n";
+  };
+  try {
+    const tianracer_sim::RobotModel model = tianracer_sim::loadRobotModelFile(path, options);
+    std::cout << tianracer_sim::describeRobotModel(model);
+  } catch (const std::exception& e) {
+    std::cerr << "model_info: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
