@@ -1,0 +1,84 @@
+// Ackermann steering kinematics: Twist (v, angular.z) -> hinge angles and rear wheel speeds.
+// ROS-free. Frames follow REP-103: x forward, y left, z up; positive angles turn left.
+#ifndef TIANRACER_CONTROL_ACKERMANN_H
+#define TIANRACER_CONTROL_ACKERMANN_H
+
+#include <stdexcept>
+
+namespace tianracer_control {
+
+class AckermannError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// The car's steering geometry. Defaults: the seed tianracer URDF.
+struct AckermannGeometry {
+  double wheelbase = 0.25;          // L: rear axle to the front hinge axis (m)
+  double hinge_separation = 0.1366; // T: distance between the two steering hinges (m)
+  double wheel_radius = 0.032;      // r: rear wheel radius (m)
+  double rear_track = 0.168;        // Tr: distance between the rear wheel centres (m)
+  double max_steering_angle = 0.6;  // m: joint limit of each hinge, |angle| <= m (rad)
+  /// x of the rear axle midpoint in the base frame (seed: about -0.125). The kinematics refer to
+  /// the rear axle; odometry reports the base frame.
+  double rear_axle_x = 0.0;
+
+  /// Throws AckermannError naming the first bad value: L, r > 0; T, Tr >= 0; 0 < m < pi/2;
+  /// all finite.
+  void validate() const;
+};
+
+struct AckermannOptions {
+  /// false (default, REP-103): angular.z is the yaw rate w, delta = atan(L w / v).
+  /// true: angular.z is the bicycle steering angle delta itself (tianracer's TEB setup).
+  bool angular_z_is_steering_angle = false;
+  /// Rear wheels at v (1 -+ Tr tan(delta) / (2L)) / r instead of both at v / r.
+  bool differential = false;
+};
+
+struct AckermannCommand {
+  double left_steer = 0.0;         // left hinge angle (rad)
+  double right_steer = 0.0;        // right hinge angle (rad)
+  double left_wheel_omega = 0.0;   // left rear wheel (rad/s)
+  double right_wheel_omega = 0.0;  // right rear wheel (rad/s)
+  double delta = 0.0;              // bicycle steering angle after clamping (rad)
+  double speed = 0.0;              // v (m/s), rear axle midpoint
+  double yaw_rate = 0.0;           // achieved w = v tan(delta) / L (rad/s)
+  bool clamped = false;            // the requested delta was beyond max_bicycle_angle
+};
+
+/// Bicycle model: delta = atan(L w / v); 0 when v == 0 (the car cannot turn in place).
+/// Reversing (v < 0) keeps REP-103 semantics: positive w still turns the body left.
+double steeringAngleFromYawRate(double wheelbase, double v, double yaw_rate);
+/// Inverse: w = v tan(delta) / L.
+double yawRateFromSteeringAngle(double wheelbase, double v, double delta);
+
+/// Exact Ackermann (all wheel axes meet on the rear axle line), for any sign of delta:
+///   tan(delta_left)  = L tan(delta) / (L - T/2 tan(delta))
+///   tan(delta_right) = L tan(delta) / (L + T/2 tan(delta))
+/// i.e. cot(delta_left) = cot(delta) - T/(2L), cot(delta_right) = cot(delta) + T/(2L).
+/// Turning left (delta > 0) the left wheel is the inner one (larger angle): delta_i = delta_left.
+double leftWheelAngle(const AckermannGeometry& g, double delta);
+double rightWheelAngle(const AckermannGeometry& g, double delta);
+/// Inverses: the bicycle angle whose left (right) wheel angle is `angle`:
+///   tan(delta) = L tan(a) / (L + T/2 tan(a))   (left)
+///   tan(delta) = L tan(a) / (L - T/2 tan(a))   (right)
+double bicycleAngleFromLeft(const AckermannGeometry& g, double angle);
+double bicycleAngleFromRight(const AckermannGeometry& g, double angle);
+
+/// The largest |delta| for which the inner wheel stays within m:
+///   delta_max = atan(L tan(m) / (L + T/2 tan(m)))
+/// The tightest turn of the rear axle midpoint is then R_min = L / tan(delta_max).
+double maxBicycleAngle(const AckermannGeometry& g);
+
+/// Twist -> command. delta (from w, or angular_z itself in steering-angle mode) is clamped to
+/// +-maxBicycleAngle (clamped = true); the wheel angles follow from the clamped delta. Rear
+/// wheels: omega = v / r, or with `differential`
+///   omega_left = v (1 - Tr tan(delta) / (2L)) / r,  omega_right = v (1 + Tr tan(delta) / (2L)) / r.
+/// Non-finite inputs are treated as 0 (callers should reject them first).
+AckermannCommand twistToAckermann(const AckermannGeometry& g, double v, double angular_z,
+                                  const AckermannOptions& options = AckermannOptions());
+
+}  // namespace tianracer_control
+
+#endif  // TIANRACER_CONTROL_ACKERMANN_H

@@ -1,0 +1,447 @@
+// Controllers and their factory: behaviour of each type and every configuration error.
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "tianracer_control/joint_controllers.h"
+
+using namespace tianracer_control;  // NOLINT: test file
+
+namespace {
+
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The seed's actuated joints: hinges (effort, +-0.6 rad, effort 10), rear wheels (velocity).
+struct Car {
+  JointHandle left_hinge, right_hinge, left_rear, right_rear, pos_joint;
+  std::map<std::string, JointHandle*> joints;
+
+  Car() {
+    for (JointHandle* h : {&left_hinge, &right_hinge}) {
+      h->interface = JointHandle::Interface::kEffort;
+      h->has_position_limits = true;
+      h->lower = -0.6;
+      h->upper = 0.6;
+      h->effort_limit = 10.0;
+      h->velocity_limit = 1000.0;
+    }
+    for (JointHandle* h : {&left_rear, &right_rear}) {
+      h->interface = JointHandle::Interface::kVelocity;
+      h->continuous = true;
+      h->velocity_limit = 100.0;
+      h->effort_limit = 5.0;
+    }
+    pos_joint.interface = JointHandle::Interface::kPosition;
+    pos_joint.has_position_limits = true;
+    pos_joint.lower = -1.0;
+    pos_joint.upper = 2.0;
+    left_hinge.name = "left_steering_hinge_joint";
+    right_hinge.name = "right_steering_hinge_joint";
+    left_rear.name = "left_rear_wheel_joint";
+    right_rear.name = "right_rear_wheel_joint";
+    pos_joint.name = "pos_joint";
+    for (JointHandle* h : {&left_hinge, &right_hinge, &left_rear, &right_rear, &pos_joint}) {
+      joints[h->name] = h;
+    }
+  }
+};
+
+ControllerSpec spec(const std::string& name, const std::string& type, const std::string& joint) {
+  ControllerSpec s;
+  s.name = name;
+  s.type = type;
+  s.joint = joint;
+  return s;
+}
+
+ControllerSpec hingeSpec(double p, double i = 0.0, double d = 0.0) {
+  ControllerSpec s = spec("hinge", "effort_controllers/JointPositionController",
+                          "left_steering_hinge_joint");
+  PidParams pid;
+  pid.p = p;
+  pid.i = i;
+  pid.d = d;
+  s.pid = pid;
+  return s;
+}
+
+// Runs makeController and returns the error text ("" if it did not throw).
+std::string errorOf(const ControllerSpec& s, std::map<std::string, JointHandle*>& joints) {
+  try {
+    makeController(s, joints);
+  } catch (const ControllerError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool startsWith(const std::string& s, const std::string& prefix) {
+  return s.compare(0, prefix.size(), prefix) == 0;
+}
+
+}  // namespace
+
+TEST(ShortestAngularDistance, Wraps) {
+  EXPECT_NEAR(shortestAngularDistance(0.0, 1.0), 1.0, 1e-15);
+  EXPECT_NEAR(shortestAngularDistance(3.0, -3.0), 2.0 * M_PI - 6.0, 1e-12);
+  EXPECT_NEAR(shortestAngularDistance(-3.0, 3.0), 6.0 - 2.0 * M_PI, 1e-12);
+  EXPECT_NEAR(shortestAngularDistance(0.0, 4.0 * M_PI + 0.5), 0.5, 1e-12);
+}
+
+TEST(EffortJointPositionController, PidOnPositionErrorWithVelocityAsDerivative) {
+  Car car;
+  car.left_hinge.position = 0.1;
+  ControllerSet set;
+  auto& c = set.load(hingeSpec(2.0, 0.0, 0.1), car.joints);
+  // starting(): target = current position, so nothing moves.
+  EXPECT_EQ(c.command(), 0.1);
+  set.update(0.001);
+  EXPECT_EQ(car.left_hinge.command, 0.0);
+
+  ASSERT_TRUE(c.setCommand(0.5));
+  car.left_hinge.velocity = 0.0;
+  set.update(0.001);
+  // error = 0.4 -> P = 0.8; derivative input = -velocity = 0 (no kick from the step)
+  EXPECT_NEAR(car.left_hinge.command, 0.8, 1e-12);
+
+  car.left_hinge.velocity = 1.0;
+  set.update(0.001);
+  // P = 0.8, D = 0.1 * (0 - 1) = -0.1
+  EXPECT_NEAR(car.left_hinge.command, 0.7, 1e-12);
+}
+
+TEST(EffortJointPositionController, ClampsTargetToLimitsAndEffortToLimit) {
+  Car car;
+  ControllerSet set;
+  auto& c = set.load(hingeSpec(2.0), car.joints);
+  ASSERT_TRUE(c.setCommand(5.0));
+  EXPECT_EQ(c.command(), 0.6);
+  set.update(0.001);
+  EXPECT_NEAR(car.left_hinge.command, 1.2, 1e-12);
+  ASSERT_TRUE(c.setCommand(-1e9));
+  EXPECT_EQ(c.command(), -0.6);
+
+  ControllerSet strong;
+  Car car2;
+  auto& s = strong.load(hingeSpec(100.0), car2.joints);
+  s.setCommand(0.5);
+  strong.update(0.001);
+  EXPECT_EQ(car2.left_hinge.command, 10.0);  // 50 N m clamped to the effort limit
+}
+
+TEST(EffortJointPositionController, RejectsNonFiniteCommands) {
+  Car car;
+  ControllerSet set;
+  auto& c = set.load(hingeSpec(1.0), car.joints);
+  ASSERT_TRUE(c.setCommand(0.3));
+  EXPECT_FALSE(c.setCommand(kNan));
+  EXPECT_FALSE(c.setCommand(kInf));
+  EXPECT_FALSE(c.setCommand(-kInf));
+  EXPECT_EQ(c.command(), 0.3);
+}
+
+TEST(EffortJointPositionController, ContinuousJointTakesTheShortWayRound) {
+  Car car;
+  car.left_rear.interface = JointHandle::Interface::kEffort;
+  car.left_rear.position = 3.0;
+  ControllerSpec s = spec("wheel", "effort_controllers/JointPositionController",
+                          "left_rear_wheel_joint");
+  s.pid = PidGains::fromIClamp(1.0, 0.0, 0.0, 0.0);  // PidGains converts to PidParams
+  ControllerSet set;
+  auto& c = set.load(s, car.joints);
+  c.setCommand(-3.0);
+  set.update(0.01);
+  EXPECT_NEAR(car.left_rear.command, 2.0 * M_PI - 6.0, 1e-12);  // +0.283, not -6
+}
+
+TEST(EffortJointVelocityController, PidOnVelocityError) {
+  Car car;
+  car.left_rear.interface = JointHandle::Interface::kEffort;
+  car.left_rear.velocity_limit = 5.0;
+  car.left_rear.effort_limit = 100.0;
+  ControllerSpec s = spec("v", "effort_controllers/JointVelocityController", "left_rear_wheel_joint");
+  PidParams pid;
+  pid.p = 1.0;
+  pid.d = 0.01;
+  s.pid = pid;
+  ControllerSet set;
+  auto& c = set.load(s, car.joints);
+  EXPECT_EQ(c.command(), 0.0);
+  c.setCommand(10.0);
+  EXPECT_EQ(c.command(), 5.0);  // velocity limit
+  car.left_rear.velocity = 1.0;
+  set.update(0.01);
+  EXPECT_NEAR(car.left_rear.command, 4.0, 1e-12);  // P = 4, D = 0 (first update)
+  car.left_rear.velocity = 2.0;
+  set.update(0.01);
+  // P = 3, D = 0.01 * (3 - 4) / 0.01 = -1
+  EXPECT_NEAR(car.left_rear.command, 2.0, 1e-12);
+}
+
+TEST(VelocityForwardController, PassesTheVelocityThroughClamped) {
+  Car car;
+  ControllerSet set;
+  auto& c = set.load(spec("w", "velocity_controllers/JointVelocityController",
+                          "left_rear_wheel_joint"), car.joints);
+  set.update(0.001);
+  EXPECT_EQ(car.left_rear.command, 0.0);
+  ASSERT_TRUE(c.setCommand(31.25));
+  set.update(0.001);
+  EXPECT_EQ(car.left_rear.command, 31.25);
+  ASSERT_TRUE(c.setCommand(1e9));
+  set.update(0.001);
+  EXPECT_EQ(car.left_rear.command, 100.0);
+  EXPECT_FALSE(c.setCommand(kNan));
+  set.update(0.001);
+  EXPECT_EQ(car.left_rear.command, 100.0);
+}
+
+TEST(VelocityForwardController, NoLimitMeansNoClamp) {
+  Car car;
+  car.left_rear.velocity_limit = 0.0;
+  ControllerSet set;
+  auto& c = set.load(spec("w", "velocity_controllers/JointVelocityController",
+                          "left_rear_wheel_joint"), car.joints);
+  c.setCommand(1e6);
+  set.update(0.001);
+  EXPECT_EQ(car.left_rear.command, 1e6);
+}
+
+TEST(PositionForwardController, StartsAtCurrentPositionAndClamps) {
+  Car car;
+  car.pos_joint.position = 0.7;
+  ControllerSet set;
+  auto& c = set.load(spec("p", "position_controllers/JointPositionController", "pos_joint"),
+                     car.joints);
+  set.update(0.001);
+  EXPECT_EQ(car.pos_joint.command, 0.7);
+  c.setCommand(3.0);
+  set.update(0.001);
+  EXPECT_EQ(car.pos_joint.command, 2.0);
+}
+
+TEST(EffortForwardController, ClampsToEffortLimit) {
+  Car car;
+  ControllerSet set;
+  auto& c = set.load(spec("e", "effort_controllers/JointEffortController",
+                          "left_steering_hinge_joint"), car.joints);
+  c.setCommand(-50.0);
+  set.update(0.001);
+  EXPECT_EQ(car.left_hinge.command, -10.0);
+}
+
+TEST(JointStateController, DueAtPublishRateInSimTime) {
+  ControllerSpec s;
+  s.name = "joint_state_controller";
+  s.type = "joint_state_controller/JointStateController";
+  s.publish_rate = 50.0;
+  Car car;
+  ControllerSet set;
+  set.load(s, car.joints);
+  auto* jsc = dynamic_cast<JointStateController*>(set.find("joint_state_controller"));
+  ASSERT_NE(jsc, nullptr);
+  EXPECT_EQ(jsc->publishRate(), 50.0);
+  // 1 ms steps for 1 s: 50 messages, at t = 0, 0.02, 0.04, ...
+  int count = 0;
+  std::vector<int> steps;
+  for (int k = 0; k < 1000; ++k) {
+    if (jsc->due(k * 0.001)) {
+      ++count;
+      steps.push_back(k);
+    }
+  }
+  EXPECT_EQ(count, 50);
+  EXPECT_EQ(steps[1], 20);
+  EXPECT_EQ(steps[49], 980);
+  // A jump back in time (sim reset) restarts the schedule at once.
+  EXPECT_TRUE(jsc->due(0.0005));
+  EXPECT_FALSE(jsc->due(0.001));
+  // A long gap gives one message, not a burst.
+  EXPECT_TRUE(jsc->due(100.0));
+  EXPECT_FALSE(jsc->due(100.001));
+  EXPECT_TRUE(jsc->due(100.02));
+}
+
+TEST(ControllerSet, ResetClearsPidAndRestartsAtTheCurrentPosition) {
+  Car car;
+  ControllerSet set;
+  auto& c = set.load(hingeSpec(1.0, 1.0, 0.0), car.joints);
+  c.setCommand(0.5);
+  for (int k = 0; k < 10; ++k) set.update(0.01);
+  car.left_hinge.position = 0.2;
+  set.reset(0.0);
+  EXPECT_EQ(c.command(), 0.2);
+  const auto* pc = dynamic_cast<const EffortJointPositionController*>(&c);
+  ASSERT_NE(pc, nullptr);
+  EXPECT_EQ(pc->pid().integrator(), 0.0);
+  set.update(0.01);
+  EXPECT_EQ(car.left_hinge.command, 0.0);
+}
+
+TEST(ControllerSet, UpdatesInOrderAndFindsByName) {
+  Car car;
+  ControllerSet set;
+  set.load(spec("a", "velocity_controllers/JointVelocityController", "left_rear_wheel_joint"),
+           car.joints);
+  set.load(spec("b", "velocity_controllers/JointVelocityController", "right_rear_wheel_joint"),
+           car.joints);
+  ASSERT_EQ(set.size(), 2u);
+  EXPECT_EQ(set.controllers()[0]->name(), "a");
+  ASSERT_NE(set.find("b"), nullptr);
+  EXPECT_EQ(set.find("b")->joint(), &car.right_rear);
+  EXPECT_EQ(set.find("nope"), nullptr);
+  set.find("b")->setCommand(3.0);
+  set.update(0.001);
+  EXPECT_EQ(car.right_rear.command, 3.0);
+  EXPECT_EQ(car.left_rear.command, 0.0);
+}
+
+// ----------------------------------------------------------------------------- factory errors
+TEST(MakeController, UnknownType) {
+  Car car;
+  const std::string e = errorOf(spec("x", "foo/Bar", "left_rear_wheel_joint"), car.joints);
+  EXPECT_TRUE(startsWith(e, "controller 'x': unknown type 'foo/Bar'")) << e;
+  EXPECT_NE(e.find("velocity_controllers/JointVelocityController"), std::string::npos) << e;
+}
+
+TEST(MakeController, MissingType) {
+  Car car;
+  EXPECT_EQ(errorOf(spec("x", "", "j"), car.joints), "controller 'x': no type given (parameter 'type')");
+}
+
+TEST(MakeController, MissingJoint) {
+  Car car;
+  const std::string e =
+      errorOf(spec("wheel", "velocity_controllers/JointVelocityController", ""), car.joints);
+  EXPECT_EQ(e, "controller 'wheel': no joint given (parameter 'joint' of "
+               "velocity_controllers/JointVelocityController)");
+}
+
+TEST(MakeController, JointNotFound) {
+  Car car;
+  ControllerSpec s = spec("wheel", "velocity_controllers/JointVelocityController", "left_ front_wheel_joint");
+  s.line = 7;
+  const std::string e = errorOf(s, car.joints);
+  EXPECT_TRUE(startsWith(e, "controller 'wheel': joint 'left_ front_wheel_joint' not found among "
+                            "the joints with a transmission (left_rear_wheel_joint, "))
+      << e;
+  EXPECT_NE(e.find("(line 7)"), std::string::npos) << e;
+}
+
+TEST(MakeController, InterfaceMismatchNamesBoth) {
+  Car car;
+  ControllerSpec s = hingeSpec(1.0);
+  s.name = "rear_position";
+  s.joint = "left_rear_wheel_joint";
+  EXPECT_EQ(errorOf(s, car.joints),
+            "controller 'rear_position': effort_controllers/JointPositionController needs the "
+            "effort interface (EffortJointInterface) but the transmission of joint "
+            "'left_rear_wheel_joint' gives the velocity interface (VelocityJointInterface)");
+  EXPECT_EQ(errorOf(spec("h", "velocity_controllers/JointVelocityController",
+                         "left_steering_hinge_joint"), car.joints),
+            "controller 'h': velocity_controllers/JointVelocityController needs the velocity "
+            "interface (VelocityJointInterface) but the transmission of joint "
+            "'left_steering_hinge_joint' gives the effort interface (EffortJointInterface)");
+}
+
+TEST(MakeController, MissingPid) {
+  Car car;
+  ControllerSpec s = hingeSpec(1.0);
+  s.pid.reset();
+  EXPECT_EQ(errorOf(s, car.joints),
+            "controller 'hinge': pid/p is missing (effort_controllers/JointPositionController "
+            "needs pid gains)");
+  s.pid = PidParams();
+  s.pid->i = 1.0;  // pid present, p absent
+  EXPECT_TRUE(startsWith(errorOf(s, car.joints), "controller 'hinge': pid/p is missing"));
+  ControllerSpec v = spec("vel", "effort_controllers/JointVelocityController", "left_steering_hinge_joint");
+  EXPECT_TRUE(startsWith(errorOf(v, car.joints), "controller 'vel': pid/p is missing"));
+}
+
+TEST(MakeController, BadPidValues) {
+  Car car;
+  ControllerSpec s = hingeSpec(1.0);
+  s.pid->i_clamp_min = 1.0;
+  s.pid->i_clamp_max = -1.0;
+  EXPECT_EQ(errorOf(s, car.joints),
+            "controller 'hinge': pid/i_clamp_min (1) is greater than pid/i_clamp_max (-1)");
+  s = hingeSpec(kNan);
+  EXPECT_EQ(errorOf(s, car.joints), "controller 'hinge': pid/p must be finite, got nan");
+}
+
+TEST(MakeController, JointStatePublishRate) {
+  Car car;
+  ControllerSpec s = spec("jsc", "joint_state_controller/JointStateController", "");
+  EXPECT_EQ(errorOf(s, car.joints),
+            "controller 'jsc': publish_rate is missing (joint_state_controller/JointStateController)");
+  s.publish_rate = -5.0;
+  EXPECT_EQ(errorOf(s, car.joints), "controller 'jsc': publish_rate must be a positive number, got -5");
+  s.publish_rate = 50.0;
+  EXPECT_EQ(errorOf(s, car.joints), "");
+}
+
+TEST(MakeController, UnknownKeysAreWarned) {
+  Car car;
+  ControllerSpec s = hingeSpec(1.0);
+  s.keys = {"type", "joint", "pid", "pid/p", "pid/i", "pid/d", "pid/i_clamp", "pid/antiwindup",
+            "pid/pp", "joints"};
+  std::vector<std::string> warnings;
+  makeController(s, car.joints, [&](const std::string& w) { warnings.push_back(w); });
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_EQ(warnings[0], "controller 'hinge': key 'pid/pp' is not used by "
+                         "effort_controllers/JointPositionController, ignored");
+  EXPECT_EQ(warnings[1], "controller 'hinge': key 'joints' is not used by "
+                         "effort_controllers/JointPositionController, ignored");
+}
+
+TEST(MakeController, IntegralGainWithoutClampIsWarned) {
+  Car car;
+  std::vector<std::string> warnings;
+  makeController(hingeSpec(1.0, 2.0), car.joints, [&](const std::string& w) { warnings.push_back(w); });
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("integral term is always 0"), std::string::npos) << warnings[0];
+}
+
+TEST(ToPidGains, ClampRules) {
+  PidParams p;
+  p.p = 1.0;
+  p.i_clamp = -2.0;
+  PidGains g = toPidGains("c", p);
+  EXPECT_EQ(g.i_clamp_min, -2.0);
+  EXPECT_EQ(g.i_clamp_max, 2.0);
+  EXPECT_FALSE(g.antiwindup);
+  p.i_clamp_max = 3.0;  // the explicit bound wins over i_clamp
+  p.antiwindup = true;
+  g = toPidGains("c", p);
+  EXPECT_EQ(g.i_clamp_min, -2.0);
+  EXPECT_EQ(g.i_clamp_max, 3.0);
+  EXPECT_TRUE(g.antiwindup);
+}
+
+TEST(ControllerSet, DuplicateNameAndJointConflict) {
+  Car car;
+  ControllerSet set;
+  set.load(spec("a", "velocity_controllers/JointVelocityController", "left_rear_wheel_joint"),
+           car.joints);
+  try {
+    set.load(spec("a", "velocity_controllers/JointVelocityController", "right_rear_wheel_joint"),
+             car.joints);
+    FAIL();
+  } catch (const ControllerError& e) {
+    EXPECT_STREQ(e.what(), "controller 'a': a controller of that name is loaded");
+  }
+  try {
+    set.load(spec("b", "velocity_controllers/JointVelocityController", "left_rear_wheel_joint"),
+             car.joints);
+    FAIL();
+  } catch (const ControllerError& e) {
+    EXPECT_STREQ(e.what(), "controller 'b': joint 'left_rear_wheel_joint' is already commanded "
+                           "by controller 'a'");
+  }
+  EXPECT_EQ(set.size(), 1u);
+}
