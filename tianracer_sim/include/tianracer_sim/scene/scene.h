@@ -1,0 +1,82 @@
+// The geometry that sensors see: every visual and collision shape of the world and of every
+// robot, attached to bodies whose poses the simulation updates each step. ROS-free, no Bullet.
+// Built once (from the world file and the robots' URDFs); afterwards only body poses change.
+#ifndef TIANRACER_SIM_SCENE_SCENE_H
+#define TIANRACER_SIM_SCENE_SCENE_H
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+namespace tianracer_sim {
+
+enum class ShapeType { kBox, kCylinder, kSphere, kPlane, kMesh };
+
+/// One geometric primitive in its own frame S.
+///  - box: full extents `size` (x, y, z), centred;
+///  - cylinder: `radius`, `length` along S's z axis, centred;
+///  - sphere: `radius`;
+///  - plane: infinite plane through S's origin with normal `normal` (S frame), `size` x/y is the
+///    visual extent (0 = unbounded);
+///  - mesh: `mesh_path` (absolute, resolved), scaled component-wise by `scale`.
+struct Shape {
+  ShapeType type = ShapeType::kBox;
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();
+  double radius = 0.0;
+  double length = 0.0;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  std::string mesh_path;
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+};
+
+/// Surface colour: Phong-style ambient/diffuse/specular in linear [0, 1] RGBA.
+struct Material {
+  Eigen::Vector4f ambient{0.5f, 0.5f, 0.5f, 1.0f};
+  Eigen::Vector4f diffuse{0.7f, 0.7f, 0.7f, 1.0f};
+  Eigen::Vector4f specular{0.01f, 0.01f, 0.01f, 1.0f};
+  std::string name;  // e.g. "Gazebo/Red" when it came from a Gazebo material name
+};
+
+/// A rigid body: the world's static models, each link (or merged link group) of a robot.
+struct SceneBody {
+  std::string name;      // "<model>::<link>", e.g. "tianracer::left_front_wheel"
+  std::string model;     // model/robot name; sensors of one robot may ignore their own body
+  bool is_static = true;
+  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();  // updated by the simulation
+};
+
+/// A shape attached to a body.
+struct SceneItem {
+  int body = 0;                                            // index into Scene::bodies
+  Eigen::Isometry3d X_BS = Eigen::Isometry3d::Identity();  // shape frame in the body frame
+  Shape shape;
+  Material material;
+  bool visual = true;      // drawn by cameras
+  bool collision = false;  // hit by rays (and used by physics)
+};
+
+/// The sun (or any directional light) of the world.
+struct DirectionalLight {
+  Eigen::Vector3d direction{-0.5, 0.1, -0.9};  // world frame, pointing from the light
+  Eigen::Vector4f diffuse{0.8f, 0.8f, 0.8f, 1.0f};
+  Eigen::Vector4f specular{0.2f, 0.2f, 0.2f, 1.0f};
+};
+
+struct Scene {
+  std::vector<SceneBody> bodies;
+  std::vector<SceneItem> items;
+  std::vector<DirectionalLight> lights;
+  Eigen::Vector4f ambient{0.4f, 0.4f, 0.4f, 1.0f};
+  Eigen::Vector4f sky{0.7f, 0.8f, 0.95f, 1.0f};  // background colour
+  bool ground_plane = false;                      // an infinite z = 0 plane with a grid texture
+
+  int addBody(SceneBody body) {
+    bodies.push_back(std::move(body));
+    return static_cast<int>(bodies.size()) - 1;
+  }
+};
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_SCENE_SCENE_H
