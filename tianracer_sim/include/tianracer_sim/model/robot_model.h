@@ -12,6 +12,7 @@
 
 #include <Eigen/Geometry>
 #include <urdf_model/model.h>
+#include <urdf_world/types.h>  // urdf::ModelInterfaceSharedPtr
 
 namespace tianracer_sim {
 
@@ -127,6 +128,9 @@ RobotModel loadRobotModelFile(const std::string& path, LoadOptions options);
 
 /// Runs `xacro <path> [args...]` and returns the URDF; throws ModelError with xacro's stderr.
 std::string expandXacro(const std::string& path, const std::vector<std::string>& args = {});
+/// As above; what xacro prints on stderr while succeeding (deprecations...) goes to `warn`.
+std::string expandXacro(const std::string& path, const std::vector<std::string>& args,
+                        const WarningSink& warn);
 
 /// Parses only the extension tags (gazebo, transmission) of a URDF string; used by the fuzzer.
 RobotExtensions parseExtensions(const std::string& urdf_xml, const std::string& source,

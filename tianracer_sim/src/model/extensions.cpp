@@ -1,0 +1,501 @@
+// <gazebo> and <transmission> tags -> plain structs (tinyxml2). Must never crash on any input:
+// every failure is a ModelError (this file is the libFuzzer target's code under test).
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "model_internal.h"
+
+namespace tianracer_sim {
+
+namespace mi = model_internal;
+using tinyxml2::XMLElement;
+
+namespace model_internal {
+
+std::string trim(const std::string& s) {
+  const char* ws = " \t\n\r\f\v";
+  const auto b = s.find_first_not_of(ws);
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(ws);
+  return s.substr(b, e - b + 1);
+}
+
+std::string at(const std::string& source, const XMLElement* e) {
+  if (e == nullptr || e->GetLineNum() <= 0) return source + ": ";
+  return source + ": line " + std::to_string(e->GetLineNum()) + ": ";
+}
+
+std::optional<double> toDouble(const std::string& text) {
+  std::string t = trim(text);
+  if (!t.empty() && t[0] == '+') t.erase(0, 1);
+  if (t.empty()) return std::nullopt;
+  double v = 0.0;
+  const char* end = t.data() + t.size();
+  const auto r = std::from_chars(t.data(), end, v);
+  if (r.ec != std::errc() || r.ptr != end) return std::nullopt;
+  return v;
+}
+
+const XMLElement* parseRobotXml(tinyxml2::XMLDocument& doc, const std::string& text,
+                                const std::string& source) {
+  if (trim(text).empty()) throw ModelError(source + ": robot_description is empty");
+  if (doc.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
+    // ErrorStr() reads "Error=NAME ErrorID=N (0xN) Line number=N: detail"; keep name + detail.
+    std::string detail = doc.ErrorStr() ? doc.ErrorStr() : "";
+    const auto colon = detail.find(": ");
+    detail = colon == std::string::npos ? "" : detail.substr(colon + 2);
+    std::string msg = source + ": XML error at line " + std::to_string(doc.ErrorLineNum()) +
+                      ": " + (doc.ErrorName() ? doc.ErrorName() : "unknown error");
+    if (!detail.empty()) msg += " (" + detail + ")";
+    throw ModelError(msg);
+  }
+  const XMLElement* robot = doc.RootElement();
+  if (robot == nullptr) throw ModelError(source + ": no root element (expected <robot>)");
+  if (std::strcmp(robot->Name(), "robot") != 0)
+    throw ModelError(at(source, robot) + "root element is <" + robot->Name() +
+                     ">, expected <robot>");
+  return robot;
+}
+
+}  // namespace model_internal
+
+namespace {
+
+constexpr const char* kRosControl = "libgazebo_ros_control.so";
+constexpr const char* kJointStatePublisher = "libgazebo_ros_joint_state_publisher.so";
+constexpr const char* kSimpleTransmission = "transmission_interface/SimpleTransmission";
+
+std::string attr(const XMLElement* e, const char* name) {
+  const char* v = e->Attribute(name);
+  return v ? v : "";
+}
+
+std::string text(const XMLElement* e) {
+  const char* t = e->GetText();
+  return t ? mi::trim(t) : "";
+}
+
+/// Value of <tag value="..."/> (the seed's form) or <tag>...</tag> (Gazebo's form).
+std::string valueOf(const XMLElement* e) {
+  if (const char* v = e->Attribute("value")) return mi::trim(v);
+  return text(e);
+}
+
+/// A finite, non-negative number, or a ModelError naming the element and value.
+double nonNegative(const XMLElement* e, const std::string& what, const std::string& source) {
+  const std::string v = valueOf(e);
+  const auto d = mi::toDouble(v);
+  if (!d) throw ModelError(mi::at(source, e) + what + ": <" + e->Name() + "> value '" + v +
+                           "' is not a number");
+  if (!std::isfinite(*d) || *d < 0.0)
+    throw ModelError(mi::at(source, e) + what + ": <" + e->Name() + "> value '" + v +
+                     "' must be finite and >= 0");
+  return *d;
+}
+
+bool toBool(const XMLElement* e, const std::string& what, const std::string& source) {
+  const std::string v = valueOf(e);
+  if (v == "true" || v == "1") return true;
+  if (v == "false" || v == "0") return false;
+  throw ModelError(mi::at(source, e) + what + ": <" + e->Name() + "> value '" + v +
+                   "' is not a boolean (true/false/1/0)");
+}
+
+std::vector<double> numbers(const std::string& s, bool* ok) {
+  std::vector<double> out;
+  *ok = true;
+  std::istringstream in(s);
+  std::string tok;
+  while (in >> tok) {
+    const auto d = mi::toDouble(tok);
+    if (!d || !std::isfinite(*d)) {
+      *ok = false;
+      return out;
+    }
+    out.push_back(*d);
+  }
+  return out;
+}
+
+PluginSpec parsePlugin(const XMLElement* e, const std::string& source) {
+  PluginSpec p;
+  p.name = attr(e, "name");
+  p.filename = mi::trim(attr(e, "filename"));
+  p.line = e->GetLineNum();
+  if (p.filename.empty())
+    throw ModelError(mi::at(source, e) + "plugin '" + p.name + "' has no filename");
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement())
+    p.params[c->Name()] = text(c);
+  return p;
+}
+
+SensorSpec parseSensor(const XMLElement* e, const std::string& link, const std::string& source) {
+  SensorSpec s;
+  s.name = attr(e, "name");
+  s.type = mi::trim(attr(e, "type"));
+  s.link = link;
+  s.line = e->GetLineNum();
+  const std::string what = "sensor '" + s.name + "' on link '" + link + "'";
+  if (s.name.empty())
+    throw ModelError(mi::at(source, e) + "sensor on link '" + link + "' has no name");
+  if (s.type.empty()) throw ModelError(mi::at(source, e) + what + " has no type");
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "pose") {
+      bool ok = false;
+      const auto v = numbers(text(c), &ok);
+      if (!ok || v.size() != 6)
+        throw ModelError(mi::at(source, c) + what + ": <pose> '" + text(c) +
+                         "' is not 6 finite numbers \"x y z roll pitch yaw\"");
+      // SDF pose: translation, then fixed-axis roll-pitch-yaw, R = Rz(yaw) Ry(pitch) Rx(roll).
+      s.X_LS = Eigen::Translation3d(v[0], v[1], v[2]) *
+               Eigen::AngleAxisd(v[5], Eigen::Vector3d::UnitZ()) *
+               Eigen::AngleAxisd(v[4], Eigen::Vector3d::UnitY()) *
+               Eigen::AngleAxisd(v[3], Eigen::Vector3d::UnitX());
+    } else if (tag == "update_rate") {
+      s.update_rate = nonNegative(c, what, source);
+    } else if (tag == "always_on") {
+      s.always_on = toBool(c, what, source);
+    } else if (tag == "plugin") {
+      s.plugins.push_back(parsePlugin(c, source));
+    }
+    // Everything else (ray, camera, noise, visualize, ...) belongs to the sensor loaders, which
+    // read it from `xml` and report what they do not support.
+  }
+  tinyxml2::XMLPrinter printer;
+  e->Accept(&printer);
+  s.xml = printer.CStr();
+  return s;
+}
+
+void parseLinkExtension(const XMLElement* g, const std::string& link, LinkExtension& ext,
+                        const std::string& source, mi::Warner& warner) {
+  const std::string what = "<gazebo reference='" + link + "'>";
+  for (const XMLElement* c = g->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "mu1") {
+      ext.mu1 = nonNegative(c, what, source);
+    } else if (tag == "mu2") {
+      ext.mu2 = nonNegative(c, what, source);
+    } else if (tag == "kp") {
+      ext.kp = nonNegative(c, what, source);
+    } else if (tag == "kd") {
+      ext.kd = nonNegative(c, what, source);
+    } else if (tag == "maxVel") {
+      ext.max_vel = nonNegative(c, what, source);
+    } else if (tag == "minDepth") {
+      ext.min_depth = nonNegative(c, what, source);
+    } else if (tag == "fdir1") {
+      bool ok = false;
+      const std::string v = valueOf(c);
+      const auto n = numbers(v, &ok);
+      if (!ok || n.size() != 3)
+        throw ModelError(mi::at(source, c) + what + ": <fdir1> value '" + v +
+                         "' is not 3 finite numbers \"x y z\"");
+      ext.fdir1 = Eigen::Vector3d(n[0], n[1], n[2]);
+    } else if (tag == "material") {
+      ext.material = valueOf(c);
+    } else if (tag == "selfCollide") {
+      ext.self_collide = toBool(c, what, source);
+    } else if (tag == "sensor") {
+      ext.sensors.push_back(parseSensor(c, link, source));
+    } else {
+      warner.warnOnce("gazebo-link:" + tag, mi::at(source, c) + what + ": unknown element <" +
+                                                tag + "> ignored");
+    }
+  }
+}
+
+void checkKnownParams(const PluginSpec& p, const std::set<std::string>& known,
+                      const std::string& source, mi::Warner& warner) {
+  for (const auto& kv : p.params) {
+    if (known.count(kv.first)) continue;
+    warner.warnOnce("plugin-param:" + p.filename + ":" + kv.first,
+                    source + ": line " + std::to_string(p.line) + ": plugin '" + p.name + "' (" +
+                        p.filename + "): unknown parameter <" + kv.first + "> ignored");
+  }
+}
+
+RosControlSpec rosControl(const PluginSpec& p, const std::string& source, mi::Warner& warner) {
+  checkKnownParams(p,
+                   {"robotNamespace", "robotParam", "controlPeriod", "robotSimType",
+                    "legacyModeNS", "eStopTopic"},
+                   source, warner);
+  const std::string where = source + ": line " + std::to_string(p.line) + ": plugin '" + p.name +
+                            "' (" + p.filename + "): ";
+  RosControlSpec r;
+  auto it = p.params.find("robotNamespace");
+  if (it != p.params.end()) r.robot_namespace = it->second;
+  it = p.params.find("robotParam");
+  if (it != p.params.end() && !it->second.empty()) r.robot_param = it->second;
+  it = p.params.find("controlPeriod");
+  if (it != p.params.end()) {
+    const auto d = mi::toDouble(it->second);
+    if (!d || !std::isfinite(*d) || *d < 0.0)
+      throw ModelError(where + "controlPeriod '" + it->second +
+                       "' must be a finite number of seconds >= 0");
+    r.control_period = *d;
+  }
+  it = p.params.find("robotSimType");
+  if (it != p.params.end() && it->second != "gazebo_ros_control/DefaultRobotHWSim")
+    warner.warn(where + "robotSimType '" + it->second +
+                "' is not supported; the built-in DefaultRobotHWSim behaviour is used");
+  return r;
+}
+
+JointStatePublisherSpec jointStatePublisher(const PluginSpec& p, const std::string& source,
+                                            const std::map<std::string, int>& joints,
+                                            mi::Warner& warner) {
+  checkKnownParams(p, {"jointName", "updateRate", "robotNamespace", "alwaysOn"}, source, warner);
+  const std::string where = source + ": line " + std::to_string(p.line) + ": plugin '" + p.name +
+                            "' (" + p.filename + "): ";
+  JointStatePublisherSpec s;
+  auto it = p.params.find("jointName");
+  if (it == p.params.end()) throw ModelError(where + "no <jointName>");
+  // Comma separated; whitespace anywhere inside a name is dropped (the seed writes
+  // "left_ front_wheel_joint" for left_front_wheel_joint).
+  std::string name;
+  auto flush = [&]() {
+    if (name.empty()) return;
+    if (!joints.count(name)) throw ModelError(where + "unknown joint '" + name + "'");
+    s.joint_names.push_back(name);
+    name.clear();
+  };
+  for (char ch : it->second) {
+    if (ch == ',') {
+      flush();
+    } else if (!std::isspace(static_cast<unsigned char>(ch))) {
+      name += ch;
+    }
+  }
+  flush();
+  if (s.joint_names.empty()) throw ModelError(where + "<jointName> lists no joints");
+  it = p.params.find("updateRate");
+  if (it != p.params.end()) {
+    const auto d = mi::toDouble(it->second);
+    if (!d || !std::isfinite(*d) || *d < 0.0)
+      throw ModelError(where + "updateRate '" + it->second + "' must be a finite number >= 0");
+    s.update_rate = *d;
+  }
+  it = p.params.find("robotNamespace");
+  if (it != p.params.end()) s.robot_namespace = it->second;
+  return s;
+}
+
+std::vector<JointInterface> interfaces(const XMLElement* e, const std::string& what,
+                                       const std::string& source) {
+  std::vector<JointInterface> out;
+  for (const XMLElement* h = e->FirstChildElement("hardwareInterface"); h;
+       h = h->NextSiblingElement("hardwareInterface")) {
+    const auto iface = parseJointInterface(text(h));
+    if (!iface)
+      throw ModelError(mi::at(source, h) + what + ": unknown hardwareInterface '" + text(h) +
+                       "' (expected EffortJointInterface, VelocityJointInterface or "
+                       "PositionJointInterface, optionally prefixed hardware_interface/)");
+    out.push_back(*iface);
+  }
+  return out;
+}
+
+TransmissionSpec parseTransmission(const XMLElement* t, const std::string& source,
+                                   const std::map<std::string, int>& joints,
+                                   mi::Warner& warner) {
+  TransmissionSpec s;
+  s.name = attr(t, "name");
+  s.line = t->GetLineNum();
+  const std::string what = "transmission '" + s.name + "'";
+  if (s.name.empty()) throw ModelError(mi::at(source, t) + "transmission without a name");
+
+  // <type> child (current format) or type attribute (pre-Indigo format).
+  const XMLElement* type = t->FirstChildElement("type");
+  s.type = type ? text(type) : mi::trim(attr(t, "type"));
+  if (s.type.empty()) throw ModelError(mi::at(source, t) + what + ": no <type>");
+  if (s.type != kSimpleTransmission)
+    throw ModelError(mi::at(source, type ? type : t) + what + ": unsupported type '" + s.type +
+                     "' (only " + kSimpleTransmission + ")");
+
+  const XMLElement* joint = nullptr;
+  const XMLElement* actuator = nullptr;
+  for (const XMLElement* c = t->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "type") continue;
+    if (tag == "joint" || tag == "actuator") {
+      const XMLElement*& slot = tag == "joint" ? joint : actuator;
+      if (slot)
+        throw ModelError(mi::at(source, c) + what + ": a SimpleTransmission has exactly one <" +
+                         tag + ">");
+      slot = c;
+      continue;
+    }
+    warner.warnOnce("transmission:" + tag,
+                    mi::at(source, c) + what + ": unknown element <" + tag + "> ignored");
+  }
+  if (!joint) throw ModelError(mi::at(source, t) + what + ": no <joint>");
+  if (!actuator) throw ModelError(mi::at(source, t) + what + ": no <actuator>");
+
+  s.joint = mi::trim(attr(joint, "name"));
+  if (s.joint.empty()) throw ModelError(mi::at(source, joint) + what + ": <joint> has no name");
+  if (!joints.count(s.joint))
+    throw ModelError(mi::at(source, joint) + what + ": unknown joint '" + s.joint + "'");
+  s.joint_interfaces = interfaces(joint, what + ": joint '" + s.joint + "'", source);
+  for (const XMLElement* c = joint->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag != "hardwareInterface")
+      warner.warnOnce("transmission-joint:" + tag,
+                      mi::at(source, c) + what + ": joint '" + s.joint + "': unknown element <" +
+                          tag + "> ignored");
+  }
+
+  s.actuator = mi::trim(attr(actuator, "name"));
+  if (s.actuator.empty())
+    throw ModelError(mi::at(source, actuator) + what + ": <actuator> has no name");
+  const std::string awhat = what + ": actuator '" + s.actuator + "'";
+  s.actuator_interfaces = interfaces(actuator, awhat, source);
+  for (const XMLElement* c = actuator->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "hardwareInterface") continue;
+    if (tag == "mechanicalReduction") {
+      const std::string v = text(c);
+      const auto d = mi::toDouble(v);
+      if (!d || !std::isfinite(*d) || *d == 0.0)
+        throw ModelError(mi::at(source, c) + awhat + ": mechanicalReduction '" + v +
+                         "' must be a finite non-zero number");
+      s.mechanical_reduction = *d;
+      continue;
+    }
+    warner.warnOnce("transmission-actuator:" + tag,
+                    mi::at(source, c) + awhat + ": unknown element <" + tag + "> ignored");
+  }
+
+  if (s.joint_interfaces.empty()) {
+    // gazebo_ros_control's fallback for old files: the actuator's interfaces, with a warning.
+    if (s.actuator_interfaces.empty())
+      throw ModelError(mi::at(source, joint) + what + ": joint '" + s.joint +
+                       "' has no <hardwareInterface>");
+    s.joint_interfaces = s.actuator_interfaces;
+    warner.warn(mi::at(source, joint) + what + ": joint '" + s.joint +
+                "' has no <hardwareInterface>; using the actuator's (deprecated format)");
+  }
+  return s;
+}
+
+}  // namespace
+
+std::optional<JointInterface> parseJointInterface(const std::string& text) {
+  std::string t = mi::trim(text);
+  const std::string prefix = "hardware_interface/";
+  if (t.compare(0, prefix.size(), prefix) == 0) t.erase(0, prefix.size());
+  if (t == "EffortJointInterface") return JointInterface::kEffort;
+  if (t == "VelocityJointInterface") return JointInterface::kVelocity;
+  if (t == "PositionJointInterface") return JointInterface::kPosition;
+  return std::nullopt;
+}
+
+const char* toString(JointInterface iface) {
+  switch (iface) {
+    case JointInterface::kEffort:
+      return "hardware_interface/EffortJointInterface";
+    case JointInterface::kVelocity:
+      return "hardware_interface/VelocityJointInterface";
+    case JointInterface::kPosition:
+      return "hardware_interface/PositionJointInterface";
+  }
+  return "unknown";
+}
+
+namespace model_internal {
+
+RobotExtensions parseExtensionsXml(const XMLElement* robot, const std::string& source,
+                                   Warner& warner) {
+  std::map<std::string, int> links, joints;
+  for (const XMLElement* e = robot->FirstChildElement("link"); e;
+       e = e->NextSiblingElement("link"))
+    links.emplace(attr(e, "name"), e->GetLineNum());
+  for (const XMLElement* e = robot->FirstChildElement("joint"); e;
+       e = e->NextSiblingElement("joint"))
+    joints.emplace(attr(e, "name"), e->GetLineNum());
+
+  RobotExtensions ext;
+  const XMLElement* ros_control_element = nullptr;
+  const XMLElement* jsp_element = nullptr;
+  std::map<std::string, std::string> transmission_of_joint;
+  for (const XMLElement* e = robot->FirstChildElement(); e; e = e->NextSiblingElement()) {
+    const std::string tag = e->Name();
+    if (tag == "link" || tag == "joint" || tag == "material") continue;
+    if (tag == "transmission") {
+      TransmissionSpec t = parseTransmission(e, source, joints, warner);
+      const auto ins = transmission_of_joint.emplace(t.joint, t.name);
+      if (!ins.second)
+        throw ModelError(at(source, e) + "transmission '" + t.name + "': joint '" + t.joint +
+                         "' already has transmission '" + ins.first->second + "'");
+      ext.transmissions.push_back(std::move(t));
+      continue;
+    }
+    if (tag != "gazebo") {
+      warner.warnOnce("robot:" + tag, at(source, e) + "unknown element <" + tag + "> ignored");
+      continue;
+    }
+    if (const char* ref = e->Attribute("reference")) {
+      const std::string link = trim(ref);
+      if (links.count(link)) {
+        parseLinkExtension(e, link, ext.links[link], source, warner);
+      } else if (joints.count(link)) {
+        warner.warnOnce("gazebo-joint:" + link,
+                        at(source, e) + "<gazebo reference='" + link +
+                            "'> names a joint; joint extensions are not supported, ignored");
+      } else {
+        warner.warnOnce("gazebo-ref:" + link,
+                        at(source, e) + "<gazebo reference='" + link + "'>: no link named '" +
+                            link + "' (Gazebo ignores it)");
+      }
+      continue;
+    }
+    for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+      const std::string ctag = c->Name();
+      if (ctag != "plugin") {
+        warner.warnOnce("gazebo-model:" + ctag,
+                        at(source, c) + "<gazebo>: unknown element <" + ctag + "> ignored");
+        continue;
+      }
+      PluginSpec p = parsePlugin(c, source);
+      if (p.filename == kRosControl) {
+        if (ros_control_element)
+          throw ModelError(at(source, c) + "second " + kRosControl + " plugin (the first is at line " +
+                           std::to_string(ros_control_element->GetLineNum()) + ")");
+        ros_control_element = c;
+        ext.ros_control = rosControl(p, source, warner);
+      } else if (p.filename == kJointStatePublisher) {
+        if (jsp_element)
+          throw ModelError(at(source, c) + "second " + kJointStatePublisher +
+                           " plugin (the first is at line " +
+                           std::to_string(jsp_element->GetLineNum()) + ")");
+        jsp_element = c;
+        ext.joint_state_publisher = jointStatePublisher(p, source, joints, warner);
+      } else {
+        warner.warnOnce("plugin:" + p.filename,
+                        at(source, c) + "plugin '" + p.name + "': unknown plugin '" + p.filename +
+                            "' ignored");
+      }
+      ext.model_plugins.push_back(std::move(p));
+    }
+  }
+  return ext;
+}
+
+}  // namespace model_internal
+
+RobotExtensions parseExtensions(const std::string& urdf_xml, const std::string& source,
+                                const WarningSink& warn) {
+  tinyxml2::XMLDocument doc;
+  const XMLElement* robot = mi::parseRobotXml(doc, urdf_xml, source);
+  mi::Warner warner(warn);
+  return mi::parseExtensionsXml(robot, source, warner);
+}
+
+}  // namespace tianracer_sim

@@ -1,0 +1,264 @@
+// URDF string -> RobotModel: structural checks with line numbers (tinyxml2), urdfdom for the
+// model itself, then the extensions and mesh files. ROS-free.
+#include "tianracer_sim/model/robot_model.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+#include <console_bridge/console.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include "model_internal.h"
+
+namespace tianracer_sim {
+
+namespace mi = model_internal;
+using tinyxml2::XMLElement;
+
+namespace {
+
+std::string attr(const XMLElement* e, const char* name) {
+  const char* v = e ? e->Attribute(name) : nullptr;
+  return v ? v : "";
+}
+
+std::string lines(const XMLElement* a, const XMLElement* b) {
+  return "lines " + std::to_string(a->GetLineNum()) + " and " + std::to_string(b->GetLineNum());
+}
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(9);
+  s << v;
+  return s.str();
+}
+
+/// mass > 0 and finite; inertia finite and positive definite (all eigenvalues of the symmetric
+/// 3x3 tensor > 0). The triangle inequalities are not required, as in Gazebo.
+void checkInertial(const XMLElement* link, const std::string& name, const std::string& source) {
+  const XMLElement* inertial = link->FirstChildElement("inertial");
+  if (!inertial) return;  // massless link (e.g. base_link): merged into its parent or ignored
+  const std::string what = "link '" + name + "': ";
+  const XMLElement* mass = inertial->FirstChildElement("mass");
+  if (!mass || !mass->Attribute("value"))
+    throw ModelError(mi::at(source, mass ? mass : inertial) + what +
+                     "<inertial> has no <mass value=...>");
+  const std::string mv = attr(mass, "value");
+  const auto m = mi::toDouble(mv);
+  if (!m || !std::isfinite(*m) || *m <= 0.0)
+    throw ModelError(mi::at(source, mass) + what + "mass '" + mv +
+                     "' must be a positive finite number");
+  const XMLElement* inertia = inertial->FirstChildElement("inertia");
+  if (!inertia) throw ModelError(mi::at(source, inertial) + what + "<inertial> has no <inertia>");
+  static const char* kKeys[6] = {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"};
+  double v[6];
+  for (int i = 0; i < 6; ++i) {
+    const char* a = inertia->Attribute(kKeys[i]);
+    if (!a) throw ModelError(mi::at(source, inertia) + what + "<inertia> has no " + kKeys[i]);
+    const auto d = mi::toDouble(a);
+    if (!d || !std::isfinite(*d))
+      throw ModelError(mi::at(source, inertia) + what + "inertia " + kKeys[i] + "='" + a +
+                       "' is not a finite number");
+    v[i] = *d;
+  }
+  Eigen::Matrix3d I;
+  I << v[0], v[1], v[2], v[1], v[3], v[4], v[2], v[4], v[5];
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(I, Eigen::EigenvaluesOnly);
+  const double min_eig = es.eigenvalues().minCoeff();
+  if (!(min_eig > 0.0)) {
+    std::string values;
+    for (int i = 0; i < 6; ++i) values += std::string(i ? " " : "") + kKeys[i] + "=" + fmt(v[i]);
+    throw ModelError(mi::at(source, inertia) + what + "inertia is not positive definite (" +
+                     values + "; smallest eigenvalue " + fmt(min_eig) + ")");
+  }
+}
+
+/// What urdfdom reports vaguely or not at all: names, duplicates, dangling links, loops,
+/// several roots, masses and inertias; each with its line.
+void checkStructure(const XMLElement* robot, const std::string& source) {
+  std::map<std::string, const XMLElement*> links, joints;
+  for (const XMLElement* e = robot->FirstChildElement("link"); e;
+       e = e->NextSiblingElement("link")) {
+    const std::string name = attr(e, "name");
+    if (name.empty()) throw ModelError(mi::at(source, e) + "<link> without a name");
+    const auto ins = links.emplace(name, e);
+    if (!ins.second)
+      throw ModelError(source + ": duplicate link name '" + name + "' (" +
+                       lines(ins.first->second, e) + ")");
+    checkInertial(e, name, source);
+  }
+  if (links.empty()) throw ModelError(mi::at(source, robot) + "<robot> has no <link>");
+
+  struct Parent {
+    std::string link, joint;
+    const XMLElement* element;
+  };
+  std::map<std::string, Parent> parent_of;  // child link -> its parent
+  for (const XMLElement* e = robot->FirstChildElement("joint"); e;
+       e = e->NextSiblingElement("joint")) {
+    const std::string name = attr(e, "name");
+    if (name.empty()) throw ModelError(mi::at(source, e) + "<joint> without a name");
+    const auto ins = joints.emplace(name, e);
+    if (!ins.second)
+      throw ModelError(source + ": duplicate joint name '" + name + "' (" +
+                       lines(ins.first->second, e) + ")");
+    const std::string what = "joint '" + name + "': ";
+    const std::string parent = attr(e->FirstChildElement("parent"), "link");
+    const std::string child = attr(e->FirstChildElement("child"), "link");
+    if (parent.empty()) throw ModelError(mi::at(source, e) + what + "no <parent link=...>");
+    if (child.empty()) throw ModelError(mi::at(source, e) + what + "no <child link=...>");
+    if (!links.count(parent))
+      throw ModelError(mi::at(source, e) + what + "parent link '" + parent + "' does not exist");
+    if (!links.count(child))
+      throw ModelError(mi::at(source, e) + what + "child link '" + child + "' does not exist");
+    const auto pin = parent_of.emplace(child, Parent{parent, name, e});
+    if (!pin.second)
+      throw ModelError(source + ": link '" + child + "' has two parent joints, '" +
+                       pin.first->second.joint + "' and '" + name + "' (" +
+                       lines(pin.first->second.element, e) +
+                       "): joint loops are not supported, a URDF must be a tree");
+  }
+
+  // Each link has at most one parent now; a loop is a parent chain that comes back.
+  for (const auto& kv : links) {
+    std::vector<std::string> chain{kv.first};
+    std::string cur = kv.first;
+    for (size_t steps = 0; steps <= links.size(); ++steps) {
+      const auto it = parent_of.find(cur);
+      if (it == parent_of.end()) break;
+      cur = it->second.link;
+      chain.push_back(cur);
+      if (cur == kv.first) {
+        std::string path;
+        for (size_t i = 0; i < chain.size(); ++i) path += (i ? " -> '" : "'") + chain[i] + "'";
+        throw ModelError(source + ": joint loop: " + path + " (joint '" + it->second.joint +
+                         "', line " + std::to_string(it->second.element->GetLineNum()) +
+                         "): a URDF must be a tree");
+      }
+    }
+  }
+
+  std::vector<std::string> roots;
+  for (const auto& kv : links)
+    if (!parent_of.count(kv.first)) roots.push_back(kv.first);
+  if (roots.size() > 1)
+    throw ModelError(source + ": links '" + roots[0] + "' and '" + roots[1] +
+                     "' both have no parent joint: a URDF must be one connected tree");
+}
+
+/// Collects urdfdom's console_bridge messages while it parses (its only error channel).
+class CaptureHandler : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_WARN) messages.push_back(text);
+  }
+  std::vector<std::string> messages;
+};
+
+urdf::ModelInterfaceSharedPtr parseWithUrdfdom(const std::string& xml, const std::string& source,
+                                               mi::Warner& warner) {
+  static std::mutex mutex;
+  static CaptureHandler handler;  // static: console_bridge keeps a pointer as "previous"
+  std::lock_guard<std::mutex> lock(mutex);
+  handler.messages.clear();
+  console_bridge::OutputHandler* previous = console_bridge::getOutputHandler();
+  console_bridge::useOutputHandler(&handler);
+  urdf::ModelInterfaceSharedPtr model;
+  try {
+    model = urdf::parseURDF(xml);
+  } catch (const std::exception& e) {
+    handler.messages.push_back(e.what());
+  }
+  console_bridge::useOutputHandler(previous);
+  if (!model) {
+    std::string msg = source + ": urdfdom could not parse the URDF";
+    for (const auto& m : handler.messages) msg += ": " + m;
+    throw ModelError(msg);
+  }
+  for (const auto& m : handler.messages) warner.warn(source + ": urdfdom: " + m);
+  return model;
+}
+
+void collectMeshes(RobotModel& model, const LoadOptions& options, mi::Warner& warner) {
+  for (const auto& kv : model.urdf->links_) {
+    const urdf::LinkSharedPtr& link = kv.second;
+    if (!link) continue;
+    std::vector<urdf::GeometrySharedPtr> geometries;
+    for (const auto& v : link->visual_array)
+      if (v) geometries.push_back(v->geometry);
+    for (const auto& c : link->collision_array)
+      if (c) geometries.push_back(c->geometry);
+    for (const auto& g : geometries) {
+      if (!g || g->type != urdf::Geometry::MESH) continue;
+      const auto mesh = std::dynamic_pointer_cast<urdf::Mesh>(g);
+      if (!mesh) continue;
+      const std::string& uri = mesh->filename;
+      std::string path;
+      try {
+        path = options.resolver.resolve(uri);
+      } catch (const ModelError& e) {
+        const std::string msg = model.source + ": link '" + link->name + "': " + e.what();
+        if (options.require_meshes) throw ModelError(msg);
+        warner.warn(msg);
+        continue;
+      }
+      model.mesh_paths[uri] = path;
+      if (!options.require_meshes) continue;
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(path, ec))
+        throw ModelError(model.source + ": link '" + link->name + "': mesh '" + uri +
+                         "' not found (resolved to " + path + ")");
+    }
+  }
+}
+
+}  // namespace
+
+RobotModel loadRobotModel(const std::string& urdf_xml, const std::string& source,
+                          const LoadOptions& options) {
+  mi::Warner warner(options.warn);
+  tinyxml2::XMLDocument doc;
+  const XMLElement* robot = mi::parseRobotXml(doc, urdf_xml, source);
+  checkStructure(robot, source);
+  RobotModel model;
+  model.source = source;
+  model.urdf = parseWithUrdfdom(urdf_xml, source, warner);
+  model.ext = mi::parseExtensionsXml(robot, source, warner);
+  collectMeshes(model, options, warner);
+  return model;
+}
+
+RobotModel loadRobotModelFile(const std::string& path, LoadOptions options) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (path.empty()) throw ModelError("model file path is empty");
+  if (!fs::is_regular_file(path, ec)) throw ModelError(path + ": model file not found");
+  if (options.resolver.base_dir.empty())
+    options.resolver.base_dir = fs::absolute(fs::path(path), ec).parent_path().string();
+
+  const std::string ext = fs::path(path).extension().string();
+  std::string xml, source = path;
+  if (ext == ".xacro") {
+    xml = expandXacro(path, {}, options.warn);
+    source = path + " (expanded by xacro)";
+  } else if (ext == ".urdf" || ext == ".xml") {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    if (!in) throw ModelError(path + ": cannot read the model file");
+    xml = s.str();
+  } else {
+    throw ModelError(path + ": unknown model file type '" + ext +
+                     "' (expected .urdf, .xml or .xacro)");
+  }
+  RobotModel model = loadRobotModel(xml, source, options);
+  model.source = path;
+  return model;
+}
+
+}  // namespace tianracer_sim
