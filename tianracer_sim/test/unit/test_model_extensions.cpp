@@ -1,0 +1,333 @@
+// parseExtensions alone (the fuzzer's entry point), parseJointInterface, and a deterministic
+// mutation run showing that any input gives a result or a ModelError, never a crash.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tianracer_sim/model/robot_model.h"
+
+namespace tianracer_sim {
+namespace {
+
+using ::testing::AllOf;
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+
+/// A two-wheel robot with `body` spliced in after the links and joints.
+std::string robot(const std::string& body) {
+  return "<robot name='r'>\n"
+         "<link name='base_link'/>\n"
+         "<link name='wheel'/>\n"
+         "<joint name='wheel_joint' type='continuous'><parent link='base_link'/>"
+         "<child link='wheel'/><axis xyz='0 1 0'/></joint>\n" +
+         body + "\n</robot>\n";
+}
+
+struct Parser {
+  std::vector<std::string> warnings;
+  RobotExtensions parse(const std::string& xml) {
+    return parseExtensions(xml, "test.urdf",
+                           [this](const std::string& w) { warnings.push_back(w); });
+  }
+  std::string error(const std::string& xml) {
+    try {
+      parse(xml);
+    } catch (const ModelError& e) {
+      return e.what();
+    }
+    return "";
+  }
+};
+
+TEST(JointInterface, BothSpellings) {
+  EXPECT_EQ(parseJointInterface("hardware_interface/EffortJointInterface"),
+            JointInterface::kEffort);
+  EXPECT_EQ(parseJointInterface("EffortJointInterface"), JointInterface::kEffort);
+  EXPECT_EQ(parseJointInterface(" VelocityJointInterface\n"), JointInterface::kVelocity);
+  EXPECT_EQ(parseJointInterface("hardware_interface/PositionJointInterface"),
+            JointInterface::kPosition);
+  EXPECT_FALSE(parseJointInterface("hardware_interface/"));
+  EXPECT_FALSE(parseJointInterface("effortjointinterface"));
+  EXPECT_FALSE(parseJointInterface("other_interface/EffortJointInterface"));
+  EXPECT_FALSE(parseJointInterface(""));
+  for (auto i : {JointInterface::kEffort, JointInterface::kVelocity, JointInterface::kPosition})
+    EXPECT_EQ(parseJointInterface(toString(i)), i);
+}
+
+TEST(Extensions, SurfaceValuesInBothForms) {
+  Parser p;
+  const auto ext = p.parse(robot(
+      "<gazebo reference='wheel'><mu1 value=' 0.8 '/><mu2>0.7</mu2><kp value='1e7'/>"
+      "<kd>+1</kd><fdir1> 0 1 0 </fdir1><material value='Gazebo/Blue'/>"
+      "<selfCollide>1</selfCollide><maxVel value='0.01'/><minDepth>0</minDepth></gazebo>"));
+  const LinkExtension& w = ext.links.at("wheel");
+  EXPECT_EQ(*w.mu1, 0.8);
+  EXPECT_EQ(*w.mu2, 0.7);
+  EXPECT_EQ(*w.kp, 1e7);
+  EXPECT_EQ(*w.kd, 1.0);
+  EXPECT_EQ(*w.fdir1, Eigen::Vector3d(0, 1, 0));
+  EXPECT_EQ(w.material, "Gazebo/Blue");
+  EXPECT_TRUE(*w.self_collide);
+  EXPECT_EQ(*w.max_vel, 0.01);
+  EXPECT_EQ(*w.min_depth, 0.0);
+  EXPECT_TRUE(p.warnings.empty());
+}
+
+TEST(Extensions, BadSurfaceValuesNameElementAndValue) {
+  Parser p;
+  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><mu1>slippery</mu1></gazebo>")),
+              HasSubstr("test.urdf: line 5: <gazebo reference='wheel'>: <mu1> value 'slippery' "
+                        "is not a number"));
+  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><kp value='-1'/></gazebo>")),
+              HasSubstr("<kp> value '-1' must be finite and >= 0"));
+  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><kd value='inf'/></gazebo>")),
+              HasSubstr("<kd> value 'inf' must be finite and >= 0"));
+  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><mu2/></gazebo>")),
+              HasSubstr("<mu2> value '' is not a number"));
+  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><fdir1>1 0</fdir1></gazebo>")),
+              HasSubstr("<fdir1> value '1 0' is not 3 finite numbers"));
+  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><fdir1>1 nan 0</fdir1></gazebo>")),
+              HasSubstr("<fdir1> value '1 nan 0'"));
+  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><selfCollide>yes</selfCollide></gazebo>")),
+              HasSubstr("<selfCollide> value 'yes' is not a boolean"));
+}
+
+TEST(Extensions, ReferencesToJointsAndMissingLinksAreWarnings) {
+  Parser p;
+  const auto ext = p.parse(robot("<gazebo reference='wheel_joint'><provideFeedback>true"
+                                 "</provideFeedback></gazebo>"
+                                 "<gazebo reference='ghost'><mu1>1</mu1></gazebo>"
+                                 "<gazebo reference='ghost'><mu1>1</mu1></gazebo>"));
+  EXPECT_TRUE(ext.links.empty());
+  EXPECT_THAT(p.warnings,
+              ElementsAre(HasSubstr("<gazebo reference='wheel_joint'> names a joint"),
+                          HasSubstr("<gazebo reference='ghost'>: no link named 'ghost' (Gazebo "
+                                    "ignores it)")));
+}
+
+TEST(Extensions, UnknownTopLevelAndModelElementsAreWarnedOnce) {
+  Parser p;
+  p.parse(robot("<sensor name='s'/><sensor name='t'/><gazebo><static>true</static></gazebo>"));
+  EXPECT_THAT(p.warnings, ElementsAre(HasSubstr("unknown element <sensor> ignored"),
+                                      HasSubstr("<gazebo>: unknown element <static> ignored")));
+}
+
+TEST(Extensions, SensorFields) {
+  Parser p;
+  const auto ext = p.parse(robot(
+      "<gazebo reference='wheel'><sensor name='s' type='depth'><always_on>1</always_on>"
+      "<update_rate>20.0</update_rate><pose>1 2 3 0 0 0</pose>"
+      "<plugin name='k' filename='libgazebo_ros_openni_kinect.so'><cameraName>rs</cameraName>"
+      "<updateRate>10</updateRate><empty/></plugin></sensor></gazebo>"));
+  const SensorSpec& s = ext.links.at("wheel").sensors.at(0);
+  EXPECT_EQ(s.type, "depth");
+  EXPECT_EQ(s.update_rate, 20.0);
+  EXPECT_TRUE(s.always_on);
+  EXPECT_TRUE(s.X_LS.translation().isApprox(Eigen::Vector3d(1, 2, 3)));
+  EXPECT_EQ(s.plugins.at(0).params.at("updateRate"), "10");
+  EXPECT_EQ(s.plugins.at(0).params.at("empty"), "");
+  EXPECT_EQ(s.line, 5);
+  // The printed element parses back to the same sensor.
+  const auto again = p.parse(robot("<gazebo reference='wheel'>" + s.xml + "</gazebo>"));
+  EXPECT_EQ(again.links.at("wheel").sensors.at(0).update_rate, 20.0);
+
+  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><sensor type='ray'/></gazebo>")),
+              HasSubstr("sensor on link 'wheel' has no name"));
+  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><sensor name='x'/></gazebo>")),
+              HasSubstr("sensor 'x' on link 'wheel' has no type"));
+  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><sensor name='x' type='ray'>"
+                            "<pose>0 0 0</pose></sensor></gazebo>")),
+              HasSubstr("sensor 'x' on link 'wheel': <pose> '0 0 0' is not 6 finite numbers"));
+  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><sensor name='x' type='ray'>"
+                            "<update_rate>-5</update_rate></sensor></gazebo>")),
+              HasSubstr("<update_rate> value '-5' must be finite and >= 0"));
+  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><sensor name='x' type='ray'>"
+                            "<plugin name='p'/></sensor></gazebo>")),
+              HasSubstr("plugin 'p' has no filename"));
+}
+
+TEST(Extensions, RosControlPlugin) {
+  Parser p;
+  auto ext = p.parse(robot("<gazebo><plugin name='rc' filename='libgazebo_ros_control.so'>"
+                           "<robotNamespace>/car</robotNamespace></plugin></gazebo>"));
+  ASSERT_TRUE(ext.ros_control);
+  EXPECT_EQ(ext.ros_control->robot_namespace, "/car");
+  EXPECT_EQ(ext.ros_control->robot_param, "robot_description");  // default
+  EXPECT_EQ(ext.ros_control->control_period, 0.0);                // every step
+  EXPECT_TRUE(p.warnings.empty());
+
+  ext = p.parse(robot("<gazebo><plugin name='rc' filename='libgazebo_ros_control.so'>"
+                      "<controlPeriod>0.01</controlPeriod><robotParam>desc</robotParam>"
+                      "<robotSimType>my/Sim</robotSimType><colour>red</colour></plugin>"
+                      "</gazebo>"));
+  EXPECT_EQ(ext.ros_control->control_period, 0.01);
+  EXPECT_EQ(ext.ros_control->robot_param, "desc");
+  EXPECT_THAT(p.warnings, ElementsAre(HasSubstr("unknown parameter <colour> ignored"),
+                                      HasSubstr("robotSimType 'my/Sim' is not supported")));
+
+  EXPECT_THAT(p.error(robot("<gazebo><plugin name='rc' filename='libgazebo_ros_control.so'>"
+                            "<controlPeriod>fast</controlPeriod></plugin></gazebo>")),
+              HasSubstr("plugin 'rc' (libgazebo_ros_control.so): controlPeriod 'fast'"));
+  EXPECT_THAT(p.error(robot("<gazebo><plugin name='a' filename='libgazebo_ros_control.so'/>"
+                            "<plugin name='b' filename='libgazebo_ros_control.so'/></gazebo>")),
+              HasSubstr("second libgazebo_ros_control.so plugin"));
+}
+
+TEST(Extensions, JointStatePublisherStripsWhitespaceInsideNames) {
+  Parser p;
+  const auto ext = p.parse(robot(
+      "<gazebo><plugin name='jsp' filename='libgazebo_ros_joint_state_publisher.so'>"
+      "<jointName> wheel_ joint,\n\twhe el_joint , </jointName><updateRate>50.0</updateRate>"
+      "<robotNamespace>/car</robotNamespace></plugin></gazebo>"));
+  ASSERT_TRUE(ext.joint_state_publisher);
+  EXPECT_THAT(ext.joint_state_publisher->joint_names, ElementsAre("wheel_joint", "wheel_joint"));
+  EXPECT_EQ(ext.joint_state_publisher->update_rate, 50.0);
+  EXPECT_EQ(ext.joint_state_publisher->robot_namespace, "/car");
+  EXPECT_EQ(ext.model_plugins.size(), 1u);
+
+  EXPECT_THAT(p.error(robot("<gazebo><plugin name='jsp' "
+                            "filename='libgazebo_ros_joint_state_publisher.so'>"
+                            "<jointName>wheel_joint,axle</jointName></plugin></gazebo>")),
+              HasSubstr("plugin 'jsp' (libgazebo_ros_joint_state_publisher.so): unknown joint "
+                        "'axle'"));
+  EXPECT_THAT(p.error(robot("<gazebo><plugin name='jsp' "
+                            "filename='libgazebo_ros_joint_state_publisher.so'/></gazebo>")),
+              HasSubstr("no <jointName>"));
+  EXPECT_THAT(p.error(robot("<gazebo><plugin name='jsp' "
+                            "filename='libgazebo_ros_joint_state_publisher.so'>"
+                            "<jointName>wheel_joint</jointName><updateRate>nan</updateRate>"
+                            "</plugin></gazebo>")),
+              HasSubstr("updateRate 'nan'"));
+}
+
+TEST(Extensions, UnknownPluginWarnedOncePerFilename) {
+  Parser p;
+  const auto ext =
+      p.parse(robot("<gazebo><plugin name='a' filename='libfoo.so'/></gazebo>"
+                    "<gazebo><plugin name='b' filename='libfoo.so'/>"
+                    "<plugin name='c' filename='libbar.so'/></gazebo>"));
+  EXPECT_EQ(ext.model_plugins.size(), 3u);
+  EXPECT_THAT(p.warnings, ElementsAre(HasSubstr("unknown plugin 'libfoo.so'"),
+                                      HasSubstr("unknown plugin 'libbar.so'")));
+}
+
+TEST(Extensions, TransmissionFormsAndErrors) {
+  const std::string head =
+      "<transmission name='t'><type>transmission_interface/SimpleTransmission</type>";
+  Parser p;
+  // Old format: type attribute, interface only on the actuator (used, with a warning).
+  auto ext = p.parse(robot(
+      "<transmission name='t' type='transmission_interface/SimpleTransmission'>"
+      "<joint name='wheel_joint'/><actuator name='m'><hardwareInterface>EffortJointInterface"
+      "</hardwareInterface><mechanicalReduction>-3</mechanicalReduction></actuator>"
+      "</transmission>"));
+  ASSERT_EQ(ext.transmissions.size(), 1u);
+  EXPECT_THAT(ext.transmissions[0].joint_interfaces, ElementsAre(JointInterface::kEffort));
+  EXPECT_EQ(ext.transmissions[0].mechanical_reduction, -3.0);  // a reversed gear is allowed
+  EXPECT_THAT(p.warnings, ElementsAre(HasSubstr("using the actuator's (deprecated format)")));
+
+  EXPECT_THAT(p.error(robot(head + "<joint name='wheel_joint'/><actuator name='m'/>"
+                                   "</transmission>")),
+              HasSubstr("transmission 't': joint 'wheel_joint' has no <hardwareInterface>"));
+  EXPECT_THAT(p.error(robot(head + "<joint name='wheel_joint'><hardwareInterface>"
+                                   "VelocityJointInterface</hardwareInterface></joint>"
+                                   "</transmission>")),
+              HasSubstr("transmission 't': no <actuator>"));
+  EXPECT_THAT(p.error(robot(head + "</transmission>")), HasSubstr("transmission 't': no <joint>"));
+  EXPECT_THAT(p.error(robot("<transmission name='t'><joint name='wheel_joint'/></transmission>")),
+              HasSubstr("transmission 't': no <type>"));
+  EXPECT_THAT(p.error(robot("<transmission><type>x</type></transmission>")),
+              HasSubstr("transmission without a name"));
+  EXPECT_THAT(p.error(robot(head + "<joint name='wheel_joint'><hardwareInterface>"
+                                   "VelocityJointInterface</hardwareInterface></joint>"
+                                   "<actuator name='m'><mechanicalReduction>nan"
+                                   "</mechanicalReduction></actuator></transmission>")),
+              HasSubstr("mechanicalReduction 'nan' must be a finite non-zero number"));
+  EXPECT_THAT(p.error(robot(head + "<joint name='wheel_joint'><hardwareInterface>"
+                                   "VelocityJointInterface</hardwareInterface></joint>"
+                                   "<actuator name='m'><hardwareInterface>Bogus"
+                                   "</hardwareInterface></actuator></transmission>")),
+              HasSubstr("transmission 't': actuator 'm': unknown hardwareInterface 'Bogus'"));
+  const std::string good = "<joint name='wheel_joint'><hardwareInterface>VelocityJointInterface"
+                           "</hardwareInterface></joint><actuator name='m'/></transmission>";
+  EXPECT_THAT(p.error(robot(head + good + "<transmission name='u'>"
+                                          "<type>transmission_interface/SimpleTransmission</type>" +
+                            good)),
+              HasSubstr("transmission 'u': joint 'wheel_joint' already has transmission 't'"));
+}
+
+TEST(Extensions, SyntaxAndEmptyInput) {
+  Parser p;
+  EXPECT_EQ(p.error(""), "test.urdf: robot_description is empty");
+  EXPECT_THAT(p.error("<robot>\n<gazebo>\n</robot>"),
+              AllOf(HasSubstr("test.urdf: XML error at line 2"), HasSubstr("MISMATCHED")));
+  EXPECT_THAT(p.error("not xml at all"), HasSubstr("test.urdf: XML error at line 1"));
+}
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A small deterministic stand-in for the libFuzzer run of issue 9: byte flips, insertions and
+// truncations of full.urdf. Anything but a result or a ModelError fails the test (a crash
+// fails it too).
+TEST(Extensions, MutatedInputsOnlyEverThrowModelError) {
+  const std::string seed = readFile(std::string(TEST_DATA_DIR) + "/urdf/full.urdf");
+  ASSERT_FALSE(seed.empty());
+  const std::string alphabet = "<>/='\" \n0123456789.-+eEnaif,abcdefghijklmnopqrstuvwxyz_&;!?";
+  std::mt19937 rng(12345);
+  int parsed = 0, rejected = 0;
+  for (int i = 0; i < 3000; ++i) {
+    std::string s = seed;
+    const int edits = 1 + static_cast<int>(rng() % 8);
+    for (int k = 0; k < edits && !s.empty(); ++k) {
+      const size_t pos = rng() % s.size();
+      switch (rng() % 4) {
+        case 0:
+          s[pos] = alphabet[rng() % alphabet.size()];
+          break;
+        case 1:
+          s.insert(pos, 1, alphabet[rng() % alphabet.size()]);
+          break;
+        case 2:
+          s.erase(pos, 1 + rng() % 16);
+          break;
+        default:
+          s.resize(pos);
+          break;
+      }
+    }
+    try {
+      parseExtensions(s, "fuzz", [](const std::string&) {});
+      ++parsed;
+    } catch (const ModelError&) {
+      ++rejected;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "non-ModelError exception: " << e.what() << "\ninput:\n" << s;
+    }
+  }
+  EXPECT_GT(parsed, 0);
+  EXPECT_GT(rejected, 0);
+}
+
+TEST(Extensions, DeepNestingIsRejectedNotRecursed) {
+  std::string deep = "<robot name='r'><gazebo reference='x'>";
+  for (int i = 0; i < 100000; ++i) deep += "<a>";
+  EXPECT_THROW(parseExtensions(deep, "deep", nullptr), ModelError);
+}
+
+}  // namespace
+}  // namespace tianracer_sim
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);  // gtest only: gmock matchers are header-only
+  return RUN_ALL_TESTS();
+}
