@@ -71,14 +71,21 @@ AckermannCommand twistToAckermann(const AckermannGeometry& g, double v, double a
                                   const AckermannOptions& options) {
   if (!std::isfinite(v)) v = 0.0;
   if (!std::isfinite(angular_z)) angular_z = 0.0;
-
-  AckermannCommand cmd;
   const double requested = options.angular_z_is_steering_angle
                                ? angular_z
                                : steeringAngleFromYawRate(g.wheelbase, v, angular_z);
+  return ackermannFromSteering(g, v, requested, options.differential);
+}
+
+AckermannCommand ackermannFromSteering(const AckermannGeometry& g, double v, double delta,
+                                       bool differential) {
+  if (!std::isfinite(v)) v = 0.0;
+  if (!std::isfinite(delta)) delta = 0.0;
+
+  AckermannCommand cmd;
   const double limit = maxBicycleAngle(g);
-  cmd.delta = std::clamp(requested, -limit, limit);
-  cmd.clamped = std::abs(requested) > limit;
+  cmd.delta = std::clamp(delta, -limit, limit);
+  cmd.clamped = std::abs(delta) > limit;
 
   const double m = g.max_steering_angle;
   // At |delta| = limit the inner wheel is at m up to rounding; keep it inside the joint limit.
@@ -88,7 +95,7 @@ AckermannCommand twistToAckermann(const AckermannGeometry& g, double v, double a
   cmd.speed = v;
   cmd.yaw_rate = yawRateFromSteeringAngle(g.wheelbase, v, cmd.delta);
   const double omega = v / g.wheel_radius;
-  if (options.differential) {
+  if (differential) {
     const double k = g.rear_track * std::tan(cmd.delta) / (2.0 * g.wheelbase);
     cmd.left_wheel_omega = omega * (1.0 - k);
     cmd.right_wheel_omega = omega * (1.0 + k);

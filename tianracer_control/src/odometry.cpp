@@ -48,8 +48,12 @@ bool BicycleOdometry::updateFromPositions(double left_rear_position, double righ
     return false;
   }
   if (!(dt > 0.0) || !std::isfinite(dt)) return false;
-  const double left_omega = (left_rear_position - last_left_) / dt;
-  const double right_omega = (right_rear_position - last_right_) / dt;
+  auto step = [](double from, double to) {
+    const double d = to - from;
+    return std::abs(d) > M_PI ? shortestAngularDistance(from, to) : d;
+  };
+  const double left_omega = step(last_left_, left_rear_position) / dt;
+  const double right_omega = step(last_right_, right_rear_position) / dt;
   last_left_ = left_rear_position;
   last_right_ = right_rear_position;
   return update(left_omega, right_omega, left_hinge, right_hinge, dt);

@@ -190,3 +190,17 @@ TEST(Ackermann, GeometryValidation) {
   g.wheel_radius = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(g.validate(), AckermannError);
 }
+
+TEST(Ackermann, FromSteeringMatchesTwistInSteeringMode) {
+  const AckermannGeometry g = geometry();
+  AckermannOptions o;
+  o.angular_z_is_steering_angle = true;
+  o.differential = true;
+  for (double delta : {-0.7, -0.3, 0.0, 0.2, 0.55}) {
+    const AckermannCommand a = twistToAckermann(g, 0.8, delta, o);
+    const AckermannCommand b = ackermannFromSteering(g, 0.8, delta, true);
+    EXPECT_EQ(a.left_steer, b.left_steer);
+    EXPECT_EQ(a.right_wheel_omega, b.right_wheel_omega);
+    EXPECT_EQ(a.clamped, b.clamped);
+  }
+}

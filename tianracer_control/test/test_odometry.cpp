@@ -121,3 +121,11 @@ TEST(Odometry, HeadingWraps) {
   odo.integrate(1.0, 1.0, 4.0);  // yaw = 4 rad
   EXPECT_NEAR(odo.heading(), 4.0 - 2.0 * M_PI, 1e-12);
 }
+
+TEST(Odometry, WrappedPositionsAreUnwrapped) {
+  BicycleOdometry odo(geometry());
+  odo.updateFromPositions(3.0, 3.0, 0.0, 0.0, 0.02);
+  // 3.0 -> 3.2 published as 3.2 - 2 pi: still +0.2 rad, 0.2 * 0.05 = 0.01 m.
+  ASSERT_TRUE(odo.updateFromPositions(3.2 - 2 * M_PI, 3.2 - 2 * M_PI, 0.0, 0.0, 0.02));
+  EXPECT_NEAR(odo.x(), 0.01, 1e-12);
+}

@@ -79,6 +79,11 @@ double maxBicycleAngle(const AckermannGeometry& g);
 AckermannCommand twistToAckermann(const AckermannGeometry& g, double v, double angular_z,
                                   const AckermannOptions& options = AckermannOptions());
 
+/// The same from a bicycle angle: delta clamped to +-maxBicycleAngle, wheel angles and rear
+/// wheel speeds for speed v. (The cmd_vel node ramps v while holding delta.)
+AckermannCommand ackermannFromSteering(const AckermannGeometry& g, double v, double delta,
+                                       bool differential = false);
+
 }  // namespace tianracer_control
 
 #endif  // TIANRACER_CONTROL_ACKERMANN_H

@@ -35,7 +35,9 @@ class BicycleOdometry {
 
   /// Same, from rear wheel joint positions (rad, unwrapped as joint_states carries them): the
   /// speeds are the position differences over dt, so the distance is exact whatever the sample
-  /// rate. The first call (and the first after reset()) only stores the positions.
+  /// rate. The first call (and the first after reset()) only stores the positions. A step larger
+  /// than pi is taken as a wrap (for publishers that wrap continuous joints into [-pi, pi)); at
+  /// 50 Hz that only misreads wheels turning faster than 157 rad/s.
   bool updateFromPositions(double left_rear_position, double right_rear_position,
                            double left_hinge, double right_hinge, double dt);
 

@@ -1,0 +1,65 @@
+// Ackermann geometry from a URDF (urdfdom), and its resolution against explicit parameters.
+// ROS-free: the nodes read the parameters and robot_description, this decides and explains.
+#ifndef TIANRACER_CONTROL_URDF_GEOMETRY_H
+#define TIANRACER_CONTROL_URDF_GEOMETRY_H
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "tianracer_control/ackermann.h"
+
+namespace tianracer_control {
+
+/// The joints that carry the geometry (defaults: the seed's names).
+struct AckermannJointNames {
+  std::string left_hinge = "left_steering_hinge_joint";
+  std::string right_hinge = "right_steering_hinge_joint";
+  std::string left_rear_wheel = "left_rear_wheel_joint";
+  std::string right_rear_wheel = "right_rear_wheel_joint";
+};
+
+/// Keys of the geometry values, in logging order: wheelbase, hinge_separation, wheel_radius,
+/// rear_track, max_steering_angle, rear_axle_x (also the parameter names of the nodes).
+const std::vector<std::string>& geometryKeys();
+
+/// A value and where it came from, e.g. "parameter ~wheelbase" or "robot_description: ...".
+struct GeometryValue {
+  double value = 0.0;
+  std::string source;
+};
+
+/// What a URDF says about the geometry. Values it cannot give are absent, with a warning.
+struct UrdfGeometry {
+  std::map<std::string, GeometryValue> values;
+  std::vector<std::string> warnings;
+};
+
+/// Derives from the URDF, all positions expressed in `base_link` (the root link if empty or
+/// absent), composing the fixed/joint origins along the tree:
+///   rear_axle_x        = mean x of the two rear wheel joint origins
+///   wheelbase          = mean x of the two hinge joint origins - rear_axle_x
+///   hinge_separation   = |y_left_hinge - y_right_hinge|
+///   rear_track         = |y_left_rear - y_right_rear|
+///   wheel_radius       = radius of the rear wheel links' collision cylinder or sphere (meshes
+///                        are not measured: absent, with a warning)
+///   max_steering_angle = min(|lower|, |upper|) over both hinges' limits
+/// Throws AckermannError when the XML does not parse as URDF.
+UrdfGeometry geometryFromUrdf(const std::string& urdf_xml, const AckermannJointNames& joints,
+                              const std::string& base_link = "base_link");
+
+/// The geometry in use and, per key (geometryKeys() order), its value and source.
+struct ResolvedGeometry {
+  AckermannGeometry geometry;
+  std::vector<std::pair<std::string, GeometryValue>> values;
+  std::vector<std::string> warnings;
+};
+
+/// Per key: the explicit parameter if given, else the URDF's value, else the default of
+/// AckermannGeometry (warned). Throws AckermannError if the result does not validate().
+ResolvedGeometry resolveGeometry(const std::map<std::string, double>& parameters,
+                                 const UrdfGeometry* urdf);
+
+}  // namespace tianracer_control
+
+#endif  // TIANRACER_CONTROL_URDF_GEOMETRY_H

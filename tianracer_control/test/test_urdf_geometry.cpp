@@ -1,0 +1,131 @@
+// Geometry derived from URDFs and resolved against parameters.
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "tianracer_control/urdf_geometry.h"
+
+using namespace tianracer_control;  // NOLINT: test file
+
+namespace {
+
+std::string readFile(const std::string& path) {
+  std::ifstream f(path);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+std::string urdf(const std::string& name) {
+  return readFile(std::string(TEST_DATA_DIR) + "/urdf/" + name + ".urdf");
+}
+
+bool anyContains(const std::vector<std::string>& lines, const std::string& what) {
+  for (const std::string& l : lines) {
+    if (l.find(what) != std::string::npos) return true;
+  }
+  return false;
+}
+
+const GeometryValue& valueOf(const ResolvedGeometry& r, const std::string& key) {
+  for (const auto& kv : r.values) {
+    if (kv.first == key) return kv.second;
+  }
+  throw std::runtime_error("no " + key);
+}
+
+}  // namespace
+
+TEST(UrdfGeometry, FromJointOriginsThroughAFixedJoint) {
+  const UrdfGeometry g = geometryFromUrdf(urdf("ackermann_cylinders"), AckermannJointNames());
+  // left hinge at base_link_joint (0.01) + 0.1137 = 0.1237; right hinge 0.12626: mean 0.12498
+  // rear wheels -0.12626, -0.1237: rear_axle_x = -0.12498; wheelbase 0.24996
+  EXPECT_NEAR(g.values.at("rear_axle_x").value, -0.12498, 1e-12);
+  EXPECT_NEAR(g.values.at("wheelbase").value, 0.24996, 1e-12);
+  EXPECT_NEAR(g.values.at("hinge_separation").value, 0.070647 + 0.065953, 1e-12);
+  EXPECT_NEAR(g.values.at("rear_track").value, 0.081602 + 0.086296, 1e-12);
+  EXPECT_NEAR(g.values.at("wheel_radius").value, 0.032, 1e-12);
+  EXPECT_NEAR(g.values.at("max_steering_angle").value, 0.55, 1e-12);  // the tighter limit
+  EXPECT_TRUE(g.warnings.empty());
+  EXPECT_NE(g.values.at("wheelbase").source.find("robot_description"), std::string::npos);
+}
+
+TEST(UrdfGeometry, MeshWheelsGiveNoRadius) {
+  const UrdfGeometry g = geometryFromUrdf(urdf("ackermann_meshes"), AckermannJointNames());
+  EXPECT_EQ(g.values.count("wheel_radius"), 0u);
+  EXPECT_TRUE(anyContains(g.warnings, "link 'left_rear_wheel' collides with a mesh"));
+  // The default 0.032 is used, with a warning.
+  const ResolvedGeometry r = resolveGeometry({}, &g);
+  EXPECT_EQ(r.geometry.wheel_radius, 0.032);
+  EXPECT_EQ(valueOf(r, "wheel_radius").source, "default");
+  EXPECT_TRUE(anyContains(r.warnings, "wheel_radius not given and not found in robot_description"));
+}
+
+TEST(UrdfGeometry, ParametersWin) {
+  const UrdfGeometry g = geometryFromUrdf(urdf("ackermann_cylinders"), AckermannJointNames());
+  const ResolvedGeometry r = resolveGeometry({{"wheelbase", 0.3}, {"wheel_radius", 0.05}}, &g);
+  EXPECT_EQ(r.geometry.wheelbase, 0.3);
+  EXPECT_EQ(valueOf(r, "wheelbase").source, "parameter ~wheelbase");
+  EXPECT_EQ(r.geometry.wheel_radius, 0.05);
+  EXPECT_NEAR(r.geometry.hinge_separation, 0.1366, 1e-12);
+  ASSERT_EQ(r.values.size(), 6u);
+  EXPECT_EQ(r.values[0].first, "wheelbase");
+}
+
+TEST(UrdfGeometry, MissingJointsAreWarnedAndDefaulted) {
+  AckermannJointNames names;
+  names.left_hinge = "front_left_steer";
+  const UrdfGeometry g = geometryFromUrdf(urdf("ackermann_cylinders"), names);
+  EXPECT_TRUE(anyContains(g.warnings, "joint 'front_left_steer' not in the URDF"));
+  EXPECT_EQ(g.values.count("wheelbase"), 0u);
+  EXPECT_EQ(g.values.count("rear_track"), 1u);
+}
+
+TEST(UrdfGeometry, Errors) {
+  EXPECT_THROW(geometryFromUrdf(urdf("invalid_syntax"), AckermannJointNames()), AckermannError);
+  try {
+    geometryFromUrdf("", AckermannJointNames());
+    FAIL();
+  } catch (const AckermannError& e) {
+    EXPECT_STREQ(e.what(), "robot_description is empty");
+  }
+  try {
+    resolveGeometry({{"wheel_base", 0.3}}, nullptr);
+    FAIL();
+  } catch (const AckermannError& e) {
+    EXPECT_STREQ(e.what(), "unknown geometry parameter 'wheel_base'");
+  }
+  EXPECT_THROW(resolveGeometry({{"wheelbase", -1.0}}, nullptr), AckermannError);
+}
+
+TEST(UrdfGeometry, UnknownBaseLinkFallsBackToTheRoot) {
+  const UrdfGeometry g =
+      geometryFromUrdf(urdf("ackermann_cylinders"), AckermannJointNames(), "base_footprint");
+  EXPECT_TRUE(anyContains(g.warnings, "link 'base_footprint' not in the URDF; using the root link "
+                                      "'base_link'"));
+  EXPECT_NEAR(g.values.at("wheelbase").value, 0.24996, 1e-12);
+}
+
+// The shipped model, expanded by xacro (skipped where xacro or rospack cannot run).
+TEST(UrdfGeometry, SeedTianracer) {
+  const std::string cmd = std::string("xacro '") + TIANRACER_DESCRIPTION_DIR +
+                          "/urdf/tianracer_description.xacro' 2>/dev/null";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) GTEST_SKIP() << "cannot run xacro";
+  std::string xml;
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) xml.append(buf, n);
+  if (pclose(pipe) != 0 || xml.empty()) GTEST_SKIP() << "xacro failed (not installed?)";
+  const UrdfGeometry g = geometryFromUrdf(xml, AckermannJointNames());
+  EXPECT_NEAR(g.values.at("wheelbase").value, 0.24996, 1e-9);
+  EXPECT_NEAR(g.values.at("hinge_separation").value, 0.1366, 1e-9);
+  EXPECT_NEAR(g.values.at("rear_track").value, 0.167898, 1e-9);
+  EXPECT_NEAR(g.values.at("rear_axle_x").value, -0.12498, 1e-9);
+  EXPECT_NEAR(g.values.at("max_steering_angle").value, 0.6, 1e-9);
+  const ResolvedGeometry r = resolveGeometry({}, &g);
+  EXPECT_NEAR(r.geometry.wheel_radius, 0.032, 1e-12);  // mesh wheels: the default
+}
