@@ -1,0 +1,136 @@
+// cmd_vel_node: /cmd_vel (geometry_msgs/Twist) -> the steering hinge position controllers and
+// rear wheel velocity controllers (std_msgs/Float64), through exact Ackermann geometry.
+// The maths is in CmdVelProcessor / ackermann.h; this file wires parameters, topics and time.
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include <geometry_msgs/Twist.h>
+#include <ros/ros.h>
+#include <std_msgs/Float64.h>
+
+#include "tianracer_control/cmd_vel.h"
+#include "tianracer_control/ros/geometry_params.h"
+#include "tianracer_control/ros/msg_conversion.h"
+
+namespace tianracer_control {
+
+namespace {
+
+double numberParam(const ros::NodeHandle& pnh, const std::string& key, double fallback) {
+  double v = fallback;
+  getNumberParam(pnh, key, &v);
+  return v;
+}
+
+}  // namespace
+
+class CmdVelNode {
+ public:
+  CmdVelNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
+    const AckermannJointNames joints = loadJointNames(pnh);
+    geometry_ = loadAckermannGeometry(nh, pnh, joints);
+
+    AckermannOptions options;
+    pnh.param("angular_z_is_steering_angle", options.angular_z_is_steering_angle, false);
+    pnh.param("differential", options.differential, false);
+    CmdVelLimits limits;
+    limits.max_speed = numberParam(pnh, "max_speed", limits.max_speed);
+    limits.max_accel = numberParam(pnh, "max_accel", limits.max_accel);
+    limits.cmd_timeout = numberParam(pnh, "cmd_timeout", limits.cmd_timeout);
+    const double rate = numberParam(pnh, "publish_rate", 50.0);
+    if (!(rate > 0.0) || !std::isfinite(rate)) {
+      throw AckermannError("parameter ~publish_rate must be > 0, got " + std::to_string(rate));
+    }
+    if (limits.max_speed < 0.0 || limits.max_accel < 0.0 || limits.cmd_timeout < 0.0) {
+      throw AckermannError("parameters ~max_speed, ~max_accel and ~cmd_timeout must be >= 0");
+    }
+    processor_ = std::make_unique<CmdVelProcessor>(geometry_, options, limits);
+
+    std::string ns = pnh.param<std::string>("robot_namespace", "/tianracer");
+    if (!ns.empty() && ns.back() == '/') ns.pop_back();
+    const std::string cmd_vel_topic = pnh.param<std::string>("cmd_vel_topic", "cmd_vel");
+    const std::string left_steer = pnh.param<std::string>(
+        "left_steering_topic", ns + "/left_steering_hinge_position_controller/command");
+    const std::string right_steer = pnh.param<std::string>(
+        "right_steering_topic", ns + "/right_steering_hinge_position_controller/command");
+    const std::string left_wheel = pnh.param<std::string>(
+        "left_rear_wheel_topic", ns + "/left_rear_wheel_velocity_controller/command");
+    const std::string right_wheel = pnh.param<std::string>(
+        "right_rear_wheel_topic", ns + "/right_rear_wheel_velocity_controller/command");
+
+    ROS_INFO_STREAM("angular.z is the "
+                    << (options.angular_z_is_steering_angle ? "steering angle (rad)"
+                                                            : "yaw rate (rad/s, REP-103)")
+                    << "; rear wheels " << (options.differential ? "differential" : "equal speed")
+                    << "; max_speed " << limits.max_speed << " m/s, max_accel "
+                    << limits.max_accel << (limits.max_accel > 0.0 ? " m/s^2" : " (none)")
+                    << ", cmd_timeout " << limits.cmd_timeout << " s, publish_rate " << rate
+                    << " Hz");
+
+    left_steer_pub_ = nh.advertise<std_msgs::Float64>(left_steer, 1);
+    right_steer_pub_ = nh.advertise<std_msgs::Float64>(right_steer, 1);
+    left_wheel_pub_ = nh.advertise<std_msgs::Float64>(left_wheel, 1);
+    right_wheel_pub_ = nh.advertise<std_msgs::Float64>(right_wheel, 1);
+    ROS_INFO_STREAM("publishing " << left_steer_pub_.getTopic() << ", "
+                                  << right_steer_pub_.getTopic() << ", "
+                                  << left_wheel_pub_.getTopic() << ", "
+                                  << right_wheel_pub_.getTopic());
+    sub_ = nh.subscribe(cmd_vel_topic, 10, &CmdVelNode::onTwist, this);
+    ROS_INFO_STREAM("listening on " << sub_.getTopic());
+    timer_ = nh.createTimer(ros::Duration(1.0 / rate), &CmdVelNode::onTimer, this);
+  }
+
+ private:
+  void onTwist(const geometry_msgs::Twist::ConstPtr& msg) {
+    double v = 0.0, w = 0.0;
+    const double t = ros::Time::now().toSec();
+    if (!fromTwistMsg(*msg, &v, &w)) {
+      ROS_WARN_THROTTLE(1.0, "ignoring %s with a non-finite value (linear.x %g, angular.z %g)",
+                        sub_.getTopic().c_str(), msg->linear.x, msg->angular.z);
+      return;
+    }
+    if (processor_->setTwist(v, w, t) == CmdVelProcessor::Input::kSpeedClamped) {
+      ROS_WARN_THROTTLE(5.0, "linear.x %g clamped to max_speed", v);
+    }
+  }
+
+  void onTimer(const ros::TimerEvent&) {
+    const bool was_timed_out = processor_->timedOut();
+    const AckermannCommand c = processor_->update(ros::Time::now().toSec());
+    if (c.clamped && !clamp_reported_) {
+      ROS_WARN("steering request beyond the joint limits: clamped to the bicycle angle %.4f rad "
+               "(minimum turning radius %.3f m); reported once",
+               c.delta, geometry_.wheelbase / std::tan(std::abs(c.delta)));
+      clamp_reported_ = true;
+    }
+    if (processor_->timedOut() && !was_timed_out) {
+      ROS_INFO("no %s for the command timeout: stopping (steering held)", sub_.getTopic().c_str());
+    }
+    left_steer_pub_.publish(toFloat64Msg(c.left_steer));
+    right_steer_pub_.publish(toFloat64Msg(c.right_steer));
+    left_wheel_pub_.publish(toFloat64Msg(c.left_wheel_omega));
+    right_wheel_pub_.publish(toFloat64Msg(c.right_wheel_omega));
+  }
+
+  AckermannGeometry geometry_;
+  std::unique_ptr<CmdVelProcessor> processor_;
+  ros::Publisher left_steer_pub_, right_steer_pub_, left_wheel_pub_, right_wheel_pub_;
+  ros::Subscriber sub_;
+  ros::Timer timer_;
+  bool clamp_reported_ = false;
+};
+
+}  // namespace tianracer_control
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "cmd_vel_node");
+  try {
+    tianracer_control::CmdVelNode node{ros::NodeHandle(), ros::NodeHandle("~")};
+    ros::spin();
+  } catch (const std::exception& e) {
+    ROS_FATAL("%s", e.what());
+    return 1;
+  }
+  return 0;
+}

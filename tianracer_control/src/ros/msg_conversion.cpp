@@ -1,0 +1,114 @@
+#include "tianracer_control/ros/msg_conversion.h"
+
+#include <cmath>
+
+namespace tianracer_control {
+
+namespace {
+geometry_msgs::Quaternion yawToQuaternion(double yaw) {
+  geometry_msgs::Quaternion q;
+  q.x = 0.0;
+  q.y = 0.0;
+  q.z = std::sin(0.5 * yaw);
+  q.w = std::cos(0.5 * yaw);
+  return q;
+}
+}  // namespace
+
+std_msgs::Float64 toFloat64Msg(double value) {
+  std_msgs::Float64 m;
+  m.data = value;
+  return m;
+}
+
+bool fromTwistMsg(const geometry_msgs::Twist& msg, double* linear_x, double* angular_z) {
+  if (!std::isfinite(msg.linear.x) || !std::isfinite(msg.angular.z)) return false;
+  *linear_x = msg.linear.x;
+  *angular_z = msg.angular.z;
+  return true;
+}
+
+bool fromJointStateMsg(const sensor_msgs::JointState& msg, const AckermannJointNames& joints,
+                       AckermannJointSample* sample, std::string* missing) {
+  auto index = [&](const std::string& name) -> long {
+    for (std::size_t i = 0; i < msg.name.size(); ++i) {
+      if (msg.name[i] == name) return static_cast<long>(i);
+    }
+    return -1;
+  };
+  const long lh = index(joints.left_hinge), rh = index(joints.right_hinge);
+  const long lr = index(joints.left_rear_wheel), rr = index(joints.right_rear_wheel);
+  std::string absent;
+  for (const auto& [i, name] : {std::pair<long, std::string>{lh, joints.left_hinge},
+                                {rh, joints.right_hinge},
+                                {lr, joints.left_rear_wheel},
+                                {rr, joints.right_rear_wheel}}) {
+    if (i < 0) absent += (absent.empty() ? "" : ", ") + name;
+  }
+  if (!absent.empty()) {
+    if (missing) *missing = "joints not in the message: " + absent;
+    return false;
+  }
+  const long np = static_cast<long>(msg.position.size());
+  const long nv = static_cast<long>(msg.velocity.size());
+  if (lh >= np || rh >= np) {
+    if (missing) *missing = "no position for the steering hinges";
+    return false;
+  }
+  sample->left_hinge = msg.position[lh];
+  sample->right_hinge = msg.position[rh];
+  sample->has_wheel_positions = lr < np && rr < np;
+  if (sample->has_wheel_positions) {
+    sample->left_rear_position = msg.position[lr];
+    sample->right_rear_position = msg.position[rr];
+  }
+  sample->has_wheel_velocities = lr < nv && rr < nv;
+  if (sample->has_wheel_velocities) {
+    sample->left_rear_velocity = msg.velocity[lr];
+    sample->right_rear_velocity = msg.velocity[rr];
+  }
+  if (!sample->has_wheel_positions && !sample->has_wheel_velocities) {
+    if (missing) *missing = "neither position nor velocity for the rear wheels";
+    return false;
+  }
+  return true;
+}
+
+nav_msgs::Odometry toOdometryMsg(const BicycleOdometry& odometry, const ros::Time& stamp,
+                                 const std::string& odom_frame, const std::string& base_frame,
+                                 const CovarianceDiagonal& pose_covariance,
+                                 const CovarianceDiagonal& twist_covariance) {
+  nav_msgs::Odometry m;
+  m.header.stamp = stamp;
+  m.header.frame_id = odom_frame;
+  m.child_frame_id = base_frame;
+  m.pose.pose.position.x = odometry.x();
+  m.pose.pose.position.y = odometry.y();
+  m.pose.pose.position.z = 0.0;
+  m.pose.pose.orientation = yawToQuaternion(odometry.yaw());
+  m.twist.twist.linear.x = odometry.linearVelocity();
+  m.twist.twist.linear.y = odometry.lateralVelocity();
+  m.twist.twist.angular.z = odometry.angularVelocity();
+  for (int i = 0; i < 6; ++i) {
+    m.pose.covariance[i * 6 + i] = pose_covariance[i];
+    m.twist.covariance[i * 6 + i] = twist_covariance[i];
+  }
+  return m;
+}
+
+geometry_msgs::TransformStamped toTransformMsg(const BicycleOdometry& odometry,
+                                               const ros::Time& stamp,
+                                               const std::string& odom_frame,
+                                               const std::string& base_frame) {
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = stamp;
+  t.header.frame_id = odom_frame;
+  t.child_frame_id = base_frame;
+  t.transform.translation.x = odometry.x();
+  t.transform.translation.y = odometry.y();
+  t.transform.translation.z = 0.0;
+  t.transform.rotation = yawToQuaternion(odometry.yaw());
+  return t;
+}
+
+}  // namespace tianracer_control
