@@ -1,0 +1,88 @@
+// Offscreen OpenGL rendering of a Scene through OSMesa (Mesa llvmpipe, no X server, no GPU).
+// One GL context serves every Renderer of the process; each Renderer keeps its geometry in GL
+// buffers (uploaded once) and one offscreen target per image size. ROS-free.
+#ifndef TIANRACER_SIM_RENDER_RENDERER_H
+#define TIANRACER_SIM_RENDER_RENDERER_H
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/Geometry>
+
+#include "tianracer_sim/scene/scene.h"
+
+namespace tianracer_sim {
+
+/// No GL context (OSMesa missing or failing), a shader that does not compile, bad intrinsics.
+class RenderError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Receives each warning once (same type as model/robot_model.h's WarningSink).
+using WarningSink = std::function<void(const std::string&)>;
+
+/// A pinhole camera. Pixel (u, v) has its centre at (u, v), u to the right and v down from the
+/// top-left pixel; a point (X, Y, Z) of the optical frame (z forward, x right, y down) lands at
+/// u = fx X / Z + cx, v = fy Y / Z + cy. A centred camera has cx = (W - 1) / 2, cy = (H - 1) / 2.
+struct CameraIntrinsics {
+  int width = 0;
+  int height = 0;
+  double fx = 0.0;
+  double fy = 0.0;
+  double cx = 0.0;
+  double cy = 0.0;
+  double near_clip = 0.1;
+  double far_clip = 100.0;
+
+  /// Gazebo's camera: f = W / (2 tan(hfov / 2)) for both axes, centred.
+  static CameraIntrinsics fromHorizontalFov(int width, int height, double hfov, double near_clip,
+                                            double far_clip);
+};
+
+/// Rotation from a camera link frame (x forward, y left, z up, as Gazebo's cameras) to the
+/// optical frame (z forward, x right, y down): rpy(-pi/2, 0, -pi/2).
+Eigen::Isometry3d opticalFromLinkRotation();
+
+class Renderer {
+ public:
+  /// Makes (or joins) the process-wide OSMesa context. Throws RenderError with the reason when
+  /// there is none; set TIANRACER_SIM_NO_GL=1 to get that error on purpose (tests, and hosts
+  /// whose Mesa misbehaves). Mesa's thread count is LP_NUM_THREADS, read at the first context.
+  explicit Renderer(WarningSink warn = {});
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  /// Uploads the geometry of the scene's visual items not seen before (meshes through the
+  /// shared MeshCache, primitives tessellated). A mesh that fails to load is skipped with one
+  /// warning; the other items still render. renderView() calls it every frame: items are
+  /// matched by index and shape, so a scene may gain, lose or change items at any time.
+  void prepare(const Scene& scene);
+
+  /// Renders the scene's visual items, its ground plane and sky from camera pose X_WC (camera
+  /// link convention: x forward, y left, z up) using the bodies' current poses.
+  ///  - rgb: W*H*3 bytes, row-major, rows top to bottom (may be null);
+  ///  - depth: W*H floats, distance along the optical axis in metres (the z of the optical
+  ///    frame, as Gazebo's depth camera), +inf where nothing was hit (may be null).
+  /// Both come from one pass. Nothing is allocated once a target of this size exists.
+  void renderView(const Scene& scene, const Eigen::Isometry3d& X_WC, const CameraIntrinsics& K,
+                  uint8_t* rgb, float* depth = nullptr);
+
+  /// Frames rendered so far (by this renderer).
+  uint64_t frameCount() const { return frames_; }
+  /// "OpenGL 4.5 (Compatibility Profile) Mesa 22.3.6, llvmpipe (LLVM 15.0.6, 256 bits)".
+  std::string glInfo() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  uint64_t frames_ = 0;
+};
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_RENDER_RENDERER_H

@@ -1,0 +1,489 @@
+#include "tianracer_sim/render/camera_sensor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "mini_xml.h"
+
+namespace tianracer_sim {
+
+namespace ri = render_internal;
+
+std::string opticalFrameId(const std::string& frame_name) { return frame_name + "_optical_frame"; }
+
+double CameraConfig::focalLength() const { return width / (2.0 * std::tan(horizontal_fov / 2.0)); }
+
+CameraIntrinsics CameraConfig::intrinsics() const {
+  return CameraIntrinsics::fromHorizontalFov(width, height, horizontal_fov, near_clip, far_clip);
+}
+
+Eigen::Isometry3d CameraConfig::X_LO() const { return X_LS * opticalFromLinkRotation(); }
+
+// -----------------------------------------------------------------------------------------------
+// Parsing
+namespace {
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::string trim(const std::string& s) {
+  const char* ws = " \t\n\r\f\v";
+  const auto b = s.find_first_not_of(ws);
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(ws) - b + 1);
+}
+
+uint32_t fnv1a(const std::string& s) {
+  uint32_t h = 2166136261u;
+  for (unsigned char c : s) {
+    h ^= c;
+    h *= 16777619u;
+  }
+  return h == 0 ? 1u : h;
+}
+
+class Parser {
+ public:
+  Parser(const SensorSpec& sensor, const WarningSink& warn) : sensor_(sensor), warn_(warn) {
+    std::ostringstream os;
+    os << sensor.type << " sensor '" << sensor.name << "'";
+    if (!sensor.link.empty()) os << " on link '" << sensor.link << "'";
+    if (sensor.line > 0) os << " (line " << sensor.line << ")";
+    where_ = os.str();
+  }
+
+  [[noreturn]] void fail(const std::string& what) const { throw CameraError(where_ + ": " + what); }
+  void warn(const std::string& what) const {
+    if (warn_) warn_(where_ + ": " + what);
+  }
+
+  double number(const std::string& element, const std::string& text) const {
+    const std::string t = trim(text);
+    char* end = nullptr;
+    const double v = std::strtod(t.c_str(), &end);
+    if (t.empty() || end != t.c_str() + t.size() || !std::isfinite(v)) {
+      fail(element + " '" + text + "' is not a number");
+    }
+    return v;
+  }
+
+  int integer(const std::string& element, const std::string& text) const {
+    const double v = number(element, text);
+    if (v != std::floor(v) || std::fabs(v) > 1e9) fail(element + " '" + text + "' is not an integer");
+    return static_cast<int>(v);
+  }
+
+  void parseCamera(CameraConfig* c) {
+    c->name = sensor_.name;
+    c->type = sensor_.type;
+    c->link = sensor_.link;
+    c->X_LS = sensor_.X_LS;
+    c->update_rate = sensor_.update_rate;
+    c->line = sensor_.line;
+    if (!(c->update_rate >= 0.0) || !std::isfinite(c->update_rate)) {
+      fail("<update_rate> " + std::to_string(c->update_rate) + " must be >= 0");
+    }
+    if (trim(sensor_.xml).empty()) fail("no <sensor> XML to read the <camera> element from");
+    std::unique_ptr<ri::XmlElement> root;
+    try {
+      root = ri::parseXml(sensor_.xml);
+    } catch (const ri::XmlError& e) {
+      fail(e.what());
+    }
+    const ri::XmlElement* cam = root->name == "camera" ? root.get() : root->child("camera");
+    if (cam == nullptr) fail("has no <camera> element");
+    for (const auto& child : cam->children) {
+      const std::string& n = child->name;
+      if (n == "horizontal_fov") {
+        c->horizontal_fov = number("<camera><horizontal_fov>", child->text);
+      } else if (n == "image") {
+        for (const auto& g : child->children) {
+          if (g->name == "width") c->width = integer("<image><width>", g->text);
+          else if (g->name == "height") c->height = integer("<image><height>", g->text);
+          else if (g->name == "format") c->format_name = trim(g->text);
+          else warn("unknown element <camera><image><" + g->name + "> ignored");
+        }
+      } else if (n == "clip") {
+        for (const auto& g : child->children) {
+          if (g->name == "near") c->near_clip = number("<clip><near>", g->text);
+          else if (g->name == "far") c->far_clip = number("<clip><far>", g->text);
+          else warn("unknown element <camera><clip><" + g->name + "> ignored");
+        }
+      } else if (n == "noise") {
+        std::string type = "gaussian";
+        for (const auto& g : child->children) {
+          if (g->name == "type") type = trim(g->text);
+          else if (g->name == "mean") c->noise_mean = number("<noise><mean>", g->text);
+          else if (g->name == "stddev") c->noise_stddev = number("<noise><stddev>", g->text);
+          else warn("unknown element <camera><noise><" + g->name + "> ignored");
+        }
+        if (type == "none") {
+          c->noise = false;
+        } else if (type == "gaussian") {
+          c->noise = c->noise_stddev > 0.0 || c->noise_mean != 0.0;
+        } else {
+          fail("<noise><type> '" + type + "' is not supported (gaussian, none)");
+        }
+        if (c->noise_stddev < 0.0) fail("<noise><stddev> " + child->text + " must be >= 0");
+      } else if (n == "distortion") {
+        bool any = false;
+        for (const auto& g : child->children) {
+          if (g->name == "center") continue;
+          if (number("<distortion><" + g->name + ">", g->text) != 0.0) any = true;
+        }
+        if (any) warn("<camera><distortion> is not applied to the images (like gazebo_ros's camera_info, "
+                      "images are undistorted)");
+      } else if (n == "save" || n == "depth_camera" || n == "lens" || n == "pose" ||
+                 n == "visualize" || n == "triggered" || n == "trigger_topic") {
+        warn("<camera><" + n + "> is not supported; ignored");
+      } else {
+        warn("unknown element <camera><" + n + "> ignored");
+      }
+    }
+    // Validation, each value named.
+    auto str = [](double v) {
+      std::ostringstream os;
+      os << v;
+      return os.str();
+    };
+    if (c->width <= 0 || c->width > 8192) fail("<image><width> " + std::to_string(c->width) + " out of range 1..8192");
+    if (c->height <= 0 || c->height > 8192) fail("<image><height> " + std::to_string(c->height) + " out of range 1..8192");
+    if (!(c->horizontal_fov > 0.0 && c->horizontal_fov < M_PI)) {
+      fail("<horizontal_fov> " + str(c->horizontal_fov) + " rad outside (0, pi)");
+    }
+    if (!(c->near_clip > 0.0)) fail("<clip><near> " + str(c->near_clip) + " must be > 0");
+    if (!(c->near_clip < c->far_clip)) {
+      fail("<clip><near> " + str(c->near_clip) + " must be less than <clip><far> " + str(c->far_clip));
+    }
+    if (c->format_name == "R8G8B8") c->format = ImageFormat::kR8G8B8;
+    else if (c->format_name == "L8") c->format = ImageFormat::kL8;
+    else fail("<image><format> '" + c->format_name + "' is not supported (R8G8B8, L8)");
+    c->noise_seed = fnv1a(sensor_.name);
+    c->frame_name = sensor_.link;
+  }
+
+  // Reads the plugin's parameters. `extra` are the keys only this plugin type knows; returns
+  // the plugin (or nullptr).
+  const PluginSpec* findPlugin(const std::vector<std::string>& filenames) const {
+    for (const PluginSpec& p : sensor_.plugins) {
+      for (const auto& f : filenames) {
+        if (endsWith(p.filename, f)) return &p;
+      }
+    }
+    return nullptr;
+  }
+
+  void parseCameraPlugin(const PluginSpec& p, CameraConfig* c, std::set<std::string>* used) {
+    c->has_plugin = true;
+    c->plugin_filename = p.filename;
+    auto get = [&](const std::string& key, std::string* out) {
+      const auto it = p.params.find(key);
+      if (it == p.params.end()) return false;
+      used->insert(key);
+      *out = trim(it->second);
+      return true;
+    };
+    auto num = [&](const std::string& key, double* out) {
+      std::string text;
+      if (get(key, &text)) *out = number("plugin <" + key + ">", text);
+    };
+    get("robotNamespace", &c->robot_namespace);
+    get("cameraName", &c->camera_name);
+    get("imageTopicName", &c->image_topic);
+    get("cameraInfoTopicName", &c->camera_info_topic);
+    std::string frame;
+    if (get("frameName", &frame) && !frame.empty()) c->frame_name = frame;
+    num("updateRate", &c->plugin_update_rate);
+    num("hackBaseline", &c->hack_baseline);
+    // gazebo_ros reads the camel-case names; openni examples write distortion_k1: take both.
+    for (const auto& k : {std::make_pair("distortionK1", &c->k1), std::make_pair("distortion_k1", &c->k1),
+                          std::make_pair("distortionK2", &c->k2), std::make_pair("distortion_k2", &c->k2),
+                          std::make_pair("distortionK3", &c->k3), std::make_pair("distortion_k3", &c->k3),
+                          std::make_pair("distortionT1", &c->t1), std::make_pair("distortion_t1", &c->t1),
+                          std::make_pair("distortionT2", &c->t2), std::make_pair("distortion_t2", &c->t2)}) {
+      num(k.first, k.second);
+    }
+    num("Cx", &c->cx_override);
+    num("Cy", &c->cy_override);
+    num("focalLength", &c->focal_length_override);
+    double unused = 0.0;
+    num("CxPrime", &unused);
+    std::string ignored;
+    get("alwaysOn", &ignored);
+    if (c->plugin_update_rate < 0.0) fail("plugin <updateRate> must be >= 0");
+    if (c->k1 != 0 || c->k2 != 0 || c->k3 != 0 || c->t1 != 0 || c->t2 != 0) {
+      warn("non-zero distortion is reported in camera_info only; images are not distorted "
+           "(as gazebo_ros)");
+    }
+    if (c->focal_length_override > 0.0 &&
+        std::fabs(c->focal_length_override - c->focalLength()) > 1e-6 * c->focalLength()) {
+      warn("plugin <focalLength> " + std::to_string(c->focal_length_override) +
+           " disagrees with width and hfov (f = " + std::to_string(c->focalLength()) +
+           "); camera_info reports it, images use the hfov");
+    }
+  }
+
+  void warnUnused(const PluginSpec& p, const std::set<std::string>& used) const {
+    for (const auto& kv : p.params) {
+      if (!used.count(kv.first)) {
+        warn("plugin " + p.filename + ": unknown parameter <" + kv.first + "> ignored");
+      }
+    }
+  }
+
+  const SensorSpec& sensor() const { return sensor_; }
+
+ private:
+  const SensorSpec& sensor_;
+  const WarningSink& warn_;
+  std::string where_;
+};
+
+const std::vector<std::string> kCameraPlugins = {"libgazebo_ros_camera.so"};
+const std::vector<std::string> kDepthPlugins = {"libgazebo_ros_openni_kinect.so",
+                                                "libgazebo_ros_depth_camera.so"};
+
+}  // namespace
+
+CameraConfig parseCameraConfig(const SensorSpec& sensor, const WarningSink& warn) {
+  Parser parser(sensor, warn);
+  CameraConfig c;
+  parser.parseCamera(&c);
+  if (const PluginSpec* p = parser.findPlugin(kCameraPlugins)) {
+    std::set<std::string> used;
+    parser.parseCameraPlugin(*p, &c, &used);
+    parser.warnUnused(*p, used);
+  }
+  return c;
+}
+
+DepthCameraConfig parseDepthCameraConfig(const SensorSpec& sensor, const WarningSink& warn) {
+  Parser parser(sensor, warn);
+  DepthCameraConfig d;
+  d.camera.image_topic = "ir/image_raw";  // openni_kinect's own defaults
+  d.camera.camera_info_topic = "ir/camera_info";
+  parser.parseCamera(&d.camera);
+  if (const PluginSpec* p = parser.findPlugin(kDepthPlugins)) {
+    std::set<std::string> used;
+    parser.parseCameraPlugin(*p, &d.camera, &used);
+    auto get = [&](const std::string& key, std::string* out) {
+      const auto it = p->params.find(key);
+      if (it == p->params.end()) return false;
+      used.insert(key);
+      *out = trim(it->second);
+      return true;
+    };
+    auto num = [&](const std::string& key, double* out) {
+      std::string text;
+      if (get(key, &text)) *out = parser.number("plugin <" + key + ">", text);
+    };
+    get("depthImageTopicName", &d.depth_image_topic);
+    get("depthImageCameraInfoTopicName", &d.depth_camera_info_topic);
+    get("pointCloudTopicName", &d.point_cloud_topic);
+    num("baseline", &d.baseline);
+    num("pointCloudCutoff", &d.point_cloud_cutoff);
+    num("pointCloudCutoffMax", &d.point_cloud_cutoff_max);
+    if (!(d.point_cloud_cutoff < d.point_cloud_cutoff_max)) {
+      parser.fail("plugin <pointCloudCutoff> " + std::to_string(d.point_cloud_cutoff) +
+                  " must be less than <pointCloudCutoffMax> " +
+                  std::to_string(d.point_cloud_cutoff_max));
+    }
+    parser.warnUnused(*p, used);
+  }
+  return d;
+}
+
+CameraInfo makeCameraInfo(const CameraConfig& c) {
+  CameraInfo info;
+  info.frame_id = c.opticalFrame();
+  info.width = c.width;
+  info.height = c.height;
+  const double f = c.focal_length_override > 0.0 ? c.focal_length_override : c.focalLength();
+  const double cx = c.cx_override != 0.0 ? c.cx_override : (c.width + 1.0) / 2.0;
+  const double cy = c.cy_override != 0.0 ? c.cy_override : (c.height + 1.0) / 2.0;
+  info.D = {c.k1, c.k2, c.t1, c.t2, c.k3};
+  info.K = {f, 0, cx, 0, f, cy, 0, 0, 1};
+  info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  info.P = {f, 0, cx, -f * c.hack_baseline, 0, f, cy, 0, 0, 0, 1, 0};
+  return info;
+}
+
+// -----------------------------------------------------------------------------------------------
+// Noise
+namespace {
+
+// Inverse of the standard normal CDF (P. J. Acklam's rational approximation, relative error
+// 1.15e-9), enough for a table of 65536 quantiles.
+double inverseNormalCdf(double p) {
+  static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
+                             1.383577518672690e+02, -3.066479806614716e+01, 2.506628277459239e+00};
+  static const double b[] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
+                             6.680131188771972e+01, -1.328068155288572e+01};
+  static const double c[] = {-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e+00,
+                             -2.549732539343734e+00, 4.374664141464968e+00, 2.938163982698783e+00};
+  static const double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,
+                             3.754408661907416e+00};
+  const double plow = 0.02425, phigh = 1 - plow;
+  if (p < plow) {
+    const double q = std::sqrt(-2 * std::log(p));
+    return (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
+           ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1);
+  }
+  if (p > phigh) {
+    const double q = std::sqrt(-2 * std::log(1 - p));
+    return -(((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
+           ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1);
+  }
+  const double q = p - 0.5, r = q * q;
+  return (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
+         (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1);
+}
+
+uint8_t clampByte(int v) { return static_cast<uint8_t>(v < 0 ? 0 : (v > 255 ? 255 : v)); }
+
+}  // namespace
+
+ImageNoise::ImageNoise(double mean, double stddev, uint32_t seed) : rng_(seed) {
+  enabled_ = stddev > 0.0 || mean != 0.0;
+  if (!enabled_) return;
+  constexpr int kSize = 1 << 16;
+  table_.resize(kSize);
+  for (int i = 0; i < kSize; ++i) {
+    const double z = inverseNormalCdf((i + 0.5) / kSize);
+    const double v = std::round((mean + stddev * z) * 255.0);
+    table_[i] = static_cast<int16_t>(std::max(-512.0, std::min(512.0, v)));
+  }
+}
+
+void ImageNoise::apply(uint8_t* data, std::size_t pixels, int channels) {
+  if (!enabled_) return;
+  std::size_t i = 0;
+  auto add = [&](std::size_t pixel, int n) {
+    uint8_t* px = data + pixel * channels;
+    for (int c = 0; c < channels; ++c) px[c] = clampByte(px[c] + n);
+  };
+  for (; i + 1 < pixels; i += 2) {
+    const uint32_t r = rng_();
+    add(i, table_[r & 0xffff]);
+    add(i + 1, table_[r >> 16]);
+  }
+  if (i < pixels) add(i, table_[rng_() & 0xffff]);
+}
+
+// -----------------------------------------------------------------------------------------------
+// Sensors
+namespace {
+
+void toMono(const std::vector<uint8_t>& rgb, std::vector<uint8_t>* mono) {
+  // ITU-R BT.601 luma, in integers.
+  const std::size_t n = mono->size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const uint8_t* p = &rgb[3 * i];
+    (*mono)[i] = static_cast<uint8_t>((299 * p[0] + 587 * p[1] + 114 * p[2] + 500) / 1000);
+  }
+}
+
+}  // namespace
+
+CameraSensor::CameraSensor(CameraConfig config, Renderer& renderer)
+    : config_(std::move(config)),
+      renderer_(&renderer),
+      info_(makeCameraInfo(config_)),
+      intrinsics_(config_.intrinsics()),
+      noise_(config_.noise ? ImageNoise(config_.noise_mean, config_.noise_stddev, config_.noise_seed)
+                           : ImageNoise()) {
+  const std::size_t pixels = static_cast<std::size_t>(config_.width) * config_.height;
+  image_.resize(pixels * channels());
+  if (config_.format == ImageFormat::kL8) rgb_scratch_.resize(pixels * 3);
+}
+
+void CameraSensor::render(const Scene& scene, const Eigen::Isometry3d& X_WL) {
+  const Eigen::Isometry3d X_WC = X_WL * config_.X_LS;
+  const std::size_t pixels = static_cast<std::size_t>(config_.width) * config_.height;
+  if (config_.format == ImageFormat::kL8) {
+    renderer_->renderView(scene, X_WC, intrinsics_, rgb_scratch_.data(), nullptr);
+    toMono(rgb_scratch_, &image_);
+  } else {
+    renderer_->renderView(scene, X_WC, intrinsics_, image_.data(), nullptr);
+  }
+  noise_.apply(image_.data(), pixels, channels());
+  ++renders_;
+}
+
+DepthCameraSensor::DepthCameraSensor(DepthCameraConfig config, Renderer& renderer)
+    : config_(std::move(config)),
+      renderer_(&renderer),
+      info_(makeCameraInfo(config_.camera)),
+      intrinsics_(config_.camera.intrinsics()),
+      noise_(config_.camera.noise ? ImageNoise(config_.camera.noise_mean, config_.camera.noise_stddev,
+                                               config_.camera.noise_seed)
+                                  : ImageNoise()) {
+  const CameraConfig& c = config_.camera;
+  const std::size_t pixels = static_cast<std::size_t>(c.width) * c.height;
+  image_.resize(pixels * channels());
+  if (c.format == ImageFormat::kL8) rgb_scratch_.resize(pixels * 3);
+  depth_.resize(pixels);
+  cloud_.assign(pixels * CloudLayout::kPointStep, 0);
+  const double f = c.focalLength();
+  ray_x_.resize(c.width);
+  ray_y_.resize(c.height);
+  for (int u = 0; u < c.width; ++u) ray_x_[u] = static_cast<float>((u - 0.5 * (c.width - 1)) / f);
+  for (int v = 0; v < c.height; ++v) ray_y_[v] = static_cast<float>((v - 0.5 * (c.height - 1)) / f);
+}
+
+void DepthCameraSensor::render(const Scene& scene, const Eigen::Isometry3d& X_WL,
+                               DepthOutputs outputs) {
+  const CameraConfig& c = config_.camera;
+  const Eigen::Isometry3d X_WC = X_WL * c.X_LS;
+  const std::size_t pixels = static_cast<std::size_t>(c.width) * c.height;
+  const bool want_rgb = outputs.image || outputs.cloud;
+  const bool want_depth = outputs.depth || outputs.cloud;
+  if (!want_rgb && !want_depth) return;
+  const bool mono = c.format == ImageFormat::kL8;
+  uint8_t* rgb = want_rgb ? (mono ? rgb_scratch_.data() : image_.data()) : nullptr;
+  renderer_->renderView(scene, X_WC, intrinsics_, rgb, want_depth ? depth_.data() : nullptr);
+  ++renders_;
+  if (want_rgb) {
+    if (mono) toMono(rgb_scratch_, &image_);
+    noise_.apply(image_.data(), pixels, channels());
+  }
+  if (!want_depth) return;
+
+  const float lo = static_cast<float>(config_.point_cloud_cutoff);
+  const float hi = static_cast<float>(config_.point_cloud_cutoff_max);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  bool dense = true;
+  for (std::size_t i = 0; i < pixels; ++i) {
+    const float d = depth_[i];
+    if (!(d > lo && d < hi)) {
+      depth_[i] = nan;
+      dense = false;
+    }
+  }
+  cloud_dense_ = dense;
+  if (!outputs.cloud) return;
+  const int ch = channels();
+  uint8_t* out = cloud_.data();
+  for (int v = 0; v < c.height; ++v) {
+    const float ry = ray_y_[v];
+    for (int u = 0; u < c.width; ++u, out += CloudLayout::kPointStep) {
+      const std::size_t i = static_cast<std::size_t>(v) * c.width + u;
+      const float d = depth_[i];
+      const float xyz[3] = {d * ray_x_[u], d * ry, d};  // NaN stays NaN
+      std::memcpy(out + CloudLayout::kOffsetX, xyz, sizeof(xyz));
+      const uint8_t* px = &image_[i * ch];
+      const uint32_t r = px[0], g = px[ch > 1 ? 1 : 0], b = px[ch > 1 ? 2 : 0];
+      const uint32_t packed = (r << 16) | (g << 8) | b;  // PCL: 0x00RRGGBB in a float's bits
+      std::memcpy(out + CloudLayout::kOffsetRgb, &packed, sizeof(packed));
+    }
+  }
+}
+
+}  // namespace tianracer_sim

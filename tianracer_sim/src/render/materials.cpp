@@ -1,0 +1,88 @@
+#include "tianracer_sim/render/materials.h"
+
+#include <algorithm>
+#include <map>
+
+namespace tianracer_sim {
+namespace {
+
+struct Entry {
+  float ambient[3];
+  float diffuse[3];
+  float specular[3];
+  float shininess;
+};
+
+// gazebo-classic media/materials/scripts/gazebo.material (gazebo 9-11). Ogre's missing values
+// default to ambient 1 1 1, diffuse 1 1 1, specular 0 0 0 with shininess 0; those defaults
+// are written out here. Textured materials get the mean colour of their texture on top of
+// their colours (we draw no textures), marked "texture".
+const std::map<std::string, Entry>& table() {
+  static const std::map<std::string, Entry> t = {
+      {"Gazebo/Grey", {{.3f, .3f, .3f}, {.7f, .7f, .7f}, {.01f, .01f, .01f}, 1.5f}},
+      {"Gazebo/DarkGrey", {{.175f, .175f, .175f}, {.175f, .175f, .175f}, {.175f, .175f, .175f}, 1.5f}},
+      // Not a stock material (Gazebo shows an unknown name as its default); a light grey in
+      // the style of Grey, as robots that use the name expect.
+      {"Gazebo/LightGrey", {{.6f, .6f, .6f}, {.8f, .8f, .8f}, {.2f, .2f, .2f}, 12.5f}},
+      {"Gazebo/White", {{1, 1, 1}, {1, 1, 1}, {.1f, .1f, .1f}, 128}},
+      {"Gazebo/FlatBlack", {{.1f, .1f, .1f}, {.1f, .1f, .1f}, {.01f, .01f, .01f}, 1}},
+      {"Gazebo/Black", {{0, 0, 0}, {0, 0, 0}, {.1f, .1f, .1f}, 5}},
+      {"Gazebo/Red", {{1, 0, 0}, {1, 0, 0}, {.1f, .1f, .1f}, 1}},
+      {"Gazebo/RedBright", {{.87f, .26f, .07f}, {.87f, .26f, .07f}, {.87f, .26f, .07f}, 1}},
+      {"Gazebo/Green", {{0, 1, 0}, {0, 1, 0}, {.1f, .1f, .1f}, 1}},
+      {"Gazebo/Blue", {{0, 0, 1}, {0, 0, 1}, {.1f, .1f, .1f}, 1}},
+      {"Gazebo/SkyBlue", {{.13f, .44f, .70f}, {0, 0, 1}, {.1f, .1f, .1f}, 1}},
+      {"Gazebo/Yellow", {{1, 1, 0}, {1, 1, 0}, {0, 0, 0}, 0}},
+      {"Gazebo/ZincYellow", {{.9725f, .9529f, .2078f}, {.9725f, .9529f, .2078f}, {.9725f, .9529f, .2078f}, 1}},
+      {"Gazebo/DarkYellow", {{.7f, .7f, 0}, {.7f, .7f, 0}, {0, 0, 0}, 0}},
+      {"Gazebo/Purple", {{1, 0, 1}, {1, 0, 1}, {.1f, .1f, .1f}, 1}},
+      {"Gazebo/Turquoise", {{0, 1, 1}, {0, 1, 1}, {.1f, .1f, .1f}, 1}},
+      // "specular 0.5 0.5 0.5 128": four values, the 4th is the shininess.
+      {"Gazebo/Orange", {{1, .5088f, .0468f}, {1, .5088f, .0468f}, {.5f, .5f, .5f}, 128}},
+      {"Gazebo/Indigo", {{.33f, 0, .5f}, {.33f, 0, .5f}, {.1f, .1f, .1f}, 1}},
+      {"Gazebo/Gold", {{.4f, .24869f, .020759f}, {.8f, .64869f, .120759f}, {.4f, .4f, .4f}, 12.5f}},
+      // texture wood.jpg (ambient 1, diffuse 1): its mean colour, a mid brown.
+      {"Gazebo/Wood", {{.55f, .38f, .22f}, {.55f, .38f, .22f}, {.2f, .2f, .2f}, 12.5f}},
+      // texture WoodPallet.png (ambient .5, diffuse 1).
+      {"Gazebo/WoodPallet", {{.3f, .24f, .16f}, {.6f, .48f, .32f}, {0, 0, 0}, 0.5f}},
+  };
+  return t;
+}
+
+const std::map<std::string, std::string>& aliases() {
+  // gz-sim's copy of gazebo.material adds the American spellings.
+  static const std::map<std::string, std::string> a = {
+      {"Gazebo/Gray", "Gazebo/Grey"},
+      {"Gazebo/DarkGray", "Gazebo/DarkGrey"},
+      {"Gazebo/LightGray", "Gazebo/LightGrey"},
+  };
+  return a;
+}
+
+}  // namespace
+
+std::optional<GazeboMaterial> gazeboMaterial(const std::string& name) {
+  std::string key = name;
+  const auto alias = aliases().find(key);
+  if (alias != aliases().end()) key = alias->second;
+  const auto it = table().find(key);
+  if (it == table().end()) return std::nullopt;
+  const Entry& e = it->second;
+  GazeboMaterial m;
+  m.material.ambient = Eigen::Vector4f(e.ambient[0], e.ambient[1], e.ambient[2], 1.0f);
+  m.material.diffuse = Eigen::Vector4f(e.diffuse[0], e.diffuse[1], e.diffuse[2], 1.0f);
+  m.material.specular = Eigen::Vector4f(e.specular[0], e.specular[1], e.specular[2], 1.0f);
+  m.material.name = name;
+  m.shininess = e.shininess;
+  return m;
+}
+
+std::vector<std::string> gazeboMaterialNames() {
+  std::vector<std::string> names;
+  for (const auto& kv : table()) names.push_back(kv.first);
+  for (const auto& kv : aliases()) names.push_back(kv.first);
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace tianracer_sim

@@ -1,0 +1,645 @@
+#include "tianracer_sim/render/renderer.h"
+
+#define GL_GLEXT_PROTOTYPES
+#include <GL/osmesa.h>
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "geometry.h"
+#include "tianracer_sim/mesh/mesh_loader.h"
+#include "tianracer_sim/render/materials.h"
+
+namespace tianracer_sim {
+
+namespace ri = render_internal;
+
+CameraIntrinsics CameraIntrinsics::fromHorizontalFov(int width, int height, double hfov,
+                                                     double near_clip, double far_clip) {
+  CameraIntrinsics k;
+  k.width = width;
+  k.height = height;
+  k.fx = k.fy = width / (2.0 * std::tan(hfov / 2.0));
+  k.cx = (width - 1) / 2.0;
+  k.cy = (height - 1) / 2.0;
+  k.near_clip = near_clip;
+  k.far_clip = far_clip;
+  return k;
+}
+
+Eigen::Isometry3d opticalFromLinkRotation() {
+  // Columns: the optical axes in the link frame. x_O = -y_L, y_O = -z_L, z_O = x_L.
+  Eigen::Matrix3d R;
+  R << 0, 0, 1,
+      -1, 0, 0,
+      0, -1, 0;
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = R;
+  return X;
+}
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// The process-wide context. OSMesa binds a context to the calling thread, so every GL call
+// goes through lock(): it takes the process-wide mutex and makes the context current.
+class GlContext {
+ public:
+  static std::shared_ptr<GlContext> acquire() {
+    static std::mutex mutex;
+    static std::weak_ptr<GlContext> shared;
+    std::lock_guard<std::mutex> lock(mutex);
+    if (auto existing = shared.lock()) return existing;
+    auto created = std::shared_ptr<GlContext>(new GlContext());
+    shared = created;
+    return created;
+  }
+
+  ~GlContext() {
+    if (ctx_ != nullptr) OSMesaDestroyContext(ctx_);
+  }
+
+  std::unique_lock<std::recursive_mutex> lock() {
+    std::unique_lock<std::recursive_mutex> guard(gl_mutex());
+    if (OSMesaGetCurrentContext() != ctx_) {
+      if (!OSMesaMakeCurrent(ctx_, dummy_, GL_UNSIGNED_BYTE, 1, 1)) {
+        throw RenderError("OSMesaMakeCurrent failed");
+      }
+    }
+    return guard;
+  }
+
+  const std::string& info() const { return info_; }
+
+ private:
+  GlContext() {
+    const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS,
+                           0, OSMESA_PROFILE, OSMESA_COMPAT_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION,
+                           3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+    ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
+    if (ctx_ == nullptr) ctx_ = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
+    if (ctx_ == nullptr) {
+      throw RenderError("OSMesa could not create an OpenGL 3.3 context (is libOSMesa / Mesa's "
+                        "llvmpipe installed?)");
+    }
+    std::lock_guard<std::recursive_mutex> guard(gl_mutex());
+    if (!OSMesaMakeCurrent(ctx_, dummy_, GL_UNSIGNED_BYTE, 1, 1)) {
+      OSMesaDestroyContext(ctx_);
+      ctx_ = nullptr;
+      throw RenderError("OSMesa: could not make the context current");
+    }
+    auto str = [](GLenum e) {
+      const GLubyte* s = glGetString(e);
+      return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
+    };
+    info_ = "OpenGL " + str(GL_VERSION) + ", " + str(GL_RENDERER);
+    GLint major = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    if (major < 3) {
+      OSMesaDestroyContext(ctx_);
+      ctx_ = nullptr;
+      throw RenderError("OSMesa gives " + info_ + "; OpenGL 3.3 is needed");
+    }
+  }
+
+  static std::recursive_mutex& gl_mutex() {
+    static std::recursive_mutex m;
+    return m;
+  }
+
+  OSMesaContext ctx_ = nullptr;
+  uint32_t dummy_[1] = {0};  // OSMesa wants a colour buffer; we draw into FBOs only
+  std::string info_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Shaders. Lighting is Ogre's fixed-function model, per pixel, in eye space:
+//   c = A_scene * m_ambient + sum_l [ D_l * m_diffuse * max(N.L, 0)
+//                                     + S_l * m_specular * max(N.H, 0)^shininess (if N.L > 0) ]
+// clamped to [0, 1]; L = -light direction, H = normalize(L + V), V towards the eye.
+// Output 1 is the depth along the optical axis (-z of the GL eye frame), interpolated
+// perspective-correctly from the vertices in float: exact to float rounding at any range.
+const char* kVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+uniform mat4 u_model_view;
+uniform mat4 u_projection;
+uniform mat3 u_normal_matrix;
+uniform mat4 u_model;   // for the ground grid (world x, y)
+out vec3 v_eye_position;
+out vec3 v_eye_normal;
+out vec2 v_world_xy;
+void main() {
+  vec4 eye = u_model_view * vec4(a_position, 1.0);
+  v_eye_position = eye.xyz;
+  v_eye_normal = u_normal_matrix * a_normal;
+  v_world_xy = (u_model * vec4(a_position, 1.0)).xy;
+  gl_Position = u_projection * eye;
+}
+)";
+
+const char* kFragmentShader = R"(#version 330 core
+in vec3 v_eye_position;
+in vec3 v_eye_normal;
+in vec2 v_world_xy;
+layout(location = 0) out vec4 o_color;
+layout(location = 1) out float o_depth;
+const int kMaxLights = 4;
+uniform int u_num_lights;
+uniform vec3 u_light_dir[kMaxLights];   // eye frame, pointing from the light
+uniform vec3 u_light_diffuse[kMaxLights];
+uniform vec3 u_light_specular[kMaxLights];
+uniform vec3 u_scene_ambient;
+uniform vec3 u_ambient;
+uniform vec3 u_diffuse;
+uniform vec3 u_specular;
+uniform float u_shininess;
+uniform int u_grid;
+void main() {
+  vec3 n = normalize(v_eye_normal);
+  if (!gl_FrontFacing) n = -n;
+  vec3 ambient = u_ambient;
+  vec3 diffuse = u_diffuse;
+  if (u_grid != 0) {
+    // 1 m grid lines about 2 cm wide, anti-aliased with the screen-space footprint, and a
+    // faint 1 m checker so that motion is visible between lines.
+    vec2 cell = abs(fract(v_world_xy - 0.5) - 0.5);
+    vec2 fw = max(fwidth(v_world_xy), vec2(1e-6));
+    vec2 line = 1.0 - smoothstep(vec2(0.01), vec2(0.01) + 1.5 * fw, cell);
+    float on_line = max(line.x, line.y);
+    vec2 checker_cell = floor(v_world_xy);
+    float checker = mod(checker_cell.x + checker_cell.y, 2.0) * 0.06;
+    float k = (1.0 - checker) * (1.0 - 0.55 * on_line);
+    ambient *= k;
+    diffuse *= k;
+  }
+  vec3 v = normalize(-v_eye_position);
+  vec3 c = u_scene_ambient * ambient;
+  for (int i = 0; i < u_num_lights; ++i) {
+    vec3 l = -u_light_dir[i];
+    float ndl = dot(n, l);
+    if (ndl > 0.0) {
+      c += u_light_diffuse[i] * diffuse * ndl;
+      vec3 h = normalize(l + v);
+      c += u_light_specular[i] * u_specular * pow(max(dot(n, h), 0.0), u_shininess);
+    }
+  }
+  o_color = vec4(clamp(c, 0.0, 1.0), 1.0);
+  o_depth = -v_eye_position.z;
+}
+)";
+
+GLuint compile(GLenum type, const char* src) {
+  GLuint s = glCreateShader(type);
+  glShaderSource(s, 1, &src, nullptr);
+  glCompileShader(s);
+  GLint ok = 0;
+  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[4096];
+    glGetShaderInfoLog(s, sizeof(log), nullptr, log);
+    glDeleteShader(s);
+    throw RenderError(std::string("shader compilation failed: ") + log);
+  }
+  return s;
+}
+
+Eigen::Matrix4f toFloat(const Eigen::Matrix4d& m) { return m.cast<float>(); }
+
+std::string shapeKey(const Shape& shape) {
+  switch (shape.type) {
+    case ShapeType::kBox: return "box";
+    case ShapeType::kCylinder: return "cylinder";
+    case ShapeType::kSphere: return "sphere";
+    case ShapeType::kPlane: return "quad";
+    case ShapeType::kMesh: {
+      std::ostringstream os;
+      os.precision(17);
+      os << "mesh:" << shape.mesh_path << '|' << shape.scale.x() << ',' << shape.scale.y() << ','
+         << shape.scale.z();
+      return os.str();
+    }
+  }
+  return "?";
+}
+
+// Unbounded planes are drawn as squares this large (metres), centred under the camera.
+constexpr double kUnboundedPlaneSize = 2000.0;
+
+}  // namespace
+
+// -----------------------------------------------------------------------------------------------
+struct Renderer::Impl {
+  std::shared_ptr<GlContext> context;
+  WarningSink warn;
+
+  GLuint program = 0;
+  GLuint vao = 0;
+  GLuint vbo = 0;
+  std::vector<ri::Vertex> vertices;  // CPU copy of the VBO (append, re-upload on growth)
+  bool vbo_dirty = false;
+  struct Range {
+    GLint first = 0;
+    GLsizei count = 0;
+  };
+  std::map<std::string, Range> geometry;  // shapeKey -> range in the VBO
+  std::set<std::string> failed;          // shape keys that did not load (warned once)
+
+  struct Uniforms {
+    GLint model_view, projection, normal_matrix, model, num_lights, light_dir, light_diffuse,
+        light_specular, scene_ambient, ambient, diffuse, specular, shininess, grid;
+  } u{};
+
+  // What each scene item resolved to, by item index. Checked against the item's shape every
+  // frame (cheap comparisons, no allocation) so that any change of the scene is picked up;
+  // poses, scales and colours are read from the scene every frame.
+  struct Slot {
+    bool resolved = false;
+    bool drawable = false;
+    ShapeType type = ShapeType::kBox;
+    std::string mesh_path;
+    Eigen::Vector3d mesh_scale = Eigen::Vector3d::Ones();
+    Range range;
+    std::string material_name;
+    float shininess = kDefaultShininess;
+    bool size_warned = false;
+  };
+  std::vector<Slot> slots;
+
+  bool matches(const Slot& slot, const Shape& shape) const {
+    if (!slot.resolved || slot.type != shape.type) return false;
+    if (shape.type != ShapeType::kMesh) return true;
+    return slot.mesh_path == shape.mesh_path && slot.mesh_scale == shape.scale;
+  }
+
+  Slot& slotFor(std::size_t i, const SceneItem& item) {
+    Slot& slot = slots[i];
+    if (!matches(slot, item.shape)) {
+      slot.resolved = true;
+      slot.type = item.shape.type;
+      slot.mesh_path = item.shape.mesh_path;
+      slot.mesh_scale = item.shape.scale;
+      slot.drawable = geometryFor(item.shape, &slot.range);
+      slot.size_warned = false;
+    }
+    if (slot.material_name != item.material.name) {
+      slot.material_name = item.material.name;
+      const auto gz = item.material.name.empty() ? std::nullopt : gazeboMaterial(item.material.name);
+      slot.shininess = gz ? gz->shininess : kDefaultShininess;
+    }
+    return slot;
+  }
+
+  struct Target {
+    GLuint fbo = 0, color = 0, depth_color = 0, depth = 0;
+  };
+  std::map<std::pair<int, int>, Target> targets;
+
+  Range addGeometry(const std::string& key, const ri::Soup& soup) {
+    Range r;
+    r.first = static_cast<GLint>(vertices.size());
+    r.count = static_cast<GLsizei>(soup.size());
+    vertices.insert(vertices.end(), soup.begin(), soup.end());
+    vbo_dirty = true;
+    geometry[key] = r;
+    return r;
+  }
+
+  void uploadIfDirty() {
+    if (!vbo_dirty) return;
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(ri::Vertex)),
+                 vertices.data(), GL_STATIC_DRAW);
+    vbo_dirty = false;
+  }
+
+  // Returns false when the shape cannot be drawn (warned once per mesh).
+  bool geometryFor(const Shape& shape, Range* out) {
+    const std::string key = shapeKey(shape);
+    const auto it = geometry.find(key);
+    if (it != geometry.end()) {
+      *out = it->second;
+      return true;
+    }
+    if (failed.count(key)) return false;
+    if (shape.type != ShapeType::kMesh) return false;  // primitives are made up front
+    try {
+      const auto mesh = MeshCache::global().get(shape.mesh_path, shape.scale);
+      *out = addGeometry(key, ri::meshSoup(*mesh));
+      return true;
+    } catch (const std::exception& e) {
+      failed.insert(key);
+      if (warn) warn(std::string("renderer: skipping a visual: ") + e.what());
+      return false;
+    }
+  }
+
+  Target& target(int w, int h) {
+    auto it = targets.find({w, h});
+    if (it != targets.end()) return it->second;
+    Target t;
+    glGenFramebuffers(1, &t.fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, t.fbo);
+    GLuint rb[3];
+    glGenRenderbuffers(3, rb);
+    t.color = rb[0];
+    t.depth_color = rb[1];
+    t.depth = rb[2];
+    glBindRenderbuffer(GL_RENDERBUFFER, t.color);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.color);
+    glBindRenderbuffer(GL_RENDERBUFFER, t.depth_color);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_R32F, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER, t.depth_color);
+    glBindRenderbuffer(GL_RENDERBUFFER, t.depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t.depth);
+    const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+      glDeleteFramebuffers(1, &t.fbo);
+      glDeleteRenderbuffers(3, rb);
+      std::ostringstream os;
+      os << "offscreen target " << w << "x" << h << " incomplete (status 0x" << std::hex << status
+         << ")";
+      throw RenderError(os.str());
+    }
+    return targets.emplace(std::make_pair(w, h), t).first->second;
+  }
+};
+
+Renderer::Renderer(WarningSink warn) : impl_(new Impl) {
+  const char* no_gl = std::getenv("TIANRACER_SIM_NO_GL");
+  if (no_gl != nullptr && *no_gl != '\0' && std::string(no_gl) != "0") {
+    throw RenderError("rendering disabled by TIANRACER_SIM_NO_GL");
+  }
+  impl_->warn = std::move(warn);
+  impl_->context = GlContext::acquire();
+  auto lock = impl_->context->lock();
+  Impl& m = *impl_;
+
+  const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader);
+  GLuint fs = 0;
+  try {
+    fs = compile(GL_FRAGMENT_SHADER, kFragmentShader);
+  } catch (...) {
+    glDeleteShader(vs);
+    throw;
+  }
+  m.program = glCreateProgram();
+  glAttachShader(m.program, vs);
+  glAttachShader(m.program, fs);
+  glLinkProgram(m.program);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  GLint ok = 0;
+  glGetProgramiv(m.program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[4096];
+    glGetProgramInfoLog(m.program, sizeof(log), nullptr, log);
+    glDeleteProgram(m.program);
+    throw RenderError(std::string("shader link failed: ") + log);
+  }
+  auto loc = [&](const char* name) { return glGetUniformLocation(m.program, name); };
+  m.u.model_view = loc("u_model_view");
+  m.u.projection = loc("u_projection");
+  m.u.normal_matrix = loc("u_normal_matrix");
+  m.u.model = loc("u_model");
+  m.u.num_lights = loc("u_num_lights");
+  m.u.light_dir = loc("u_light_dir");
+  m.u.light_diffuse = loc("u_light_diffuse");
+  m.u.light_specular = loc("u_light_specular");
+  m.u.scene_ambient = loc("u_scene_ambient");
+  m.u.ambient = loc("u_ambient");
+  m.u.diffuse = loc("u_diffuse");
+  m.u.specular = loc("u_specular");
+  m.u.shininess = loc("u_shininess");
+  m.u.grid = loc("u_grid");
+
+  glGenVertexArrays(1, &m.vao);
+  glGenBuffers(1, &m.vbo);
+  glBindVertexArray(m.vao);
+  glBindBuffer(GL_ARRAY_BUFFER, m.vbo);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(ri::Vertex),
+                        reinterpret_cast<void*>(offsetof(ri::Vertex, p)));
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(ri::Vertex),
+                        reinterpret_cast<void*>(offsetof(ri::Vertex, n)));
+
+  m.addGeometry("box", ri::unitBox());
+  m.addGeometry("cylinder", ri::unitCylinder());
+  m.addGeometry("sphere", ri::unitSphere());
+  m.addGeometry("quad", ri::unitQuad());
+  m.uploadIfDirty();
+}
+
+Renderer::~Renderer() {
+  if (!impl_ || !impl_->context) return;
+  try {
+    auto lock = impl_->context->lock();
+    for (auto& kv : impl_->targets) {
+      Impl::Target& t = kv.second;
+      glDeleteFramebuffers(1, &t.fbo);
+      GLuint rb[3] = {t.color, t.depth_color, t.depth};
+      glDeleteRenderbuffers(3, rb);
+    }
+    glDeleteBuffers(1, &impl_->vbo);
+    glDeleteVertexArrays(1, &impl_->vao);
+    glDeleteProgram(impl_->program);
+  } catch (...) {
+    // The context is going away with us; nothing else to release.
+  }
+}
+
+std::string Renderer::glInfo() const { return impl_->context->info(); }
+
+void Renderer::prepare(const Scene& scene) {
+  auto lock = impl_->context->lock();
+  Impl& m = *impl_;
+  m.slots.resize(scene.items.size());
+  for (std::size_t i = 0; i < scene.items.size(); ++i) {
+    if (scene.items[i].visual) m.slotFor(i, scene.items[i]);
+  }
+  m.uploadIfDirty();
+}
+
+void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
+                          const CameraIntrinsics& K, uint8_t* rgb, float* depth) {
+  if (K.width <= 0 || K.height <= 0 || K.width > 16384 || K.height > 16384) {
+    throw RenderError("renderView: bad image size " + std::to_string(K.width) + "x" +
+                      std::to_string(K.height));
+  }
+  if (!(K.fx > 0.0) || !(K.fy > 0.0) || !(K.near_clip > 0.0) || !(K.far_clip > K.near_clip)) {
+    throw RenderError("renderView: bad intrinsics (f must be > 0 and 0 < near < far)");
+  }
+  Impl& m = *impl_;
+  auto lock = m.context->lock();
+  prepare(scene);
+  Impl::Target& t = m.target(K.width, K.height);
+
+  // View: world -> GL eye (x right, y up, z backward) = optical with y and z negated.
+  Eigen::Isometry3d X_CE = opticalFromLinkRotation();
+  X_CE.linear() = X_CE.linear() * Eigen::Vector3d(1, -1, -1).asDiagonal();
+  const Eigen::Isometry3d X_EW = (X_WC * X_CE).inverse();
+
+  // Projection (see CameraIntrinsics): NDC x = (2 (u + 0.5) / W - 1), and NDC y with rows
+  // counted from the top, so that GL's bottom-up read-back gives top-down rows directly.
+  const double W = K.width, H = K.height, n = K.near_clip, f = K.far_clip;
+  Eigen::Matrix4d P = Eigen::Matrix4d::Zero();
+  P(0, 0) = 2.0 * K.fx / W;
+  P(0, 2) = -(2.0 * (K.cx + 0.5) / W - 1.0);
+  P(1, 1) = -2.0 * K.fy / H;
+  P(1, 2) = -(2.0 * (K.cy + 0.5) / H - 1.0);
+  P(2, 2) = -(f + n) / (f - n);
+  P(2, 3) = -2.0 * f * n / (f - n);
+  P(3, 2) = -1.0;
+  const Eigen::Matrix4f Pf = toFloat(P);
+
+  glBindFramebuffer(GL_FRAMEBUFFER, t.fbo);
+  const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glDrawBuffers(depth != nullptr ? 2 : 1, buffers);
+  glViewport(0, 0, K.width, K.height);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+  glDisable(GL_DITHER);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CW);  // the y-flipped projection mirrors the winding
+  const float sky[4] = {scene.sky[0], scene.sky[1], scene.sky[2], 1.0f};
+  glClearBufferfv(GL_COLOR, 0, sky);
+  if (depth != nullptr) {
+    const float inf[4] = {std::numeric_limits<float>::infinity(), 0, 0, 0};
+    glClearBufferfv(GL_COLOR, 1, inf);
+  }
+  glClear(GL_DEPTH_BUFFER_BIT);
+
+  glUseProgram(m.program);
+  glBindVertexArray(m.vao);
+  glUniformMatrix4fv(m.u.projection, 1, GL_FALSE, Pf.data());
+  const int num_lights = static_cast<int>(std::min<std::size_t>(scene.lights.size(), 4));
+  float dirs[12], diffs[12], specs[12];
+  for (int i = 0; i < num_lights; ++i) {
+    const DirectionalLight& L = scene.lights[i];
+    Eigen::Vector3d d = L.direction.norm() > 0 ? L.direction.normalized() : Eigen::Vector3d(0, 0, -1);
+    d = X_EW.linear() * d;
+    for (int k = 0; k < 3; ++k) {
+      dirs[3 * i + k] = static_cast<float>(d[k]);
+      diffs[3 * i + k] = L.diffuse[k];
+      specs[3 * i + k] = L.specular[k];
+    }
+  }
+  glUniform1i(m.u.num_lights, num_lights);
+  if (num_lights > 0) {
+    glUniform3fv(m.u.light_dir, num_lights, dirs);
+    glUniform3fv(m.u.light_diffuse, num_lights, diffs);
+    glUniform3fv(m.u.light_specular, num_lights, specs);
+  }
+  glUniform3f(m.u.scene_ambient, scene.ambient[0], scene.ambient[1], scene.ambient[2]);
+
+  auto draw = [&](const Eigen::Isometry3d& X_WS, const Eigen::Vector3d& scale,
+                  const Impl::Range& range, const Eigen::Vector3f& amb, const Eigen::Vector3f& dif,
+                  const Eigen::Vector3f& spe, float shininess, bool grid) {
+    const Eigen::Matrix4d M = X_WS.matrix() * Eigen::Vector4d(scale.x(), scale.y(), scale.z(), 1.0).asDiagonal();
+    const Eigen::Matrix4d MV = X_EW.matrix() * M;
+    const Eigen::Matrix3f N = MV.topLeftCorner<3, 3>().inverse().transpose().cast<float>();
+    const Eigen::Matrix4f MVf = MV.cast<float>(), Mf = M.cast<float>();
+    glUniformMatrix4fv(m.u.model_view, 1, GL_FALSE, MVf.data());
+    glUniformMatrix4fv(m.u.model, 1, GL_FALSE, Mf.data());
+    glUniformMatrix3fv(m.u.normal_matrix, 1, GL_FALSE, N.data());
+    glUniform3fv(m.u.ambient, 1, amb.data());
+    glUniform3fv(m.u.diffuse, 1, dif.data());
+    glUniform3fv(m.u.specular, 1, spe.data());
+    glUniform1f(m.u.shininess, std::max(shininess, 1.0f));
+    glUniform1i(m.u.grid, grid ? 1 : 0);
+    glDrawArrays(GL_TRIANGLES, range.first, range.count);
+  };
+
+  // The ground plane: a square under the camera reaching the far clip, grey like Gazebo's
+  // ground_plane model, with a 1 m grid.
+  if (scene.ground_plane) {
+    Eigen::Isometry3d X_WG = Eigen::Isometry3d::Identity();
+    X_WG.translation() = Eigen::Vector3d(std::round(X_WC.translation().x()),
+                                         std::round(X_WC.translation().y()), 0.0);
+    const double size = 2.0 * f + 2.0;
+    const auto grey = gazeboMaterial("Gazebo/Grey");
+    draw(X_WG, Eigen::Vector3d(size, size, 1.0), m.geometry.at("quad"),
+         Eigen::Vector3f(0.8f, 0.8f, 0.8f), Eigen::Vector3f(0.8f, 0.8f, 0.8f),
+         grey->material.specular.head<3>(), grey->shininess, true);
+  }
+
+  for (std::size_t i = 0; i < scene.items.size(); ++i) {
+    const SceneItem& item = scene.items[i];
+    if (!item.visual) continue;
+    Impl::Slot& slot = m.slots[i];
+    if (!slot.drawable) continue;
+    if (item.body < 0 || item.body >= static_cast<int>(scene.bodies.size())) {
+      if (!slot.size_warned && m.warn) {
+        m.warn("renderer: visual item " + std::to_string(i) + " refers to body " +
+               std::to_string(item.body) + " of " + std::to_string(scene.bodies.size()) + "; skipped");
+      }
+      slot.size_warned = true;
+      continue;
+    }
+    const Shape& s = item.shape;
+    Eigen::Isometry3d X_BS = item.X_BS;
+    Eigen::Vector3d scale = Eigen::Vector3d::Ones();  // meshes are scaled when loaded
+    switch (s.type) {
+      case ShapeType::kBox: scale = s.size; break;
+      case ShapeType::kCylinder: scale = Eigen::Vector3d(s.radius, s.radius, s.length); break;
+      case ShapeType::kSphere: scale = Eigen::Vector3d::Constant(s.radius); break;
+      case ShapeType::kPlane: {
+        // Turn the quad's +z onto the plane's normal; unbounded planes get a large square.
+        const double len = s.normal.norm();
+        if (len > 0.0) {
+          X_BS.linear() = X_BS.linear() *
+              Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), s.normal / len).toRotationMatrix();
+        }
+        const bool unbounded = s.size.x() <= 0.0 || s.size.y() <= 0.0;
+        scale = unbounded ? Eigen::Vector3d(kUnboundedPlaneSize, kUnboundedPlaneSize, 1.0)
+                          : Eigen::Vector3d(s.size.x(), s.size.y(), 1.0);
+        break;
+      }
+      case ShapeType::kMesh: break;
+    }
+    if (!scale.allFinite() || scale.minCoeff() <= 0.0) {
+      if (!slot.size_warned && m.warn) {
+        m.warn("renderer: visual item " + std::to_string(i) + " of body '" +
+               scene.bodies[item.body].name + "' has a zero or invalid size; skipped");
+      }
+      slot.size_warned = true;
+      continue;
+    }
+    const Material& mat = item.material;
+    draw(scene.bodies[item.body].X_WB * X_BS, scale, slot.range, mat.ambient.head<3>(),
+         mat.diffuse.head<3>(), mat.specular.head<3>(), slot.shininess, false);
+  }
+
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  if (rgb != nullptr) {
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glReadPixels(0, 0, K.width, K.height, GL_RGB, GL_UNSIGNED_BYTE, rgb);
+  }
+  if (depth != nullptr) {
+    glReadBuffer(GL_COLOR_ATTACHMENT1);
+    glReadPixels(0, 0, K.width, K.height, GL_RED, GL_FLOAT, depth);
+  }
+  const GLenum err = glGetError();
+  if (err != GL_NO_ERROR) {
+    std::ostringstream os;
+    os << "OpenGL error 0x" << std::hex << err << " while rendering";
+    throw RenderError(os.str());
+  }
+  ++frames_;
+}
+
+}  // namespace tianracer_sim
