@@ -1,0 +1,149 @@
+// The SDF world subset of SPEC §6 as plain structs (tinyxml2), and its insertion into the Scene
+// that sensors and the renderer see. ROS-free.
+//
+// Supported: <sdf><world> with <physics> (max_step_size, real_time_factor, real_time_update_rate,
+// gravity, also <world><gravity> as in SDF 1.6), <scene> (ambient, background), <include> of
+// model://ground_plane and model://sun (with <pose>, <name>), <light type="directional">, and
+// static or dynamic <model>s with <pose> and <link>s (<pose>, <inertial>, <collision>, <visual>;
+// geometry box, cylinder, sphere, plane, mesh; <material> colours or Gazebo script names;
+// <surface><friction><ode> mu/mu2). Everything else is reported once per element name through
+// the WarningSink, with file and line; nothing is dropped silently.
+#ifndef TIANRACER_SIM_WORLD_WORLD_H
+#define TIANRACER_SIM_WORLD_WORLD_H
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "tianracer_sim/model/robot_model.h"  // WarningSink
+#include "tianracer_sim/scene/scene.h"
+
+namespace tianracer_sim {
+
+/// A world file that cannot be used. The message starts with "<file>:<line>: " where a line is
+/// known, and names the element, model, link or URI at fault.
+class WorldError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// <physics>; defaults are SDF's.
+struct PhysicsSettings {
+  double max_step_size = 0.001;           // s
+  double real_time_factor = 1.0;          // 0 = as fast as possible
+  double real_time_update_rate = 1000.0;  // Hz
+  Eigen::Vector3d gravity{0.0, 0.0, -9.8};
+};
+
+/// <surface><friction><ode>: Coulomb coefficients along the two friction directions.
+struct Friction {
+  double mu = 1.0;
+  double mu2 = 1.0;
+};
+
+/// <inertial>: mass, inertia about the centre of mass, and the CoM frame in the link frame.
+struct InertialDescription {
+  double mass = 1.0;
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Identity();
+  Eigen::Isometry3d X_LI = Eigen::Isometry3d::Identity();
+};
+
+struct CollisionDescription {
+  std::string name;
+  Shape shape;
+  Eigen::Isometry3d X_LS = Eigen::Isometry3d::Identity();  // shape in its link
+  Friction friction;
+  int line = 0;
+};
+
+struct VisualDescription {
+  std::string name;
+  Shape shape;
+  Eigen::Isometry3d X_LS = Eigen::Isometry3d::Identity();
+  Material material;
+  int line = 0;
+};
+
+struct LinkDescription {
+  std::string name;
+  Eigen::Isometry3d X_ML = Eigen::Isometry3d::Identity();  // link in its model
+  InertialDescription inertial;                            // used for dynamic models only
+  std::vector<CollisionDescription> collisions;
+  std::vector<VisualDescription> visuals;
+  int line = 0;
+};
+
+struct ModelDescription {
+  std::string name;
+  bool is_static = false;
+  Eigen::Isometry3d X_WM = Eigen::Isometry3d::Identity();
+  std::vector<LinkDescription> links;
+  int line = 0;
+};
+
+struct WorldDescription {
+  std::string name;    // <world name=...>
+  std::string source;  // the file (or the name given to loadWorldString)
+  PhysicsSettings physics;
+  /// model://ground_plane: Gazebo's infinite z = 0 plane (collision friction mu 100, mu2 50).
+  bool ground_plane = false;
+  Eigen::Isometry3d X_WG = Eigen::Isometry3d::Identity();  // ground plane pose (its <pose>)
+  Friction ground_friction{100.0, 50.0};
+  /// model://sun: Gazebo's sun (direction -0.5 0.1 -0.9, diffuse 0.8, specular 0.2).
+  std::optional<DirectionalLight> sun;
+  std::vector<DirectionalLight> lights;  // other <light type="directional">
+  std::optional<Eigen::Vector4f> ambient;     // <scene><ambient>
+  std::optional<Eigen::Vector4f> background;  // <scene><background>
+  std::vector<ModelDescription> models;
+};
+
+struct WorldLoadOptions {
+  WarningSink warn;  // may be empty: warnings are then dropped
+  /// Folders searched for model://<name>/... mesh URIs, after $GAZEBO_MODEL_PATH and before
+  /// the world file's folder and its models/ subfolder.
+  std::vector<std::string> model_paths;
+  /// package:// lookup for mesh URIs ("" when unknown); may be empty.
+  std::function<std::string(const std::string& package)> find_package;
+  bool require_meshes = true;  // a mesh file that does not exist is an error
+};
+
+/// Reads a world file. Throws WorldError (a missing file names the path).
+WorldDescription loadWorldFile(const std::string& path, const WorldLoadOptions& options = {});
+
+/// Parses world XML; `source` names it in messages and relative URIs resolve against
+/// `base_dir`. Never crashes on any input (the fuzzing entry point).
+WorldDescription loadWorldString(const std::string& xml, const std::string& source,
+                                 const std::string& base_dir,
+                                 const WorldLoadOptions& options = {});
+
+/// The names of the worlds shipped in tianracer_sim/worlds/.
+std::vector<std::string> shippedWorldNames();
+
+/// The sim's `world` argument: a shipped name ("empty", "walled_room", "racetrack", i.e.
+/// <worlds_dir>/<name>.world) or a path to a .world/.sdf file. Returns the path; throws
+/// WorldError naming the argument (and the shipped names) when neither exists.
+std::string resolveWorld(const std::string& arg, const std::string& worlds_dir);
+
+/// Appends the world to the scene: one body "<model>::<link>" per link (static models' bodies
+/// are static; dynamic ones start at their initial pose and the simulation moves them), one
+/// item per collision (collision only) and per visual (visual only), the sun and lights, the
+/// scene colours. model://ground_plane sets Scene::ground_plane and adds a static body
+/// "ground_plane::link" with an infinite collision plane, so rays hit the ground.
+/// Returns the index of each body added, by name.
+std::map<std::string, int> addToScene(const WorldDescription& world, Scene& scene);
+
+/// Colours of Gazebo's stock materials ("Gazebo/Red", "Gazebo/Orange", ...) as in
+/// gazebo.material; nullopt for a name not in the table.
+std::optional<Material> gazeboMaterial(const std::string& name);
+
+/// SDF pose "x y z roll pitch yaw": translation, then R = Rz(yaw) Ry(pitch) Rx(roll).
+Eigen::Isometry3d sdfPose(double x, double y, double z, double roll, double pitch, double yaw);
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_WORLD_WORLD_H

@@ -1,0 +1,732 @@
+// SDF world subset -> WorldDescription (tinyxml2). Must never crash on any input: every value is
+// checked, every failure is a WorldError naming file and line, every element we do not use is
+// reported once through the WarningSink.
+#include "tianracer_sim/world/world.h"
+
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+#include <tinyxml2.h>
+
+namespace tianracer_sim {
+
+namespace {
+
+using tinyxml2::XMLElement;
+
+bool isFile(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+bool isDir(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+std::string join(const std::string& dir, const std::string& rest) {
+  if (dir.empty()) return rest;
+  if (dir.back() == '/') return dir + rest;
+  return dir + "/" + rest;
+}
+
+std::string dirName(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  if (slash == 0) return "/";
+  return path.substr(0, slash);
+}
+
+bool startsWith(const std::string& s, const std::string& prefix) {
+  return s.compare(0, prefix.size(), prefix) == 0;
+}
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r\n");
+  return s.substr(b, e - b + 1);
+}
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+/// State shared by the parse functions of one file.
+class Parser {
+ public:
+  Parser(std::string source, std::string base_dir, const WorldLoadOptions& options)
+      : source_(std::move(source)), base_dir_(std::move(base_dir)), options_(options) {}
+
+  WorldDescription parse(const std::string& xml);
+
+ private:
+  // "<file>:<line>: "
+  std::string at(const XMLElement* e) const {
+    return source_ + ":" + std::to_string(e ? e->GetLineNum() : 0) + ": ";
+  }
+  [[noreturn]] void fail(const XMLElement* e, const std::string& message) const {
+    throw WorldError(at(e) + message);
+  }
+  // Reports an element we do not support, once per (parent, element) pair.
+  void unsupported(const XMLElement* e, const std::string& why = "") {
+    const XMLElement* parent = e->Parent() ? e->Parent()->ToElement() : nullptr;
+    const std::string key = std::string(parent ? parent->Name() : "") + "/" + e->Name();
+    if (!warned_.insert(key).second || !options_.warn) return;
+    std::string msg = at(e) + "<" + e->Name() + ">";
+    if (parent) msg += " in <" + std::string(parent->Name()) + ">";
+    msg += " is not supported, ignored";
+    if (!why.empty()) msg += " (" + why + ")";
+    options_.warn(msg);
+  }
+  void warn(const XMLElement* e, const std::string& message) {
+    if (options_.warn) options_.warn(at(e) + message);
+  }
+
+  std::string text(const XMLElement* e) const {
+    const char* t = e->GetText();
+    return t ? trim(t) : std::string();
+  }
+  std::vector<double> numbers(const XMLElement* e, const std::string& what) const;
+  double number(const XMLElement* e, const std::string& what) const {
+    const auto v = numbers(e, what);
+    if (v.size() != 1) fail(e, what + ": <" + e->Name() + "> '" + text(e) + "' is not a number");
+    return v[0];
+  }
+  double positive(const XMLElement* e, const std::string& what) const {
+    const double v = number(e, what);
+    if (!(v > 0.0)) fail(e, what + ": <" + e->Name() + "> must be > 0 (got " + text(e) + ")");
+    return v;
+  }
+  double nonNegative(const XMLElement* e, const std::string& what) const {
+    const double v = number(e, what);
+    if (!(v >= 0.0)) fail(e, what + ": <" + e->Name() + "> must be >= 0 (got " + text(e) + ")");
+    return v;
+  }
+  Eigen::Vector3d vector3(const XMLElement* e, const std::string& what) const {
+    const auto v = numbers(e, what);
+    if (v.size() != 3)
+      fail(e, what + ": <" + e->Name() + "> '" + text(e) + "' is not 3 numbers \"x y z\"");
+    return {v[0], v[1], v[2]};
+  }
+  Eigen::Vector4f color(const XMLElement* e, const std::string& what) const {
+    const auto v = numbers(e, what);
+    if (v.size() != 3 && v.size() != 4)
+      fail(e, what + ": <" + e->Name() + "> '" + text(e) + "' is not a colour \"r g b [a]\"");
+    return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]),
+            v.size() == 4 ? static_cast<float>(v[3]) : 1.0f};
+  }
+  bool boolean(const XMLElement* e, const std::string& what) const {
+    const std::string t = text(e);
+    if (t == "true" || t == "1") return true;
+    if (t == "false" || t == "0") return false;
+    fail(e, what + ": <" + e->Name() + "> '" + t + "' is not a boolean (true/false/1/0)");
+  }
+  Eigen::Isometry3d pose(const XMLElement* e, const std::string& what);
+
+  void parsePhysics(const XMLElement* e, PhysicsSettings& physics);
+  void parseScene(const XMLElement* e, WorldDescription& world);
+  void parseInclude(const XMLElement* e, WorldDescription& world);
+  void parseLight(const XMLElement* e, WorldDescription& world);
+  ModelDescription parseModel(const XMLElement* e);
+  LinkDescription parseLink(const XMLElement* e, const std::string& model);
+  InertialDescription parseInertial(const XMLElement* e, const std::string& what);
+  Shape parseGeometry(const XMLElement* e, const std::string& what);
+  Material parseMaterial(const XMLElement* e, const std::string& what);
+  Friction parseSurface(const XMLElement* e, const std::string& what);
+  std::string resolveMesh(const XMLElement* e, const std::string& uri, const std::string& what);
+
+  std::string source_;
+  std::string base_dir_;
+  const WorldLoadOptions& options_;
+  std::set<std::string> warned_;
+};
+
+std::vector<double> Parser::numbers(const XMLElement* e, const std::string& what) const {
+  const std::string t = text(e);
+  std::vector<double> out;
+  const char* p = t.c_str();
+  while (*p) {
+    while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r') ++p;
+    if (!*p) break;
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(p, &end);
+    if (end == p || (*end && *end != ' ' && *end != '\t' && *end != '\n' && *end != '\r'))
+      fail(e, what + ": <" + e->Name() + "> '" + t + "' is not a list of numbers");
+    if (!std::isfinite(v) || errno == ERANGE)
+      fail(e, what + ": <" + e->Name() + "> '" + t + "' is not finite");
+    out.push_back(v);
+    p = end;
+  }
+  return out;
+}
+
+Eigen::Isometry3d Parser::pose(const XMLElement* e, const std::string& what) {
+  for (const char* a : {"frame", "relative_to"}) {
+    const char* v = e->Attribute(a);
+    if (v && *v)
+      warn(e, what + ": <pose " + a + "='" + v + "'> is not supported; taken relative to the parent");
+  }
+  const auto v = numbers(e, what);
+  if (v.size() != 6)
+    fail(e, what + ": <pose> '" + text(e) + "' is not 6 numbers \"x y z roll pitch yaw\"");
+  return sdfPose(v[0], v[1], v[2], v[3], v[4], v[5]);
+}
+
+WorldDescription Parser::parse(const std::string& xml) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
+    // tinyxml2's ErrorStr() is "Error=<name> ErrorID=<n> (0x..) Line number=<l>[: <detail>]".
+    std::string detail = doc.ErrorStr() ? doc.ErrorStr() : "";
+    const auto colon = detail.find(": ", detail.find("Line number="));
+    detail = colon == std::string::npos ? "" : " (" + detail.substr(colon + 2) + ")";
+    throw WorldError(source_ + ":" + std::to_string(doc.ErrorLineNum()) +
+                     ": malformed XML: " + doc.ErrorName() + detail);
+  }
+  const XMLElement* root = doc.RootElement();
+  if (!root) throw WorldError(source_ + ":1: malformed XML: no root element");
+  if (std::string(root->Name()) != "sdf")
+    fail(root, "root element is <" + std::string(root->Name()) + ">, expected <sdf>");
+  const XMLElement* w = nullptr;
+  for (const XMLElement* c = root->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "world" && !w) {
+      w = c;
+    } else if (tag == "world") {
+      warn(c, "a second <world> is ignored (one world per file)");
+    } else {
+      unsupported(c, "a world file holds one <world>");
+    }
+  }
+  if (!w) fail(root, "no <world> element in <sdf>");
+
+  WorldDescription world;
+  world.source = source_;
+  world.name = w->Attribute("name") ? w->Attribute("name") : "default";
+  std::set<std::string> model_names;
+  bool have_physics = false;
+  for (const XMLElement* c = w->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "physics") {
+      if (have_physics) {
+        warn(c, "only the first <physics> is used");
+        continue;
+      }
+      have_physics = true;
+      parsePhysics(c, world.physics);
+    } else if (tag == "gravity") {  // SDF >= 1.5 puts gravity in <world>
+      world.physics.gravity = vector3(c, "world");
+    } else if (tag == "scene") {
+      parseScene(c, world);
+    } else if (tag == "include") {
+      parseInclude(c, world);
+    } else if (tag == "light") {
+      parseLight(c, world);
+    } else if (tag == "model") {
+      ModelDescription m = parseModel(c);
+      if (!model_names.insert(m.name).second) fail(c, "duplicate model name '" + m.name + "'");
+      world.models.push_back(std::move(m));
+    } else {
+      unsupported(c);
+    }
+  }
+  return world;
+}
+
+void Parser::parsePhysics(const XMLElement* e, PhysicsSettings& physics) {
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "max_step_size") {
+      physics.max_step_size = positive(c, "<physics>");
+    } else if (tag == "real_time_factor") {
+      physics.real_time_factor = nonNegative(c, "<physics>");
+    } else if (tag == "real_time_update_rate") {
+      physics.real_time_update_rate = nonNegative(c, "<physics>");
+    } else if (tag == "gravity") {
+      physics.gravity = vector3(c, "<physics>");
+    } else {
+      unsupported(c);
+    }
+  }
+}
+
+void Parser::parseScene(const XMLElement* e, WorldDescription& world) {
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "ambient") {
+      world.ambient = color(c, "<scene>");
+    } else if (tag == "background") {
+      world.background = color(c, "<scene>");
+    } else {
+      unsupported(c);
+    }
+  }
+}
+
+void Parser::parseInclude(const XMLElement* e, WorldDescription& world) {
+  std::string uri, name;
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  bool has_pose = false;
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "uri") {
+      uri = text(c);
+    } else if (tag == "pose") {
+      X = pose(c, "<include>");
+      has_pose = true;
+    } else if (tag == "name") {
+      name = text(c);
+    } else {
+      unsupported(c);
+    }
+  }
+  while (!uri.empty() && uri.back() == '/') uri.pop_back();
+  if (uri.empty()) fail(e, "<include> has no <uri>");
+  if (uri == "model://ground_plane") {
+    if (world.ground_plane) warn(e, "model://ground_plane included twice; using the last pose");
+    world.ground_plane = true;
+    world.X_WG = X;
+  } else if (uri == "model://sun") {
+    DirectionalLight sun;  // Gazebo's sun model: the defaults of DirectionalLight
+    if (has_pose) sun.direction = X.linear() * sun.direction;
+    world.sun = sun;
+  } else {
+    // Gazebo's model database is not available: say so, loudly, rather than drop it.
+    warn(e, "<include> of '" + uri + "'" + (name.empty() ? "" : " (" + name + ")") +
+                " is not supported (only model://ground_plane and model://sun are built in), "
+                "ignored");
+  }
+}
+
+void Parser::parseLight(const XMLElement* e, WorldDescription& world) {
+  const std::string type = e->Attribute("type") ? e->Attribute("type") : "point";
+  const std::string name = e->Attribute("name") ? e->Attribute("name") : "";
+  if (type != "directional") {
+    warn(e, "<light name='" + name + "' type='" + type +
+                "'> is not supported (only directional lights), ignored");
+    return;
+  }
+  DirectionalLight light;
+  light.direction = Eigen::Vector3d(0, 0, -1);  // SDF default
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  const std::string what = "<light name='" + name + "'>";
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "direction") {
+      light.direction = vector3(c, what);
+    } else if (tag == "diffuse") {
+      light.diffuse = color(c, what);
+    } else if (tag == "specular") {
+      light.specular = color(c, what);
+    } else if (tag == "pose") {
+      X = pose(c, what);
+    } else {
+      unsupported(c);
+    }
+  }
+  if (light.direction.norm() == 0.0) fail(e, what + ": <direction> must not be zero");
+  light.direction = (X.linear() * light.direction).normalized();
+  world.lights.push_back(light);
+}
+
+ModelDescription Parser::parseModel(const XMLElement* e) {
+  ModelDescription m;
+  m.name = e->Attribute("name") ? trim(e->Attribute("name")) : "";
+  m.line = e->GetLineNum();
+  if (m.name.empty()) fail(e, "<model> has no name");
+  const std::string what = "model '" + m.name + "'";
+  std::set<std::string> link_names;
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "static") {
+      m.is_static = boolean(c, what);
+    } else if (tag == "pose") {
+      m.X_WM = pose(c, what);
+    } else if (tag == "link") {
+      LinkDescription l = parseLink(c, m.name);
+      if (!link_names.insert(l.name).second) fail(c, what + ": duplicate link name '" + l.name + "'");
+      m.links.push_back(std::move(l));
+    } else {
+      unsupported(c);
+    }
+  }
+  if (m.links.empty()) warn(e, what + " has no <link>: nothing to simulate or see");
+  if (!m.is_static) {
+    for (const LinkDescription& l : m.links) {
+      const InertialDescription& in = l.inertial;
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(in.inertia);
+      if (eig.eigenvalues().minCoeff() <= 0.0)
+        throw WorldError(source_ + ":" + std::to_string(l.line) + ": " + what + " link '" +
+                         l.name + "': inertia is not positive definite");
+    }
+  }
+  return m;
+}
+
+LinkDescription Parser::parseLink(const XMLElement* e, const std::string& model) {
+  LinkDescription l;
+  l.name = e->Attribute("name") ? trim(e->Attribute("name")) : "";
+  l.line = e->GetLineNum();
+  if (l.name.empty()) fail(e, "model '" + model + "': <link> has no name");
+  const std::string what = "model '" + model + "' link '" + l.name + "'";
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "pose") {
+      l.X_ML = pose(c, what);
+    } else if (tag == "inertial") {
+      l.inertial = parseInertial(c, what);
+    } else if (tag == "collision" || tag == "visual") {
+      const std::string name = c->Attribute("name") ? c->Attribute("name") : "";
+      const std::string cwhat = what + " " + tag + " '" + name + "'";
+      const XMLElement* geometry = nullptr;
+      Eigen::Isometry3d X_LS = Eigen::Isometry3d::Identity();
+      Friction friction;
+      Material material;
+      for (const XMLElement* g = c->FirstChildElement(); g; g = g->NextSiblingElement()) {
+        const std::string gtag = g->Name();
+        if (gtag == "geometry") {
+          if (geometry) fail(g, cwhat + ": more than one <geometry>");
+          geometry = g;
+        } else if (gtag == "pose") {
+          X_LS = pose(g, cwhat);
+        } else if (gtag == "surface" && tag == "collision") {
+          friction = parseSurface(g, cwhat);
+        } else if (gtag == "material" && tag == "visual") {
+          material = parseMaterial(g, cwhat);
+        } else {
+          unsupported(g);
+        }
+      }
+      if (!geometry) fail(c, cwhat + " has no <geometry>");
+      const Shape shape = parseGeometry(geometry, cwhat);
+      if (tag == "collision") {
+        l.collisions.push_back({name, shape, X_LS, friction, c->GetLineNum()});
+      } else {
+        l.visuals.push_back({name, shape, X_LS, material, c->GetLineNum()});
+      }
+    } else {
+      unsupported(c);
+    }
+  }
+  return l;
+}
+
+InertialDescription Parser::parseInertial(const XMLElement* e, const std::string& what) {
+  InertialDescription in;
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "mass") {
+      in.mass = positive(c, what + " <inertial>");
+    } else if (tag == "pose") {
+      in.X_LI = pose(c, what + " <inertial>");
+    } else if (tag == "inertia") {
+      Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+      const std::string iwhat = what + " <inertia>";
+      for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
+        const std::string key = k->Name();
+        if (key == "ixx") I(0, 0) = number(k, iwhat);
+        else if (key == "iyy") I(1, 1) = number(k, iwhat);
+        else if (key == "izz") I(2, 2) = number(k, iwhat);
+        else if (key == "ixy") I(0, 1) = I(1, 0) = number(k, iwhat);
+        else if (key == "ixz") I(0, 2) = I(2, 0) = number(k, iwhat);
+        else if (key == "iyz") I(1, 2) = I(2, 1) = number(k, iwhat);
+        else unsupported(k);
+      }
+      in.inertia = I;
+    } else {
+      unsupported(c);
+    }
+  }
+  return in;
+}
+
+Shape Parser::parseGeometry(const XMLElement* e, const std::string& what) {
+  const XMLElement* g = e->FirstChildElement();
+  if (!g) fail(e, what + ": <geometry> is empty");
+  if (g->NextSiblingElement())
+    fail(g->NextSiblingElement(), what + ": <geometry> holds more than one shape");
+  const std::string type = g->Name();
+  Shape s;
+  // Each shape reads only its own children; anything else is reported.
+  auto children = [&](std::initializer_list<const char*> known,
+                      const std::function<void(const XMLElement*, const std::string&)>& use) {
+    for (const XMLElement* c = g->FirstChildElement(); c; c = c->NextSiblingElement()) {
+      const std::string tag = c->Name();
+      bool ok = false;
+      for (const char* k : known) ok = ok || tag == k;
+      if (ok) use(c, tag);
+      else unsupported(c);
+    }
+  };
+  if (type == "box") {
+    s.type = ShapeType::kBox;
+    bool have = false;
+    children({"size"}, [&](const XMLElement* c, const std::string&) {
+      s.size = vector3(c, what + " box");
+      have = true;
+    });
+    if (!have) fail(g, what + ": <box> has no <size>");
+    if (!(s.size.minCoeff() > 0.0))
+      fail(g, what + ": <box> <size> must be > 0 in x, y and z");
+  } else if (type == "cylinder") {
+    s.type = ShapeType::kCylinder;
+    bool r = false, l = false;
+    children({"radius", "length"}, [&](const XMLElement* c, const std::string& tag) {
+      if (tag == "radius") s.radius = positive(c, what + " cylinder"), r = true;
+      else s.length = positive(c, what + " cylinder"), l = true;
+    });
+    if (!r || !l) fail(g, what + ": <cylinder> needs <radius> and <length>");
+  } else if (type == "sphere") {
+    s.type = ShapeType::kSphere;
+    bool r = false;
+    children({"radius"}, [&](const XMLElement* c, const std::string&) {
+      s.radius = positive(c, what + " sphere");
+      r = true;
+    });
+    if (!r) fail(g, what + ": <sphere> has no <radius>");
+  } else if (type == "plane") {
+    s.type = ShapeType::kPlane;
+    s.size = Eigen::Vector3d::Zero();
+    children({"normal", "size"}, [&](const XMLElement* c, const std::string& tag) {
+      if (tag == "normal") {
+        s.normal = vector3(c, what + " plane");
+        if (s.normal.norm() == 0.0) fail(c, what + ": <plane> <normal> must not be zero");
+        s.normal.normalize();
+      } else {
+        const auto v = numbers(c, what + " plane");
+        if (v.size() != 2 || v[0] < 0.0 || v[1] < 0.0)
+          fail(c, what + ": <plane> <size> '" + text(c) + "' is not 2 numbers >= 0");
+        s.size = Eigen::Vector3d(v[0], v[1], 0.0);
+      }
+    });
+  } else if (type == "mesh") {
+    s.type = ShapeType::kMesh;
+    std::string uri;
+    const XMLElement* uri_e = g;
+    children({"uri", "scale"}, [&](const XMLElement* c, const std::string& tag) {
+      if (tag == "uri") {
+        uri = text(c);
+        uri_e = c;
+      } else {
+        s.scale = vector3(c, what + " mesh");
+        if (!(s.scale.minCoeff() > 0.0)) fail(c, what + ": <mesh> <scale> must be > 0");
+      }
+    });
+    if (uri.empty()) fail(g, what + ": <mesh> has no <uri>");
+    s.mesh_path = resolveMesh(uri_e, uri, what);
+  } else {
+    fail(g, what + ": unknown geometry <" + type +
+                "> (supported: box, cylinder, sphere, plane, mesh)");
+  }
+  return s;
+}
+
+std::string Parser::resolveMesh(const XMLElement* e, const std::string& uri,
+                                const std::string& what) {
+  std::string path;
+  std::vector<std::string> tried;
+  if (startsWith(uri, "model://")) {
+    const std::string rest = uri.substr(8);
+    std::vector<std::string> dirs;
+    if (const char* env = std::getenv("GAZEBO_MODEL_PATH")) {
+      std::stringstream ss(env);
+      std::string d;
+      while (std::getline(ss, d, ':'))
+        if (!d.empty()) dirs.push_back(d);
+    }
+    dirs.insert(dirs.end(), options_.model_paths.begin(), options_.model_paths.end());
+    dirs.push_back(base_dir_);
+    dirs.push_back(join(base_dir_, "models"));
+    for (const std::string& d : dirs) {
+      const std::string p = join(d, rest);
+      tried.push_back(p);
+      if (isFile(p)) {
+        path = p;
+        break;
+      }
+    }
+    if (path.empty()) path = tried.front();
+  } else {
+    MeshResolver resolver;
+    resolver.find_package = options_.find_package;
+    resolver.base_dir = base_dir_;
+    try {
+      path = resolver.resolve(uri);
+    } catch (const ModelError& err) {
+      fail(e, what + ": " + err.what());
+    }
+    tried.push_back(path);
+  }
+  if (options_.require_meshes && !isFile(path)) {
+    std::string msg = what + ": mesh '" + uri + "' not found (";
+    for (std::size_t i = 0; i < tried.size(); ++i) msg += (i ? ", " : "tried ") + tried[i];
+    fail(e, msg + ")");
+  }
+  return path;
+}
+
+Material Parser::parseMaterial(const XMLElement* e, const std::string& what) {
+  Material m;
+  // A script name sets the base colours; explicit colours override them, as in Gazebo.
+  for (const XMLElement* c = e->FirstChildElement("script"); c;
+       c = c->NextSiblingElement("script")) {
+    for (const XMLElement* s = c->FirstChildElement(); s; s = s->NextSiblingElement()) {
+      const std::string tag = s->Name();
+      if (tag == "name") {
+        const std::string name = text(s);
+        if (auto g = gazeboMaterial(name)) {
+          m = *g;
+        } else {
+          warn(s, what + ": unknown material '" + name + "', using the default grey");
+          m.name = name;
+        }
+      } else if (tag != "uri") {
+        unsupported(s);
+      }
+    }
+  }
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "script") continue;
+    if (tag == "ambient") m.ambient = color(c, what);
+    else if (tag == "diffuse") m.diffuse = color(c, what);
+    else if (tag == "specular") m.specular = color(c, what);
+    else unsupported(c);
+  }
+  return m;
+}
+
+Friction Parser::parseSurface(const XMLElement* e, const std::string& what) {
+  Friction f;
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    if (std::string(c->Name()) != "friction") {
+      unsupported(c);
+      continue;
+    }
+    for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
+      if (std::string(k->Name()) != "ode") {
+        unsupported(k);
+        continue;
+      }
+      for (const XMLElement* p = k->FirstChildElement(); p; p = p->NextSiblingElement()) {
+        const std::string tag = p->Name();
+        if (tag == "mu") f.mu = nonNegative(p, what + " friction");
+        else if (tag == "mu2") f.mu2 = nonNegative(p, what + " friction");
+        else unsupported(p);
+      }
+    }
+  }
+  return f;
+}
+
+}  // namespace
+
+Eigen::Isometry3d sdfPose(double x, double y, double z, double roll, double pitch, double yaw) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() = Eigen::Vector3d(x, y, z);
+  X.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  return X;
+}
+
+WorldDescription loadWorldString(const std::string& xml, const std::string& source,
+                                 const std::string& base_dir, const WorldLoadOptions& options) {
+  Parser parser(source, base_dir, options);
+  return parser.parse(xml);
+}
+
+WorldDescription loadWorldFile(const std::string& path, const WorldLoadOptions& options) {
+  if (path.empty()) throw WorldError("world file: empty path");
+  if (isDir(path)) throw WorldError("world file '" + path + "' is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!isFile(path) || !in) throw WorldError("world file '" + path + "' does not exist");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return loadWorldString(ss.str(), path, dirName(path), options);
+}
+
+std::vector<std::string> shippedWorldNames() { return {"empty", "walled_room", "racetrack"}; }
+
+std::string resolveWorld(const std::string& arg, const std::string& worlds_dir) {
+  if (arg.empty()) throw WorldError("world: empty name");
+  if (isFile(arg)) return arg;
+  const bool looks_like_path =
+      arg.find('/') != std::string::npos || arg.find('.') != std::string::npos;
+  if (!looks_like_path) {
+    const std::string shipped = join(worlds_dir, arg + ".world");
+    if (isFile(shipped)) return shipped;
+  }
+  std::string names;
+  for (const std::string& n : shippedWorldNames()) names += (names.empty() ? "" : ", ") + n;
+  throw WorldError("world " + quoted(arg) + " is neither a shipped world (" + names + " in " +
+                   worlds_dir + ") nor an existing file");
+}
+
+std::map<std::string, int> addToScene(const WorldDescription& world, Scene& scene) {
+  std::map<std::string, int> added;
+  if (world.ambient) scene.ambient = *world.ambient;
+  if (world.background) scene.sky = *world.background;
+  if (world.sun) scene.lights.push_back(*world.sun);
+  for (const DirectionalLight& l : world.lights) scene.lights.push_back(l);
+  if (world.ground_plane) {
+    scene.ground_plane = true;
+    SceneBody body;
+    body.name = "ground_plane::link";
+    body.model = "ground_plane";
+    body.is_static = true;
+    body.X_WB = world.X_WG;
+    const int b = scene.addBody(body);
+    added[body.name] = b;
+    // Collision only: the renderer draws Scene::ground_plane itself.
+    SceneItem item;
+    item.body = b;
+    item.shape.type = ShapeType::kPlane;
+    item.shape.normal = Eigen::Vector3d::UnitZ();
+    item.shape.size = Eigen::Vector3d(100.0, 100.0, 0.0);
+    item.material = gazeboMaterial("Gazebo/Grey").value_or(Material{});
+    item.visual = false;
+    item.collision = true;
+    scene.items.push_back(item);
+  }
+  for (const ModelDescription& m : world.models) {
+    for (const LinkDescription& l : m.links) {
+      SceneBody body;
+      body.name = m.name + "::" + l.name;
+      body.model = m.name;
+      body.is_static = m.is_static;
+      body.X_WB = m.X_WM * l.X_ML;
+      const int b = scene.addBody(body);
+      added[body.name] = b;
+      for (const CollisionDescription& c : l.collisions) {
+        SceneItem item;
+        item.body = b;
+        item.X_BS = c.X_LS;
+        item.shape = c.shape;
+        item.visual = false;
+        item.collision = true;
+        scene.items.push_back(item);
+      }
+      for (const VisualDescription& v : l.visuals) {
+        SceneItem item;
+        item.body = b;
+        item.X_BS = v.X_LS;
+        item.shape = v.shape;
+        item.material = v.material;
+        item.visual = true;
+        item.collision = false;
+        scene.items.push_back(item);
+      }
+    }
+  }
+  return added;
+}
+
+}  // namespace tianracer_sim

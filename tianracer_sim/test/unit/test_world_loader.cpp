@@ -1,0 +1,334 @@
+// World loader: the SDF subset, the shipped worlds, and every bad input named in issue 5.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "tianracer_sim/world/world.h"
+
+namespace tianracer_sim {
+namespace {
+
+const std::string kData = std::string(TEST_DATA_DIR) + "/worlds/";
+const std::string kWorlds = std::string(TEST_DATA_DIR) + "/../../worlds/";
+
+struct Collected {
+  std::vector<std::string> warnings;
+  WorldLoadOptions options() {
+    WorldLoadOptions o;
+    o.warn = [this](const std::string& w) { warnings.push_back(w); };
+    return o;
+  }
+  int count(const std::string& needle) const {
+    int n = 0;
+    for (const auto& w : warnings) n += w.find(needle) != std::string::npos;
+    return n;
+  }
+};
+
+std::string errorOf(const std::string& file) {
+  try {
+    loadWorldFile(file);
+  } catch (const WorldError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+std::string errorOfString(const std::string& xml) {
+  try {
+    loadWorldString(xml, "inline.world", kData);
+  } catch (const WorldError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(WorldLoader, FeaturesWorld) {
+  Collected c;
+  const WorldDescription w = loadWorldFile(kData + "features.world", c.options());
+  EXPECT_EQ(w.name, "features");
+  EXPECT_DOUBLE_EQ(w.physics.max_step_size, 0.002);
+  EXPECT_DOUBLE_EQ(w.physics.real_time_factor, 0.0);
+  EXPECT_DOUBLE_EQ(w.physics.real_time_update_rate, 500.0);
+  EXPECT_DOUBLE_EQ(w.physics.gravity.z(), -9.81);
+  ASSERT_TRUE(w.ambient.has_value());
+  EXPECT_FLOAT_EQ((*w.ambient)[2], 0.4f);
+  ASSERT_TRUE(w.background.has_value());
+  EXPECT_FLOAT_EQ((*w.background)[3], 1.0f);
+  EXPECT_TRUE(w.ground_plane);
+  EXPECT_DOUBLE_EQ(w.X_WG.translation().z(), -0.5);
+  ASSERT_TRUE(w.sun.has_value());
+  EXPECT_NEAR(w.sun->direction.x(), -0.5, 1e-12);
+  ASSERT_EQ(w.lights.size(), 1u);
+  EXPECT_NEAR(w.lights[0].direction.z(), -1.0, 1e-12);
+
+  ASSERT_EQ(w.models.size(), 2u);
+  const ModelDescription& shapes = w.models[0];
+  EXPECT_EQ(shapes.name, "shapes");
+  EXPECT_TRUE(shapes.is_static);
+  ASSERT_EQ(shapes.links.size(), 1u);
+  const LinkDescription& base = shapes.links[0];
+  // Model yaw 90 deg, link 0.5 along the model's x -> world (1, 2.5).
+  const Eigen::Vector3d p = (shapes.X_WM * base.X_ML).translation();
+  EXPECT_NEAR(p.x(), 1.0, 1e-12);
+  EXPECT_NEAR(p.y(), 2.5, 1e-12);
+  ASSERT_EQ(base.collisions.size(), 5u);
+  EXPECT_EQ(base.collisions[0].shape.type, ShapeType::kBox);
+  EXPECT_EQ(base.collisions[0].shape.size, Eigen::Vector3d(1, 2, 3));
+  EXPECT_DOUBLE_EQ(base.collisions[0].friction.mu, 0.3);
+  EXPECT_DOUBLE_EQ(base.collisions[0].friction.mu2, 0.4);
+  EXPECT_EQ(base.collisions[1].shape.type, ShapeType::kCylinder);
+  EXPECT_DOUBLE_EQ(base.collisions[1].shape.radius, 0.2);
+  EXPECT_DOUBLE_EQ(base.collisions[1].shape.length, 0.6);
+  EXPECT_DOUBLE_EQ(base.collisions[1].X_LS.translation().z(), 1.0);
+  EXPECT_DOUBLE_EQ(base.collisions[1].friction.mu, 1.0);  // SDF default
+  EXPECT_EQ(base.collisions[2].shape.type, ShapeType::kSphere);
+  EXPECT_EQ(base.collisions[3].shape.type, ShapeType::kPlane);
+  EXPECT_NEAR(base.collisions[3].shape.normal.y(), std::sqrt(0.5), 1e-12);
+  EXPECT_EQ(base.collisions[4].shape.type, ShapeType::kMesh);
+  EXPECT_EQ(base.collisions[4].shape.mesh_path,
+            kData + "models/unit_cube/meshes/unit_cube.stl");
+  ASSERT_EQ(base.visuals.size(), 2u);
+  EXPECT_EQ(base.visuals[0].material.name, "Gazebo/Orange");
+  EXPECT_FLOAT_EQ(base.visuals[0].material.diffuse[1], 0.5088f);
+  EXPECT_FLOAT_EQ(base.visuals[0].material.specular[0], 0.9f);  // explicit overrides script
+  EXPECT_EQ(base.visuals[1].shape.mesh_path, kData + "meshes/unit_cube.stl");
+  EXPECT_EQ(base.visuals[1].shape.scale, Eigen::Vector3d::Constant(0.5));
+  EXPECT_FLOAT_EQ(base.visuals[1].material.ambient[1], 0.2f);
+
+  const ModelDescription& crate = w.models[1];
+  EXPECT_FALSE(crate.is_static);
+  EXPECT_DOUBLE_EQ(crate.links[0].inertial.mass, 2.5);
+  EXPECT_DOUBLE_EQ(crate.links[0].inertial.inertia(2, 2), 0.3);
+  EXPECT_DOUBLE_EQ(crate.links[0].inertial.X_LI.translation().z(), 0.1);
+
+  // Unsupported elements: each warned exactly once, with the file and line.
+  EXPECT_EQ(c.count("<gui> in <world> is not supported"), 1) << ::testing::PrintToString(c.warnings);
+  EXPECT_EQ(c.count("features.world:17: <gui>"), 1);
+  EXPECT_EQ(c.count("<ode> in <physics>"), 1);
+  EXPECT_EQ(c.count("<shadows> in <scene>"), 1);
+  EXPECT_EQ(c.count("model://some_database_model"), 1);
+  EXPECT_EQ(c.count("<cast_shadows> in <light>"), 1);
+  EXPECT_EQ(c.count("type='point'"), 1);
+  EXPECT_EQ(c.count("<plugin> in <world>"), 1);
+  EXPECT_EQ(c.count("<plugin> in <model>"), 1);
+  EXPECT_EQ(c.count("<fdir1> in <ode>"), 1);
+  EXPECT_EQ(c.count("<cast_shadows> in <visual>"), 1);
+  EXPECT_EQ(c.count("<state> in <world>"), 1);
+  EXPECT_EQ(c.warnings.size(), 11u) << ::testing::PrintToString(c.warnings);
+}
+
+TEST(WorldLoader, AddToScene) {
+  const WorldDescription w = loadWorldFile(kData + "features.world");
+  Scene scene;
+  const auto bodies = addToScene(w, scene);
+  EXPECT_TRUE(scene.ground_plane);
+  ASSERT_EQ(bodies.count("ground_plane::link"), 1u);
+  ASSERT_EQ(bodies.count("shapes::base"), 1u);
+  ASSERT_EQ(bodies.count("crate::body"), 1u);
+  EXPECT_TRUE(scene.bodies[bodies.at("shapes::base")].is_static);
+  EXPECT_FALSE(scene.bodies[bodies.at("crate::body")].is_static);
+  EXPECT_EQ(scene.bodies[bodies.at("crate::body")].model, "crate");
+  EXPECT_EQ(scene.lights.size(), 2u);
+  EXPECT_FLOAT_EQ(scene.ambient[0], 0.2f);
+  EXPECT_FLOAT_EQ(scene.sky[2], 0.7f);
+  int collisions = 0, visuals = 0, planes = 0;
+  for (const SceneItem& it : scene.items) {
+    collisions += it.collision;
+    visuals += it.visual;
+    EXPECT_NE(it.collision, it.visual);
+    if (it.shape.type == ShapeType::kPlane && it.body == bodies.at("ground_plane::link")) ++planes;
+  }
+  EXPECT_EQ(planes, 1);
+  EXPECT_EQ(collisions, 1 + 5 + 1);
+  EXPECT_EQ(visuals, 2 + 1);
+  EXPECT_NEAR(scene.bodies[bodies.at("ground_plane::link")].X_WB.translation().z(), -0.5, 1e-12);
+}
+
+TEST(WorldLoader, InvalidSyntaxNamesFileAndLine) {
+  const std::string e = errorOf(kData + "invalid_syntax.world");
+  EXPECT_NE(e.find("invalid_syntax.world:6: malformed XML: XML_ERROR_MISMATCHED_ELEMENT (XMLElement name=link)"), std::string::npos) << e;
+}
+
+TEST(WorldLoader, UnknownGeometry) {
+  const std::string e = errorOf(kData + "invalid_unknown_geometry.world");
+  EXPECT_NE(e.find("invalid_unknown_geometry.world:9:"), std::string::npos) << e;
+  EXPECT_NE(e.find("unknown geometry <heightmap>"), std::string::npos) << e;
+  EXPECT_NE(e.find("model 'terrain' link 'link' collision 'collision'"), std::string::npos) << e;
+}
+
+TEST(WorldLoader, MissingMesh) {
+  const std::string e = errorOf(kData + "invalid_missing_mesh.world");
+  EXPECT_NE(e.find("model 'statue' link 'base'"), std::string::npos) << e;
+  EXPECT_NE(e.find("mesh 'meshes/does_not_exist.dae' not found"), std::string::npos) << e;
+  EXPECT_NE(e.find(kData + "meshes/does_not_exist.dae"), std::string::npos) << e;
+  // Not an error when meshes are optional (e.g. a headless check of the layout).
+  WorldLoadOptions o;
+  o.require_meshes = false;
+  EXPECT_NO_THROW(loadWorldFile(kData + "invalid_missing_mesh.world", o));
+}
+
+TEST(WorldLoader, NonexistentFile) {
+  const std::string e = errorOf(kData + "no_such.world");
+  EXPECT_NE(e.find("world file '" + kData + "no_such.world' does not exist"), std::string::npos)
+      << e;
+  EXPECT_NE(errorOf(kData).find("is a directory"), std::string::npos);
+}
+
+TEST(WorldLoader, OtherBadValues) {
+  EXPECT_NE(errorOf(kData + "invalid_pose.world").find(":5: model 'm': <pose> '1 2 3 0 0' is not 6 numbers"),
+            std::string::npos)
+      << errorOf(kData + "invalid_pose.world");
+  EXPECT_NE(errorOf(kData + "invalid_box_size.world").find("<box> <size> must be > 0"),
+            std::string::npos);
+  EXPECT_NE(errorOf(kData + "invalid_no_world.world").find("no <world> element"),
+            std::string::npos);
+  EXPECT_NE(errorOf(kData + "invalid_duplicate_model.world").find("duplicate model name 'twin'"),
+            std::string::npos);
+  EXPECT_NE(errorOf(kData + "invalid_number.world").find("<max_step_size> 'nan' is not finite"),
+            std::string::npos)
+      << errorOf(kData + "invalid_number.world");
+  EXPECT_NE(errorOfString("<robot name='r'/>").find("inline.world:1: root element is <robot>"),
+            std::string::npos);
+  EXPECT_NE(errorOfString("").find("inline.world:"), std::string::npos);
+  EXPECT_NE(errorOfString("<sdf><world><model name='m'><link name='l'><collision name='c'>"
+                          "<geometry/></collision></link></model></world></sdf>")
+                .find("<geometry> is empty"),
+            std::string::npos);
+  EXPECT_NE(errorOfString("<sdf><world><model name='m'><link name='l'><collision name='c'>"
+                          "<geometry><cylinder><radius>-1</radius><length>1</length></cylinder>"
+                          "</geometry></collision></link></model></world></sdf>")
+                .find("<radius> must be > 0 (got -1)"),
+            std::string::npos);
+  EXPECT_NE(errorOfString("<sdf><world><model name='m'><link name='l'><inertial><mass>0</mass>"
+                          "</inertial></link></model></world></sdf>")
+                .find("<mass> must be > 0"),
+            std::string::npos);
+  EXPECT_NE(errorOfString("<sdf><world><model><static>1</static></model></world></sdf>")
+                .find("<model> has no name"),
+            std::string::npos);
+  EXPECT_NE(errorOfString("<sdf><world><model name='m'><static>maybe</static></model></world></sdf>")
+                .find("'maybe' is not a boolean"),
+            std::string::npos);
+  EXPECT_NE(errorOfString("<sdf><world><model name='m'><link name='l'><collision name='c'>"
+                          "<geometry><mesh><uri>ftp://x/y.stl</uri></mesh></geometry></collision>"
+                          "</link></model></world></sdf>")
+                .find("unsupported scheme"),
+            std::string::npos);
+}
+
+TEST(WorldLoader, AbsoluteAndFileUris) {
+  const std::string cube = kData + "meshes/unit_cube.stl";
+  for (const std::string& uri : {cube, "file://" + cube}) {
+    const WorldDescription w = loadWorldString(
+        "<sdf><world><model name='m'><static>true</static><link name='l'><collision name='c'>"
+        "<geometry><mesh><uri>" + uri + "</uri></mesh></geometry></collision></link></model>"
+        "</world></sdf>",
+        "inline", "/nonexistent");
+    EXPECT_EQ(w.models[0].links[0].collisions[0].shape.mesh_path, cube);
+  }
+}
+
+TEST(WorldLoader, ResolveWorld) {
+  EXPECT_EQ(resolveWorld("walled_room", kWorlds), kWorlds + "walled_room.world");
+  EXPECT_EQ(resolveWorld(kData + "box_room.world", kWorlds), kData + "box_room.world");
+  try {
+    resolveWorld("moon_base", kWorlds);
+    FAIL() << "no error";
+  } catch (const WorldError& e) {
+    EXPECT_NE(std::string(e.what()).find("world 'moon_base' is neither a shipped world (empty, "
+                                         "walled_room, racetrack"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(resolveWorld("/no/such/file.world", kWorlds), WorldError);
+  EXPECT_THROW(resolveWorld("", kWorlds), WorldError);
+}
+
+// Every shipped world loads without a single warning and yields a scene.
+class ShippedWorld : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ShippedWorld, Loads) {
+  Collected c;
+  const std::string path = resolveWorld(GetParam(), kWorlds);
+  const WorldDescription w = loadWorldFile(path, c.options());
+  EXPECT_TRUE(c.warnings.empty()) << ::testing::PrintToString(c.warnings);
+  EXPECT_TRUE(w.ground_plane);
+  EXPECT_TRUE(w.sun.has_value());
+  EXPECT_DOUBLE_EQ(w.physics.max_step_size, 0.001);
+  Scene scene;
+  addToScene(w, scene);
+  EXPECT_TRUE(scene.ground_plane);
+  EXPECT_FALSE(scene.items.empty());
+}
+
+INSTANTIATE_TEST_SUITE_P(All, ShippedWorld, ::testing::ValuesIn(shippedWorldNames()));
+
+// Distance in the xy plane from point p to the footprint of a box item (world frame).
+double footprintDistance(const Scene& scene, const SceneItem& item, const Eigen::Vector2d& p) {
+  const Eigen::Isometry3d X_WS = scene.bodies[item.body].X_WB * item.X_BS;
+  const Eigen::Vector3d q = X_WS.inverse() * Eigen::Vector3d(p.x(), p.y(), X_WS.translation().z());
+  const Eigen::Vector2d h = item.shape.size.head<2>() / 2;
+  const Eigen::Vector2d d = (q.head<2>().cwiseAbs() - h).cwiseMax(0.0);
+  return d.norm();
+}
+
+TEST(ShippedWorlds, WalledRoomLayout) {
+  const WorldDescription w = loadWorldFile(kWorlds + "walled_room.world");
+  Scene scene;
+  addToScene(w, scene);
+  // Inside 6 x 4: the inner wall faces are at x = +-3, y = +-2.
+  int walls = 0;
+  for (const SceneItem& it : scene.items) {
+    if (!it.collision || scene.bodies[it.body].model != "walls") continue;
+    ++walls;
+    const Eigen::Vector3d c = (scene.bodies[it.body].X_WB * it.X_BS).translation();
+    const Eigen::Vector3d h = it.shape.size / 2;
+    const double inner = std::abs(c.x()) > 1.0 ? std::abs(c.x()) - h.x() : std::abs(c.y()) - h.y();
+    EXPECT_NEAR(inner, std::abs(c.x()) > 1.0 ? 3.0 : 2.0, 1e-12);
+    EXPECT_NEAR(h.z() * 2, 1.0, 1e-12);
+  }
+  EXPECT_EQ(walls, 4);
+}
+
+TEST(ShippedWorlds, RacetrackSpawnIsClear) {
+  const WorldDescription w = loadWorldFile(kWorlds + "racetrack.world");
+  Scene scene;
+  addToScene(w, scene);
+  // Nearest wall face on each side of the spawn: 0.5 m (track 1 m wide, spawn on the centreline).
+  double nearest = 1e9;
+  int boxes = 0, cones = 0;
+  for (const SceneItem& it : scene.items) {
+    if (!it.collision || it.shape.type == ShapeType::kPlane) continue;
+    if (it.shape.type == ShapeType::kBox) {
+      ++boxes;
+      nearest = std::min(nearest, footprintDistance(scene, it, {0.0, 0.0}));
+    } else {
+      ++cones;
+      const Eigen::Vector3d c = (scene.bodies[it.body].X_WB * it.X_BS).translation();
+      EXPECT_GT(c.head<2>().norm(), 1.0);
+    }
+  }
+  EXPECT_GT(boxes, 40);
+  EXPECT_GE(cones, 4);
+  EXPECT_NEAR(nearest, 0.5, 1e-6);
+  // The whole bottom straight is clear for a car 0.2 m wide: every point of the centreline
+  // from x = -2.75 to 2.75 keeps 0.45 m from the walls.
+  for (double x = -2.75; x <= 2.75; x += 0.05) {
+    for (const SceneItem& it : scene.items) {
+      if (it.collision && it.shape.type == ShapeType::kBox) {
+        EXPECT_GT(footprintDistance(scene, it, {x, 0.0}), 0.45) << x;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tianracer_sim
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
