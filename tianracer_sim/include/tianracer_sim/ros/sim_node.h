@@ -1,0 +1,105 @@
+// The simulator's ROS node: parameters in, Simulation stepped, Gazebo's topics and services
+// out. Thin: the physics, controllers and sensors are the ROS-free libraries.
+//
+// Parameters (private, ~):
+//   model            xacro/URDF file; when empty, the URDF is read from robot_param
+//   robot_param      parameter holding the URDF (default: the gazebo_ros_control plugin's
+//                    robotParam, else "robot_description"), resolved in the robot namespace's
+//                    parent like gazebo_ros_control does (i.e. /robot_description)
+//   robot_name       model name (default: the plugin's robotNamespace without '/', else the
+//                    URDF's robot name)
+//   x, y, z, roll, pitch, yaw   spawn pose of base_link; z "auto" (default) drops the robot
+//                    so that its lowest collision point touches z = 0
+//   controllers      names to start (list or space-separated string); default every
+//                    controller defined under the robot's ros_control namespace
+//   real_time_factor 1.0 = real time, 0 = as fast as possible
+//   paused           start paused
+//   max_step_size    physics step (s), default 0.001
+//   clock_rate       /clock messages per sim second (0 = every step; default every step)
+//   ground_truth_rate  <ns>/ground_truth/odom rate (Hz, default 50)
+#ifndef TIANRACER_SIM_ROS_SIM_NODE_H
+#define TIANRACER_SIM_ROS_SIM_NODE_H
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <ros/callback_queue.h>
+#include <ros/ros.h>
+#include <sensor_msgs/JointState.h>
+#include <std_srvs/Empty.h>
+
+#include <tianracer_control/ros/controller_adapter.h>
+
+#include "tianracer_sim/GetModelState.h"
+#include "tianracer_sim/SetModelState.h"
+#include "tianracer_sim/sim/simulation.h"
+
+namespace tianracer_sim {
+
+/// Something published on a sim-time schedule: due when time >= next; next advances by
+/// period (a reset restarts it; a long pause does not cause a burst).
+struct Schedule {
+  double period = 0.0;  // s; 0 = every step
+  double next = 0.0;
+  bool due(double t);
+  void restart(double t) { next = t; }
+};
+
+class SimNode {
+ public:
+  /// Reads parameters, loads the robot and starts its controllers. Throws std::exception with
+  /// a message naming the parameter, file or controller on a configuration error.
+  SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh);
+  ~SimNode();
+
+  /// Steps until ros::ok() is false.
+  void run();
+
+ private:
+  struct JointStateStream {
+    ros::Publisher pub;
+    std::vector<int> joints;  // PhysicsRobot joint indices
+    Schedule schedule;
+    sensor_msgs::JointState msg;
+  };
+  struct RobotIo {
+    SimRobot* robot = nullptr;
+    std::string ns;  // ros_control namespace, e.g. "/tianracer"
+    std::shared_ptr<tianracer_control::ControllerCommandSubscribers> commands;
+    std::vector<JointStateStream> joint_states;
+    ros::Publisher ground_truth;
+    Schedule ground_truth_schedule;
+  };
+
+  void loadRobot();
+  void setUpJointStates(RobotIo& io);
+  void stepOnce();
+  void publishDue();
+  void publishClock();
+  void restartSchedules();
+
+  bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  bool onResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  bool onResetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  bool onSetModelState(SetModelState::Request& req, SetModelState::Response& res);
+  bool onGetModelState(GetModelState::Request& req, GetModelState::Response& res);
+
+  ros::NodeHandle nh_, pnh_;
+  ros::CallbackQueue queue_;  // commands and services run between steps, in this thread
+  std::unique_ptr<Simulation> sim_;
+  std::vector<RobotIo> robots_;
+
+  ros::Publisher clock_pub_;
+  Schedule clock_schedule_;
+  double ground_truth_rate_ = 50.0;
+  double real_time_factor_ = 1.0;
+  bool paused_ = false;
+  bool pacing_reset_ = true;
+  std::vector<ros::ServiceServer> services_;
+};
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_ROS_SIM_NODE_H

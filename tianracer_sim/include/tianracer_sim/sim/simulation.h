@@ -1,0 +1,98 @@
+// Simulation: the step loop of SPEC §1 without ROS. Robots from their RobotModel, their
+// ros_control-style controllers from tianracer_control, the physics world, and sim time:
+//   read joint state -> controllers update (every control period) -> write commands ->
+//   physics step.
+// Sensors and publishing are driven by the host (the ROS node) from the state after a step.
+#ifndef TIANRACER_SIM_SIM_SIMULATION_H
+#define TIANRACER_SIM_SIM_SIMULATION_H
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include <tianracer_control/joint_controllers.h>
+#include <tianracer_control/joint_handle.h>
+
+#include "tianracer_sim/model/robot_model.h"
+#include "tianracer_sim/physics/world.h"
+
+namespace tianracer_sim {
+
+/// A robot to add: its model, where it spawns, and the controllers to start.
+struct RobotConfig {
+  std::string name;  // unique in the world, e.g. "tianracer"
+  RobotModel model;
+  Eigen::Isometry3d X_WB_spawn = Eigen::Isometry3d::Identity();
+  /// Replace the spawn height so that the lowest collision point (joints at 0) rests on z = 0.
+  bool drop_to_ground = false;
+  std::vector<tianracer_control::ControllerSpec> controllers;
+};
+
+/// One robot of the simulation with its hardware interface and controllers.
+struct SimRobot {
+  std::string name;
+  RobotId id = -1;
+  RobotModel model;
+  /// One handle per transmission joint, in transmission order. Stable storage: controllers
+  /// keep pointers into it.
+  std::vector<tianracer_control::JointHandle> handles;
+  std::vector<int> handle_joint;  // PhysicsRobot joint index of each handle
+  std::vector<bool> claimed;      // handle written by a controller (others stay free)
+  tianracer_control::ControllerSet controllers;
+  int control_every = 1;  // controllers run every control_every physics steps
+};
+
+class Simulation {
+ public:
+  explicit Simulation(const PhysicsOptions& options = PhysicsOptions(),
+                      WarningSink warn = WarningSink());
+
+  /// Adds the robot to the physics world and starts its controllers. Throws ModelError,
+  /// PhysicsError, MeshError or tianracer_control::ControllerError (messages name the robot,
+  /// joint or controller); on a throw nothing of the robot's controllers is kept.
+  SimRobot& addRobot(RobotConfig config);
+
+  /// One physics step of dt.
+  void step();
+
+  /// /gazebo/reset_simulation: time to 0, robots to spawn, controllers reset.
+  void resetSimulation();
+  /// /gazebo/reset_world: robots to spawn and controllers reset; time keeps running.
+  void resetWorld();
+
+  double time() const { return physics_.time(); }
+  double dt() const { return physics_.dt(); }
+  std::uint64_t stepCount() const { return physics_.stepCount(); }
+
+  PhysicsWorld& physics() { return physics_; }
+  const PhysicsWorld& physics() const { return physics_; }
+  std::vector<std::unique_ptr<SimRobot>>& robots() { return robots_; }
+  SimRobot* findRobot(const std::string& name);
+
+ private:
+  void read(SimRobot& robot);
+  void write(SimRobot& robot);
+  void restartControllers(SimRobot& robot);
+
+  PhysicsWorld physics_;
+  WarningSink warn_;
+  std::vector<std::unique_ptr<SimRobot>> robots_;
+};
+
+/// Builds the hardware interface of a robot: one JointHandle per transmission, its interface
+/// the transmission's first joint interface, limits from the physics joint. Throws ModelError
+/// for a transmission whose joint is not a movable joint of the robot.
+void buildJointHandles(const RobotModel& model, const PhysicsRobot& robot,
+                       std::vector<tianracer_control::JointHandle>* handles,
+                       std::vector<int>* handle_joint);
+
+/// Height of the lowest collision point of the robot below its base_link origin, with all joints
+/// at 0 and the base rotated by R_WB (positive when the geometry reaches below the base).
+/// Exact for boxes, spheres and cylinders; meshes by their vertices.
+double depthBelowBase(const RobotModel& model, const Eigen::Matrix3d& R_WB);
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_SIM_SIMULATION_H

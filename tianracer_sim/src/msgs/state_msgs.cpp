@@ -1,0 +1,68 @@
+#include "tianracer_sim/ros/state_msgs.h"
+
+#include <cmath>
+
+namespace tianracer_sim {
+
+geometry_msgs::Pose toPose(const Eigen::Isometry3d& X) {
+  geometry_msgs::Pose p;
+  p.position.x = X.translation().x();
+  p.position.y = X.translation().y();
+  p.position.z = X.translation().z();
+  const Eigen::Quaterniond q(X.linear());
+  p.orientation.x = q.x();
+  p.orientation.y = q.y();
+  p.orientation.z = q.z();
+  p.orientation.w = q.w();
+  return p;
+}
+
+geometry_msgs::Twist toTwistMsg(const Twist& twist) {
+  geometry_msgs::Twist t;
+  t.linear.x = twist.linear.x();
+  t.linear.y = twist.linear.y();
+  t.linear.z = twist.linear.z();
+  t.angular.x = twist.angular.x();
+  t.angular.y = twist.angular.y();
+  t.angular.z = twist.angular.z();
+  return t;
+}
+
+nav_msgs::Odometry toGroundTruth(const Eigen::Isometry3d& X_WB, const Twist& twist_W,
+                                 const ros::Time& stamp, const std::string& frame,
+                                 const std::string& child_frame) {
+  nav_msgs::Odometry odom;
+  odom.header.stamp = stamp;
+  odom.header.frame_id = frame;
+  odom.child_frame_id = child_frame;
+  odom.pose.pose = toPose(X_WB);
+  const Eigen::Matrix3d R_BW = X_WB.linear().transpose();
+  Twist body;
+  body.linear = R_BW * twist_W.linear;
+  body.angular = R_BW * twist_W.angular;
+  odom.twist.twist = toTwistMsg(body);
+  return odom;
+}
+
+bool fromPose(const geometry_msgs::Pose& pose, Eigen::Isometry3d* X) {
+  const Eigen::Vector3d t(pose.position.x, pose.position.y, pose.position.z);
+  Eigen::Quaterniond q(pose.orientation.w, pose.orientation.x, pose.orientation.y,
+                       pose.orientation.z);
+  if (!t.allFinite() || !q.coeffs().allFinite() || q.norm() < 1e-9) return false;
+  q.normalize();
+  X->setIdentity();
+  X->linear() = q.toRotationMatrix();
+  X->translation() = t;
+  return true;
+}
+
+bool fromTwistMsg(const geometry_msgs::Twist& msg, Twist* twist) {
+  const Eigen::Vector3d v(msg.linear.x, msg.linear.y, msg.linear.z);
+  const Eigen::Vector3d w(msg.angular.x, msg.angular.y, msg.angular.z);
+  if (!v.allFinite() || !w.allFinite()) return false;
+  twist->linear = v;
+  twist->angular = w;
+  return true;
+}
+
+}  // namespace tianracer_sim

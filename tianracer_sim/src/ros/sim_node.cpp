@@ -1,0 +1,410 @@
+#include "tianracer_sim/ros/sim_node.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include <nav_msgs/Odometry.h>
+#include <ros/package.h>
+#include <rosgraph_msgs/Clock.h>
+
+#include "tianracer_sim/model/sensor_topics.h"
+#include "tianracer_sim/ros/controller_params.h"
+#include "tianracer_sim/ros/state_msgs.h"
+
+namespace tianracer_sim {
+
+namespace tc = tianracer_control;
+
+bool Schedule::due(double t) {
+  if (t + 1e-9 < next) return false;
+  // Next slot after t: a pause or a slow consumer never causes a burst of catch-up messages.
+  next = period > 0.0 ? std::max(next + period, t + period - 1e-9) : t;
+  return true;
+}
+
+namespace {
+
+std::string trimSlashes(std::string s) {
+  while (!s.empty() && s.front() == '/') s.erase(s.begin());
+  while (!s.empty() && s.back() == '/') s.pop_back();
+  return s;
+}
+
+double getDouble(const ros::NodeHandle& pnh, const std::string& key, double fallback) {
+  XmlRpc::XmlRpcValue v;
+  if (!pnh.getParam(key, v)) return fallback;
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) return static_cast<double>(v);
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) return static_cast<int>(v);
+  throw std::runtime_error("parameter " + pnh.resolveName(key) + " must be a number, got " +
+                           v.toXml());
+}
+
+std::vector<std::string> getNameList(const ros::NodeHandle& pnh, const std::string& key,
+                                     bool* given) {
+  std::vector<std::string> names;
+  XmlRpc::XmlRpcValue v;
+  *given = pnh.getParam(key, v);
+  if (!*given) return names;
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeArray) {
+    for (int i = 0; i < v.size(); ++i) {
+      if (v[i].getType() != XmlRpc::XmlRpcValue::TypeString) {
+        throw std::runtime_error("parameter " + pnh.resolveName(key) + " must list names");
+      }
+      names.push_back(static_cast<std::string>(v[i]));
+    }
+  } else if (v.getType() == XmlRpc::XmlRpcValue::TypeString) {
+    std::istringstream in(static_cast<std::string>(v));
+    for (std::string n; in >> n;) names.push_back(n);
+  } else {
+    throw std::runtime_error("parameter " + pnh.resolveName(key) +
+                             " must be a list or a space-separated string");
+  }
+  return names;
+}
+
+void warnOnce(const std::string& text) {
+  static std::set<std::string> seen;
+  if (seen.insert(text).second) ROS_WARN_STREAM(text);
+}
+
+}  // namespace
+
+SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh), pnh_(pnh) {
+  nh_.setCallbackQueue(&queue_);
+  pnh_.setCallbackQueue(&queue_);
+
+  PhysicsOptions physics;
+  physics.dt = getDouble(pnh_, "max_step_size", 0.001);
+  if (!(physics.dt > 0.0 && physics.dt <= 0.1)) {
+    throw std::runtime_error("parameter ~max_step_size must be in (0, 0.1] s, got " +
+                             std::to_string(physics.dt));
+  }
+  real_time_factor_ = getDouble(pnh_, "real_time_factor", 1.0);
+  if (!(real_time_factor_ >= 0.0) || !std::isfinite(real_time_factor_)) {
+    throw std::runtime_error("parameter ~real_time_factor must be >= 0 (0 = as fast as possible), got " +
+                             std::to_string(real_time_factor_));
+  }
+  pnh_.param("paused", paused_, false);
+  const double clock_rate = getDouble(pnh_, "clock_rate", 0.0);
+  clock_schedule_.period = clock_rate > 0.0 ? 1.0 / clock_rate : 0.0;
+  ground_truth_rate_ = getDouble(pnh_, "ground_truth_rate", 50.0);
+
+  sim_ = std::make_unique<Simulation>(physics, [](const std::string& w) { warnOnce(w); });
+
+  // /clock first, so that nodes waiting for sim time see it as soon as we step.
+  ros::NodeHandle root;
+  root.setCallbackQueue(&queue_);
+  nh_.setParam("/use_sim_time", true);
+  clock_pub_ = root.advertise<rosgraph_msgs::Clock>("/clock", 10);
+
+  loadRobot();
+
+  ros::NodeHandle gazebo("/gazebo");
+  gazebo.setCallbackQueue(&queue_);
+  services_.push_back(gazebo.advertiseService("pause_physics", &SimNode::onPause, this));
+  services_.push_back(gazebo.advertiseService("unpause_physics", &SimNode::onUnpause, this));
+  services_.push_back(gazebo.advertiseService("reset_simulation", &SimNode::onResetSimulation, this));
+  services_.push_back(gazebo.advertiseService("reset_world", &SimNode::onResetWorld, this));
+  services_.push_back(gazebo.advertiseService("set_model_state", &SimNode::onSetModelState, this));
+  services_.push_back(gazebo.advertiseService("get_model_state", &SimNode::onGetModelState, this));
+
+  ROS_INFO("tianracer_sim: step %.4f s, real_time_factor %g%s, %s", physics.dt, real_time_factor_,
+           real_time_factor_ == 0.0 ? " (as fast as possible)" : "", paused_ ? "paused" : "running");
+}
+
+SimNode::~SimNode() = default;
+
+void SimNode::loadRobot() {
+  LoadOptions options;
+  options.resolver.find_package = [](const std::string& pkg) { return ros::package::getPath(pkg); };
+  options.warn = [](const std::string& w) { warnOnce(w); };
+
+  std::string model_file;
+  pnh_.param<std::string>("model", model_file, "");
+  RobotModel model;
+  if (!model_file.empty()) {
+    model = loadRobotModelFile(model_file, options);
+  } else {
+    std::string param;
+    pnh_.param<std::string>("robot_param", param, "robot_description");
+    std::string urdf;
+    if (!nh_.getParam(param, urdf)) {
+      throw ModelError("parameter " + nh_.resolveName(param) +
+                       " is not set: load the URDF (e.g. with xacro) or give ~model");
+    }
+    if (urdf.find_first_not_of(" \t\r\n") == std::string::npos) {
+      throw ModelError("parameter " + nh_.resolveName(param) + " (robot_description) is empty");
+    }
+    model = loadRobotModel(urdf, nh_.resolveName(param), options);
+  }
+
+  RobotIo io;
+  io.ns = model.ext.ros_control ? model.ext.ros_control->robot_namespace : "";
+  std::string name;
+  pnh_.param<std::string>("robot_name", name, trimSlashes(io.ns));
+  if (name.empty()) name = model.urdf->getName();
+  if (io.ns.empty()) io.ns = "/" + name;
+  io.ns = "/" + trimSlashes(io.ns);
+
+  // Spawn pose.
+  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+  const double roll = getDouble(pnh_, "roll", 0.0), pitch = getDouble(pnh_, "pitch", 0.0),
+               yaw = getDouble(pnh_, "yaw", 0.0);
+  X_WB.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                   Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                   Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                      .toRotationMatrix();
+  X_WB.translation() = Eigen::Vector3d(getDouble(pnh_, "x", 0.0), getDouble(pnh_, "y", 0.0), 0.0);
+  bool auto_z = true;
+  XmlRpc::XmlRpcValue zv;
+  if (pnh_.getParam("z", zv) && !(zv.getType() == XmlRpc::XmlRpcValue::TypeString &&
+                                  static_cast<std::string>(zv) == "auto")) {
+    X_WB.translation().z() = getDouble(pnh_, "z", 0.0);
+    auto_z = false;
+  }
+  if (!X_WB.matrix().allFinite()) throw std::runtime_error("spawn pose (~x ~y ~z ~roll ~pitch ~yaw) is not finite");
+
+  // Controllers: the list given, else every controller defined under the namespace.
+  ros::NodeHandle control_nh(io.ns);
+  bool given = false;
+  std::vector<std::string> names = getNameList(pnh_, "controllers", &given);
+  if (!given) names = listControllers(control_nh);
+  RobotConfig config;
+  config.name = name;
+  config.X_WB_spawn = X_WB;
+  config.drop_to_ground = auto_z;
+  config.controllers = tc::loadControllerSpecs(control_nh, names);
+  config.model = std::move(model);
+
+  SimRobot& robot = sim_->addRobot(std::move(config));
+  io.robot = &robot;
+  PhysicsRobot& pr = sim_->physics().robot(robot.id);
+  ROS_INFO_STREAM("robot '" << name << "' (" << robot.model.source << "): "
+                  << pr.joints().size() << " movable joints, " << robot.handles.size()
+                  << " transmissions, controllers [" << [&] {
+                       std::string s;
+                       for (const auto& c : robot.controllers.controllers()) s += " " + c->name();
+                       return s + " ]";
+                     }()
+                  << " in " << io.ns << ", spawned at (" << pr.spawnPose().translation().transpose()
+                  << ")");
+
+  setUpJointStates(io);
+  ros::NodeHandle robot_nh(io.ns);
+  robot_nh.setCallbackQueue(&queue_);
+  io.commands = std::make_shared<tc::ControllerCommandSubscribers>(robot_nh, robot.controllers);
+  io.ground_truth = robot_nh.advertise<nav_msgs::Odometry>("ground_truth/odom", 10);
+  io.ground_truth_schedule.period = ground_truth_rate_ > 0.0 ? 1.0 / ground_truth_rate_ : 0.0;
+  robots_.push_back(std::move(io));
+}
+
+void SimNode::setUpJointStates(RobotIo& io) {
+  // Both the joint_state_publisher plugin and joint_state_controller publish JointState; when
+  // they resolve to the same topic they become ONE stream (one publisher): the plugin's joints
+  // in its order, then the controller's other joints, at the higher of the two rates.
+  struct Request {
+    std::string topic;
+    std::vector<std::string> joints;
+    double rate;
+    std::string source;
+  };
+  std::vector<Request> requests;
+  const RobotModel& model = io.robot->model;
+  const PhysicsRobot& pr = sim_->physics().robot(io.robot->id);
+  if (const auto& jsp = model.ext.joint_state_publisher) {
+    requests.push_back({resolveTopic(jsp->robot_namespace, "joint_states"), jsp->joint_names,
+                        jsp->update_rate, "joint_state_publisher plugin"});
+  }
+  for (const auto& c : io.robot->controllers.controllers()) {
+    if (auto* jsc = dynamic_cast<const tc::JointStateController*>(c.get())) {
+      std::vector<std::string> joints;
+      for (const auto& h : io.robot->handles) joints.push_back(h.name);
+      requests.push_back({resolveTopic(io.ns, "joint_states"), joints, jsc->publishRate(),
+                          "joint_state_controller '" + c->name() + "'"});
+    }
+  }
+  ros::NodeHandle root;
+  root.setCallbackQueue(&queue_);
+  for (const Request& r : requests) {
+    auto it = std::find_if(io.joint_states.begin(), io.joint_states.end(),
+                           [&](const JointStateStream& s) { return s.pub.getTopic() == r.topic; });
+    if (it == io.joint_states.end()) {
+      JointStateStream s;
+      s.pub = root.advertise<sensor_msgs::JointState>(r.topic, 10);
+      s.schedule.period = 1.0 / r.rate;
+      io.joint_states.push_back(std::move(s));
+      it = std::prev(io.joint_states.end());
+    } else {
+      ROS_INFO_STREAM(r.topic << ": " << r.source
+                              << " shares the topic with another joint state source: merged "
+                                 "into one stream at the higher rate");
+      it->schedule.period = std::min(it->schedule.period, 1.0 / r.rate);
+    }
+    for (const std::string& j : r.joints) {
+      const int idx = pr.jointIndex(j);
+      if (idx < 0) throw ModelError(r.source + ": joint '" + j + "' is not a movable joint");
+      if (std::find(it->joints.begin(), it->joints.end(), idx) == it->joints.end()) {
+        it->joints.push_back(idx);
+        it->msg.name.push_back(j);
+      }
+    }
+  }
+  for (JointStateStream& s : io.joint_states) {
+    s.msg.position.resize(s.joints.size());
+    s.msg.velocity.resize(s.joints.size());
+    s.msg.effort.resize(s.joints.size());
+    ROS_INFO_STREAM(s.pub.getTopic() << ": " << s.joints.size() << " joints at "
+                                     << 1.0 / s.schedule.period << " Hz");
+  }
+}
+
+void SimNode::publishClock() {
+  rosgraph_msgs::Clock clock;
+  clock.clock = ros::Time(sim_->time());
+  clock_pub_.publish(clock);
+}
+
+void SimNode::publishDue() {
+  const double t = sim_->time();
+  const ros::Time stamp(t);
+  if (clock_schedule_.due(t)) publishClock();
+  for (RobotIo& io : robots_) {
+    const PhysicsRobot& pr = sim_->physics().robot(io.robot->id);
+    for (JointStateStream& s : io.joint_states) {
+      if (!s.schedule.due(t) || s.pub.getNumSubscribers() == 0) continue;
+      s.msg.header.stamp = stamp;
+      for (size_t k = 0; k < s.joints.size(); ++k) {
+        s.msg.position[k] = pr.jointPosition(s.joints[k]);
+        s.msg.velocity[k] = pr.jointVelocity(s.joints[k]);
+        s.msg.effort[k] = pr.jointEffort(s.joints[k]);
+      }
+      s.pub.publish(s.msg);
+    }
+    if (io.ground_truth_schedule.due(t) && io.ground_truth.getNumSubscribers() > 0) {
+      io.ground_truth.publish(toGroundTruth(pr.basePose(), pr.baseTwist(), stamp, "world",
+                                            pr.tree().bodies.front().link));
+    }
+  }
+}
+
+void SimNode::restartSchedules() {
+  const double t = sim_->time();
+  clock_schedule_.restart(t);
+  for (RobotIo& io : robots_) {
+    for (JointStateStream& s : io.joint_states) s.schedule.restart(t);
+    io.ground_truth_schedule.restart(t);
+  }
+}
+
+void SimNode::stepOnce() {
+  for (RobotIo& io : robots_) io.commands->apply();
+  sim_->step();
+  publishDue();
+}
+
+void SimNode::run() {
+  publishClock();
+  publishDue();
+  ros::WallTime wall0 = ros::WallTime::now();
+  double sim0 = sim_->time();
+  while (ros::ok()) {
+    queue_.callAvailable(ros::WallDuration(0.0));
+    if (paused_) {
+      queue_.callAvailable(ros::WallDuration(0.01));
+      pacing_reset_ = true;
+      continue;
+    }
+    if (pacing_reset_) {
+      wall0 = ros::WallTime::now();
+      sim0 = sim_->time();
+      pacing_reset_ = false;
+    }
+    stepOnce();
+    if (real_time_factor_ > 0.0) {
+      const ros::WallTime target = wall0 + ros::WallDuration((sim_->time() - sim0) / real_time_factor_);
+      const ros::WallTime now = ros::WallTime::now();
+      if (now < target) {
+        // Wait for wall time, serving commands and services meanwhile.
+        queue_.callAvailable(target - now);
+        const ros::WallTime after = ros::WallTime::now();
+        if (after < target) (target - after).sleep();
+      } else if ((now - target).toSec() > 0.5) {
+        pacing_reset_ = true;  // far behind: do not race to catch up
+      }
+    }
+  }
+}
+
+bool SimNode::onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  paused_ = true;
+  return true;
+}
+
+bool SimNode::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  paused_ = false;
+  return true;
+}
+
+bool SimNode::onResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  for (RobotIo& io : robots_) io.commands->clear();
+  sim_->resetSimulation();
+  restartSchedules();
+  pacing_reset_ = true;
+  publishClock();
+  return true;
+}
+
+bool SimNode::onResetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  sim_->resetWorld();
+  return true;
+}
+
+bool SimNode::onSetModelState(SetModelState::Request& req, SetModelState::Response& res) {
+  SimRobot* robot = sim_->findRobot(req.model_name);
+  res.success = false;
+  if (!robot) {
+    res.status_message = "set_model_state: no model named '" + req.model_name + "'";
+  } else if (!req.reference_frame.empty() && req.reference_frame != "world") {
+    res.status_message = "set_model_state: reference_frame '" + req.reference_frame +
+                         "' is not supported (use \"\" or \"world\")";
+  } else {
+    Eigen::Isometry3d X;
+    Twist twist;
+    if (!fromPose(req.pose, &X)) {
+      res.status_message = "set_model_state: pose of '" + req.model_name +
+                           "' is not finite or has a zero quaternion; state unchanged";
+    } else if (!fromTwistMsg(req.twist, &twist)) {
+      res.status_message = "set_model_state: twist of '" + req.model_name +
+                           "' is not finite; state unchanged";
+    } else {
+      PhysicsRobot& pr = sim_->physics().robot(robot->id);
+      pr.setBasePose(X);
+      pr.setBaseTwist(twist);
+      res.success = true;
+      res.status_message = "ok";
+    }
+  }
+  if (!res.success) ROS_WARN_STREAM(res.status_message);
+  return true;
+}
+
+bool SimNode::onGetModelState(GetModelState::Request& req, GetModelState::Response& res) {
+  SimRobot* robot = sim_->findRobot(req.model_name);
+  res.header.stamp = ros::Time(sim_->time());
+  res.header.frame_id = "world";
+  if (!robot) {
+    res.success = false;
+    res.status_message = "get_model_state: no model named '" + req.model_name + "'";
+    return true;
+  }
+  const PhysicsRobot& pr = sim_->physics().robot(robot->id);
+  res.pose = toPose(pr.basePose());
+  res.twist = toTwistMsg(pr.baseTwist());
+  res.success = true;
+  res.status_message = "ok";
+  return true;
+}
+
+}  // namespace tianracer_sim

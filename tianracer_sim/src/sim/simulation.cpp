@@ -1,0 +1,235 @@
+#include "tianracer_sim/sim/simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "tianracer_sim/mesh/mesh_loader.h"
+#include "tianracer_sim/physics/rigid_tree.h"
+
+namespace tianracer_sim {
+
+namespace tc = tianracer_control;
+
+namespace {
+
+tc::JointHandle::Interface toHandleInterface(JointInterface iface) {
+  switch (iface) {
+    case JointInterface::kEffort: return tc::JointHandle::Interface::kEffort;
+    case JointInterface::kVelocity: return tc::JointHandle::Interface::kVelocity;
+    case JointInterface::kPosition: return tc::JointHandle::Interface::kPosition;
+  }
+  return tc::JointHandle::Interface::kEffort;
+}
+
+}  // namespace
+
+void buildJointHandles(const RobotModel& model, const PhysicsRobot& robot,
+                       std::vector<tc::JointHandle>* handles, std::vector<int>* handle_joint) {
+  handles->clear();
+  handle_joint->clear();
+  for (const TransmissionSpec& t : model.ext.transmissions) {
+    const int j = robot.jointIndex(t.joint);
+    if (j < 0) {
+      throw ModelError(model.source + ": transmission '" + t.name + "': joint '" + t.joint +
+                       "' is not a movable joint of robot '" + robot.name() + "'");
+    }
+    if (t.joint_interfaces.empty()) {
+      throw ModelError(model.source + ": transmission '" + t.name + "': joint '" + t.joint +
+                       "' has no hardwareInterface");
+    }
+    const JointInfo& info = robot.joints()[j];
+    tc::JointHandle h;
+    h.name = info.name;
+    h.interface = toHandleInterface(t.joint_interfaces.front());
+    h.has_position_limits = info.has_position_limits;
+    h.lower = info.lower;
+    h.upper = info.upper;
+    h.velocity_limit = info.velocity_limit;
+    h.effort_limit = info.effort_limit;
+    h.continuous = info.type == JointType::kContinuous;
+    handles->push_back(h);
+    handle_joint->push_back(j);
+  }
+}
+
+double depthBelowBase(const RobotModel& model, const Eigen::Matrix3d& R_WB) {
+  const RigidTree tree = buildRigidTree(*model.urdf, model.mesh_paths);
+  // Body poses in the root body's frame at q = 0 (parents precede children).
+  std::vector<Eigen::Isometry3d> X_RB(tree.bodies.size(), Eigen::Isometry3d::Identity());
+  for (size_t b = 1; b < tree.bodies.size(); ++b) {
+    X_RB[b] = X_RB[tree.bodies[b].parent] * tree.bodies[b].X_PB;
+  }
+  // The root body frame is base_link's frame.
+  Eigen::Isometry3d X_WR = Eigen::Isometry3d::Identity();
+  X_WR.linear() = R_WB;
+  double lowest = 0.0;
+  bool any = false;
+  for (size_t b = 0; b < tree.bodies.size(); ++b) {
+    for (const CollisionGeometry& g : tree.bodies[b].collisions) {
+      const Eigen::Isometry3d X_WG = X_WR * X_RB[b] * g.X_BG;
+      const Eigen::Vector3d c = X_WG.translation();
+      double z = c.z();
+      switch (g.type) {
+        case GeometryType::kBox: {
+          const Eigen::Vector3d h = 0.5 * g.size;
+          z -= (X_WG.linear().row(2).cwiseAbs().transpose().cwiseProduct(h)).sum();
+          break;
+        }
+        case GeometryType::kSphere:
+          z -= g.size.x();
+          break;
+        case GeometryType::kCylinder: {
+          const double az = std::min(1.0, std::fabs(X_WG.linear()(2, 2)));
+          z -= 0.5 * g.size.z() * az + g.size.x() * std::sqrt(1.0 - az * az);
+          break;
+        }
+        case GeometryType::kMesh: {
+          const auto mesh = MeshCache::global().get(g.mesh_path, g.mesh_scale);
+          double m = std::numeric_limits<double>::infinity();
+          for (const Eigen::Vector3f& v : mesh->vertices) {
+            m = std::min(m, (X_WG * v.cast<double>()).z());
+          }
+          z = m;
+          break;
+        }
+      }
+      lowest = any ? std::min(lowest, z) : z;
+      any = true;
+    }
+  }
+  return any ? -lowest : 0.0;
+}
+
+Simulation::Simulation(const PhysicsOptions& options, WarningSink warn)
+    : physics_(options), warn_(std::move(warn)) {}
+
+SimRobot& Simulation::addRobot(RobotConfig config) {
+  if (findRobot(config.name)) {
+    throw ModelError("robot '" + config.name + "' exists already: robot names must be unique");
+  }
+  auto robot = std::make_unique<SimRobot>();
+  robot->name = config.name;
+  robot->model = std::move(config.model);
+
+  if (config.drop_to_ground) {
+    config.X_WB_spawn.translation().z() = depthBelowBase(robot->model, config.X_WB_spawn.linear());
+  }
+  robot->id = physics_.addRobot(robot->model, config.X_WB_spawn, config.name);
+  PhysicsRobot& physics_robot = physics_.robot(robot->id);
+  try {
+    buildJointHandles(robot->model, physics_robot, &robot->handles, &robot->handle_joint);
+    // gazebo_ros_control's controlPeriod: controllers run every N physics steps.
+    const double period = robot->model.ext.ros_control ? robot->model.ext.ros_control->control_period
+                                                       : 0.0;
+    if (period > 0.0) {
+      robot->control_every = std::max(1, static_cast<int>(std::lround(period / physics_.dt())));
+      if (std::fabs(robot->control_every * physics_.dt() - period) > 1e-9 && warn_) {
+        warn_("robot '" + config.name + "': controlPeriod " + std::to_string(period) +
+              " s is not a multiple of the physics step; using " +
+              std::to_string(robot->control_every * physics_.dt()) + " s");
+      }
+    }
+    std::map<std::string, tc::JointHandle*> joints;
+    for (tc::JointHandle& h : robot->handles) joints[h.name] = &h;
+    read(*robot);
+    for (const tc::ControllerSpec& spec : config.controllers) {
+      robot->controllers.load(spec, joints, physics_.time(), [&](const std::string& w) {
+        if (warn_) warn_("robot '" + config.name + "': " + w);
+      });
+    }
+    // Joints no controller writes stay free (no motor holding them at a zero command).
+    robot->claimed.assign(robot->handles.size(), false);
+    for (const auto& c : robot->controllers.controllers()) {
+      for (size_t k = 0; k < robot->handles.size(); ++k) {
+        if (c->joint() == &robot->handles[k]) robot->claimed[k] = true;
+      }
+    }
+  } catch (...) {
+    // The robot stays in the physics world (Bullet has no removal here) but without
+    // controllers: hold it still so that it is harmless, then report.
+    for (size_t j = 0; j < physics_robot.joints().size(); ++j) {
+      physics_robot.clearJointCommand(static_cast<int>(j));
+    }
+    throw;
+  }
+  robots_.push_back(std::move(robot));
+  return *robots_.back();
+}
+
+SimRobot* Simulation::findRobot(const std::string& name) {
+  for (auto& r : robots_) {
+    if (r->name == name) return r.get();
+  }
+  return nullptr;
+}
+
+void Simulation::read(SimRobot& robot) {
+  const PhysicsRobot& pr = physics_.robot(robot.id);
+  for (size_t k = 0; k < robot.handles.size(); ++k) {
+    tc::JointHandle& h = robot.handles[k];
+    const int j = robot.handle_joint[k];
+    h.position = pr.jointPosition(j);
+    h.velocity = pr.jointVelocity(j);
+    h.effort = pr.jointEffort(j);
+  }
+}
+
+void Simulation::write(SimRobot& robot) {
+  PhysicsRobot& pr = physics_.robot(robot.id);
+  for (size_t k = 0; k < robot.handles.size(); ++k) {
+    const tc::JointHandle& h = robot.handles[k];
+    const int j = robot.handle_joint[k];
+    if (!robot.claimed[k] || !std::isfinite(h.command)) continue;  // NaN never reaches Bullet
+    switch (h.interface) {
+      case tc::JointHandle::Interface::kEffort:
+        pr.setJointEffort(j, h.command);
+        break;
+      case tc::JointHandle::Interface::kVelocity:
+        // DefaultRobotHWSim: a velocity motor limited by the URDF effort.
+        pr.setJointVelocityTarget(j, h.command);
+        break;
+      case tc::JointHandle::Interface::kPosition: {
+        // A position servo: the motor drives the joint to the target within one control
+        // period, limited by the joint's velocity limit and effort.
+        const double period = robot.control_every * physics_.dt();
+        double omega = (h.command - h.position) / period;
+        if (h.velocity_limit > 0.0) omega = std::clamp(omega, -h.velocity_limit, h.velocity_limit);
+        pr.setJointVelocityTarget(j, omega);
+        break;
+      }
+    }
+  }
+}
+
+void Simulation::step() {
+  const std::uint64_t n = physics_.stepCount();
+  for (auto& robot : robots_) {
+    if (n % static_cast<std::uint64_t>(robot->control_every) != 0) continue;
+    read(*robot);
+    robot->controllers.update(robot->control_every * physics_.dt());
+    write(*robot);
+  }
+  physics_.step();
+}
+
+void Simulation::restartControllers(SimRobot& robot) {
+  for (tc::JointHandle& h : robot.handles) h.command = 0.0;
+  read(robot);
+  robot.controllers.reset(physics_.time());
+  write(robot);
+}
+
+void Simulation::resetSimulation() {
+  physics_.resetTime();
+  resetWorld();
+}
+
+void Simulation::resetWorld() {
+  for (auto& robot : robots_) {
+    physics_.robot(robot->id).resetToSpawn();
+    restartControllers(*robot);
+  }
+}
+
+}  // namespace tianracer_sim
