@@ -61,7 +61,7 @@ const std::map<std::string, std::string>& aliases() {
 
 }  // namespace
 
-std::optional<GazeboMaterial> gazeboMaterial(const std::string& name) {
+std::optional<GazeboMaterial> findGazeboMaterial(const std::string& name) {
   std::string key = name;
   const auto alias = aliases().find(key);
   if (alias != aliases().end()) key = alias->second;
@@ -77,7 +77,7 @@ std::optional<GazeboMaterial> gazeboMaterial(const std::string& name) {
   return m;
 }
 
-std::vector<std::string> gazeboMaterialNames() {
+std::vector<std::string> knownGazeboMaterialNames() {
   std::vector<std::string> names;
   for (const auto& kv : table()) names.push_back(kv.first);
   for (const auto& kv : aliases()) names.push_back(kv.first);

@@ -292,7 +292,7 @@ struct Renderer::Impl {
     }
     if (slot.material_name != item.material.name) {
       slot.material_name = item.material.name;
-      const auto gz = item.material.name.empty() ? std::nullopt : gazeboMaterial(item.material.name);
+      const auto gz = item.material.name.empty() ? std::nullopt : findGazeboMaterial(item.material.name);
       slot.shininess = gz ? gz->shininess : kDefaultShininess;
     }
     return slot;
@@ -571,7 +571,7 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
     X_WG.translation() = Eigen::Vector3d(std::round(X_WC.translation().x()),
                                          std::round(X_WC.translation().y()), 0.0);
     const double size = 2.0 * f + 2.0;
-    const auto grey = gazeboMaterial("Gazebo/Grey");
+    const auto grey = findGazeboMaterial("Gazebo/Grey");
     draw(X_WG, Eigen::Vector3d(size, size, 1.0), m.geometry.at("quad"),
          Eigen::Vector3f(0.8f, 0.8f, 0.8f), Eigen::Vector3f(0.8f, 0.8f, 0.8f),
          grey->material.specular.head<3>(), grey->shininess, true);

@@ -226,7 +226,7 @@ Scene wallScene(double distance, const std::string& material = "Gazebo/Grey") {
   item.shape.type = ShapeType::kBox;
   item.shape.size = Eigen::Vector3d(0.2, 100.0, 100.0);
   item.X_BS.translation() = Eigen::Vector3d(distance + 0.1, 0, 0);
-  item.material = gazeboMaterial(material)->material;
+  item.material = findGazeboMaterial(material)->material;
   scene.items.push_back(item);
   return scene;
 }

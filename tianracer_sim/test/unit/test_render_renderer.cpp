@@ -28,7 +28,7 @@ Scene boxScene(double distance, const std::string& material, double tilt = 0.0) 
   // Rotate about z by `tilt`: the face becomes x = distance + tan(tilt) * y.
   item.X_BS = Eigen::Translation3d(distance, 0, 0) * Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitZ()) *
               Eigen::Translation3d(0.1, 0, 0);
-  item.material = gazeboMaterial(material)->material;
+  item.material = findGazeboMaterial(material)->material;
   scene.items.push_back(item);
   return scene;
 }
@@ -58,7 +58,7 @@ TEST(RenderRenderer, CentrePixelIsTheLitGazeboMaterial) {
                            "Gazebo/Blue", "Gazebo/Yellow", "Gazebo/White", "Gazebo/Black"}) {
     const Scene scene = boxScene(1.0, name);
     renderer.renderView(scene, Eigen::Isometry3d::Identity(), K, rgb.data());
-    const Eigen::Vector3d want = 255.0 * expectedCentreColour(scene, *gazeboMaterial(name));
+    const Eigen::Vector3d want = 255.0 * expectedCentreColour(scene, *findGazeboMaterial(name));
     const uint8_t* px = &rgb[(24 * 64 + 32) * 3];
     for (int c = 0; c < 3; ++c) {
       EXPECT_NEAR(px[c], want[c], 2.0) << name << " channel " << c;
@@ -134,7 +134,7 @@ TEST(RenderRenderer, CameraPoseAndImageOrientation) {
   item.shape.type = ShapeType::kBox;
   item.shape.size = Eigen::Vector3d(0.3, 0.3, 0.3);
   item.X_BS.translation() = Eigen::Vector3d(3.0, 0.5, 0.4);  // forward, left, up (link frame)
-  item.material = gazeboMaterial("Gazebo/Red")->material;
+  item.material = findGazeboMaterial("Gazebo/Red")->material;
   scene.items.push_back(item);
   scene.sky = Eigen::Vector4f(0, 0, 0, 1);
   // Camera at (10, 5, 1) yawed by 90 degrees: its "forward" is world +y.
@@ -189,7 +189,7 @@ TEST(RenderRenderer, MeshesRenderWithTheirFileGeometry) {
   item.shape.type = ShapeType::kMesh;
   item.shape.mesh_path = std::string(TEST_DATA_DIR) + "/urdf/meshes/cube.stl";
   item.shape.scale = Eigen::Vector3d(20, 20, 20);  // the 2 cm cube becomes 0.4 m
-  item.material = gazeboMaterial("Gazebo/White")->material;
+  item.material = findGazeboMaterial("Gazebo/White")->material;
   scene.items.push_back(item);
   const int W = 64, H = 64;
   const CameraIntrinsics K = CameraIntrinsics::fromHorizontalFov(W, H, 1.0, 0.1, 20.0);
@@ -248,24 +248,24 @@ TEST(RenderRenderer, NoGlGivesAClearError) {
 }
 
 TEST(RenderMaterials, StockValues) {
-  const auto red = gazeboMaterial("Gazebo/Red");
+  const auto red = findGazeboMaterial("Gazebo/Red");
   ASSERT_TRUE(red);
   EXPECT_EQ(red->material.ambient.head<3>(), Eigen::Vector3f(1, 0, 0));
   EXPECT_EQ(red->material.diffuse.head<3>(), Eigen::Vector3f(1, 0, 0));
   EXPECT_FLOAT_EQ(red->material.specular[0], 0.1f);
-  const auto grey = gazeboMaterial("Gazebo/Grey");
+  const auto grey = findGazeboMaterial("Gazebo/Grey");
   EXPECT_FLOAT_EQ(grey->material.ambient[0], 0.3f);
   EXPECT_FLOAT_EQ(grey->material.diffuse[0], 0.7f);
   EXPECT_FLOAT_EQ(grey->shininess, 1.5f);
-  EXPECT_FLOAT_EQ(gazeboMaterial("Gazebo/Orange")->material.diffuse[1], 0.5088f);
-  EXPECT_FLOAT_EQ(gazeboMaterial("Gazebo/DarkGrey")->material.diffuse[2], 0.175f);
-  EXPECT_TRUE(gazeboMaterial("Gazebo/Gray"));
+  EXPECT_FLOAT_EQ(findGazeboMaterial("Gazebo/Orange")->material.diffuse[1], 0.5088f);
+  EXPECT_FLOAT_EQ(findGazeboMaterial("Gazebo/DarkGrey")->material.diffuse[2], 0.175f);
+  EXPECT_TRUE(findGazeboMaterial("Gazebo/Gray"));
   for (const char* n : {"Gazebo/Red", "Gazebo/Green", "Gazebo/Blue", "Gazebo/Grey", "Gazebo/DarkGrey",
                         "Gazebo/LightGrey", "Gazebo/Black", "Gazebo/White", "Gazebo/Orange",
                         "Gazebo/Yellow", "Gazebo/Wood"}) {
-    EXPECT_TRUE(gazeboMaterial(n)) << n;
+    EXPECT_TRUE(findGazeboMaterial(n)) << n;
   }
-  EXPECT_FALSE(gazeboMaterial("Gazebo/NoSuchThing"));
+  EXPECT_FALSE(findGazeboMaterial("Gazebo/NoSuchThing"));
 }
 
 }  // namespace

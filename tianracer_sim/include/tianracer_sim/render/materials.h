@@ -24,10 +24,10 @@ struct GazeboMaterial {
 /// to its default grey-white, we give a light grey), White, FlatBlack, Black, Red, RedBright,
 /// Green, Blue, SkyBlue, Yellow, ZincYellow, DarkYellow, Purple, Turquoise, Orange, Indigo,
 /// Gold, Wood, WoodPallet (textures are not drawn: their mean colour is used instead).
-std::optional<GazeboMaterial> gazeboMaterial(const std::string& name);
+std::optional<GazeboMaterial> findGazeboMaterial(const std::string& name);
 
-/// The names gazeboMaterial() knows, sorted.
-std::vector<std::string> gazeboMaterialNames();
+/// The names findGazeboMaterial() knows, sorted.
+std::vector<std::string> knownGazeboMaterialNames();
 
 /// Specular exponent used when a material has no Gazebo name (Ogre's default shininess is 0,
 /// which would make every lit surface fully specular; a moderate lobe looks like Gazebo).
