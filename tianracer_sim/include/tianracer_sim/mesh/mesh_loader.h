@@ -1,0 +1,62 @@
+// Mesh files (STL, DAE, OBJ, ... anything assimp reads) as plain indexed triangle lists, loaded
+// once per (path, scale) and shared by physics (collision hulls, wheel fitting) and rendering.
+// ROS-free.
+#ifndef TIANRACER_SIM_MESH_MESH_LOADER_H
+#define TIANRACER_SIM_MESH_MESH_LOADER_H
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace tianracer_sim {
+
+/// A mesh file that is missing, unreadable, empty or has no triangles. The message names the path.
+class MeshError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Triangles only (assimp triangulates polygons and drops points and lines), identical vertices
+/// joined, node transforms and the caller's scale applied; coordinates in the file's frame.
+struct TriangleMesh {
+  std::vector<Eigen::Vector3f> vertices;
+  std::vector<uint32_t> indices;  // 3 per triangle, into vertices
+
+  std::size_t triangleCount() const { return indices.size() / 3; }
+  /// Axis-aligned bounds of the vertices (min, max).
+  Eigen::Vector3f boundsMin() const;
+  Eigen::Vector3f boundsMax() const;
+};
+
+/// Loads `path` without caching. Throws MeshError naming the path.
+TriangleMesh loadMeshFile(const std::string& path,
+                          const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
+
+/// Thread-safe cache keyed by (path, scale): each file is parsed once per scale.
+class MeshCache {
+ public:
+  /// Returns the cached mesh, loading it on first use. Throws MeshError (not cached).
+  std::shared_ptr<const TriangleMesh> get(const std::string& path,
+                                          const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
+  std::size_t size() const;
+  void clear();
+
+  /// The process-wide cache the physics and the renderer share.
+  static MeshCache& global();
+
+ private:
+  using Key = std::tuple<std::string, double, double, double>;
+  mutable std::mutex mutex_;
+  std::map<Key, std::shared_ptr<const TriangleMesh>> meshes_;
+};
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_MESH_MESH_LOADER_H

@@ -1,0 +1,104 @@
+// mesh_loader: assimp into plain triangle lists, the cache, and the error texts.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "tianracer_sim/mesh/mesh_loader.h"
+
+namespace tianracer_sim {
+namespace {
+
+const std::string kCube = std::string(TEST_DATA_DIR) + "/physics/cube_10cm.stl";
+const std::string kWheel = std::string(TIANRACER_DESCRIPTION_DIR) + "/meshes/left_rear_wheel.STL";
+
+std::string writeTemp(const std::string& name, const std::string& content) {
+  const std::string path = ::testing::TempDir() + "/" + name;
+  std::ofstream(path) << content;
+  return path;
+}
+
+std::string errorOf(const std::string& path) {
+  try {
+    loadMeshFile(path);
+  } catch (const MeshError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(MeshLoader, CubeIsTwelveTrianglesOnEightJoinedVertices) {
+  const TriangleMesh m = loadMeshFile(kCube);
+  EXPECT_EQ(m.triangleCount(), 12u);
+  EXPECT_EQ(m.vertices.size(), 8u);  // STL repeats corners per facet; joined here
+  EXPECT_TRUE(m.boundsMin().isApprox(Eigen::Vector3f::Constant(-0.05f)));
+  EXPECT_TRUE(m.boundsMax().isApprox(Eigen::Vector3f::Constant(0.05f)));
+  for (uint32_t i : m.indices) EXPECT_LT(i, m.vertices.size());
+}
+
+TEST(MeshLoader, ScaleIsAppliedPerAxis) {
+  const TriangleMesh m = loadMeshFile(kCube, Eigen::Vector3d(2.0, 1.0, 0.5));
+  EXPECT_TRUE(m.boundsMax().isApprox(Eigen::Vector3f(0.1f, 0.05f, 0.025f)));
+}
+
+TEST(MeshLoader, GeneratedWheelHasTheSeedRadiusAndWidth) {
+  const TriangleMesh m = loadMeshFile(kWheel);
+  EXPECT_NEAR(m.boundsMax().x(), 0.032, 1e-6);
+  EXPECT_NEAR(m.boundsMax().y() - m.boundsMin().y(), 0.025, 1e-6);
+}
+
+TEST(MeshCache, LoadsEachPathAndScaleOnce) {
+  MeshCache cache;
+  auto a = cache.get(kCube);
+  auto b = cache.get(kCube);
+  EXPECT_EQ(a.get(), b.get());
+  EXPECT_EQ(cache.size(), 1u);
+  auto c = cache.get(kCube, Eigen::Vector3d(2, 2, 2));
+  EXPECT_NE(a.get(), c.get());
+  EXPECT_EQ(cache.size(), 2u);
+  cache.clear();
+  EXPECT_EQ(cache.size(), 0u);
+  EXPECT_EQ(a->triangleCount(), 12u);  // callers keep their meshes after clear()
+}
+
+TEST(MeshCache, ErrorsAreNotCached) {
+  MeshCache cache;
+  EXPECT_THROW(cache.get("/nonexistent/mesh.stl"), MeshError);
+  EXPECT_EQ(cache.size(), 0u);
+}
+
+TEST(MeshLoader, MissingFileNamesThePath) {
+  const std::string e = errorOf("/nonexistent/dir/wheel.STL");
+  EXPECT_NE(e.find("/nonexistent/dir/wheel.STL"), std::string::npos) << e;
+  EXPECT_NE(e.find("not found"), std::string::npos) << e;
+}
+
+TEST(MeshLoader, EmptyFileNamesThePath) {
+  const std::string path = writeTemp("empty.stl", "");
+  const std::string e = errorOf(path);
+  EXPECT_NE(e.find(path), std::string::npos) << e;
+  EXPECT_NE(e.find("empty"), std::string::npos) << e;
+}
+
+TEST(MeshLoader, GarbageIsUnreadable) {
+  const std::string path = writeTemp("garbage.dae", "this is not a mesh at all");
+  const std::string e = errorOf(path);
+  EXPECT_NE(e.find(path), std::string::npos) << e;
+}
+
+TEST(MeshLoader, NoTrianglesIsAnError) {
+  // A valid OBJ with vertices and a single line element only.
+  const std::string path = writeTemp("lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\n");
+  const std::string e = errorOf(path);
+  EXPECT_NE(e.find(path), std::string::npos) << e;
+  EXPECT_FALSE(e.empty());
+}
+
+TEST(MeshLoader, DirectoryIsNotAMesh) {
+  const std::string e = errorOf(::testing::TempDir());
+  EXPECT_NE(e.find("not a regular file"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace tianracer_sim
