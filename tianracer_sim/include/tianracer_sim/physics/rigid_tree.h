@@ -1,0 +1,85 @@
+// The URDF reduced to a tree of rigid bodies, the way Gazebo's URDF->SDF conversion does it:
+// links joined by fixed joints are merged into one body (mass, COM and inertia combined), every
+// other joint becomes a body of its own. Bullet-free, so it can be unit-tested by hand.
+#ifndef TIANRACER_SIM_PHYSICS_RIGID_TREE_H
+#define TIANRACER_SIM_PHYSICS_RIGID_TREE_H
+
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <urdf_model/model.h>
+
+#include "tianracer_sim/physics/mass_properties.h"
+
+namespace tianracer_sim {
+
+/// Errors while building or driving the physics (names the robot, link or joint and the value).
+class PhysicsError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+enum class GeometryType { kBox, kCylinder, kSphere, kMesh };
+
+/// One <collision> element, placed in its body's frame.
+struct CollisionGeometry {
+  GeometryType type = GeometryType::kBox;
+  /// box: full extents (x, y, z); cylinder: (radius, radius, length), axis z; sphere: (r, r, r).
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();
+  std::string mesh_uri;   // as written in the URDF
+  std::string mesh_path;  // resolved absolute path
+  Eigen::Vector3d mesh_scale = Eigen::Vector3d::Ones();
+  std::string link;                                       // the URDF link it belongs to
+  Eigen::Isometry3d X_BG = Eigen::Isometry3d::Identity();  // geometry frame in body frame B
+};
+
+enum class TreeJointType { kRevolute, kContinuous, kPrismatic };
+
+/// A rigid body: one movable URDF link (or the root) plus every link fixed to it.
+/// Its frame B is the frame of that first link.
+struct TreeBody {
+  std::string link;
+  std::vector<std::string> merged_links;           // link first, then its fixed descendants
+  std::map<std::string, Eigen::Isometry3d> X_BL;   // pose of every merged link in B
+  MassProperties mass;                             // in B, about the merged COM
+  std::vector<CollisionGeometry> collisions;
+
+  // The joint to the parent body (unused for the root, parent == -1).
+  int parent = -1;
+  std::string joint;
+  TreeJointType joint_type = TreeJointType::kContinuous;
+  Eigen::Isometry3d X_PB = Eigen::Isometry3d::Identity();  // B in the parent body frame at q = 0
+  Eigen::Vector3d axis_B = Eigen::Vector3d::UnitZ();        // unit joint axis in B
+  bool has_position_limits = false;
+  double lower = 0.0, upper = 0.0;
+  double effort_limit = 0.0;    // 0 = none given
+  double velocity_limit = 0.0;  // 0 = none given
+  double damping = 0.0, friction = 0.0;
+};
+
+struct RigidTree {
+  std::vector<TreeBody> bodies;  // bodies[0] is the root; a parent always precedes its children
+  bool fixed_base = false;       // root link named "world" (URDF convention)
+  /// Every URDF link -> (body index, pose of the link in that body's frame).
+  std::map<std::string, std::pair<int, Eigen::Isometry3d>> links;
+};
+
+/// Builds the tree. Mesh URIs are resolved through `mesh_paths` (URI -> absolute path, as in
+/// RobotModel), else file:// and absolute paths are taken as they are.
+/// Throws PhysicsError for floating/planar joints, zero joint axes, a movable body without mass
+/// or a body whose inertia is not physical; the message names the link or joint.
+RigidTree buildRigidTree(const urdf::ModelInterface& urdf,
+                         const std::map<std::string, std::string>& mesh_paths);
+
+/// Mass properties of one URDF <inertial>, expressed in its link frame (zero mass when absent).
+MassProperties linkMassProperties(const urdf::Link& link);
+
+/// urdf::Pose -> Eigen isometry.
+Eigen::Isometry3d toIsometry(const urdf::Pose& pose);
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_PHYSICS_RIGID_TREE_H
