@@ -1,0 +1,286 @@
+// PhysicsWorld on small hand-made robots: free fall, joint conventions, contacts, commands,
+// determinism and state setting. The tianracer itself is in test_physics_tianracer.cpp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <limits>
+
+#include <urdf_parser/urdf_parser.h>
+
+#include "tianracer_sim/physics/world.h"
+
+namespace tianracer_sim {
+namespace {
+
+const std::string kCube = std::string(TEST_DATA_DIR) + "/physics/cube_10cm.stl";
+
+RobotModel modelFrom(const std::string& xml) {
+  RobotModel m;
+  m.urdf = urdf::parseURDF(xml);
+  if (!m.urdf) throw std::runtime_error("bad test URDF");
+  return m;
+}
+
+Eigen::Isometry3d at(double x, double y, double z, double yaw = 0.0) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  X.translation() = Eigen::Vector3d(x, y, z);
+  return X;
+}
+
+std::string boxRobot(const std::string& collision) {
+  return R"(<robot name="box"><link name="base_link">
+    <inertial><origin xyz="0 0 0"/><mass value="2"/>
+      <inertia ixx="0.00333" ixy="0" ixz="0" iyy="0.00333" iyz="0" izz="0.00333"/></inertial>
+    <collision>)" + collision + R"(</collision></link></robot>)";
+}
+
+// A base box with a pendulum arm on a revolute joint about y (and a continuous one about x).
+const char* kArm = R"(<robot name="arm">
+  <link name="base_link">
+    <inertial><mass value="10"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+  </link>
+  <link name="arm">
+    <inertial><origin xyz="0.5 0 0"/><mass value="1"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.02"/></inertial>
+  </link>
+  <joint name="hinge" type="revolute">
+    <parent link="base_link"/><child link="arm"/><origin xyz="0 0 0" rpy="0 0 0.3"/>
+    <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="5" velocity="10"/>
+  </joint>
+  <link name="spinner">
+    <inertial><mass value="0.1"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial>
+  </link>
+  <joint name="spin" type="continuous">
+    <parent link="arm"/><child link="spinner"/><origin xyz="1 0 0"/><axis xyz="1 0 0"/>
+  </joint>
+</robot>)";
+
+TEST(PhysicsWorld, FreeFallMatchesSemiImplicitEuler) {
+  PhysicsOptions o;
+  o.ground_plane = false;
+  PhysicsWorld w(o);
+  PhysicsRobot& r = w.robot(w.addRobot(modelFrom(boxRobot("<geometry><box size='0.1 0.1 0.1'/></geometry>")),
+                                       at(0, 0, 10), "box"));
+  const int n = 1000;
+  for (int k = 0; k < n; ++k) w.step();
+  const double g = 9.8, dt = o.dt, t = n * dt;
+  // Bullet integrates v += g dt, then x += v dt: z = z0 - g dt^2 n (n + 1) / 2, which is the
+  // analytic z0 - g t^2 / 2 minus g dt t / 2 (4.9 mm after 1 s).
+  const double z_discrete = 10.0 - g * dt * dt * n * (n + 1) / 2.0;
+  const double z_analytic = 10.0 - 0.5 * g * t * t;
+  const double z = r.basePose().translation().z();
+  std::cout << "[free fall 1 s] z = " << z << " m, analytic " << z_analytic << ", discrete "
+            << z_discrete << ", v = " << r.baseTwist().linear.z() << " m/s\n";
+  EXPECT_NEAR(z, z_discrete, 1e-9);
+  EXPECT_NEAR(z, z_analytic, 0.5 * g * dt * t + 1e-9);
+  EXPECT_NEAR(r.baseTwist().linear.z(), -g * t, 1e-9);
+  EXPECT_NEAR(w.time(), 1.0, 1e-12);
+  EXPECT_EQ(w.stepCount(), 1000u);
+  // Energy is conserved up to the integrator's O(dt) error.
+  EXPECT_NEAR(r.kineticEnergy(), 0.5 * 2.0 * g * g * t * t, 1e-6);
+}
+
+TEST(PhysicsWorld, BoxRestsOnGroundWithoutMarginGap) {
+  for (const std::string& col : {std::string("<geometry><box size='0.1 0.1 0.1'/></geometry>"),
+                                 "<geometry><mesh filename='" + kCube + "'/></geometry>"}) {
+    PhysicsWorld w;
+    PhysicsRobot& r = w.robot(w.addRobot(modelFrom(boxRobot(col)), at(0, 0, 0.06), "box"));
+    for (int k = 0; k < 2000; ++k) w.step();
+    const double z = r.basePose().translation().z();
+    std::cout << "[resting 10 cm cube] " << (col.find("mesh") != std::string::npos ? "mesh hull" : "box")
+              << ": centre z = " << z << " m (0.05 exact)\n";
+    // A Bullet default margin would float it 4 cm up; ours is inside the shape.
+    EXPECT_NEAR(z, 0.05, 1e-4) << col;
+    EXPECT_LT(r.baseTwist().linear.norm(), 1e-4);
+  }
+}
+
+TEST(PhysicsWorld, StaticShapesCollide) {
+  PhysicsWorld w;
+  StaticShape table;
+  table.name = "table";
+  table.type = StaticShape::Type::kBox;
+  table.size = Eigen::Vector3d(1.0, 1.0, 0.2);
+  table.X_WS = at(0, 0, 0.1);
+  EXPECT_EQ(w.addStaticShape(table), 0);
+  StaticShape mesh;
+  mesh.name = "cube";
+  mesh.type = StaticShape::Type::kMesh;
+  mesh.mesh_path = kCube;
+  mesh.X_WS = at(2, 0, 0.05);
+  EXPECT_EQ(w.addStaticShape(mesh), 1);
+  PhysicsRobot& on_table = w.robot(w.addRobot(
+      modelFrom(boxRobot("<geometry><sphere radius='0.05'/></geometry>")), at(0, 0, 0.3), "ball"));
+  PhysicsRobot& on_mesh = w.robot(w.addRobot(
+      modelFrom(boxRobot("<geometry><sphere radius='0.05'/></geometry>")), at(2, 0, 0.3), "ball2"));
+  for (int k = 0; k < 1500; ++k) w.step();
+  EXPECT_NEAR(on_table.basePose().translation().z(), 0.25, 2e-4);
+  EXPECT_NEAR(on_mesh.basePose().translation().z(), 0.15, 2e-4);
+  EXPECT_GT(on_table.contactCount("base_link"), 0);
+}
+
+TEST(PhysicsWorld, RobotsCollideWithEachOther) {
+  PhysicsOptions o;
+  o.ground_plane = false;
+  o.gravity.setZero();
+  PhysicsWorld w(o);
+  const RobotModel ball = modelFrom(boxRobot("<geometry><sphere radius='0.05'/></geometry>"));
+  PhysicsRobot& a = w.robot(w.addRobot(ball, at(0, 0, 0), "a"));
+  PhysicsRobot& b = w.robot(w.addRobot(ball, at(0.3, 0, 0), "b"));
+  EXPECT_THROW(w.addRobot(ball, at(1, 0, 0), "a"), PhysicsError);  // names are unique
+  a.setBaseTwist({Eigen::Vector3d(1, 0, 0), Eigen::Vector3d::Zero()});
+  for (int k = 0; k < 400; ++k) w.step();
+  // Equal masses, no restitution: they end up moving together at 0.5 m/s.
+  EXPECT_NEAR(a.baseTwist().linear.x(), 0.5, 1e-3);
+  EXPECT_NEAR(b.baseTwist().linear.x(), 0.5, 1e-3);
+  EXPECT_EQ(w.robotId("b"), 1);
+  EXPECT_EQ(w.robotId("zz"), -1);
+}
+
+TEST(PhysicsWorld, JointConventionsAndLinkPoses) {
+  PhysicsOptions o;
+  o.ground_plane = false;
+  o.gravity.setZero();
+  PhysicsWorld w(o);
+  PhysicsRobot& r = w.robot(w.addRobot(modelFrom(kArm), at(1, 2, 3, 0.5), "arm"));
+  ASSERT_EQ(r.joints().size(), 2u);
+  const int hinge = r.jointIndex("hinge"), spin = r.jointIndex("spin");
+  EXPECT_EQ(r.joints()[hinge].type, JointType::kRevolute);
+  EXPECT_EQ(r.joints()[spin].type, JointType::kContinuous);
+  EXPECT_EQ(r.joints()[hinge].effort_limit, 5.0);
+  EXPECT_EQ(r.joints()[spin].motor_effort, 10.0);  // no URDF limit: the documented default
+  EXPECT_EQ(r.jointIndex("nope"), -1);
+
+  // URDF: child = parent * origin * Rot(axis, q).
+  r.setJointState(hinge, 0.4, 0.0);
+  const Eigen::Isometry3d X_WA = at(1, 2, 3, 0.5) * at(0, 0, 0, 0.3) *
+                                 Eigen::Isometry3d(Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitY()));
+  EXPECT_TRUE(r.linkPose("arm").isApprox(X_WA, 1e-12)) << r.linkPose("arm").matrix();
+  const Eigen::Isometry3d X_WS = X_WA * at(1, 0, 0);
+  EXPECT_TRUE(r.linkPose("spinner").isApprox(X_WS, 1e-12));
+  EXPECT_TRUE(r.basePose().isApprox(at(1, 2, 3, 0.5), 1e-12));
+  EXPECT_THROW(r.linkPose("nope"), PhysicsError);
+  EXPECT_EQ(r.linkNames(), (std::vector<std::string>{"base_link", "arm", "spinner"}));
+}
+
+TEST(PhysicsWorld, JointLimitHoldsAndEffortIsClamped) {
+  PhysicsOptions o;
+  o.ground_plane = false;
+  o.gravity.setZero();
+  PhysicsWorld w(o);
+  PhysicsRobot& r = w.robot(w.addRobot(modelFrom(kArm), at(0, 0, 0), "arm"));
+  const int hinge = r.jointIndex("hinge");
+  r.setJointEffort(hinge, 100.0);  // clamped to 5
+  for (int k = 0; k < 2000; ++k) w.step();
+  EXPECT_EQ(r.jointEffort(hinge), 5.0);
+  EXPECT_NEAR(r.jointPosition(hinge), 1.0, 0.01);  // at the upper limit
+  r.setJointEffort(hinge, -5.0);
+  for (int k = 0; k < 2000; ++k) w.step();
+  EXPECT_NEAR(r.jointPosition(hinge), -1.0, 0.01);
+}
+
+TEST(PhysicsWorld, VelocityMotorReachesTargetWithinItsEffort) {
+  PhysicsOptions o;
+  o.ground_plane = false;
+  o.gravity.setZero();
+  PhysicsWorld w(o);
+  PhysicsRobot& r = w.robot(w.addRobot(modelFrom(kArm), at(0, 0, 0), "arm"));
+  const int spin = r.jointIndex("spin");
+  // Izz 0.001 about x; 0.01 N m -> 10 rad/s^2: 20 rad/s needs 2 s.
+  r.setJointVelocityTarget(spin, 20.0, 0.01);
+  for (int k = 0; k < 1000; ++k) w.step();
+  EXPECT_NEAR(r.jointVelocity(spin), 10.0, 0.5);
+  EXPECT_NEAR(std::abs(r.jointEffort(spin)), 0.01, 1e-6);
+  for (int k = 0; k < 2000; ++k) w.step();
+  EXPECT_NEAR(r.jointVelocity(spin), 20.0, 1e-3);
+  r.clearJointCommand(spin);
+  for (int k = 0; k < 100; ++k) w.step();
+  EXPECT_NEAR(r.jointVelocity(spin), 20.0, 1e-3);  // free again: keeps spinning
+  EXPECT_EQ(r.jointEffort(spin), 0.0);
+}
+
+#ifdef NDEBUG  // debug builds assert on non-finite commands instead
+TEST(PhysicsWorld, NonFiniteCommandsNeverReachBullet) {
+  PhysicsWorld w;
+  PhysicsRobot& r = w.robot(w.addRobot(modelFrom(kArm), at(0, 0, 1), "arm"));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  r.setJointEffort(0, nan);
+  r.setJointEffort(0, inf);
+  r.setJointVelocityTarget(1, nan);
+  r.setJointVelocityTarget(1, 1.0, inf);
+  r.setBaseTwist({Eigen::Vector3d(nan, 0, 0), Eigen::Vector3d::Zero()});
+  EXPECT_EQ(r.rejectedCommands(), 5u);
+  for (int k = 0; k < 10; ++k) w.step();
+  EXPECT_TRUE(r.basePose().matrix().allFinite());
+  EXPECT_TRUE(std::isfinite(r.jointPosition(0)));
+}
+#endif
+
+TEST(PhysicsWorld, ResetToSpawnAndSetState) {
+  PhysicsWorld w;
+  PhysicsRobot& r = w.robot(w.addRobot(modelFrom(kArm), at(0, 0, 1), "arm"));
+  r.setJointEffort(0, 2.0);
+  r.setBaseTwist({Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 0, 1)});
+  for (int k = 0; k < 300; ++k) w.step();
+  EXPECT_GT(r.kineticEnergy(), 0.1);
+  r.resetToSpawn();
+  EXPECT_TRUE(r.basePose().isApprox(at(0, 0, 1), 1e-12));
+  EXPECT_EQ(r.jointPosition(0), 0.0);
+  EXPECT_EQ(r.jointVelocity(0), 0.0);
+  EXPECT_EQ(r.kineticEnergy(), 0.0);
+  EXPECT_EQ(r.jointEffort(0), 0.0);
+
+  const Twist t{Eigen::Vector3d(0.5, -0.2, 0.1), Eigen::Vector3d(0.1, 0.2, 0.3)};
+  r.setBasePose(at(3, 4, 5, 1.0));
+  r.setBaseTwist(t);
+  EXPECT_TRUE(r.basePose().isApprox(at(3, 4, 5, 1.0), 1e-12));
+  EXPECT_TRUE(r.baseTwist().linear.isApprox(t.linear, 1e-12));
+  EXPECT_TRUE(r.baseTwist().angular.isApprox(t.angular, 1e-12));
+}
+
+// Same inputs, same bits: two worlds stepped side by side.
+TEST(PhysicsWorld, Deterministic) {
+  auto run = [](std::vector<double>* out) {
+    PhysicsWorld w;
+    const RobotModel m = modelFrom(kArm);
+    PhysicsRobot& a = w.robot(w.addRobot(m, at(0, 0, 0.8), "a"));
+    PhysicsRobot& b = w.robot(w.addRobot(m, at(0.3, 0.1, 1.5, 0.7), "b"));
+    for (int k = 0; k < 3000; ++k) {
+      a.setJointEffort(0, std::sin(k * 0.01));
+      b.setJointVelocityTarget(1, 5.0);
+      w.step();
+    }
+    for (PhysicsRobot* r : {&a, &b}) {
+      const Eigen::Isometry3d X = r->basePose();
+      out->insert(out->end(), X.data(), X.data() + 16);
+      out->push_back(r->jointPosition(0));
+      out->push_back(r->jointVelocity(1));
+    }
+  };
+  std::vector<double> x, y;
+  run(&x);
+  run(&y);
+  ASSERT_EQ(x.size(), y.size());
+  for (std::size_t i = 0; i < x.size(); ++i) EXPECT_EQ(x[i], y[i]) << i;
+}
+
+TEST(WheelFit, CylinderMeshAboutTheAxis) {
+  std::vector<Eigen::Vector3d> v;
+  for (int i = 0; i < 32; ++i) {
+    const double a = 2 * M_PI * i / 32;
+    for (double y : {-0.01, 0.015}) v.emplace_back(0.03 * std::cos(a), y, 0.03 * std::sin(a));
+  }
+  const WheelFit f = fitWheel(v, Eigen::Vector3d::UnitY());
+  EXPECT_TRUE(f.is_wheel);
+  EXPECT_NEAR(f.radius, 0.03, 1e-12);
+  EXPECT_NEAR(f.width, 0.025, 1e-12);
+  EXPECT_TRUE(f.center.isApprox(Eigen::Vector3d(0, 0.0025, 0)));
+  // The same points about x are not round.
+  EXPECT_FALSE(fitWheel(v, Eigen::Vector3d::UnitX()).is_wheel);
+}
+
+}  // namespace
+}  // namespace tianracer_sim
