@@ -1,0 +1,105 @@
+#!/usr/bin/env python3
+"""rostest: each bad configuration makes tianracer_sim_node exit with code 1 and a message
+that names the parameter, file, link, joint or controller and the value."""
+import os
+import subprocess
+import unittest
+
+import rosgraph
+import rospkg
+import rospy
+import rostest
+
+PKG = rospkg.RosPack().get_path('tianracer_sim')
+DATA = os.path.join(PKG, 'test', 'data', 'urdf')
+XACRO = os.path.join(rospkg.RosPack().get_path('tianracer_description'), 'urdf',
+                     'tianracer_description.xacro')
+
+
+def node_binary():
+    for d in os.environ.get('CMAKE_PREFIX_PATH', '').split(':'):
+        path = os.path.join(d, 'lib', 'tianracer_sim', 'tianracer_sim_node')
+        if os.path.exists(path):
+            return path
+    raise RuntimeError('tianracer_sim_node not found on CMAKE_PREFIX_PATH')
+
+
+class SimBadInput(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('test_sim_bad_input', anonymous=True)
+        cls.urdf = subprocess.check_output(['xacro', XACRO]).decode()
+
+    def setUp(self):
+        # Private parameters given as _name:=value stay on the server: clear them too.
+        for p in ('/robot_description', '/tianracer', '/sim_under_test'):
+            if rospy.has_param(p):
+                rospy.delete_param(p)
+
+    def run_node(self, *args):
+        """Runs the node; returns (exit code, combined output). It must stop by itself."""
+        proc = subprocess.run([node_binary(), '__name:=sim_under_test'] + list(args),
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=60)
+        return proc.returncode, proc.stdout.decode(errors='replace')
+
+    def assert_fails(self, expected, *args):
+        code, out = self.run_node(*args)
+        self.assertEqual(code, 1, out)
+        for text in expected:
+            self.assertIn(text, out)
+
+    def test_missing_robot_description(self):
+        self.assert_fails(['/robot_description', 'is not set'])
+
+    def test_empty_robot_description(self):
+        rospy.set_param('/robot_description', '  ')
+        self.assert_fails(['/robot_description', 'is empty'])
+
+    def test_urdf_syntax_error_names_the_line(self):
+        self.assert_fails(['invalid_syntax.urdf', 'line'],
+                          '_model:=' + os.path.join(DATA, 'invalid_syntax.urdf'))
+
+    def test_missing_mesh_names_link_and_path(self):
+        self.assert_fails(['mesh', 'not found'],
+                          '_model:=' + os.path.join(DATA, 'invalid_missing_mesh.urdf'))
+
+    def test_transmission_on_unknown_joint(self):
+        self.assert_fails(['transmission', 'unknown joint'],
+                          '_model:=' + os.path.join(DATA, 'invalid_transmission_joint.urdf'))
+
+    def test_non_positive_mass(self):
+        self.assert_fails(['mass'], '_model:=' + os.path.join(DATA, 'invalid_mass.urdf'))
+
+    def test_inertia_not_positive_definite(self):
+        self.assert_fails(['inertia'], '_model:=' + os.path.join(DATA, 'invalid_inertia.urdf'))
+
+    def test_controller_on_unknown_joint(self):
+        rospy.set_param('/robot_description', self.urdf)
+        rospy.set_param('/tianracer/bad', {'type': 'velocity_controllers/JointVelocityController',
+                                           'joint': 'no_such_joint'})
+        self.assert_fails(["controller 'bad'", 'no_such_joint'], '_controllers:=bad')
+
+    def test_controller_interface_mismatch(self):
+        rospy.set_param('/robot_description', self.urdf)
+        # The hinge's transmission gives EffortJointInterface, not velocity.
+        rospy.set_param('/tianracer/bad', {'type': 'velocity_controllers/JointVelocityController',
+                                           'joint': 'left_steering_hinge_joint'})
+        self.assert_fails(["controller 'bad'", 'Effort', 'Velocity'], '_controllers:=bad')
+
+    def test_unknown_controller_type(self):
+        rospy.set_param('/robot_description', self.urdf)
+        rospy.set_param('/tianracer/bad', {'type': 'foo_controllers/Bar',
+                                           'joint': 'left_rear_wheel_joint'})
+        self.assert_fails(["controller 'bad'", 'foo_controllers/Bar'], '_controllers:=bad')
+
+    def test_controller_without_parameters(self):
+        rospy.set_param('/robot_description', self.urdf)
+        self.assert_fails(["controller 'ghost'", '/tianracer/ghost'], '_controllers:=ghost')
+
+    def test_bad_real_time_factor(self):
+        rospy.set_param('/robot_description', self.urdf)
+        self.assert_fails(['real_time_factor', '-1'], '_real_time_factor:=-1.0')
+
+
+if __name__ == '__main__':
+    rostest.rosrun('tianracer_sim', 'sim_bad_input', SimBadInput)
