@@ -1,0 +1,105 @@
+// A Gazebo <sensor type="ray"> with its libgazebo_ros_laser plugin, as a plain validated struct,
+// and a RaySensor that scans a Scene with it (SPEC §5.1). ROS-free.
+#ifndef TIANRACER_SIM_LIDAR_RAY_SENSOR_H
+#define TIANRACER_SIM_LIDAR_RAY_SENSOR_H
+
+#include <cstdint>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "tianracer_sim/model/robot_model.h"  // SensorSpec, WarningSink
+
+namespace tianracer_sim {
+
+/// A sensor description that cannot be used; the message names the sensor, element and value.
+class SensorError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// <ray><noise>: type "gaussian" (SDF's default) or "none".
+struct RayNoise {
+  std::string type = "none";
+  double mean = 0.0;
+  double stddev = 0.0;
+  bool enabled() const { return type == "gaussian"; }
+};
+
+struct RaySensorConfig {
+  std::string name;  // <sensor name>
+  std::string link;  // the link it is attached to
+  Eigen::Isometry3d X_LS = Eigen::Isometry3d::Identity();  // sensor in link
+  double update_rate = 0.0;                                // Hz; 0 = every step (Gazebo)
+  // <ray><scan><horizontal>; SDF defaults.
+  int samples = 640;
+  double resolution = 1.0;  // parsed and validated; rays cast = samples (see the .cpp)
+  double min_angle = 0.0;
+  double max_angle = 0.0;
+  // <ray><range>
+  double range_min = 0.0;
+  double range_max = 0.0;
+  double range_resolution = 0.0;  // parsed; not applied to ranges, as in Gazebo's RaySensor
+  RayNoise noise;
+  // libgazebo_ros_laser (or _gpu_laser) parameters, with that plugin's defaults except the frame.
+  bool has_ros_plugin = false;
+  std::string topic_name = "/world";  // gazebo_ros_laser's default
+  std::string frame_name;             // default: the link name (gazebo_ros_laser says "/world")
+  std::string robot_namespace;        // "" unless given
+  /// Noise seed (not in SDF: set by the node, e.g. from a ~seed parameter).
+  std::uint64_t seed = 0;
+
+  /// angle_increment = (max_angle - min_angle) / (samples - 1); 0 for a single sample.
+  double angleIncrement() const {
+    return samples > 1 ? (max_angle - min_angle) / (samples - 1) : 0.0;
+  }
+  /// Beam i points at min_angle + i * angleIncrement() about the sensor's z axis.
+  double angle(int i) const { return min_angle + i * angleIncrement(); }
+};
+
+/// Reads a SensorSpec of type "ray" (its pose, rate and plugins as parsed by the model loader;
+/// <ray> from its raw XML). Unknown elements and plugin parameters are warned once each.
+/// Throws SensorError (wrong type, unparsable or invalid values; see validate()).
+RaySensorConfig parseRaySensorConfig(const SensorSpec& spec, const WarningSink& warn = {});
+
+/// Throws SensorError naming the sensor and the value when: any number is not finite,
+/// samples <= 0, resolution <= 0, min_angle > max_angle, range_min < 0, range_min >= range_max,
+/// range_resolution < 0, update_rate < 0, noise stddev < 0, or the noise type is unknown.
+void validate(const RaySensorConfig& config);
+
+class RayCaster;
+struct Scene;
+
+/// Applies SPEC §5.1 to true ranges (distances from the sensor origin, +inf for no hit):
+///   r >= range_max -> +inf;  r <= range_min -> -inf;
+///   else r + N(mean, stddev) clamped to [range_min, range_max] (noise enabled), r otherwise.
+/// Noise is drawn only for in-range beams, in beam order, from `rng`.
+void applyRangeModel(const RaySensorConfig& config, std::mt19937_64& rng, float* ranges, int n);
+
+/// A configured ray sensor with its own noise generator (std::mt19937_64 seeded with
+/// config.seed): the same seed and the same scenes give identical scans.
+class RaySensor {
+ public:
+  /// Validates the config (throws SensorError).
+  explicit RaySensor(RaySensorConfig config);
+
+  const RaySensorConfig& config() const { return config_; }
+  void reseed(std::uint64_t seed) { rng_.seed(seed); }
+
+  /// One scan from X_WS = X_WL * X_LS (X_WL: the pose of the sensor's link in the world).
+  /// The returned buffer is reused by the next call (no allocation once warm).
+  const std::vector<float>& scan(RayCaster& caster, const Scene& scene,
+                                 const Eigen::Isometry3d& X_WL);
+
+ private:
+  RaySensorConfig config_;
+  std::mt19937_64 rng_;
+  std::vector<float> ranges_;
+};
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_LIDAR_RAY_SENSOR_H

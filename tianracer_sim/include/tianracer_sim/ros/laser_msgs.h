@@ -1,0 +1,28 @@
+// RaySensor scans -> sensor_msgs/LaserScan, field for field as gazebo_ros_laser fills them
+// (SPEC §5.1), except scan_time, which we set to the scan period.
+#ifndef TIANRACER_SIM_ROS_LASER_MSGS_H
+#define TIANRACER_SIM_ROS_LASER_MSGS_H
+
+#include <vector>
+
+#include <ros/time.h>
+#include <sensor_msgs/LaserScan.h>
+
+#include "tianracer_sim/lidar/ray_sensor.h"
+
+namespace tianracer_sim {
+
+/// header.stamp = stamp, header.frame_id = frame_name; angle_min/max = min/max_angle;
+/// angle_increment = (max - min) / (samples - 1); time_increment = 0 (Gazebo);
+/// scan_time = 1 / update_rate (0 when the rate is 0); range_min/max from <range>;
+/// ranges as given (+-inf outside the limits, REP 117); no intensities.
+sensor_msgs::LaserScan toLaserScan(const RaySensorConfig& config, const std::vector<float>& ranges,
+                                   const ros::Time& stamp);
+
+/// As above into an existing message, reusing its buffers (no allocation once warm).
+void toLaserScan(const RaySensorConfig& config, const std::vector<float>& ranges,
+                 const ros::Time& stamp, sensor_msgs::LaserScan* msg);
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_ROS_LASER_MSGS_H

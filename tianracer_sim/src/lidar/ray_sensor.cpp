@@ -1,0 +1,287 @@
+// <sensor type="ray"> -> RaySensorConfig, its validation, the SPEC §5.1 range model and
+// RaySensor.
+//
+// Deliberate differences from Gazebo, documented here once:
+//  - rays start at the sensor origin (Gazebo starts them at range_min and so sees through
+//    anything closer); a surface closer than range_min reads -inf, as SPEC §5.1 says;
+//  - <horizontal><resolution> other than 1 is accepted but rays = samples (Gazebo casts
+//    samples*resolution rays and interpolates);
+//  - <range><resolution> is not applied to ranges (neither does Gazebo's RaySensor);
+//  - only the horizontal plane is cast (<vertical> samples > 1 is warned);
+//  - frameName defaults to the link name, not gazebo_ros_laser's "/world"; a leading '/' is
+//    dropped (tf2 frame ids have none).
+#include "tianracer_sim/lidar/ray_sensor.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include <tinyxml2.h>
+
+#include "tianracer_sim/lidar/ray_caster.h"
+
+namespace tianracer_sim {
+
+namespace {
+
+using tinyxml2::XMLElement;
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r\n");
+  return s.substr(b, e - b + 1);
+}
+
+std::string fmt(double v) {
+  std::ostringstream ss;
+  ss.precision(10);
+  ss << v;
+  return ss.str();
+}
+
+class ConfigReader {
+ public:
+  ConfigReader(const SensorSpec& spec, const WarningSink& warn)
+      : spec_(spec), warn_(warn), what_("sensor '" + spec.name + "'") {}
+
+  RaySensorConfig read();
+
+ private:
+  [[noreturn]] void fail(const XMLElement* e, const std::string& msg) const {
+    throw SensorError(what_ + (e ? " (line " + std::to_string(e->GetLineNum()) + ")" : "") +
+                      ": " + msg);
+  }
+  void unsupported(const XMLElement* e) {
+    const XMLElement* parent = e->Parent() ? e->Parent()->ToElement() : nullptr;
+    const std::string where = parent ? std::string(parent->Name()) : "";
+    if (!warned_.insert(where + "/" + e->Name()).second || !warn_) return;
+    warn_(what_ + ": <" + std::string(e->Name()) + "> in <" + where +
+          "> is not supported, ignored");
+  }
+  std::string text(const XMLElement* e) const {
+    const char* t = e->GetText();
+    return t ? trim(t) : std::string();
+  }
+  double number(const XMLElement* e) const {
+    const std::string t = text(e);
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(t.c_str(), &end);
+    if (t.empty() || *end != '\0')
+      fail(e, "<" + std::string(e->Name()) + "> '" + t + "' is not a number");
+    if (!std::isfinite(v) || errno == ERANGE)
+      fail(e, "<" + std::string(e->Name()) + "> '" + t + "' is not a finite number");
+    return v;
+  }
+  int integer(const XMLElement* e) const {
+    const std::string t = text(e);
+    char* end = nullptr;
+    errno = 0;
+    const long v = std::strtol(t.c_str(), &end, 10);
+    if (t.empty() || *end != '\0' || errno == ERANGE || v > std::numeric_limits<int>::max() ||
+        v < std::numeric_limits<int>::min())
+      fail(e, "<" + std::string(e->Name()) + "> '" + t + "' is not an integer");
+    return static_cast<int>(v);
+  }
+  void readRay(const XMLElement* ray, RaySensorConfig& c);
+
+  const SensorSpec& spec_;
+  const WarningSink& warn_;
+  std::string what_;
+  std::set<std::string> warned_;
+};
+
+RaySensorConfig ConfigReader::read() {
+  if (spec_.type != "ray" && spec_.type != "gpu_ray")
+    throw SensorError(what_ + ": type '" + spec_.type + "' is not a ray sensor");
+  RaySensorConfig c;
+  c.name = spec_.name;
+  c.link = spec_.link;
+  c.X_LS = spec_.X_LS;
+  c.update_rate = spec_.update_rate;
+  c.frame_name = spec_.link;
+
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(spec_.xml.data(), spec_.xml.size()) != tinyxml2::XML_SUCCESS)
+    throw SensorError(what_ + ": malformed sensor XML: " +
+                      std::string(doc.ErrorStr() ? doc.ErrorStr() : ""));
+  const XMLElement* sensor = doc.RootElement();
+  if (!sensor) throw SensorError(what_ + ": empty sensor XML");
+  bool have_ray = false;
+  for (const XMLElement* e = sensor->FirstChildElement(); e; e = e->NextSiblingElement()) {
+    const std::string tag = e->Name();
+    if (tag == "ray") {
+      readRay(e, c);
+      have_ray = true;
+    } else if (tag == "pose" || tag == "update_rate" || tag == "always_on" ||
+               tag == "plugin" || tag == "visualize") {
+      // pose, rate and plugins come parsed in the SensorSpec; visualize means nothing headless.
+    } else {
+      unsupported(e);
+    }
+  }
+  if (!have_ray) throw SensorError(what_ + ": no <ray> element");
+
+  for (const PluginSpec& p : spec_.plugins) {
+    const bool laser = p.filename.find("gazebo_ros_laser") != std::string::npos ||
+                       p.filename.find("gazebo_ros_gpu_laser") != std::string::npos;
+    if (!laser) {
+      if (warn_)
+        warn_(what_ + ": plugin '" + p.filename + "' is not supported on a ray sensor, ignored");
+      continue;
+    }
+    c.has_ros_plugin = true;
+    for (const auto& kv : p.params) {
+      if (kv.first == "topicName") {
+        c.topic_name = kv.second;
+      } else if (kv.first == "frameName") {
+        std::string f = kv.second;
+        while (!f.empty() && f.front() == '/') f.erase(f.begin());
+        c.frame_name = f;
+      } else if (kv.first == "robotNamespace") {
+        c.robot_namespace = kv.second;
+      } else if (warn_) {
+        warn_(what_ + ": <" + kv.first + "> of plugin '" + p.filename +
+              "' is not used by gazebo_ros_laser, ignored");
+      }
+    }
+  }
+  validate(c);
+  return c;
+}
+
+void ConfigReader::readRay(const XMLElement* ray, RaySensorConfig& c) {
+  for (const XMLElement* e = ray->FirstChildElement(); e; e = e->NextSiblingElement()) {
+    const std::string tag = e->Name();
+    if (tag == "scan") {
+      for (const XMLElement* s = e->FirstChildElement(); s; s = s->NextSiblingElement()) {
+        const std::string stag = s->Name();
+        const bool horizontal = stag == "horizontal";
+        if (!horizontal && stag != "vertical") {
+          unsupported(s);
+          continue;
+        }
+        for (const XMLElement* k = s->FirstChildElement(); k; k = k->NextSiblingElement()) {
+          const std::string key = k->Name();
+          if (horizontal) {
+            if (key == "samples") c.samples = integer(k);
+            else if (key == "resolution") c.resolution = number(k);
+            else if (key == "min_angle") c.min_angle = number(k);
+            else if (key == "max_angle") c.max_angle = number(k);
+            else unsupported(k);
+          } else if (key == "samples") {
+            if (integer(k) > 1 && warn_)
+              warn_(what_ + ": <vertical><samples> " + text(k) +
+                    " is not supported: only the horizontal plane is cast");
+          } else if (key == "min_angle" || key == "max_angle") {
+            if (number(k) != 0.0 && warn_)
+              warn_(what_ + ": <vertical><" + key + "> " + text(k) + " ignored (planar scan)");
+          } else if (key != "resolution") {
+            unsupported(k);
+          }
+        }
+      }
+    } else if (tag == "range") {
+      for (const XMLElement* k = e->FirstChildElement(); k; k = k->NextSiblingElement()) {
+        const std::string key = k->Name();
+        if (key == "min") c.range_min = number(k);
+        else if (key == "max") c.range_max = number(k);
+        else if (key == "resolution") c.range_resolution = number(k);
+        else unsupported(k);
+      }
+    } else if (tag == "noise") {
+      c.noise.type = "gaussian";  // SDF's default type for <ray><noise>
+      for (const XMLElement* k = e->FirstChildElement(); k; k = k->NextSiblingElement()) {
+        const std::string key = k->Name();
+        if (key == "type") c.noise.type = text(k);
+        else if (key == "mean") c.noise.mean = number(k);
+        else if (key == "stddev") c.noise.stddev = number(k);
+        else unsupported(k);
+      }
+    } else {
+      unsupported(e);
+    }
+  }
+}
+
+}  // namespace
+
+RaySensorConfig parseRaySensorConfig(const SensorSpec& spec, const WarningSink& warn) {
+  ConfigReader reader(spec, warn);
+  return reader.read();
+}
+
+void validate(const RaySensorConfig& c) {
+  const std::string what = "sensor '" + c.name + "'";
+  auto finite = [&](double v, const std::string& name) {
+    if (!std::isfinite(v)) throw SensorError(what + ": " + name + " " + fmt(v) + " is not finite");
+  };
+  finite(c.update_rate, "<update_rate>");
+  finite(c.resolution, "<horizontal><resolution>");
+  finite(c.min_angle, "<min_angle>");
+  finite(c.max_angle, "<max_angle>");
+  finite(c.range_min, "range <min>");
+  finite(c.range_max, "range <max>");
+  finite(c.range_resolution, "range <resolution>");
+  finite(c.noise.mean, "noise <mean>");
+  finite(c.noise.stddev, "noise <stddev>");
+  if (!c.X_LS.matrix().allFinite()) throw SensorError(what + ": <pose> is not finite");
+  if (c.samples <= 0)
+    throw SensorError(what + ": <samples> must be > 0 (got " + std::to_string(c.samples) + ")");
+  if (c.resolution <= 0.0)
+    throw SensorError(what + ": <horizontal><resolution> must be > 0 (got " +
+                      fmt(c.resolution) + ")");
+  if (c.min_angle > c.max_angle)
+    throw SensorError(what + ": <min_angle> " + fmt(c.min_angle) + " > <max_angle> " +
+                      fmt(c.max_angle));
+  if (c.range_min < 0.0)
+    throw SensorError(what + ": range <min> must be >= 0 (got " + fmt(c.range_min) + ")");
+  if (c.range_min >= c.range_max)
+    throw SensorError(what + ": range <min> " + fmt(c.range_min) + " must be < range <max> " +
+                      fmt(c.range_max));
+  if (c.range_resolution < 0.0)
+    throw SensorError(what + ": range <resolution> must be >= 0 (got " +
+                      fmt(c.range_resolution) + ")");
+  if (c.update_rate < 0.0)
+    throw SensorError(what + ": <update_rate> must be >= 0 (got " + fmt(c.update_rate) + ")");
+  if (c.noise.type != "none" && c.noise.type != "gaussian")
+    throw SensorError(what + ": noise <type> '" + c.noise.type +
+                      "' is not supported (gaussian or none)");
+  if (c.noise.stddev < 0.0)
+    throw SensorError(what + ": noise <stddev> must be >= 0 (got " + fmt(c.noise.stddev) + ")");
+}
+
+void applyRangeModel(const RaySensorConfig& c, std::mt19937_64& rng, float* ranges, int n) {
+  const float inf = std::numeric_limits<float>::infinity();
+  const bool noisy = c.noise.enabled();
+  std::normal_distribution<double> gauss(c.noise.mean, c.noise.stddev > 0.0 ? c.noise.stddev : 1.0);
+  for (int i = 0; i < n; ++i) {
+    const double r = ranges[i];
+    if (!(r < c.range_max)) {  // also NaN, which a caster never returns
+      ranges[i] = inf;
+    } else if (r <= c.range_min) {
+      ranges[i] = -inf;
+    } else if (noisy) {
+      const double e = c.noise.stddev > 0.0 ? gauss(rng) : c.noise.mean;
+      ranges[i] = static_cast<float>(std::clamp(r + e, c.range_min, c.range_max));
+    }
+  }
+}
+
+RaySensor::RaySensor(RaySensorConfig config) : config_(std::move(config)), rng_(config_.seed) {
+  validate(config_);
+  ranges_.reserve(config_.samples);
+}
+
+const std::vector<float>& RaySensor::scan(RayCaster& caster, const Scene& scene,
+                                          const Eigen::Isometry3d& X_WL) {
+  caster.scan(scene, X_WL * config_.X_LS, config_, rng_, &ranges_);
+  return ranges_;
+}
+
+}  // namespace tianracer_sim
