@@ -305,7 +305,7 @@ struct PhysicsWorld::Impl {
   void buildRobot(RobotState* r, const RobotModel& model);
   std::unique_ptr<btCollisionShape> makeRobotShape(const RobotState& r, const TreeBody& body,
                                                    const CollisionGeometry& g,
-                                                   Eigen::Isometry3d* X_BS);
+                                                   Eigen::Isometry3d* X_BS, bool* is_wheel);
   void applyCommands(RobotState* r);
 };
 
@@ -441,7 +441,7 @@ std::unique_ptr<PhysicsWorld::Impl::StaticBody> PhysicsWorld::Impl::makeStatic(
 
 std::unique_ptr<btCollisionShape> PhysicsWorld::Impl::makeRobotShape(
     const RobotState& r, const TreeBody& body, const CollisionGeometry& g,
-    Eigen::Isometry3d* X_BS) {
+    Eigen::Isometry3d* X_BS, bool* is_wheel) {
   const double margin = options.collision_margin;
   const std::string what = "robot '" + r.name + "' link '" + g.link + "'";
   *X_BS = g.X_BG;
@@ -469,6 +469,7 @@ std::unique_ptr<btCollisionShape> PhysicsWorld::Impl::makeRobotShape(
       fit.roundness = 1.0;
     }
   }
+  *is_wheel = fit.is_wheel && options.wheel_shape != WheelShape::kMeshHull;
   if (fit.is_wheel) {
     X_BS->linear() = rotationYTo(body.axis_B);
     X_BS->translation() = fit.center;
@@ -609,9 +610,12 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const RobotModel& model) {
     auto compound = std::make_unique<btCompoundShape>(false, static_cast<int>(body.collisions.size()));
     auto surfaces = std::make_unique<ColliderSurfaces>();
     const Eigen::Isometry3d X_CB = r->X_BC[b].inverse();
+    bool all_wheels = true;
     for (const CollisionGeometry& g : body.collisions) {
       Eigen::Isometry3d X_BS;
-      std::unique_ptr<btCollisionShape> shape = makeRobotShape(*r, body, g, &X_BS);
+      bool is_wheel = false;
+      std::unique_ptr<btCollisionShape> shape = makeRobotShape(*r, body, g, &X_BS, &is_wheel);
+      all_wheels = all_wheels && is_wheel;
       compound->addChildShape(toBt(Eigen::Isometry3d(X_CB * X_BS)), shape.get());
       const Eigen::Matrix3d R_CL = X_CB.linear() * body.X_BL.at(g.link).linear();
       surfaces->children.push_back(toSurface(surfaceOfLink(model, g.link), R_CL));
@@ -628,6 +632,13 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const RobotModel& model) {
     col->setUserPointer(surfaces.get());
     col->setUserIndex(r->id);
     col->setUserIndex2(b);
+    if (all_wheels) {
+      // A rolling wheel's manifold keeps up to 3 stale points behind the contact (rising off
+      // the ground, 0.01-1 mm up) which Bullet would solve as speculative contacts: 4x the rows
+      // and a little drag. The narrowphase finds the true contact afresh every step, so only
+      // touching points are solved for wheels.
+      col->setContactProcessingThreshold(0.0);
+    }
     world->addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter,
                               btBroadphaseProxy::AllFilter);
     if (b == 0) {
