@@ -146,17 +146,19 @@ void main() {
 }
 )";
 
-const char* kFragmentShader = R"(#version 330 core
+// The light count is a compile-time constant (one program per count): llvmpipe runs a loop
+// with a uniform bound at about half the speed of an unrolled one.
+const char* kFragmentShader = R"(
 in vec3 v_eye_position;
 in vec3 v_eye_normal;
 in vec2 v_world_xy;
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out float o_depth;
-const int kMaxLights = 4;
-uniform int u_num_lights;
-uniform vec3 u_light_dir[kMaxLights];   // eye frame, pointing from the light
-uniform vec3 u_light_diffuse[kMaxLights];
-uniform vec3 u_light_specular[kMaxLights];
+#if NUM_LIGHTS > 0
+uniform vec3 u_light_dir[NUM_LIGHTS];   // eye frame, pointing from the light
+uniform vec3 u_light_diffuse[NUM_LIGHTS];
+uniform vec3 u_light_specular[NUM_LIGHTS];
+#endif
 uniform vec3 u_scene_ambient;
 uniform vec3 u_ambient;
 uniform vec3 u_diffuse;
@@ -183,7 +185,8 @@ void main() {
   }
   vec3 v = normalize(-v_eye_position);
   vec3 c = u_scene_ambient * ambient;
-  for (int i = 0; i < u_num_lights; ++i) {
+#if NUM_LIGHTS > 0
+  for (int i = 0; i < NUM_LIGHTS; ++i) {
     vec3 l = -u_light_dir[i];
     float ndl = dot(n, l);
     if (ndl > 0.0) {
@@ -192,14 +195,16 @@ void main() {
       c += u_light_specular[i] * u_specular * pow(max(dot(n, h), 0.0), u_shininess);
     }
   }
+#endif
   o_color = vec4(clamp(c, 0.0, 1.0), 1.0);
   o_depth = -v_eye_position.z;
 }
 )";
 
-GLuint compile(GLenum type, const char* src) {
+GLuint compile(GLenum type, const std::string& src) {
   GLuint s = glCreateShader(type);
-  glShaderSource(s, 1, &src, nullptr);
+  const char* text = src.c_str();
+  glShaderSource(s, 1, &text, nullptr);
   glCompileShader(s);
   GLint ok = 0;
   glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
@@ -241,7 +246,17 @@ struct Renderer::Impl {
   std::shared_ptr<GlContext> context;
   WarningSink warn;
 
-  GLuint program = 0;
+  struct Uniforms {
+    GLint model_view, projection, normal_matrix, model, light_dir, light_diffuse, light_specular,
+        scene_ambient, ambient, diffuse, specular, shininess, grid;
+  };
+  struct Program {
+    GLuint id = 0;
+    Uniforms u{};
+  };
+  static constexpr int kMaxLights = 4;
+  Program programs[kMaxLights + 1];  // by light count, built on first use
+
   GLuint vao = 0;
   GLuint vbo = 0;
   std::vector<ri::Vertex> vertices;  // CPU copy of the VBO (append, re-upload on growth)
@@ -252,11 +267,6 @@ struct Renderer::Impl {
   };
   std::map<std::string, Range> geometry;  // shapeKey -> range in the VBO
   std::set<std::string> failed;          // shape keys that did not load (warned once)
-
-  struct Uniforms {
-    GLint model_view, projection, normal_matrix, model, num_lights, light_dir, light_diffuse,
-        light_specular, scene_ambient, ambient, diffuse, specular, shininess, grid;
-  } u{};
 
   // What each scene item resolved to, by item index. Checked against the item's shape every
   // frame (cheap comparisons, no allocation) so that any change of the scene is picked up;
@@ -273,6 +283,7 @@ struct Renderer::Impl {
     bool size_warned = false;
   };
   std::vector<Slot> slots;
+  bool lights_warned = false;
 
   bool matches(const Slot& slot, const Shape& shape) const {
     if (!slot.resolved || slot.type != shape.type) return false;
@@ -302,6 +313,50 @@ struct Renderer::Impl {
     GLuint fbo = 0, color = 0, depth_color = 0, depth = 0;
   };
   std::map<std::pair<int, int>, Target> targets;
+
+  Program& program(int num_lights) {
+    Program& p = programs[num_lights];
+    if (p.id != 0) return p;
+    const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader);
+    GLuint fs = 0;
+    try {
+      fs = compile(GL_FRAGMENT_SHADER, "#version 330 core\n#define NUM_LIGHTS " +
+                                           std::to_string(num_lights) + "\n" + kFragmentShader);
+    } catch (...) {
+      glDeleteShader(vs);
+      throw;
+    }
+    const GLuint id = glCreateProgram();
+    glAttachShader(id, vs);
+    glAttachShader(id, fs);
+    glLinkProgram(id);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = 0;
+    glGetProgramiv(id, GL_LINK_STATUS, &ok);
+    if (!ok) {
+      char log[4096];
+      glGetProgramInfoLog(id, sizeof(log), nullptr, log);
+      glDeleteProgram(id);
+      throw RenderError(std::string("shader link failed: ") + log);
+    }
+    auto loc = [&](const char* name) { return glGetUniformLocation(id, name); };
+    p.u.model_view = loc("u_model_view");
+    p.u.projection = loc("u_projection");
+    p.u.normal_matrix = loc("u_normal_matrix");
+    p.u.model = loc("u_model");
+    p.u.light_dir = loc("u_light_dir");
+    p.u.light_diffuse = loc("u_light_diffuse");
+    p.u.light_specular = loc("u_light_specular");
+    p.u.scene_ambient = loc("u_scene_ambient");
+    p.u.ambient = loc("u_ambient");
+    p.u.diffuse = loc("u_diffuse");
+    p.u.specular = loc("u_specular");
+    p.u.shininess = loc("u_shininess");
+    p.u.grid = loc("u_grid");
+    p.id = id;
+    return p;
+  }
 
   Range addGeometry(const std::string& key, const ri::Soup& soup) {
     Range r;
@@ -385,43 +440,7 @@ Renderer::Renderer(WarningSink warn) : impl_(new Impl) {
   auto lock = impl_->context->lock();
   Impl& m = *impl_;
 
-  const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader);
-  GLuint fs = 0;
-  try {
-    fs = compile(GL_FRAGMENT_SHADER, kFragmentShader);
-  } catch (...) {
-    glDeleteShader(vs);
-    throw;
-  }
-  m.program = glCreateProgram();
-  glAttachShader(m.program, vs);
-  glAttachShader(m.program, fs);
-  glLinkProgram(m.program);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(m.program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[4096];
-    glGetProgramInfoLog(m.program, sizeof(log), nullptr, log);
-    glDeleteProgram(m.program);
-    throw RenderError(std::string("shader link failed: ") + log);
-  }
-  auto loc = [&](const char* name) { return glGetUniformLocation(m.program, name); };
-  m.u.model_view = loc("u_model_view");
-  m.u.projection = loc("u_projection");
-  m.u.normal_matrix = loc("u_normal_matrix");
-  m.u.model = loc("u_model");
-  m.u.num_lights = loc("u_num_lights");
-  m.u.light_dir = loc("u_light_dir");
-  m.u.light_diffuse = loc("u_light_diffuse");
-  m.u.light_specular = loc("u_light_specular");
-  m.u.scene_ambient = loc("u_scene_ambient");
-  m.u.ambient = loc("u_ambient");
-  m.u.diffuse = loc("u_diffuse");
-  m.u.specular = loc("u_specular");
-  m.u.shininess = loc("u_shininess");
-  m.u.grid = loc("u_grid");
+  m.program(1);  // the common case, and a check that the shaders build here
 
   glGenVertexArrays(1, &m.vao);
   glGenBuffers(1, &m.vbo);
@@ -453,7 +472,9 @@ Renderer::~Renderer() {
     }
     glDeleteBuffers(1, &impl_->vbo);
     glDeleteVertexArrays(1, &impl_->vao);
-    glDeleteProgram(impl_->program);
+    for (const auto& p : impl_->programs) {
+      if (p.id != 0) glDeleteProgram(p.id);
+    }
   } catch (...) {
     // The context is going away with us; nothing else to release.
   }
@@ -523,10 +544,17 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
   }
   glClear(GL_DEPTH_BUFFER_BIT);
 
-  glUseProgram(m.program);
+  const int num_lights = static_cast<int>(std::min<std::size_t>(scene.lights.size(), Impl::kMaxLights));
+  if (scene.lights.size() > Impl::kMaxLights && !m.lights_warned) {
+    m.lights_warned = true;
+    if (m.warn) m.warn("renderer: the scene has " + std::to_string(scene.lights.size()) +
+                       " directional lights; only the first 4 are drawn");
+  }
+  const Impl::Program& prog = m.program(num_lights);
+  const Impl::Uniforms& u = prog.u;
+  glUseProgram(prog.id);
   glBindVertexArray(m.vao);
-  glUniformMatrix4fv(m.u.projection, 1, GL_FALSE, Pf.data());
-  const int num_lights = static_cast<int>(std::min<std::size_t>(scene.lights.size(), 4));
+  glUniformMatrix4fv(u.projection, 1, GL_FALSE, Pf.data());
   float dirs[12], diffs[12], specs[12];
   for (int i = 0; i < num_lights; ++i) {
     const DirectionalLight& L = scene.lights[i];
@@ -538,13 +566,12 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
       specs[3 * i + k] = L.specular[k];
     }
   }
-  glUniform1i(m.u.num_lights, num_lights);
   if (num_lights > 0) {
-    glUniform3fv(m.u.light_dir, num_lights, dirs);
-    glUniform3fv(m.u.light_diffuse, num_lights, diffs);
-    glUniform3fv(m.u.light_specular, num_lights, specs);
+    glUniform3fv(u.light_dir, num_lights, dirs);
+    glUniform3fv(u.light_diffuse, num_lights, diffs);
+    glUniform3fv(u.light_specular, num_lights, specs);
   }
-  glUniform3f(m.u.scene_ambient, scene.ambient[0], scene.ambient[1], scene.ambient[2]);
+  glUniform3f(u.scene_ambient, scene.ambient[0], scene.ambient[1], scene.ambient[2]);
 
   auto draw = [&](const Eigen::Isometry3d& X_WS, const Eigen::Vector3d& scale,
                   const Impl::Range& range, const Eigen::Vector3f& amb, const Eigen::Vector3f& dif,
@@ -553,29 +580,16 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
     const Eigen::Matrix4d MV = X_EW.matrix() * M;
     const Eigen::Matrix3f N = MV.topLeftCorner<3, 3>().inverse().transpose().cast<float>();
     const Eigen::Matrix4f MVf = MV.cast<float>(), Mf = M.cast<float>();
-    glUniformMatrix4fv(m.u.model_view, 1, GL_FALSE, MVf.data());
-    glUniformMatrix4fv(m.u.model, 1, GL_FALSE, Mf.data());
-    glUniformMatrix3fv(m.u.normal_matrix, 1, GL_FALSE, N.data());
-    glUniform3fv(m.u.ambient, 1, amb.data());
-    glUniform3fv(m.u.diffuse, 1, dif.data());
-    glUniform3fv(m.u.specular, 1, spe.data());
-    glUniform1f(m.u.shininess, std::max(shininess, 1.0f));
-    glUniform1i(m.u.grid, grid ? 1 : 0);
+    glUniformMatrix4fv(u.model_view, 1, GL_FALSE, MVf.data());
+    glUniformMatrix4fv(u.model, 1, GL_FALSE, Mf.data());
+    glUniformMatrix3fv(u.normal_matrix, 1, GL_FALSE, N.data());
+    glUniform3fv(u.ambient, 1, amb.data());
+    glUniform3fv(u.diffuse, 1, dif.data());
+    glUniform3fv(u.specular, 1, spe.data());
+    glUniform1f(u.shininess, std::max(shininess, 1.0f));
+    glUniform1i(u.grid, grid ? 1 : 0);
     glDrawArrays(GL_TRIANGLES, range.first, range.count);
   };
-
-  // The ground plane: a square under the camera reaching the far clip, grey like Gazebo's
-  // ground_plane model, with a 1 m grid.
-  if (scene.ground_plane) {
-    Eigen::Isometry3d X_WG = Eigen::Isometry3d::Identity();
-    X_WG.translation() = Eigen::Vector3d(std::round(X_WC.translation().x()),
-                                         std::round(X_WC.translation().y()), 0.0);
-    const double size = 2.0 * f + 2.0;
-    const auto grey = findGazeboMaterial("Gazebo/Grey");
-    draw(X_WG, Eigen::Vector3d(size, size, 1.0), m.geometry.at("quad"),
-         Eigen::Vector3f(0.8f, 0.8f, 0.8f), Eigen::Vector3f(0.8f, 0.8f, 0.8f),
-         grey->material.specular.head<3>(), grey->shininess, true);
-  }
 
   for (std::size_t i = 0; i < scene.items.size(); ++i) {
     const SceneItem& item = scene.items[i];
@@ -622,6 +636,19 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
     const Material& mat = item.material;
     draw(scene.bodies[item.body].X_WB * X_BS, scale, slot.range, mat.ambient.head<3>(),
          mat.diffuse.head<3>(), mat.specular.head<3>(), slot.shininess, false);
+  }
+
+  // The ground plane last, so that the depth test skips shading what the items hide: a square
+  // under the camera reaching the far clip, light grey, with a 1 m grid.
+  if (scene.ground_plane) {
+    Eigen::Isometry3d X_WG = Eigen::Isometry3d::Identity();
+    X_WG.translation() = Eigen::Vector3d(std::round(X_WC.translation().x()),
+                                         std::round(X_WC.translation().y()), 0.0);
+    const double size = 2.0 * f + 2.0;
+    const auto grey = findGazeboMaterial("Gazebo/Grey");
+    draw(X_WG, Eigen::Vector3d(size, size, 1.0), m.geometry.at("quad"),
+         Eigen::Vector3f(0.8f, 0.8f, 0.8f), Eigen::Vector3f(0.8f, 0.8f, 0.8f),
+         grey->material.specular.head<3>(), grey->shininess, true);
   }
 
   glPixelStorei(GL_PACK_ALIGNMENT, 1);

@@ -116,8 +116,9 @@ CameraInfo makeCameraInfo(const CameraConfig& config);
 
 /// Gazebo's gaussian image noise: one sample per pixel, added to each of its channels in
 /// [0, 1] units, then clamped. Samples come from a 64 Ki-entry table of the quantiles of
-/// N(mean, stddev) (in 1/255 steps) indexed by a seeded std::mt19937: exact marginal
-/// distribution, deterministic, about 1 ns a pixel.
+/// N(mean, stddev) (rounded to 1/255 steps), indexed by 16-bit words of SplitMix64 hashes of
+/// (frame seed, pixel); the frame seeds are drawn from a std::mt19937 seeded by `seed`. Exact
+/// marginal distribution, deterministic, a few ns a pixel.
 class ImageNoise {
  public:
   ImageNoise() = default;

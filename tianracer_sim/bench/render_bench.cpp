@@ -1,0 +1,218 @@
+// Render benchmark: ms per frame of the seed's 800x800 camera (colour + noise) and of its
+// 640x480 depth camera (colour + depth + organized cloud), the tianracer on the racetrack
+// world. Also writes PNGs for people: a chase view, the camera's and the depth camera's frames.
+//
+//   render_bench [--frames N] [--world PATH] [--png-dir DIR]
+//   LP_NUM_THREADS=1 render_bench   # Mesa llvmpipe's rasteriser threads (default: the cores)
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <string>
+
+#include "tianracer_sim/mesh/mesh_loader.h"
+#include "tianracer_sim/model/robot_model.h"
+#include "tianracer_sim/render/camera_sensor.h"
+#include "tianracer_sim/render/materials.h"
+#include "tianracer_sim/render/png_writer.h"
+#include "tianracer_sim/render/renderer.h"
+#include "tianracer_sim/world/world.h"
+
+namespace ts = tianracer_sim;
+
+namespace {
+
+Eigen::Isometry3d toIsometry(const urdf::Pose& p) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
+  X.linear() = Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z).toRotationMatrix();
+  return X;
+}
+
+// The robot at zero joint positions: one body per link, its visuals as items. Returns the
+// link poses (model frame) by name.
+std::map<std::string, Eigen::Isometry3d> addRobot(const ts::RobotModel& model, const Eigen::Isometry3d& X_WM,
+                                                  ts::Scene* scene, std::map<std::string, int>* bodies) {
+  std::map<std::string, Eigen::Isometry3d> X_ML;
+  std::function<void(const urdf::LinkConstSharedPtr&, const Eigen::Isometry3d&)> visit =
+      [&](const urdf::LinkConstSharedPtr& link, const Eigen::Isometry3d& X) {
+        X_ML[link->name] = X;
+        const int body = scene->addBody(ts::SceneBody{"tianracer::" + link->name, "tianracer", false, X_WM * X});
+        (*bodies)[link->name] = body;
+        std::string gz;
+        const auto ext = model.ext.links.find(link->name);
+        if (ext != model.ext.links.end()) gz = ext->second.material;
+        for (const auto& visual : link->visual_array) {
+          if (!visual || !visual->geometry) continue;
+          ts::SceneItem item;
+          item.body = body;
+          item.X_BS = toIsometry(visual->origin);
+          switch (visual->geometry->type) {
+            case urdf::Geometry::MESH: {
+              const auto* m = static_cast<const urdf::Mesh*>(visual->geometry.get());
+              item.shape.type = ts::ShapeType::kMesh;
+              const auto it = model.mesh_paths.find(m->filename);
+              item.shape.mesh_path = it != model.mesh_paths.end() ? it->second : m->filename;
+              item.shape.scale = Eigen::Vector3d(m->scale.x, m->scale.y, m->scale.z);
+              break;
+            }
+            case urdf::Geometry::BOX: {
+              const auto* b = static_cast<const urdf::Box*>(visual->geometry.get());
+              item.shape.type = ts::ShapeType::kBox;
+              item.shape.size = Eigen::Vector3d(b->dim.x, b->dim.y, b->dim.z);
+              break;
+            }
+            case urdf::Geometry::CYLINDER: {
+              const auto* c = static_cast<const urdf::Cylinder*>(visual->geometry.get());
+              item.shape.type = ts::ShapeType::kCylinder;
+              item.shape.radius = c->radius;
+              item.shape.length = c->length;
+              break;
+            }
+            case urdf::Geometry::SPHERE: {
+              const auto* s = static_cast<const urdf::Sphere*>(visual->geometry.get());
+              item.shape.type = ts::ShapeType::kSphere;
+              item.shape.radius = s->radius;
+              break;
+            }
+          }
+          if (auto g = ts::findGazeboMaterial(gz)) {
+            item.material = g->material;
+          } else if (visual->material) {
+            const auto& c = visual->material->color;
+            item.material.ambient = item.material.diffuse = Eigen::Vector4f(c.r, c.g, c.b, c.a);
+          }
+          scene->items.push_back(item);
+        }
+        for (const auto& joint : link->child_joints) {
+          const auto child = model.urdf->getLink(joint->child_link_name);
+          visit(child, X * toIsometry(joint->parent_to_joint_origin_transform));
+        }
+      };
+  visit(model.urdf->getRoot(), Eigen::Isometry3d::Identity());
+  return X_ML;
+}
+
+const ts::SensorSpec* findSensor(const ts::RobotModel& model, const std::string& type) {
+  for (const auto& kv : model.ext.links) {
+    for (const auto& s : kv.second.sensors) {
+      if (s.type == type) return &s;
+    }
+  }
+  return nullptr;
+}
+
+// Wall-clock and process CPU time (all threads, llvmpipe's included) per frame, in ms. On a
+// shared machine the CPU time is the steadier number.
+struct Timing {
+  double wall_ms = 0.0;
+  double cpu_ms = 0.0;
+};
+
+template <typename F>
+Timing msPerFrame(int frames, F&& render) {
+  render();  // warm-up: targets, buffers
+  const std::clock_t c0 = std::clock();
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int i = 0; i < frames; ++i) render();
+  const auto t1 = std::chrono::steady_clock::now();
+  const std::clock_t c1 = std::clock();
+  return {std::chrono::duration<double, std::milli>(t1 - t0).count() / frames,
+          1000.0 * (c1 - c0) / CLOCKS_PER_SEC / frames};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int frames = 100;
+  std::string world_path = std::string(TIANRACER_SIM_WORLDS_DIR) + "/racetrack.world";
+  std::string png_dir = "/tmp";
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string a = argv[i];
+    if (a == "--frames") frames = std::atoi(argv[i + 1]);
+    else if (a == "--world") world_path = argv[i + 1];
+    else if (a == "--png-dir") png_dir = argv[i + 1];
+    else {
+      std::cerr << "usage: render_bench [--frames N] [--world PATH] [--png-dir DIR]\n";
+      return 2;
+    }
+  }
+  auto warn = [](const std::string& w) { std::cerr << "warning: " << w << "\n"; };
+
+  ts::Scene scene;
+  ts::WorldLoadOptions wopt;
+  wopt.warn = warn;
+  const ts::WorldDescription world = ts::loadWorldFile(world_path, wopt);
+  ts::addToScene(world, scene);
+
+  // xacro resolves $(find tianracer_description) through ROS_PACKAGE_PATH.
+  const char* rpp = std::getenv("ROS_PACKAGE_PATH");
+  const std::string source_space = std::string(TIANRACER_DESCRIPTION_DIR) + "/..";
+  ::setenv("ROS_PACKAGE_PATH", (source_space + (rpp ? ":" + std::string(rpp) : "")).c_str(), 1);
+  ts::LoadOptions lopt;
+  lopt.warn = warn;
+  lopt.resolver.find_package = [](const std::string& pkg) {
+    return pkg == "tianracer_description" ? std::string(TIANRACER_DESCRIPTION_DIR) : std::string();
+  };
+  const ts::RobotModel robot = ts::loadRobotModelFile(
+      std::string(TIANRACER_DESCRIPTION_DIR) + "/urdf/tianracer_description.xacro", lopt);
+  Eigen::Isometry3d X_WM = Eigen::Isometry3d::Identity();
+  X_WM.translation().z() = 0.0095;  // base_link above the ground with the wheels on it
+  std::map<std::string, int> bodies;
+  const auto X_ML = addRobot(robot, X_WM, &scene, &bodies);
+
+  const ts::SensorSpec* cam_spec = findSensor(robot, "camera");
+  const ts::SensorSpec* depth_spec = findSensor(robot, "depth");
+  if (cam_spec == nullptr || depth_spec == nullptr) {
+    std::cerr << "the robot has no camera or depth sensor\n";
+    return 1;
+  }
+  ts::Renderer renderer(warn);
+  ts::CameraSensor camera(ts::parseCameraConfig(*cam_spec, warn), renderer);
+  ts::DepthCameraSensor depth(ts::parseDepthCameraConfig(*depth_spec, warn), renderer);
+  const Eigen::Isometry3d X_W_cam = X_WM * X_ML.at(cam_spec->link);
+  const Eigen::Isometry3d X_W_rs = X_WM * X_ML.at(depth_spec->link);
+
+  std::size_t triangles = 0;
+  for (const auto& item : scene.items) {
+    if (item.visual && item.shape.type == ts::ShapeType::kMesh) {
+      triangles += ts::MeshCache::global().get(item.shape.mesh_path, item.shape.scale)->triangleCount();
+    }
+  }
+  const char* threads = std::getenv("LP_NUM_THREADS");
+  std::printf("%s\nworld %s: %zu bodies, %zu items (%zu mesh triangles); LP_NUM_THREADS=%s\n",
+              renderer.glInfo().c_str(), world.name.c_str(), scene.bodies.size(), scene.items.size(),
+              triangles, threads ? threads : "(unset)");
+
+  const Timing cam = msPerFrame(frames, [&] { camera.render(scene, X_W_cam); });
+  const Timing rs = msPerFrame(frames, [&] { depth.render(scene, X_W_rs); });
+  const Timing rs_depth = msPerFrame(frames, [&] { depth.render(scene, X_W_rs, {false, true, false}); });
+  std::printf("                                      wall ms/frame  cpu ms/frame\n");
+  std::printf("camera 800x800 colour+noise            %8.2f      %8.2f\n", cam.wall_ms, cam.cpu_ms);
+  std::printf("depth 640x480 colour+depth+cloud       %8.2f      %8.2f\n", rs.wall_ms, rs.cpu_ms);
+  std::printf("depth 640x480 depth image only         %8.2f      %8.2f\n", rs_depth.wall_ms, rs_depth.cpu_ms);
+  std::printf("seed cameras at rated rates (30 + 20 Hz): %.0f ms wall, %.0f ms cpu per simulated second\n",
+              30 * cam.wall_ms + 20 * rs.wall_ms, 30 * cam.cpu_ms + 20 * rs.cpu_ms);
+
+  // Pictures.
+  ts::CameraIntrinsics chase = ts::CameraIntrinsics::fromHorizontalFov(960, 640, 1.0, 0.02, 100.0);
+  Eigen::Isometry3d X_WChase = Eigen::Translation3d(-0.55, -0.35, 0.35) *
+                               Eigen::AngleAxisd(0.55, Eigen::Vector3d::UnitZ()) *
+                               Eigen::AngleAxisd(0.45, Eigen::Vector3d::UnitY());
+  std::vector<uint8_t> rgb(960 * 640 * 3);
+  renderer.renderView(scene, X_WChase, chase, rgb.data());
+  ts::writePng(png_dir + "/render_chase.png", rgb.data(), 960, 640, 3);
+  camera.render(scene, X_W_cam);
+  ts::writePng(png_dir + "/render_camera.png", camera.image().data(), camera.config().width,
+               camera.config().height, camera.channels());
+  depth.render(scene, X_W_rs);
+  const auto& dc = depth.config().camera;
+  ts::writePng(png_dir + "/render_real_sense_rgb.png", depth.image().data(), dc.width, dc.height, depth.channels());
+  ts::writeDepthPng(png_dir + "/render_real_sense_depth.png", depth.depth().data(), dc.width, dc.height,
+                    depth.config().point_cloud_cutoff, depth.config().point_cloud_cutoff_max);
+  std::printf("wrote %s/render_{chase,camera,real_sense_rgb,real_sense_depth}.png\n", png_dir.c_str());
+  return 0;
+}
