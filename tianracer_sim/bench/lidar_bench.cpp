@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -78,47 +79,42 @@ std::vector<int> addCar(Scene& scene, const std::string& meshes) {
   return bodies;
 }
 
-struct Result {
-  double ms_per_scan;
-  double rays_per_s;
-  double build_ms;
-  double finite_fraction;
+/// One strategy on one scene, timed in rounds interleaved with the other strategies so that
+/// all see the same machine load (it is shared: 2 cores); the best round is reported.
+struct Trial {
+  std::string name;
+  bool with_car = false;
+  Scene scene;
+  std::unique_ptr<RayCaster> caster;
+  double build_ms = 0.0;
+  double best_s_per_scan = 1e9;
+  long finite = 0, total = 0;
 };
 
-Result run(const Scene& scene_in, const RayCasterOptions& options, int scans, bool move_car,
-           const std::vector<int>& car) {
-  Scene scene = scene_in;
-  const RaySensorConfig c = seedLidar();
-  const std::vector<Eigen::Isometry3d> poses = {
+const std::vector<Eigen::Isometry3d>& trackPoses() {
+  static const std::vector<Eigen::Isometry3d> poses = {
       pose(0.093603, 0, 0.14567, 0),            // spawn
       pose(3.9, 2.0, 0.14567, M_PI / 2),        // right side
       pose(0.5, 4.0, 0.14567, M_PI),            // top straight
       pose(-3.6, 0.6, 0.14567, -3 * M_PI / 4),  // bottom-left corner
       pose(3.3, 0.3, 0.14567, M_PI / 4)};       // bottom-right corner
-  RayCaster caster(options);
+  return poses;
+}
+
+void runRound(Trial& t, int scans, const std::vector<int>& car, std::mt19937_64& rng,
+              std::vector<float>& ranges) {
+  const RaySensorConfig c = seedLidar();
+  const auto& poses = trackPoses();
   const auto t0 = std::chrono::steady_clock::now();
-  caster.build(scene);
-  const auto t1 = std::chrono::steady_clock::now();
-  std::mt19937_64 rng(1);
-  std::vector<float> ranges;
-  long finite = 0, total = 0;
-  for (int i = 0; i < 50; ++i) caster.scan(scene, poses[i % poses.size()], c, rng, &ranges);
-  // Best of 5 rounds: the machine is shared (2 cores), the minimum is the cost of the code.
-  double best = 1e9;
-  for (int round = 0; round < 5; ++round) {
-    const auto t2 = std::chrono::steady_clock::now();
-    for (int i = 0; i < scans / 5; ++i) {
-      if (move_car)
-        for (int b : car) scene.bodies[b].X_WB.translation().x() += 1e-6;
-      caster.scan(scene, poses[i % poses.size()], c, rng, &ranges);
-      for (float r : ranges) finite += std::isfinite(r);
-      total += ranges.size();
-    }
-    const auto t3 = std::chrono::steady_clock::now();
-    best = std::min(best, std::chrono::duration<double>(t3 - t2).count() / (scans / 5));
+  for (int i = 0; i < scans; ++i) {
+    if (t.with_car)
+      for (int b : car) t.scene.bodies[b].X_WB.translation().x() += 1e-6;
+    t.caster->scan(t.scene, poses[i % poses.size()], c, rng, &ranges);
+    for (float r : ranges) t.finite += std::isfinite(r);
+    t.total += ranges.size();
   }
-  return {1e3 * best, c.samples / best, 1e3 * std::chrono::duration<double>(t1 - t0).count(),
-          double(finite) / total};
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  t.best_s_per_scan = std::min(t.best_s_per_scan, s / scans);
 }
 
 }  // namespace
@@ -139,41 +135,49 @@ int main(int argc, char** argv) {
   Scene car_scene = world_scene;
   const std::vector<int> car = addCar(car_scene, meshes);
 
-  struct Strategy {
-    const char* name;
-    RayCasterOptions options;
-  };
-  std::vector<Strategy> strategies;
+  std::vector<Trial> trials;
   for (PrimitiveMode p :
        {PrimitiveMode::kHybrid, PrimitiveMode::kAnalytic, PrimitiveMode::kTessellated}) {
     for (RayQueryMode q : {RayQueryMode::kSingle, RayQueryMode::kPacket16, RayQueryMode::kStream}) {
-      RayCasterOptions o;
-      o.primitives = p;
-      o.query = q;
-      static std::vector<std::string> names;
-      names.push_back(std::string(p == PrimitiveMode::kHybrid     ? "hybrid"
-                                  : p == PrimitiveMode::kAnalytic ? "user-geometry"
-                                                                  : "tessellated") +
-                      " + " +
-                      (q == RayQueryMode::kSingle ? "rtcIntersect1 loop"
-                       : q == RayQueryMode::kPacket16 ? "rtcIntersect16" : "rtcIntersect1M"));
-      strategies.push_back({nullptr, o});
-      strategies.back().name = names.back().c_str();
+      for (int with_car = 0; with_car < 2; ++with_car) {
+        Trial t;
+        t.name = std::string(p == PrimitiveMode::kHybrid     ? "hybrid"
+                             : p == PrimitiveMode::kAnalytic ? "user-geometry"
+                                                             : "tessellated") +
+                 " + " +
+                 (q == RayQueryMode::kSingle     ? "rtcIntersect1 loop"
+                  : q == RayQueryMode::kPacket16 ? "rtcIntersect16"
+                                                 : "rtcIntersect1M");
+        t.with_car = with_car;
+        t.scene = with_car ? car_scene : world_scene;
+        RayCasterOptions o;
+        o.primitives = p;
+        o.query = q;
+        t.caster = std::make_unique<RayCaster>(o);
+        const auto t0 = std::chrono::steady_clock::now();
+        t.caster->build(t.scene);
+        t.build_ms =
+            1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        trials.push_back(std::move(t));
+      }
     }
   }
+  const int rounds = 10;
+  std::mt19937_64 rng(1);
+  std::vector<float> ranges;
+  for (Trial& t : trials) runRound(t, 20, car, rng, ranges);  // warm up
+  for (int r = 0; r < rounds; ++r)
+    for (Trial& t : trials) runRound(t, std::max(1, scans / rounds), car, rng, ranges);
 
-  std::printf("racetrack.world: %zu bodies, %zu items; seed lidar 1081 beams, %d scans per row, "
-              "5 poses along the track; best of 5 rounds\n\n",
-              world_scene.bodies.size(), world_scene.items.size(), scans);
-  std::printf("%-40s %-10s %10s %12s %10s %8s\n", "strategy", "scene", "ms/scan", "Mrays/s",
+  std::printf("racetrack.world: %zu bodies, %zu items (+%zu car bodies, meshes); seed lidar 1081 "
+              "beams with noise; %d scans per row over 5 poses along the track; best of %d "
+              "interleaved rounds\n\n",
+              world_scene.bodies.size(), world_scene.items.size(), car.size(), scans, rounds);
+  std::printf("%-36s %-10s %9s %9s %9s %7s\n", "strategy", "scene", "ms/scan", "Mrays/s",
               "build ms", "hits");
-  for (const Strategy& s : strategies) {
-    for (int with_car = 0; with_car < 2; ++with_car) {
-      const Result r = run(with_car ? car_scene : world_scene, s.options, scans, with_car, car);
-      std::printf("%-40s %-10s %10.4f %12.2f %10.2f %7.1f%%\n", s.name,
-                  with_car ? "world+car" : "world", r.ms_per_scan, r.rays_per_s / 1e6, r.build_ms,
-                  100 * r.finite_fraction);
-    }
-  }
+  for (const Trial& t : trials)
+    std::printf("%-36s %-10s %9.4f %9.2f %9.2f %6.1f%%\n", t.name.c_str(),
+                t.with_car ? "world+car" : "world", 1e3 * t.best_s_per_scan,
+                1081 / t.best_s_per_scan / 1e6, t.build_ms, 100.0 * t.finite / t.total);
   return 0;
 }
