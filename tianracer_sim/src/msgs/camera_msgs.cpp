@@ -1,0 +1,123 @@
+#include "tianracer_sim/ros/camera_msgs.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include <sensor_msgs/image_encodings.h>
+
+namespace tianracer_sim {
+namespace {
+
+void fillImage(const std::vector<uint8_t>& data, int width, int height, int channels,
+               const std::string& frame_id, const ros::Time& stamp, sensor_msgs::Image* msg) {
+  msg->header.stamp = stamp;
+  msg->header.frame_id = frame_id;
+  msg->width = static_cast<uint32_t>(width);
+  msg->height = static_cast<uint32_t>(height);
+  msg->encoding = channels == 1 ? sensor_msgs::image_encodings::MONO8 : sensor_msgs::image_encodings::RGB8;
+  msg->is_bigendian = 0;
+  msg->step = static_cast<uint32_t>(width * channels);
+  msg->data.resize(data.size());
+  std::memcpy(msg->data.data(), data.data(), data.size());
+}
+
+}  // namespace
+
+void toImage(const CameraSensor& camera, const ros::Time& stamp, sensor_msgs::Image* msg) {
+  fillImage(camera.image(), camera.config().width, camera.config().height, camera.channels(),
+            camera.config().opticalFrame(), stamp, msg);
+}
+
+void toImage(const DepthCameraSensor& camera, const ros::Time& stamp, sensor_msgs::Image* msg) {
+  const CameraConfig& c = camera.config().camera;
+  fillImage(camera.image(), c.width, c.height, camera.channels(), c.opticalFrame(), stamp, msg);
+}
+
+void toDepthImage(const DepthCameraSensor& camera, const ros::Time& stamp, sensor_msgs::Image* msg) {
+  const CameraConfig& c = camera.config().camera;
+  msg->header.stamp = stamp;
+  msg->header.frame_id = c.opticalFrame();
+  msg->width = static_cast<uint32_t>(c.width);
+  msg->height = static_cast<uint32_t>(c.height);
+  msg->encoding = sensor_msgs::image_encodings::TYPE_32FC1;
+  msg->is_bigendian = 0;
+  msg->step = static_cast<uint32_t>(c.width * sizeof(float));
+  const std::vector<float>& depth = camera.depth();
+  msg->data.resize(depth.size() * sizeof(float));
+  std::memcpy(msg->data.data(), depth.data(), msg->data.size());
+}
+
+void toCameraInfo(const CameraInfo& info, const ros::Time& stamp, sensor_msgs::CameraInfo* msg) {
+  msg->header.stamp = stamp;
+  msg->header.frame_id = info.frame_id;
+  msg->width = static_cast<uint32_t>(info.width);
+  msg->height = static_cast<uint32_t>(info.height);
+  msg->distortion_model = info.distortion_model;
+  msg->D.assign(info.D.begin(), info.D.end());
+  std::copy(info.K.begin(), info.K.end(), msg->K.begin());
+  std::copy(info.R.begin(), info.R.end(), msg->R.begin());
+  std::copy(info.P.begin(), info.P.end(), msg->P.begin());
+  msg->binning_x = 0;
+  msg->binning_y = 0;
+  msg->roi = sensor_msgs::RegionOfInterest();
+}
+
+void toPointCloud2(const DepthCameraSensor& camera, const ros::Time& stamp,
+                   sensor_msgs::PointCloud2* msg) {
+  const CameraConfig& c = camera.config().camera;
+  msg->header.stamp = stamp;
+  msg->header.frame_id = c.opticalFrame();
+  msg->height = static_cast<uint32_t>(c.height);
+  msg->width = static_cast<uint32_t>(c.width);
+  if (msg->fields.size() != 4) {
+    msg->fields.resize(4);
+    const char* names[4] = {"x", "y", "z", "rgb"};
+    const uint32_t offsets[4] = {CloudLayout::kOffsetX, CloudLayout::kOffsetY, CloudLayout::kOffsetZ,
+                                 CloudLayout::kOffsetRgb};
+    for (int i = 0; i < 4; ++i) {
+      msg->fields[i].name = names[i];
+      msg->fields[i].offset = offsets[i];
+      msg->fields[i].datatype = sensor_msgs::PointField::FLOAT32;
+      msg->fields[i].count = 1;
+    }
+  }
+  msg->is_bigendian = false;
+  msg->point_step = CloudLayout::kPointStep;
+  msg->row_step = CloudLayout::kPointStep * msg->width;
+  msg->is_dense = camera.cloudIsDense();
+  const std::vector<uint8_t>& cloud = camera.cloud();
+  msg->data.resize(cloud.size());
+  std::memcpy(msg->data.data(), cloud.data(), cloud.size());
+}
+
+sensor_msgs::Image toImage(const CameraSensor& camera, const ros::Time& stamp) {
+  sensor_msgs::Image msg;
+  toImage(camera, stamp, &msg);
+  return msg;
+}
+
+sensor_msgs::Image toImage(const DepthCameraSensor& camera, const ros::Time& stamp) {
+  sensor_msgs::Image msg;
+  toImage(camera, stamp, &msg);
+  return msg;
+}
+
+sensor_msgs::Image toDepthImage(const DepthCameraSensor& camera, const ros::Time& stamp) {
+  sensor_msgs::Image msg;
+  toDepthImage(camera, stamp, &msg);
+  return msg;
+}
+
+sensor_msgs::CameraInfo toCameraInfo(const CameraInfo& info, const ros::Time& stamp) {
+  sensor_msgs::CameraInfo msg;
+  toCameraInfo(info, stamp, &msg);
+  return msg;
+}
+
+sensor_msgs::PointCloud2 toPointCloud2(const DepthCameraSensor& camera, const ros::Time& stamp) {
+  sensor_msgs::PointCloud2 msg;
+  toPointCloud2(camera, stamp, &msg);
+  return msg;
+}
+
+}  // namespace tianracer_sim
