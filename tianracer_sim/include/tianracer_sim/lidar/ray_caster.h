@@ -52,6 +52,8 @@ struct RayCasterOptions {
   double max_sagitta = 1e-4;  // m, tessellation error bound for cylinders and spheres
 };
 
+/// Not thread-safe: one caster per thread (each owns its Embree device and scenes). Rays start
+/// at the sensor origin (t = 0), so a surface closer than range_min reads -inf.
 class RayCaster {
  public:
   explicit RayCaster(RayCasterOptions options = {});
