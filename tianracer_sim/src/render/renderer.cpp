@@ -615,8 +615,15 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
         // Turn the quad's +z onto the plane's normal; unbounded planes get a large square.
         const double len = s.normal.norm();
         if (len > 0.0) {
-          X_BS.linear() = X_BS.linear() *
-              Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), s.normal / len).toRotationMatrix();
+          // Basis with z = normal and x as close to the plane frame's x as possible.
+          const Eigen::Vector3d z = s.normal / len;
+          Eigen::Vector3d x = std::fabs(z.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+          x = (x - z * z.dot(x)).normalized();
+          Eigen::Matrix3d R;
+          R.col(0) = x;
+          R.col(1) = z.cross(x);
+          R.col(2) = z;
+          X_BS.linear() = X_BS.linear() * R;
         }
         const bool unbounded = s.size.x() <= 0.0 || s.size.y() <= 0.0;
         scale = unbounded ? Eigen::Vector3d(kUnboundedPlaneSize, kUnboundedPlaneSize, 1.0)

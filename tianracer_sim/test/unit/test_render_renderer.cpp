@@ -203,6 +203,52 @@ TEST(RenderRenderer, MeshesRenderWithTheirFileGeometry) {
   EXPECT_TRUE(std::isinf(depth[0]));
 }
 
+TEST(RenderRenderer, PrimitivesHaveTheirSize) {
+  // Depth at the centre pixel = distance to the nearest surface along the optical axis.
+  Renderer renderer;
+  const int W = 32, H = 32;
+  const CameraIntrinsics K = CameraIntrinsics::fromHorizontalFov(W, H, 0.5, 0.05, 20.0);
+  std::vector<float> depth(W * H);
+  auto centreDepth = [&](const Shape& shape, const Eigen::Isometry3d& X_BS) {
+    Scene scene;
+    scene.lights.push_back(DirectionalLight{});
+    scene.addBody(SceneBody{"b", "m", true, Eigen::Isometry3d::Identity()});
+    SceneItem item;
+    item.shape = shape;
+    item.X_BS = X_BS;
+    scene.items.push_back(item);
+    renderer.renderView(scene, Eigen::Isometry3d::Identity(), K, nullptr, depth.data());
+    // The optical axis passes between the four centre pixels: average them.
+    return 0.25 * (depth[15 * W + 15] + depth[15 * W + 16] + depth[16 * W + 15] + depth[16 * W + 16]);
+  };
+  const Eigen::Isometry3d at3(Eigen::Translation3d(3, 0, 0));
+  Shape sphere;
+  sphere.type = ShapeType::kSphere;
+  sphere.radius = 0.5;
+  EXPECT_NEAR(centreDepth(sphere, at3), 2.5, 0.01);  // tessellation: 32 x 16
+  Shape cylinder;
+  cylinder.type = ShapeType::kCylinder;
+  cylinder.radius = 0.5;
+  cylinder.length = 2.0;
+  EXPECT_NEAR(centreDepth(cylinder, at3), 2.5, 0.01);
+  // Lying along the optical axis: its cap at 3 - 1.
+  EXPECT_NEAR(centreDepth(cylinder, at3 * Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY())), 2.0, 1e-4);
+  Shape box;
+  box.type = ShapeType::kBox;
+  box.size = Eigen::Vector3d(1.0, 0.2, 0.2);
+  EXPECT_NEAR(centreDepth(box, at3), 2.5, 1e-4);
+  // A bounded plane facing the camera (normal -x), and an unbounded one.
+  Shape plane;
+  plane.type = ShapeType::kPlane;
+  plane.normal = Eigen::Vector3d(-1, 0, 0);
+  plane.size = Eigen::Vector3d(1.0, 1.0, 0.0);
+  EXPECT_NEAR(centreDepth(plane, at3), 3.0, 1e-4);
+  plane.size = Eigen::Vector3d::Zero();
+  EXPECT_NEAR(centreDepth(plane, at3), 3.0, 1e-4);
+  plane.normal = Eigen::Vector3d(1, 0, 0);  // facing away: culled, like Gazebo
+  EXPECT_TRUE(std::isinf(centreDepth(plane, at3)));
+}
+
 TEST(RenderRenderer, RenderingTwiceGivesIdenticalPixels) {
   Renderer renderer;
   Scene scene = boxScene(1.5, "Gazebo/Orange", 0.3);
