@@ -251,6 +251,8 @@ struct RobotState {
   std::vector<std::unique_ptr<ColliderSurfaces>> surfaces;
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btMultiBodyJointLimitConstraint>> limits;
+  std::vector<int> limit_joint;       // joint index of each limit
+  std::vector<bool> limit_in_world;   // added only near the limit (see applyCommands)
   std::vector<std::unique_ptr<btMultiBodyJointMotor>> motors;  // per joint
   std::vector<bool> motor_in_world;
   std::vector<Command> commands;
@@ -323,12 +325,13 @@ PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
   world = std::make_unique<btMultiBodyDynamicsWorld>(dispatcher.get(), broadphase.get(),
                                                      solver.get(), config.get());
   world->setGravity(toBt(options.gravity));
-  world->getDispatchInfo().m_deterministicOverlappingPairs = true;
+  // Not m_deterministicOverlappingPairs: it sorts a fresh copy of the pair array every step
+  // (one allocation per step). Pair order already follows the order of insertions, which is
+  // the same for the same sequence of calls.
 
   btContactSolverInfo& si = world->getSolverInfo();
   si.m_numIterations = options.solver_iterations;
-  // Bullet leaves the loop early only when the residual is exactly 0: still deterministic.
-  si.m_leastSquaresResidualThreshold = 0.0;
+  si.m_leastSquaresResidualThreshold = options.solver_residual_threshold;
   // Two friction directions per contact (one would let the car slide sideways), directions
   // from our contact callback where it sets them (fdir1), no random order.
   // Warm-starting the joint motors/limits too (not only contacts) halves the creep of a car
@@ -359,7 +362,9 @@ PhysicsWorld::Impl::~Impl() {
     for (std::size_t j = 0; j < r->motors.size(); ++j) {
       if (r->motor_in_world[j]) world->removeMultiBodyConstraint(r->motors[j].get());
     }
-    for (auto& l : r->limits) world->removeMultiBodyConstraint(l.get());
+    for (std::size_t k = 0; k < r->limits.size(); ++k) {
+      if (r->limit_in_world[k]) world->removeMultiBodyConstraint(r->limits[k].get());
+    }
     for (auto& c : r->colliders) {
       if (c) world->removeCollisionObject(c.get());
     }
@@ -675,8 +680,10 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const RobotModel& model) {
     r->joints.push_back(j);
     if (j.has_position_limits) {
       auto lim = std::make_unique<btMultiBodyJointLimitConstraint>(r->mb.get(), b - 1, j.lower, j.upper);
-      world->addMultiBodyConstraint(lim.get());
+      lim->finalizeMultiDof();
       r->limits.push_back(std::move(lim));
+      r->limit_joint.push_back(static_cast<int>(r->joints.size()) - 1);
+      r->limit_in_world.push_back(false);
     }
     r->motors.push_back(std::make_unique<btMultiBodyJointMotor>(r->mb.get(), b - 1, 0.0, 0.0));
     r->motors.back()->finalizeMultiDof();  // allocates the row data read by jointEffort()
@@ -708,6 +715,24 @@ void RobotState::syncColliders() {
 
 void PhysicsWorld::Impl::applyCommands(RobotState* r) {
   const double dt = options.dt;
+  // A limit constraint costs two solver rows every step, also far from the limit: it joins the
+  // solve only while the joint is within 0.05 rad (or two steps of travel) of either end, so it
+  // cannot be crossed unseen.
+  for (std::size_t k = 0; k < r->limits.size(); ++k) {
+    const JointInfo& j = r->joints[r->limit_joint[k]];
+    const int link = r->limit_joint[k];
+    const double q = r->mb->getJointPos(link);
+    const double margin = 0.05 + 2.0 * std::abs(r->mb->getJointVel(link)) * dt;
+    const bool near = q - j.lower < margin || j.upper - q < margin;
+    if (near != r->limit_in_world[k]) {
+      if (near) {
+        world->addMultiBodyConstraint(r->limits[k].get());
+      } else {
+        world->removeMultiBodyConstraint(r->limits[k].get());
+      }
+      r->limit_in_world[k] = near;
+    }
+  }
   for (std::size_t i = 0; i < r->joints.size(); ++i) {
     const JointInfo& j = r->joints[i];
     const RobotState::Command& c = r->commands[i];
@@ -763,7 +788,9 @@ RobotId PhysicsWorld::addRobot(const RobotModel& model, const Eigen::Isometry3d&
     for (std::size_t j = 0; j < rp->motors.size(); ++j) {
       if (rp->motor_in_world[j]) w->removeMultiBodyConstraint(rp->motors[j].get());
     }
-    for (auto& l : rp->limits) w->removeMultiBodyConstraint(l.get());
+    for (std::size_t k = 0; k < rp->limits.size(); ++k) {
+      if (rp->limit_in_world[k]) w->removeMultiBodyConstraint(rp->limits[k].get());
+    }
     for (auto& c : rp->colliders) {
       if (c) w->removeCollisionObject(c.get());
     }

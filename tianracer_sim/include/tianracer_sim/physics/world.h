@@ -6,8 +6,8 @@
 //    btMultiBody link whose frame sits at the merged COM with principal axes (Bullet needs a
 //    diagonal inertia). Self-collision is off between the links of one robot (Gazebo's default
 //    <self_collide>false); robots collide with each other and with the world.
-//  * Revolute/prismatic <limit lower upper> -> btMultiBodyJointLimitConstraint; continuous joints
-//    are free. <dynamics damping> is an explicit torque -d*qdot each step; <dynamics friction> is a
+//  * Revolute/prismatic <limit lower upper> -> btMultiBodyJointLimitConstraint, solved only while
+//    the joint is within 0.05 rad (or two steps of travel) of an end; continuous joints are free. <dynamics damping> is an explicit torque -d*qdot each step; <dynamics friction> is a
 //    velocity motor towards 0 whose impulse is capped at friction*dt. The URDF velocity limit is
 //    not enforced by the physics (ODE does not either for effort-driven joints).
 //  * Friction: mu = min(mu_a, mu_b) per direction, as ODE's collide callback does (Bullet's own
@@ -27,7 +27,7 @@
 //    hulls shrunk by the margin (collision_margin, 0.5 mm), so the hull plus margin is the mesh's
 //    own hull; static world meshes are exact triangle meshes. A mesh on the child of a continuous
 //    joint that is round about the joint axis is a wheel and gets an exact fitted shape (see
-//    WheelShape).
+//    WheelShape); wheels solve only touching contact points (no speculative ones).
 //  * Only the ground plane and robots/static shapes of this world exist; there is no sleeping,
 //    no threading, and the solver runs a fixed number of iterations: the same inputs give
 //    bit-identical outputs.
@@ -77,6 +77,9 @@ struct PhysicsOptions {
   /// PGS sweeps per step. 30 keeps the parked tianracer within 0.3 mm/min at ~22 us/step;
   /// 50 (Gazebo/PyBullet default) gives 0.08 mm/min at ~33 us (measured, 2-core machine).
   int solver_iterations = 30;
+  /// The sweeps stop early once the squared residual falls below this (0: never, except at an
+  /// exact solution). A function of the state only, so still deterministic.
+  double solver_residual_threshold = 0.0;
   double collision_margin = 0.0005;              // m, hulls and cylinders
   WheelShape wheel_shape = WheelShape::kRoundedCylinder;
   /// Max torque of a velocity motor on a joint whose URDF gives no effort limit (N m).
