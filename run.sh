@@ -8,7 +8,9 @@ REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 bash "$REPO/scripts/setup.sh"
 
 export PATH="/usr/bin:$PATH"
+set +u  # ROS's setup scripts read unset variables
 # shellcheck disable=SC1091
 source "$REPO/.build/devel/setup.bash"
+set -u
 echo "==> [run] tianracer model as the simulator loads it"
 exec rosrun tianracer_sim model_info "$@"

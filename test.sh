@@ -12,8 +12,10 @@ export ROS_HOSTNAME=localhost                 # nodes must reach each other in c
 unset ROS_IP
 export ROS_MASTER_URI="http://localhost:$((20000 + RANDOM % 20000))"  # rostest picks its own
 export ROS_LOG_DIR="$WS/ros_logs"
+set +u  # ROS's setup scripts read unset variables
 # shellcheck disable=SC1091
 source "$WS/devel/setup.bash"
+set -u
 
 rm -rf "$WS/build/test_results"
 echo "==> [test] building and running all tests (log: $WS/logs/test.log)"

@@ -43,9 +43,12 @@ for pkg in "${APT_PACKAGES[@]}"; do
 done
 if ((${#missing[@]})); then
   say "apt: installing ${#missing[@]} missing package(s): ${missing[*]}"
-  "${SUDO[@]}" apt-get update -qq || fail "step 'apt': apt-get update failed"
+  mkdir -p "$LOG_DIR"
+  "${SUDO[@]}" apt-get update -qq >"$LOG_DIR/apt.log" 2>&1 \
+    || { tail -20 "$LOG_DIR/apt.log" >&2; fail "step 'apt': apt-get update failed (log: $LOG_DIR/apt.log)"; }
   DEBIAN_FRONTEND=noninteractive "${SUDO[@]}" apt-get install -y -qq --no-install-recommends \
-    "${missing[@]}" || fail "step 'apt': apt-get install failed for: ${missing[*]}"
+    "${missing[@]}" >>"$LOG_DIR/apt.log" 2>&1 \
+    || { tail -20 "$LOG_DIR/apt.log" >&2; fail "step 'apt': apt-get install failed for: ${missing[*]} (log: $LOG_DIR/apt.log)"; }
 else
   say "apt: all ${#APT_PACKAGES[@]} packages present"
 fi

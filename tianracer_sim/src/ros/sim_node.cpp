@@ -10,6 +10,8 @@
 #include <rosgraph_msgs/Clock.h>
 
 #include "tianracer_sim/model/sensor_topics.h"
+#include "tianracer_sim/ros/laser_msgs.h"
+#include "tianracer_sim/sim/world_physics.h"
 #include "tianracer_sim/ros/controller_params.h"
 #include "tianracer_sim/ros/state_msgs.h"
 
@@ -75,13 +77,22 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh
   nh_.setCallbackQueue(&queue_);
   pnh_.setCallbackQueue(&queue_);
 
-  PhysicsOptions physics;
-  physics.dt = getDouble(pnh_, "max_step_size", 0.001);
+  // The world: a shipped name or a .world path. Its <physics> gives the step and gravity.
+  std::string world_arg;
+  pnh_.param<std::string>("world", world_arg, "empty");
+  WorldLoadOptions world_options;
+  world_options.warn = [](const std::string& w) { warnOnce(w); };
+  world_options.find_package = [](const std::string& pkg) { return ros::package::getPath(pkg); };
+  world_ = std::make_unique<WorldDescription>(loadWorldFile(
+      resolveWorld(world_arg, ros::package::getPath("tianracer_sim") + "/worlds"), world_options));
+
+  PhysicsOptions physics = physicsOptionsFor(*world_);
+  physics.dt = getDouble(pnh_, "max_step_size", physics.dt);
   if (!(physics.dt > 0.0 && physics.dt <= 0.1)) {
     throw std::runtime_error("parameter ~max_step_size must be in (0, 0.1] s, got " +
                              std::to_string(physics.dt));
   }
-  real_time_factor_ = getDouble(pnh_, "real_time_factor", 1.0);
+  real_time_factor_ = getDouble(pnh_, "real_time_factor", world_->physics.real_time_factor);
   if (!(real_time_factor_ >= 0.0) || !std::isfinite(real_time_factor_)) {
     throw std::runtime_error("parameter ~real_time_factor must be >= 0 (0 = as fast as possible), got " +
                              std::to_string(real_time_factor_));
@@ -90,8 +101,15 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh
   const double clock_rate = getDouble(pnh_, "clock_rate", 0.0);
   clock_schedule_.period = clock_rate > 0.0 ? 1.0 / clock_rate : 0.0;
   ground_truth_rate_ = getDouble(pnh_, "ground_truth_rate", 50.0);
+  int seed = 0;
+  pnh_.param("seed", seed, 0);
+  seed_ = static_cast<std::uint64_t>(seed);
 
   sim_ = std::make_unique<Simulation>(physics, [](const std::string& w) { warnOnce(w); });
+  const int shapes = addWorldToPhysics(*world_, &sim_->physics(), [](const std::string& w) { warnOnce(w); });
+  addToScene(*world_, scene_);
+  ROS_INFO("world '%s' (%s): %zu models, %d collision shapes, ground plane %s", world_->name.c_str(),
+           world_->source.c_str(), world_->models.size(), shapes, world_->ground_plane ? "yes" : "no");
 
   // /clock first, so that nodes waiting for sim time see it as soon as we step.
   ros::NodeHandle root;
@@ -180,6 +198,7 @@ void SimNode::loadRobot() {
 
   SimRobot& robot = sim_->addRobot(std::move(config));
   io.robot = &robot;
+  io.scene_bodies = addRobotToScene(robot.model, robot.name, &scene_);
   PhysicsRobot& pr = sim_->physics().robot(robot.id);
   ROS_INFO_STREAM("robot '" << name << "' (" << robot.model.source << "): "
                   << pr.joints().size() << " movable joints, " << robot.handles.size()
@@ -198,6 +217,46 @@ void SimNode::loadRobot() {
   io.ground_truth = robot_nh.advertise<nav_msgs::Odometry>("ground_truth/odom", 10);
   io.ground_truth_schedule.period = ground_truth_rate_ > 0.0 ? 1.0 / ground_truth_rate_ : 0.0;
   robots_.push_back(std::move(io));
+  setUpSensors(robots_.size() - 1);
+}
+
+void SimNode::setUpSensors(size_t robot_index) {
+  RobotIo& io = robots_[robot_index];
+  const PhysicsRobot& pr = sim_->physics().robot(io.robot->id);
+  for (const auto& [link, ext] : io.robot->model.ext.links) {
+    for (const SensorSpec& spec : ext.sensors) {
+      if (spec.type != "ray") continue;  // cameras: see the camera sensors
+      // A bad sensor is reported and left out; the robot and the other sensors run on.
+      try {
+        RaySensorConfig config = parseRaySensorConfig(spec, [](const std::string& w) { warnOnce(w); });
+        config.seed = seed_ + lidars_.size();
+        LidarIo lidar;
+        lidar.robot = robot_index;
+        lidar.sensor = std::make_unique<RaySensor>(config);
+        (void)pr.linkPose(link);  // throws for a sensor on an unknown link
+        ros::NodeHandle root;
+        root.setCallbackQueue(&queue_);
+        const std::string topic = resolveTopic(config.robot_namespace, config.topic_name);
+        lidar.pub = root.advertise<sensor_msgs::LaserScan>(topic, 5);
+        lidar.schedule.period = config.update_rate > 0.0 ? 1.0 / config.update_rate : 0.0;
+        ROS_INFO("lidar '%s' on link %s: %d beams, %.4g..%.4g rad, %g Hz on %s (frame %s)",
+                 config.name.c_str(), link.c_str(), config.samples, config.min_angle,
+                 config.max_angle, config.update_rate, topic.c_str(), config.frame_name.c_str());
+        lidars_.push_back(std::move(lidar));
+      } catch (const std::exception& e) {
+        ROS_ERROR("robot '%s': sensor '%s' on link '%s' left out: %s", io.robot->name.c_str(),
+                  spec.name.c_str(), link.c_str(), e.what());
+      }
+    }
+  }
+}
+
+void SimNode::updateScene() {
+  if (scene_step_ == sim_->stepCount()) return;
+  for (const RobotIo& io : robots_) {
+    updateRobotScene(sim_->physics().robot(io.robot->id), io.scene_bodies, &scene_);
+  }
+  scene_step_ = sim_->stepCount();
 }
 
 void SimNode::setUpJointStates(RobotIo& io) {
@@ -287,11 +346,23 @@ void SimNode::publishDue() {
                                             pr.tree().bodies.front().link));
     }
   }
+  for (LidarIo& lidar : lidars_) {
+    // The schedule runs whether or not anyone listens, so a new subscriber gets the rate.
+    if (!lidar.schedule.due(t) || lidar.pub.getNumSubscribers() == 0) continue;
+    updateScene();
+    const RobotIo& io = robots_[lidar.robot];
+    const auto& config = lidar.sensor->config();
+    const std::vector<float>& ranges = lidar.sensor->scan(
+        caster_, scene_, sim_->physics().robot(io.robot->id).linkPose(config.link));
+    toLaserScan(config, ranges, stamp, &lidar.msg);
+    lidar.pub.publish(lidar.msg);
+  }
 }
 
 void SimNode::restartSchedules() {
   const double t = sim_->time();
   clock_schedule_.restart(t);
+  for (LidarIo& lidar : lidars_) lidar.schedule.restart(t);
   for (RobotIo& io : robots_) {
     for (JointStateStream& s : io.joint_states) s.schedule.restart(t);
     io.ground_truth_schedule.restart(t);

@@ -2,6 +2,7 @@
 // out. Thin: the physics, controllers and sensors are the ROS-free libraries.
 //
 // Parameters (private, ~):
+//   world            a shipped world (empty, walled_room, racetrack) or a .world path
 //   model            xacro/URDF file; when empty, the URDF is read from robot_param
 //   robot_param      parameter holding the URDF (default: the gazebo_ros_control plugin's
 //                    robotParam, else "robot_description"), resolved in the robot namespace's
@@ -12,11 +13,12 @@
 //                    so that its lowest collision point touches z = 0
 //   controllers      names to start (list or space-separated string); default every
 //                    controller defined under the robot's ros_control namespace
-//   real_time_factor 1.0 = real time, 0 = as fast as possible
+//   real_time_factor 1.0 = real time, 0 = as fast as possible (default: the world's)
 //   paused           start paused
-//   max_step_size    physics step (s), default 0.001
+//   max_step_size    physics step (s), default the world's <max_step_size>
 //   clock_rate       /clock messages per sim second (0 = every step; default every step)
 //   ground_truth_rate  <ns>/ground_truth/odom rate (Hz, default 50)
+//   seed             seed of the sensors' noise (default 0): same seed, same noise
 #ifndef TIANRACER_SIM_ROS_SIM_NODE_H
 #define TIANRACER_SIM_ROS_SIM_NODE_H
 
@@ -27,13 +29,19 @@
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
+#include <sensor_msgs/LaserScan.h>
 #include <std_srvs/Empty.h>
 
 #include <tianracer_control/ros/controller_adapter.h>
 
 #include "tianracer_sim/GetModelState.h"
 #include "tianracer_sim/SetModelState.h"
+#include "tianracer_sim/lidar/ray_caster.h"
+#include "tianracer_sim/lidar/ray_sensor.h"
+#include "tianracer_sim/scene/scene.h"
+#include "tianracer_sim/sim/robot_scene.h"
 #include "tianracer_sim/sim/simulation.h"
+#include "tianracer_sim/world/world.h"
 
 namespace tianracer_sim {
 
@@ -68,11 +76,24 @@ class SimNode {
     std::string ns;  // ros_control namespace, e.g. "/tianracer"
     std::shared_ptr<tianracer_control::ControllerCommandSubscribers> commands;
     std::vector<JointStateStream> joint_states;
+    RobotSceneBodies scene_bodies;
     ros::Publisher ground_truth;
     Schedule ground_truth_schedule;
   };
 
+  /// A lidar of a robot: published at its rate while someone subscribes.
+  struct LidarIo {
+    size_t robot = 0;  // index into robots_
+    std::unique_ptr<RaySensor> sensor;
+    ros::Publisher pub;
+    Schedule schedule;
+    sensor_msgs::LaserScan msg;
+  };
+
   void loadRobot();
+  void setUpSensors(size_t robot_index);
+  /// Brings the scene's robot bodies to the current physics poses, once per step.
+  void updateScene();
   void setUpJointStates(RobotIo& io);
   void stepOnce();
   void publishDue();
@@ -88,7 +109,13 @@ class SimNode {
 
   ros::NodeHandle nh_, pnh_;
   ros::CallbackQueue queue_;  // commands and services run between steps, in this thread
+  std::unique_ptr<WorldDescription> world_;
   std::unique_ptr<Simulation> sim_;
+  Scene scene_;  // what sensors see: the world's models and every robot's links
+  std::uint64_t scene_step_ = ~0ull;  // step count the scene's poses belong to
+  RayCaster caster_;
+  std::vector<LidarIo> lidars_;
+  std::uint64_t seed_ = 0;
   std::vector<RobotIo> robots_;
 
   ros::Publisher clock_pub_;

@@ -1,0 +1,98 @@
+#include "tianracer_sim/sim/robot_scene.h"
+
+#include "tianracer_sim/physics/rigid_tree.h"
+
+namespace tianracer_sim {
+
+namespace {
+
+bool toShape(const urdf::GeometrySharedPtr& geometry, const RobotModel& model, Shape* shape) {
+  if (!geometry) return false;
+  switch (geometry->type) {
+    case urdf::Geometry::BOX: {
+      const auto& box = static_cast<const urdf::Box&>(*geometry);
+      shape->type = ShapeType::kBox;
+      shape->size = Eigen::Vector3d(box.dim.x, box.dim.y, box.dim.z);
+      return true;
+    }
+    case urdf::Geometry::CYLINDER: {
+      const auto& cyl = static_cast<const urdf::Cylinder&>(*geometry);
+      shape->type = ShapeType::kCylinder;
+      shape->radius = cyl.radius;
+      shape->length = cyl.length;
+      return true;
+    }
+    case urdf::Geometry::SPHERE: {
+      shape->type = ShapeType::kSphere;
+      shape->radius = static_cast<const urdf::Sphere&>(*geometry).radius;
+      return true;
+    }
+    case urdf::Geometry::MESH: {
+      const auto& mesh = static_cast<const urdf::Mesh&>(*geometry);
+      const auto it = model.mesh_paths.find(mesh.filename);
+      if (it == model.mesh_paths.end()) return false;  // unresolved: the loader warned
+      shape->type = ShapeType::kMesh;
+      shape->mesh_path = it->second;
+      shape->scale = Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z);
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+RobotSceneBodies addRobotToScene(const RobotModel& model, const std::string& robot_name,
+                                 Scene* scene) {
+  RobotSceneBodies out;
+  std::vector<urdf::LinkSharedPtr> links;
+  model.urdf->getLinks(links);
+  for (const urdf::LinkSharedPtr& link : links) {
+    if (link->visual_array.empty() && link->collision_array.empty()) continue;
+    SceneBody body;
+    body.name = robot_name + "::" + link->name;
+    body.model = robot_name;
+    body.is_static = false;
+    const int index = scene->addBody(body);
+    out.links.emplace_back(index, link->name);
+
+    std::string gazebo_material;
+    if (const auto ext = model.ext.links.find(link->name); ext != model.ext.links.end()) {
+      gazebo_material = ext->second.material;
+    }
+    for (const urdf::VisualSharedPtr& visual : link->visual_array) {
+      SceneItem item;
+      item.body = index;
+      item.X_BS = toIsometry(visual->origin);
+      item.visual = true;
+      if (!toShape(visual->geometry, model, &item.shape)) continue;
+      if (!gazebo_material.empty()) {
+        item.material.name = gazebo_material;  // the renderer knows Gazebo's colours
+      } else if (visual->material) {
+        const urdf::Color& c = visual->material->color;
+        item.material.ambient = Eigen::Vector4f(c.r, c.g, c.b, c.a);
+        item.material.diffuse = item.material.ambient;
+        item.material.name = visual->material->name;
+      }
+      scene->items.push_back(item);
+    }
+    for (const urdf::CollisionSharedPtr& collision : link->collision_array) {
+      SceneItem item;
+      item.body = index;
+      item.X_BS = toIsometry(collision->origin);
+      item.visual = false;
+      item.collision = true;
+      if (!toShape(collision->geometry, model, &item.shape)) continue;
+      scene->items.push_back(item);
+    }
+  }
+  return out;
+}
+
+void updateRobotScene(const PhysicsRobot& robot, const RobotSceneBodies& bodies, Scene* scene) {
+  for (const auto& [index, link] : bodies.links) {
+    scene->bodies[index].X_WB = robot.linkPose(link);
+  }
+}
+
+}  // namespace tianracer_sim
