@@ -131,43 +131,35 @@ bool onContactAdded(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, int
     cp.m_contactPointFlags &= ~BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING;
   }
 
-  // Friction: ODE takes the minimum per direction.
-  const double mu1 = std::min(s0.mu1, s1.mu1);
-  const double mu2 = std::min(s0.mu2, s1.mu2);
-  const double mu = std::max(mu1, mu2);
-  cp.m_combinedFriction = mu;
+  // Friction: ODE takes the minimum per direction; the cone gets the larger of the two and
+  // the collider's anisotropic-friction factors (set at build time) shrink the other one.
+  // Bullet's multibody solver recomputes the friction directions itself, so they cannot be
+  // set here.
+  cp.m_combinedFriction = std::max(std::min(s0.mu1, s1.mu1), std::min(s0.mu2, s1.mu2));
 
-  const btVector3& n = cp.m_normalWorldOnB;
-  btVector3 dir1, dir2;
-  bool have_dir = false;
-  const Surface* fs = s0.has_fdir1 ? &s0 : (s1.has_fdir1 ? &s1 : nullptr);
-  if (fs != nullptr) {
-    const btCollisionObject* fo = (fs == &s0) ? o0 : o1;
-    btVector3 d = fo->getWorldTransform().getBasis() * fs->fdir1_C;
-    d -= n * n.dot(d);
-    const double len = d.length();
-    if (len > 1e-3) {  // fdir1 along the normal says nothing about the tangent plane
-      dir1 = d / len;
-      dir2 = n.cross(dir1);
-      have_dir = true;
-    }
-  }
-  if (!have_dir && mu1 != mu2) {
-    btPlaneSpace1(n, dir1, dir2);
-    have_dir = true;
-  }
-  if (have_dir) {
-    if (mu > 0.0) {  // anisotropy: scale the weaker row so that its limit is mu_i * N
-      dir1 *= mu1 / mu;
-      dir2 *= mu2 / mu;
-    }
-    cp.m_lateralFrictionDir1 = dir1;
-    cp.m_lateralFrictionDir2 = dir2;
-    cp.m_contactPointFlags |= BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED;
-  } else {
-    cp.m_contactPointFlags &= ~BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED;
-  }
   return true;
+}
+
+/// mu1 != mu2: Bullet's anisotropic friction scales each friction direction's components in the
+/// object's frame, which turns the friction cone into an ellipse with semi-axes mu1 N along
+/// fdir1 and mu2 N across (with the cone coefficient max(mu1, mu2)). It is per object and per
+/// object axis: fdir1 is snapped to the nearest axis of the collider (COM) frame (exact for
+/// the usual axis-aligned fdir1), the first child with mu1 != mu2 decides for a merged body,
+/// and the ratio is the link's own mu2/mu1 whatever the other surface. Robots only.
+void setAnisotropy(btCollisionObject* object, const ColliderSurfaces& surfaces) {
+  for (const Surface& s : surfaces.children) {
+    if (s.mu1 == s.mu2) continue;
+    const double mu = std::max(s.mu1, s.mu2);
+    int axis = 0;  // no fdir1: ODE picks an arbitrary direction; we take the frame's x
+    if (s.has_fdir1) {
+      const btVector3 a = s.fdir1_C.absolute();
+      axis = a.x() >= a.y() ? (a.x() >= a.z() ? 0 : 2) : (a.y() >= a.z() ? 1 : 2);
+    }
+    btVector3 f(s.mu2 / mu, s.mu2 / mu, s.mu2 / mu);
+    f[axis] = s.mu1 / mu;
+    object->setAnisotropicFriction(f, btCollisionObject::CF_ANISOTROPIC_FRICTION);
+    return;
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -332,13 +324,12 @@ PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
   btContactSolverInfo& si = world->getSolverInfo();
   si.m_numIterations = options.solver_iterations;
   si.m_leastSquaresResidualThreshold = options.solver_residual_threshold;
-  // Two friction directions per contact (one would let the car slide sideways), directions
-  // from our contact callback where it sets them (fdir1), no random order.
+  // Two friction directions per contact (one would let the car slide sideways), no random
+  // order.
   // Warm-starting the joint motors/limits too (not only contacts) halves the creep of a car
   // parked on its velocity motors: 2.5 -> 1.3 um/s at 50 iterations.
   si.m_solverMode = SOLVER_USE_WARMSTARTING | SOLVER_USE_ARTICULATED_WARMSTARTING |
-                    SOLVER_USE_2_FRICTION_DIRECTIONS | SOLVER_ENABLE_FRICTION_DIRECTION_CACHING |
-                    SOLVER_SIMD;
+                    SOLVER_USE_2_FRICTION_DIRECTIONS | SOLVER_SIMD;
   si.m_timeStep = options.dt;
 
   // Process-wide in Bullet; the function is stateless (surfaces hang off the objects).
@@ -434,6 +425,8 @@ std::unique_ptr<PhysicsWorld::Impl::StaticBody> PhysicsWorld::Impl::makeStatic(
   body->object->setWorldTransform(toBt(s.X_WS));
   body->object->setCollisionFlags(btCollisionObject::CF_STATIC_OBJECT |
                                   btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+  // Static shapes stay isotropic (mu1 and mu2 still combine by min per contact): the factors
+  // would multiply with the robot's, and Gazebo's ground (100 / 50) would halve a wheel's mu2.
   body->object->setFriction(s.surface.mu1);
   body->object->setRestitution(0.0);
   body->object->setUserPointer(body->surfaces.get());
@@ -628,6 +621,7 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const RobotModel& model) {
     }
     auto col = std::make_unique<btMultiBodyLinkCollider>(r->mb.get(), b - 1);
     col->setCollisionShape(compound.get());
+    setAnisotropy(col.get(), *surfaces);
     col->setCollisionFlags(col->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
     col->setActivationState(DISABLE_DEACTIVATION);
     col->setFriction(surfaces->children[0].mu1);

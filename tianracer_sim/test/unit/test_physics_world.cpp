@@ -267,6 +267,77 @@ TEST(PhysicsWorld, Deterministic) {
   for (std::size_t i = 0; i < x.size(); ++i) EXPECT_EQ(x[i], y[i]) << i;
 }
 
+// Anisotropic friction: mu1 along fdir1 = x, mu2 across; the ground (mu 100 / 50) is stronger,
+// so min() leaves the box's own values: sliding decelerates at mu g in each direction.
+TEST(PhysicsWorld, AnisotropicSlidingFriction) {
+  // A flat plate: a cube at mu 1 would be on the verge of tipping over its front edge.
+  RobotModel m = modelFrom(boxRobot("<geometry><box size='0.2 0.2 0.02'/></geometry>"));
+  LinkExtension e;
+  e.mu1 = 1.0;
+  e.mu2 = 0.2;
+  e.fdir1 = Eigen::Vector3d::UnitX();
+  m.ext.links["base_link"] = e;
+  for (int dir = 0; dir < 2; ++dir) {
+    PhysicsWorld w;
+    PhysicsRobot& r = w.robot(w.addRobot(m, at(0, 0, 0.01), "box"));
+    for (int k = 0; k < 200; ++k) w.step();  // settle
+    Twist t;
+    t.linear = dir == 0 ? Eigen::Vector3d(1, 0, 0) : Eigen::Vector3d(0, 1, 0);
+    r.setBaseTwist(t);
+    for (int k = 0; k < 50; ++k) w.step();
+    const double mu = dir == 0 ? 1.0 : 0.2;
+    const double v = r.baseTwist().linear.head<2>().norm();
+    std::cout << "[sliding box] along " << (dir == 0 ? "fdir1 (mu1 1.0)" : "fdir2 (mu2 0.2)")
+              << ": v after 50 ms = " << v << " m/s, Coulomb " << 1.0 - mu * 9.8 * 0.05 << "\n";
+    EXPECT_NEAR(v, 1.0 - mu * 9.8 * 0.05, 0.01);
+  }
+}
+
+// Ground friction combines by min(): a box with mu 0.5 on Gazebo's ground (mu 100).
+TEST(PhysicsWorld, FrictionCombinesByMinimum) {
+  RobotModel m = modelFrom(boxRobot("<geometry><box size='0.2 0.2 0.02'/></geometry>"));
+  LinkExtension e;
+  e.mu1 = e.mu2 = 0.5;
+  m.ext.links["base_link"] = e;
+  PhysicsWorld w;
+  PhysicsRobot& r = w.robot(w.addRobot(m, at(0, 0, 0.01, 0.3), "box"));
+  for (int k = 0; k < 200; ++k) w.step();
+  r.setBaseTwist({Eigen::Vector3d(0.6, 0.8, 0), Eigen::Vector3d::Zero()});
+  for (int k = 0; k < 100; ++k) w.step();
+  // Isotropic: decelerates at 0.5 g (a product rule would give 50 g). Bullet solves the two
+  // friction rows and then clamps them to the cone, which leaves a diagonal slide up to ~10%
+  // below Coulomb (axis-aligned slides are exact, see above).
+  const double decel = (1.0 - r.baseTwist().linear.head<2>().norm()) / 0.1;
+  std::cout << "[sliding box] diagonal, mu 0.5: deceleration " << decel << " m/s^2, Coulomb "
+            << 0.5 * 9.8 << "\n";
+  EXPECT_NEAR(decel, 0.5 * 9.8, 0.1 * 0.5 * 9.8);
+  EXPECT_NEAR(std::atan2(r.baseTwist().linear.y(), r.baseTwist().linear.x()), std::atan2(0.8, 0.6), 0.05);
+}
+
+// URDF <dynamics damping friction>: viscous decay and Coulomb deceleration of a free joint.
+TEST(PhysicsWorld, JointDampingAndFriction) {
+  PhysicsOptions o;
+  o.ground_plane = false;
+  o.gravity.setZero();
+  std::string xml = kArm;
+  const std::string spin_end = "<axis xyz=\"1 0 0\"/>\n  </joint>";
+  for (int variant = 0; variant < 2; ++variant) {
+    std::string v = xml;
+    v.replace(v.find(spin_end), spin_end.size(),
+              variant == 0 ? "<axis xyz=\"1 0 0\"/><dynamics damping=\"0.001\"/>\n  </joint>"
+                           : "<axis xyz=\"1 0 0\"/><dynamics friction=\"0.002\"/>\n  </joint>");
+    PhysicsWorld w(o);
+    PhysicsRobot& r = w.robot(w.addRobot(modelFrom(v), at(0, 0, 0), "arm"));
+    const int spin = r.jointIndex("spin");
+    r.setJointState(spin, 0.0, 10.0);
+    for (int k = 0; k < 500; ++k) w.step();
+    // Spinner Ixx 0.001 (the arm is held by the 10 kg base, hardly moves):
+    // damping 0.001 -> w = 10 exp(-t); friction 0.002 -> w = 10 - 2 t.
+    const double expected = variant == 0 ? 10.0 * std::exp(-0.5) : 10.0 - 2.0 * 0.5;
+    EXPECT_NEAR(r.jointVelocity(spin), expected, 0.02 * expected) << variant;
+  }
+}
+
 TEST(WheelFit, CylinderMeshAboutTheAxis) {
   std::vector<Eigen::Vector3d> v;
   for (int i = 0; i < 32; ++i) {

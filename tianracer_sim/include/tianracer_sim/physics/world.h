@@ -12,12 +12,15 @@
 //    not enforced by the physics (ODE does not either for effort-driven joints).
 //  * Friction: mu = min(mu_a, mu_b) per direction, as ODE's collide callback does (Bullet's own
 //    rule would be the product: 2.0 * 100 on Gazebo's ground plane). Bullet's multibody solver
-//    solves two friction rows per contact inside a cone |f| <= mu N (ODE: a pyramid). With fdir1
-//    set, row 1 is fdir1 (rotated with its link, projected onto the contact plane; object A's
-//    fdir1 wins, as in ODE) and row 2 is normal x row 1; without it Bullet picks an orthonormal
-//    pair. mu1 != mu2 is modelled by scaling the weaker row's Jacobian by mu_weak/mu_strong with
-//    the cone coefficient mu_strong: an elliptic cone with semi-axes mu1 N and mu2 N. Rolling and
-//    spinning friction are 0, restitution 0 (Gazebo's defaults).
+//    solves two friction rows per contact, along directions it picks itself (it overwrites any
+//    set by a contact callback), and clamps them to a cone |f| <= mu N (ODE: a pyramid along
+//    fdir1). Sliding along a row is exact; a diagonal slide can fall ~10% short of mu N.
+//    mu1 != mu2 on a robot link uses Bullet's anisotropic friction: the collider's axis nearest
+//    to fdir1 gets mu1, the other axes mu2 (an elliptic cone, exact for an axis-aligned fdir1);
+//    the ratio is the link's own, a merged body takes its first such link, and static shapes
+//    are isotropic. With fdir1 fixed in a spinning wheel, which direction gets mu1 turns with
+//    the wheel in Gazebo too; the seed's wheels have mu1 = mu2. Rolling and spinning friction
+//    are 0, restitution 0 (Gazebo's defaults).
 //  * Contact softness: kp/kd become Bullet's contact stiffness/damping with ODE's combination
 //    kp = 1/(1/kp_a + 1/kp_b), kd = kd_a + kd_b, which Bullet turns into the same ERP/CFM as ODE
 //    (erp = dt kp/(dt kp + kd), cfm = 1/(dt kp + kd)). kp >= 1e12 (SDF's default) counts as
@@ -74,9 +77,10 @@ struct PhysicsOptions {
   bool ground_plane = true;                      // z = 0, normal +z
   double ground_mu = 100.0, ground_mu2 = 50.0;   // Gazebo's model://ground_plane
   double ground_kp = 1e12, ground_kd = 1.0;      // SDF defaults (rigid)
-  /// PGS sweeps per step. 30 keeps the parked tianracer within 0.3 mm/min at ~22 us/step;
-  /// 50 (Gazebo/PyBullet default) gives 0.08 mm/min at ~33 us (measured, 2-core machine).
-  int solver_iterations = 30;
+  /// PGS sweeps per step. 20 keeps the parked tianracer within 0.06 mm per minute and its
+  /// heading within 0.1 deg over 10 m (10 sweeps: 1.2 deg); raise it for stacked or
+  /// many-contact scenes (Gazebo's and PyBullet's default is 50).
+  int solver_iterations = 20;
   /// The sweeps stop early once the squared residual falls below this (0: never, except at an
   /// exact solution). A function of the state only, so still deterministic.
   double solver_residual_threshold = 0.0;
