@@ -338,6 +338,20 @@ TEST(PhysicsWorld, JointDampingAndFriction) {
   }
 }
 
+// A root link named "world" pins the robot (URDF convention): the arm hangs from a fixed base.
+TEST(PhysicsWorld, WorldRootIsFixed) {
+  std::string xml = kArm;
+  xml.replace(xml.find("<robot name=\"arm\">"), 17, "<robot name=\"arm\"><link name=\"world\"/>"
+              "<joint name=\"pin\" type=\"fixed\"><parent link=\"world\"/><child link=\"base_link\"/></joint>");
+  PhysicsOptions o;
+  o.ground_plane = false;
+  PhysicsWorld w(o);
+  PhysicsRobot& r = w.robot(w.addRobot(modelFrom(xml), at(0, 0, 1), "pinned"));
+  for (int k = 0; k < 1000; ++k) w.step();
+  EXPECT_TRUE(r.basePose().isApprox(at(0, 0, 1), 1e-12));
+  EXPECT_NEAR(r.jointPosition(r.jointIndex("hinge")), 1.0, 0.01);  // swung down onto its limit
+}
+
 TEST(WheelFit, CylinderMeshAboutTheAxis) {
   std::vector<Eigen::Vector3d> v;
   for (int i = 0; i < 32; ++i) {
