@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <set>
 #include <sstream>
 
@@ -10,6 +11,10 @@
 #include <rosgraph_msgs/Clock.h>
 
 #include "tianracer_sim/model/sensor_topics.h"
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <geometry_msgs/TransformStamped.h>
+
+#include "tianracer_sim/ros/camera_msgs.h"
 #include "tianracer_sim/ros/laser_msgs.h"
 #include "tianracer_sim/sim/world_physics.h"
 #include "tianracer_sim/ros/controller_params.h"
@@ -104,6 +109,7 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh
   int seed = 0;
   pnh_.param("seed", seed, 0);
   seed_ = static_cast<std::uint64_t>(seed);
+  status_period_ = getDouble(pnh_, "status_period", 5.0);
 
   sim_ = std::make_unique<Simulation>(physics, [](const std::string& w) { warnOnce(w); });
   const int shapes = addWorldToPhysics(*world_, &sim_->physics(), [](const std::string& w) { warnOnce(w); });
@@ -116,6 +122,7 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh
   root.setCallbackQueue(&queue_);
   nh_.setParam("/use_sim_time", true);
   clock_pub_ = root.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  diagnostics_pub_ = root.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10);
 
   loadRobot();
 
@@ -225,7 +232,15 @@ void SimNode::setUpSensors(size_t robot_index) {
   const PhysicsRobot& pr = sim_->physics().robot(io.robot->id);
   for (const auto& [link, ext] : io.robot->model.ext.links) {
     for (const SensorSpec& spec : ext.sensors) {
-      if (spec.type != "ray") continue;  // cameras: see the camera sensors
+      if (spec.type == "camera" || spec.type == "depth") {
+        setUpCamera(robot_index, link, spec);
+        continue;
+      }
+      if (spec.type != "ray") {
+        warnOnce("robot '" + io.robot->name + "': sensor '" + spec.name + "' of type '" +
+                 spec.type + "' is not supported; left out");
+        continue;
+      }
       // A bad sensor is reported and left out; the robot and the other sensors run on.
       try {
         RaySensorConfig config = parseRaySensorConfig(spec, [](const std::string& w) { warnOnce(w); });
@@ -243,12 +258,239 @@ void SimNode::setUpSensors(size_t robot_index) {
                  config.name.c_str(), link.c_str(), config.samples, config.min_angle,
                  config.max_angle, config.update_rate, topic.c_str(), config.frame_name.c_str());
         lidars_.push_back(std::move(lidar));
+        lidars_.back().stat = stats_.size();
+        stats_.push_back({topic, config.update_rate, 0, 0});
       } catch (const std::exception& e) {
         ROS_ERROR("robot '%s': sensor '%s' on link '%s' left out: %s", io.robot->name.c_str(),
                   spec.name.c_str(), link.c_str(), e.what());
       }
     }
   }
+}
+
+bool SimNode::ensureRenderer() {
+  if (renderer_) return true;
+  if (renderer_failed_) return false;
+  try {
+    renderer_ = std::make_unique<Renderer>([](const std::string& w) { warnOnce(w); });
+    ROS_INFO("cameras render offscreen with %s", renderer_->glInfo().c_str());
+    return true;
+  } catch (const std::exception& e) {
+    renderer_failed_ = true;
+    ROS_ERROR("no offscreen rendering (%s): the simulation runs on without cameras", e.what());
+    return false;
+  }
+}
+
+void SimNode::setUpCamera(size_t robot_index, const std::string& link, const SensorSpec& spec) {
+  RobotIo& io = robots_[robot_index];
+  try {
+    (void)sim_->physics().robot(io.robot->id).linkPose(link);  // throws for an unknown link
+    const auto warn = [](const std::string& w) { warnOnce(w); };
+    // Parse first: a bad sensor is reported even when there is no renderer.
+    CameraConfig camera;
+    DepthCameraConfig depth;
+    if (spec.type == "camera") {
+      camera = parseCameraConfig(spec, warn);
+    } else {
+      depth = parseDepthCameraConfig(spec, warn);
+      camera = depth.camera;
+    }
+    if (!camera.has_plugin) {
+      warnOnce("robot '" + io.robot->name + "': camera '" + spec.name +
+               "' has no gazebo_ros plugin: nothing to publish, left out");
+      return;
+    }
+    if (!ensureRenderer()) return;
+    ros::NodeHandle cam_nh(resolveTopic(camera.robot_namespace, camera.camera_name));
+    cam_nh.setCallbackQueue(&queue_);
+
+    // The optical frame (z forward, x right, y down) that images are stamped with.
+    geometry_msgs::TransformStamped tf;
+    tf.header.frame_id = link;
+    tf.child_frame_id = camera.opticalFrame();
+    const Eigen::Isometry3d X_LO = camera.X_LO();
+    const Eigen::Quaterniond q(X_LO.linear());
+    tf.transform.translation.x = X_LO.translation().x();
+    tf.transform.translation.y = X_LO.translation().y();
+    tf.transform.translation.z = X_LO.translation().z();
+    tf.transform.rotation.x = q.x();
+    tf.transform.rotation.y = q.y();
+    tf.transform.rotation.z = q.z();
+    tf.transform.rotation.w = q.w();
+    static_tf_.sendTransform(tf);
+
+    if (spec.type == "camera") {
+      camera.noise_seed = camera.noise_seed ? camera.noise_seed : static_cast<uint32_t>(seed_ + 101 + cameras_.size());
+      CameraIo c;
+      c.robot = robot_index;
+      c.sensor = std::make_unique<CameraSensor>(camera, *renderer_);
+      c.image = cam_nh.advertise<sensor_msgs::Image>(camera.image_topic, 2);
+      c.info = cam_nh.advertise<sensor_msgs::CameraInfo>(camera.camera_info_topic, 2);
+      c.schedule.period = camera.publishRate() > 0.0 ? 1.0 / camera.publishRate() : 0.0;
+      c.stat = stats_.size();
+      stats_.push_back({c.image.getTopic(), camera.publishRate(), 0, 0});
+      ROS_INFO("camera '%s' on link %s: %dx%d, hfov %.4g, %g Hz on %s (frame %s)",
+               camera.name.c_str(), link.c_str(), camera.width, camera.height,
+               camera.horizontal_fov, camera.publishRate(), c.image.getTopic().c_str(),
+               camera.opticalFrame().c_str());
+      cameras_.push_back(std::move(c));
+    } else {
+      depth.camera.noise_seed = depth.camera.noise_seed ? depth.camera.noise_seed : static_cast<uint32_t>(seed_ + 201 + depth_cameras_.size());
+      DepthIo d;
+      d.robot = robot_index;
+      d.sensor = std::make_unique<DepthCameraSensor>(depth, *renderer_);
+      d.image = cam_nh.advertise<sensor_msgs::Image>(camera.image_topic, 2);
+      d.depth = cam_nh.advertise<sensor_msgs::Image>(depth.depth_image_topic, 2);
+      d.cloud = cam_nh.advertise<sensor_msgs::PointCloud2>(depth.point_cloud_topic, 2);
+      d.image_info = cam_nh.advertise<sensor_msgs::CameraInfo>(camera.camera_info_topic, 2);
+      d.depth_info = cam_nh.advertise<sensor_msgs::CameraInfo>(depth.depth_camera_info_topic, 2);
+      // openni_kinect: images at the sensor rate, camera_infos at the plugin's updateRate.
+      d.schedule.period = camera.update_rate > 0.0 ? 1.0 / camera.update_rate : 0.0;
+      d.info_schedule.period = camera.publishRate() > 0.0 ? 1.0 / camera.publishRate() : 0.0;
+      d.stat = stats_.size();
+      stats_.push_back({d.image.getTopic(), camera.update_rate, 0, 0});
+      ROS_INFO("depth camera '%s' on link %s: %dx%d, %g Hz images/cloud, %g Hz camera_info under "
+               "%s (frame %s)",
+               camera.name.c_str(), link.c_str(), camera.width, camera.height, camera.update_rate,
+               camera.publishRate(), cam_nh.getNamespace().c_str(), camera.opticalFrame().c_str());
+      depth_cameras_.push_back(std::move(d));
+    }
+  } catch (const std::exception& e) {
+    ROS_ERROR("robot '%s': sensor '%s' on link '%s' left out: %s", io.robot->name.c_str(),
+              spec.name.c_str(), link.c_str(), e.what());
+  }
+}
+
+void SimNode::publishCameras(double t, const ros::Time& stamp) {
+  for (CameraIo& c : cameras_) {
+    if (!c.schedule.due(t)) continue;
+    const bool want_image = c.image.getNumSubscribers() > 0;
+    if (want_image) {
+      updateScene();
+      c.sensor->render(scene_, sim_->physics().robot(robots_[c.robot].robot->id)
+                                   .linkPose(c.sensor->config().link));
+      toImage(*c.sensor, stamp, &c.image_msg);
+      c.image.publish(c.image_msg);
+      ++stats_[c.stat].count;
+      stats_[c.stat].renders = c.sensor->renderCount();
+    } else {
+      ++stats_[c.stat].skipped;
+    }
+    if (c.info.getNumSubscribers() > 0) {
+      toCameraInfo(c.sensor->info(), stamp, &c.info_msg);
+      c.info.publish(c.info_msg);
+    }
+  }
+  for (DepthIo& d : depth_cameras_) {
+    if (d.schedule.due(t)) {
+      DepthOutputs want;
+      want.image = d.image.getNumSubscribers() > 0;
+      want.depth = d.depth.getNumSubscribers() > 0;
+      want.cloud = d.cloud.getNumSubscribers() > 0;
+      if (want.image || want.depth || want.cloud) {
+        updateScene();
+        d.sensor->render(scene_,
+                         sim_->physics().robot(robots_[d.robot].robot->id)
+                             .linkPose(d.sensor->config().camera.link),
+                         want);
+        if (want.image) {
+          toImage(*d.sensor, stamp, &d.image_msg);
+          d.image.publish(d.image_msg);
+        }
+        if (want.depth) {
+          toDepthImage(*d.sensor, stamp, &d.depth_msg);
+          d.depth.publish(d.depth_msg);
+        }
+        if (want.cloud) {
+          toPointCloud2(*d.sensor, stamp, &d.cloud_msg);
+          d.cloud.publish(d.cloud_msg);
+        }
+        ++stats_[d.stat].count;
+        stats_[d.stat].renders = d.sensor->renderCount();
+      } else {
+        ++stats_[d.stat].skipped;
+      }
+    }
+    if (d.info_schedule.due(t) &&
+        (d.image_info.getNumSubscribers() > 0 || d.depth_info.getNumSubscribers() > 0)) {
+      toCameraInfo(d.sensor->info(), stamp, &d.info_msg);
+      d.image_info.publish(d.info_msg);
+      d.depth_info.publish(d.info_msg);
+    }
+  }
+}
+
+void SimNode::publishStatus() {
+  const ros::WallTime now = ros::WallTime::now();
+  const double wall = (now - status_wall_).toSec();
+  if (status_period_ <= 0.0 || wall < status_period_) return;
+  const double sim = sim_->time() - status_sim_;
+  const double rtf = sim / wall;
+  std::ostringstream line;
+  line << std::fixed << std::setprecision(2) << "sim time " << sim_->time() << " s, real-time factor "
+       << rtf << (paused_ ? " (paused)" : "");
+  diagnostic_msgs::DiagnosticArray array;
+  array.header.stamp = ros::Time(sim_->time());
+  diagnostic_msgs::DiagnosticStatus sim_status;
+  sim_status.name = "tianracer_sim: simulation";
+  sim_status.hardware_id = "tianracer_sim";
+  sim_status.level = diagnostic_msgs::DiagnosticStatus::OK;
+  sim_status.message = paused_ ? "paused" : "running";
+  auto kv = [](const std::string& k, double v) {
+    diagnostic_msgs::KeyValue x;
+    x.key = k;
+    std::ostringstream o;
+    o << v;
+    x.value = o.str();
+    return x;
+  };
+  sim_status.values.push_back(kv("sim_time", sim_->time()));
+  sim_status.values.push_back(kv("real_time_factor", rtf));
+  sim_status.values.push_back(kv("target_real_time_factor", real_time_factor_));
+  array.status.push_back(sim_status);
+  // In sim time every sensor keeps its rate by construction (rendering holds the step); what
+  // can fall behind is the wall-clock rate a consumer sees when the sim cannot keep real time.
+  for (SensorStat& stat : stats_) {
+    const double rate = sim > 0.0 ? stat.count / sim : 0.0;
+    const double wall_rate = stat.count / wall;
+    diagnostic_msgs::DiagnosticStatus st;
+    st.name = "tianracer_sim: " + stat.name;
+    st.hardware_id = "tianracer_sim";
+    st.values.push_back(kv("rate_hz_sim_time", rate));
+    st.values.push_back(kv("rate_hz_wall_time", wall_rate));
+    st.values.push_back(kv("target_hz", stat.target));
+    st.values.push_back(kv("published", static_cast<double>(stat.count)));
+    st.values.push_back(kv("renders_total", static_cast<double>(stat.renders)));
+    st.level = diagnostic_msgs::DiagnosticStatus::OK;
+    line << ", " << stat.name << " ";
+    if (stat.count == 0) {
+      st.message = "idle (no subscriber)";
+      line << "idle";
+    } else if (stat.skipped > 0) {
+      st.message = "subscribed part of the time";
+      line << std::setprecision(1) << rate << "/" << stat.target << " Hz (part time)";
+    } else if (rate < 0.9 * stat.target ||
+               (real_time_factor_ > 0.0 && wall_rate < 0.9 * stat.target * real_time_factor_)) {
+      st.level = diagnostic_msgs::DiagnosticStatus::WARN;
+      st.message = "behind its rate";
+      ROS_WARN("%s: %.1f Hz in sim time, %.1f Hz in wall time: behind its target %.1f Hz x "
+               "real_time_factor %g",
+               stat.name.c_str(), rate, wall_rate, stat.target, real_time_factor_);
+      line << std::setprecision(1) << rate << "/" << stat.target << " Hz (BEHIND: " << wall_rate
+           << " Hz wall)";
+    } else {
+      st.message = "ok";
+      line << std::setprecision(1) << rate << "/" << stat.target << " Hz";
+    }
+    array.status.push_back(st);
+    stat.count = 0;
+    stat.skipped = 0;
+  }
+  ROS_INFO_STREAM(line.str());
+  diagnostics_pub_.publish(array);
+  status_wall_ = now;
+  status_sim_ = sim_->time();
 }
 
 void SimNode::updateScene() {
@@ -348,7 +590,11 @@ void SimNode::publishDue() {
   }
   for (LidarIo& lidar : lidars_) {
     // The schedule runs whether or not anyone listens, so a new subscriber gets the rate.
-    if (!lidar.schedule.due(t) || lidar.pub.getNumSubscribers() == 0) continue;
+    if (!lidar.schedule.due(t)) continue;
+    if (lidar.pub.getNumSubscribers() == 0) {
+      ++stats_[lidar.stat].skipped;
+      continue;
+    }
     updateScene();
     const RobotIo& io = robots_[lidar.robot];
     const auto& config = lidar.sensor->config();
@@ -356,13 +602,21 @@ void SimNode::publishDue() {
         caster_, scene_, sim_->physics().robot(io.robot->id).linkPose(config.link));
     toLaserScan(config, ranges, stamp, &lidar.msg);
     lidar.pub.publish(lidar.msg);
+    ++stats_[lidar.stat].count;
+    ++stats_[lidar.stat].renders;
   }
+  publishCameras(t, stamp);
 }
 
 void SimNode::restartSchedules() {
   const double t = sim_->time();
   clock_schedule_.restart(t);
   for (LidarIo& lidar : lidars_) lidar.schedule.restart(t);
+  for (CameraIo& c : cameras_) c.schedule.restart(t);
+  for (DepthIo& d : depth_cameras_) {
+    d.schedule.restart(t);
+    d.info_schedule.restart(t);
+  }
   for (RobotIo& io : robots_) {
     for (JointStateStream& s : io.joint_states) s.schedule.restart(t);
     io.ground_truth_schedule.restart(t);
@@ -378,12 +632,15 @@ void SimNode::stepOnce() {
 void SimNode::run() {
   publishClock();
   publishDue();
+  status_wall_ = ros::WallTime::now();
+  status_sim_ = sim_->time();
   ros::WallTime wall0 = ros::WallTime::now();
   double sim0 = sim_->time();
   while (ros::ok()) {
     queue_.callAvailable(ros::WallDuration(0.0));
     if (paused_) {
       queue_.callAvailable(ros::WallDuration(0.01));
+      publishStatus();
       pacing_reset_ = true;
       continue;
     }
@@ -393,6 +650,7 @@ void SimNode::run() {
       pacing_reset_ = false;
     }
     stepOnce();
+    if ((sim_->stepCount() & 255) == 0) publishStatus();
     if (real_time_factor_ > 0.0) {
       const ros::WallTime target = wall0 + ros::WallDuration((sim_->time() - sim0) / real_time_factor_);
       const ros::WallTime now = ros::WallTime::now();

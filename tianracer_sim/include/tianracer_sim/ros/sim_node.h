@@ -19,6 +19,7 @@
 //   clock_rate       /clock messages per sim second (0 = every step; default every step)
 //   ground_truth_rate  <ns>/ground_truth/odom rate (Hz, default 50)
 //   seed             seed of the sensors' noise (default 0): same seed, same noise
+//   status_period    wall seconds between status lines and /diagnostics (default 5; 0 = off)
 #ifndef TIANRACER_SIM_ROS_SIM_NODE_H
 #define TIANRACER_SIM_ROS_SIM_NODE_H
 
@@ -29,7 +30,11 @@
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
 #include <sensor_msgs/LaserScan.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <tf2_ros/static_transform_broadcaster.h>
 #include <std_srvs/Empty.h>
 
 #include <tianracer_control/ros/controller_adapter.h>
@@ -38,6 +43,8 @@
 #include "tianracer_sim/SetModelState.h"
 #include "tianracer_sim/lidar/ray_caster.h"
 #include "tianracer_sim/lidar/ray_sensor.h"
+#include "tianracer_sim/render/camera_sensor.h"
+#include "tianracer_sim/render/renderer.h"
 #include "tianracer_sim/scene/scene.h"
 #include "tianracer_sim/sim/robot_scene.h"
 #include "tianracer_sim/sim/simulation.h"
@@ -88,9 +95,45 @@ class SimNode {
     ros::Publisher pub;
     Schedule schedule;
     sensor_msgs::LaserScan msg;
+    size_t stat = 0;  // index into stats_
+  };
+
+  /// A camera (libgazebo_ros_camera): image + camera_info.
+  struct CameraIo {
+    size_t robot = 0;
+    std::unique_ptr<CameraSensor> sensor;
+    ros::Publisher image, info;
+    Schedule schedule;
+    sensor_msgs::Image image_msg;
+    sensor_msgs::CameraInfo info_msg;
+    size_t stat = 0;
+  };
+  /// A depth camera (libgazebo_ros_openni_kinect): rgb, depth, cloud at the sensor rate; both
+  /// camera_infos at the plugin's updateRate.
+  struct DepthIo {
+    size_t robot = 0;
+    std::unique_ptr<DepthCameraSensor> sensor;
+    ros::Publisher image, depth, cloud, image_info, depth_info;
+    Schedule schedule, info_schedule;
+    sensor_msgs::Image image_msg, depth_msg;
+    sensor_msgs::PointCloud2 cloud_msg;
+    sensor_msgs::CameraInfo info_msg;
+    size_t stat = 0;
+  };
+  /// Published messages per sensor since the last status report, against the target rate.
+  struct SensorStat {
+    std::string name;  // e.g. "/scan"
+    double target = 0.0;
+    std::uint64_t count = 0;
+    std::uint64_t skipped = 0;  // due while nobody subscribed (nothing rendered)
+    std::uint64_t renders = 0;  // frames rendered / scans cast in total
   };
 
   void loadRobot();
+  bool ensureRenderer();
+  void setUpCamera(size_t robot_index, const std::string& link, const SensorSpec& spec);
+  void publishCameras(double t, const ros::Time& stamp);
+  void publishStatus();
   void setUpSensors(size_t robot_index);
   /// Brings the scene's robot bodies to the current physics poses, once per step.
   void updateScene();
@@ -115,6 +158,16 @@ class SimNode {
   std::uint64_t scene_step_ = ~0ull;  // step count the scene's poses belong to
   RayCaster caster_;
   std::vector<LidarIo> lidars_;
+  std::unique_ptr<Renderer> renderer_;
+  bool renderer_failed_ = false;
+  std::vector<CameraIo> cameras_;
+  std::vector<DepthIo> depth_cameras_;
+  tf2_ros::StaticTransformBroadcaster static_tf_;
+  std::vector<SensorStat> stats_;  // lidars, then cameras, then depth cameras (image topics)
+  ros::Publisher diagnostics_pub_;
+  double status_period_ = 5.0;  // wall seconds between status reports
+  ros::WallTime status_wall_;
+  double status_sim_ = 0.0;
   std::uint64_t seed_ = 0;
   std::vector<RobotIo> robots_;
 
