@@ -26,28 +26,18 @@ catkin_make -C "$WS" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 -j"$(
 build_rc=$?
 echo "==> [test] ran in $(( $(date +%s) - start )) s"
 
-# Per-file verdicts, then the totals.
-catkin_test_results --all "$WS/build/test_results" | grep -vE '^Skipping' | sed 's/^/    /'
-summary="$(catkin_test_results "$WS/build/test_results" | grep '^Summary:')"
-total=$(sed -E 's/Summary: ([0-9]+) tests.*/\1/' <<<"$summary")
-errors=$(sed -E 's/.* ([0-9]+) errors.*/\1/' <<<"$summary")
-failures=$(sed -E 's/.* ([0-9]+) failures.*/\1/' <<<"$summary")
-skipped=$(sed -E 's/.* ([0-9]+) skipped.*/\1/' <<<"$summary")
-total=${total:-0}; errors=${errors:-0}; failures=${failures:-0}; skipped=${skipped:-0}
-failed=$((errors + failures))
-passed=$((total - failed - skipped))
+# The verdict comes from the result files: every test case counted once, failures named.
 if ((build_rc != 0)); then
   echo "ERROR [test] building or running the tests failed (exit $build_rc):" >&2
   grep -E 'error|Error|\*\*\*' "$WS/logs/test.log" | head -30 >&2
-  failed=$((failed + 1))
 fi
-if ((total == 0)); then
-  echo "ERROR [test] no test results were produced" >&2
-  failed=$((failed + 1))
+summary="$(/usr/bin/python3 "$REPO/scripts/count_test_results.py" "$WS/build/test_results")"
+counted_rc=$?
+echo "$summary" | sed '$d'
+line="$(echo "$summary" | tail -n 1)"
+if ((build_rc != 0)); then
+  # A build failure is one more failure on the closing line.
+  line="$(awk -F'[ ,]+' '{printf "%d passed, %d failed", $1, $3 + 1}' <<<"$line")"
 fi
-if ((skipped)); then
-  echo "$passed passed, $failed failed, $skipped skipped"
-else
-  echo "$passed passed, $failed failed"
-fi
-((failed == 0))
+echo "$line"
+((build_rc == 0 && counted_rc == 0))
