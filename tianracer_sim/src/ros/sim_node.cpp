@@ -217,6 +217,22 @@ void SimNode::loadRobot() {
                   << " in " << io.ns << ", spawned at (" << pr.spawnPose().translation().transpose()
                   << ")");
 
+  // world -> odom at the spawn pose: wheel odometry starts there, so rviz can show the
+  // ground truth (world) and the odometry (odom) together.
+  std::string odom_frame;
+  pnh_.param<std::string>("odom_frame", odom_frame, "odom");
+  if (!odom_frame.empty()) {
+    geometry_msgs::TransformStamped tf;
+    tf.header.frame_id = "world";
+    tf.child_frame_id = odom_frame;
+    const geometry_msgs::Pose p = toPose(pr.spawnPose());
+    tf.transform.translation.x = p.position.x;
+    tf.transform.translation.y = p.position.y;
+    tf.transform.translation.z = p.position.z;
+    tf.transform.rotation = p.orientation;
+    static_tf_.sendTransform(tf);
+  }
+
   setUpJointStates(io);
   ros::NodeHandle robot_nh(io.ns);
   robot_nh.setCallbackQueue(&queue_);
@@ -230,8 +246,16 @@ void SimNode::loadRobot() {
 void SimNode::setUpSensors(size_t robot_index) {
   RobotIo& io = robots_[robot_index];
   const PhysicsRobot& pr = sim_->physics().robot(io.robot->id);
+  bool given = false;
+  const std::vector<std::string> disabled = getNameList(pnh_, "disable_sensors", &given);
   for (const auto& [link, ext] : io.robot->model.ext.links) {
     for (const SensorSpec& spec : ext.sensors) {
+      if (std::find(disabled.begin(), disabled.end(), spec.type) != disabled.end() ||
+          std::find(disabled.begin(), disabled.end(), spec.name) != disabled.end()) {
+        ROS_INFO("sensor '%s' (%s) on link %s disabled by ~disable_sensors", spec.name.c_str(),
+                 spec.type.c_str(), link.c_str());
+        continue;
+      }
       if (spec.type == "camera" || spec.type == "depth") {
         setUpCamera(robot_index, link, spec);
         continue;

@@ -19,6 +19,8 @@
 //   clock_rate       /clock messages per sim second (0 = every step; default every step)
 //   ground_truth_rate  <ns>/ground_truth/odom rate (Hz, default 50)
 //   seed             seed of the sensors' noise (default 0): same seed, same noise
+//   odom_frame       static TF world -> <odom_frame> at the spawn pose (default odom; "" = none)
+//   disable_sensors  sensor types (ray, camera, depth) or names to leave out (list or string)
 //   status_period    wall seconds between status lines and /diagnostics (default 5; 0 = off)
 #ifndef TIANRACER_SIM_ROS_SIM_NODE_H
 #define TIANRACER_SIM_ROS_SIM_NODE_H
