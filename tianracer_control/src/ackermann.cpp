@@ -25,6 +25,13 @@ void AckermannGeometry::validate() const {
     fail("max_steering_angle", max_steering_angle, "must be in (0, pi/2)");
   }
   if (!std::isfinite(rear_axle_x)) fail("rear_axle_x", rear_axle_x, "must be finite");
+  if (!std::isfinite(rear_axle_y)) fail("rear_axle_y", rear_axle_y, "must be finite");
+  if (!std::isfinite(hinge_skew_x) || std::abs(hinge_skew_x) >= wheelbase) {
+    fail("hinge_skew_x", hinge_skew_x, "must be smaller than the wheelbase in magnitude");
+  }
+  if (!std::isfinite(hinge_offset_y) || std::abs(hinge_offset_y) >= wheelbase) {
+    fail("hinge_offset_y", hinge_offset_y, "must be smaller than the wheelbase in magnitude");
+  }
 }
 
 double steeringAngleFromYawRate(double wheelbase, double v, double yaw_rate) {
@@ -36,35 +43,59 @@ double yawRateFromSteeringAngle(double wheelbase, double v, double delta) {
   return v * std::tan(delta) / wheelbase;
 }
 
+namespace {
+
+// Hinge positions in the rear axle frame (see AckermannGeometry).
+struct Hinge {
+  double dx, dy;
+};
+Hinge leftHinge(const AckermannGeometry& g) {
+  return {g.wheelbase - g.hinge_skew_x, g.hinge_offset_y + 0.5 * g.hinge_separation};
+}
+Hinge rightHinge(const AckermannGeometry& g) {
+  return {g.wheelbase + g.hinge_skew_x, g.hinge_offset_y - 0.5 * g.hinge_separation};
+}
+
 // atan2 keeps the angle continuous should the denominator pass through 0 (inner wheel at 90 deg,
 // unreachable within a valid limit); the sign of the numerator picks the side.
-double leftWheelAngle(const AckermannGeometry& g, double delta) {
+double wheelAngle(const AckermannGeometry& g, const Hinge& h, double delta) {
   const double t = std::tan(delta);
-  const double L = g.wheelbase;
-  return std::atan2(L * t, L - 0.5 * g.hinge_separation * t);
+  return std::atan2(h.dx * t, g.wheelbase - h.dy * t);
+}
+
+double bicycleAngle(const AckermannGeometry& g, const Hinge& h, double angle) {
+  const double t = std::tan(angle);
+  return std::atan2(g.wheelbase * t, h.dx + h.dy * t);
+}
+
+}  // namespace
+
+double leftWheelAngle(const AckermannGeometry& g, double delta) {
+  return wheelAngle(g, leftHinge(g), delta);
 }
 
 double rightWheelAngle(const AckermannGeometry& g, double delta) {
-  const double t = std::tan(delta);
-  const double L = g.wheelbase;
-  return std::atan2(L * t, L + 0.5 * g.hinge_separation * t);
+  return wheelAngle(g, rightHinge(g), delta);
 }
 
 double bicycleAngleFromLeft(const AckermannGeometry& g, double angle) {
-  const double t = std::tan(angle);
-  const double L = g.wheelbase;
-  return std::atan2(L * t, L + 0.5 * g.hinge_separation * t);
+  return bicycleAngle(g, leftHinge(g), angle);
 }
 
 double bicycleAngleFromRight(const AckermannGeometry& g, double angle) {
-  const double t = std::tan(angle);
-  const double L = g.wheelbase;
-  return std::atan2(L * t, L - 0.5 * g.hinge_separation * t);
+  return bicycleAngle(g, rightHinge(g), angle);
+}
+
+double maxBicycleAngleLeft(const AckermannGeometry& g) {
+  return bicycleAngleFromLeft(g, g.max_steering_angle);
+}
+
+double maxBicycleAngleRight(const AckermannGeometry& g) {
+  return -bicycleAngleFromRight(g, -g.max_steering_angle);
 }
 
 double maxBicycleAngle(const AckermannGeometry& g) {
-  // The inner wheel of a left turn is the left one: solve leftWheelAngle(delta) = m.
-  return bicycleAngleFromLeft(g, g.max_steering_angle);
+  return std::min(maxBicycleAngleLeft(g), maxBicycleAngleRight(g));
 }
 
 AckermannCommand twistToAckermann(const AckermannGeometry& g, double v, double angular_z,
@@ -83,9 +114,9 @@ AckermannCommand ackermannFromSteering(const AckermannGeometry& g, double v, dou
   if (!std::isfinite(delta)) delta = 0.0;
 
   AckermannCommand cmd;
-  const double limit = maxBicycleAngle(g);
-  cmd.delta = std::clamp(delta, -limit, limit);
-  cmd.clamped = std::abs(delta) > limit;
+  const double left_limit = maxBicycleAngleLeft(g), right_limit = maxBicycleAngleRight(g);
+  cmd.delta = std::clamp(delta, -right_limit, left_limit);
+  cmd.clamped = delta > left_limit || delta < -right_limit;
 
   const double m = g.max_steering_angle;
   // At |delta| = limit the inner wheel is at m up to rounding; keep it inside the joint limit.

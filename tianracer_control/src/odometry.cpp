@@ -16,9 +16,10 @@ double sinc(double x) {
 BicycleOdometry::BicycleOdometry(const AckermannGeometry& geometry) : geometry_(geometry) {}
 
 void BicycleOdometry::reset(double x, double y, double yaw) {
-  const double b = -geometry_.rear_axle_x;
-  px_ = x - b * std::cos(yaw);
-  py_ = y - b * std::sin(yaw);
+  // P = base - Rot(yaw) b, b = -(rear_axle_x, rear_axle_y).
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  px_ = x + c * geometry_.rear_axle_x - s * geometry_.rear_axle_y;
+  py_ = y + s * geometry_.rear_axle_x + c * geometry_.rear_axle_y;
   yaw_ = yaw;
   v_ = 0.0;
   w_ = 0.0;
@@ -72,9 +73,14 @@ bool BicycleOdometry::integrate(double v, double w, double dt) {
   return true;
 }
 
-double BicycleOdometry::x() const { return px_ - geometry_.rear_axle_x * std::cos(yaw_); }
-double BicycleOdometry::y() const { return py_ - geometry_.rear_axle_x * std::sin(yaw_); }
+double BicycleOdometry::x() const {
+  return px_ - std::cos(yaw_) * geometry_.rear_axle_x + std::sin(yaw_) * geometry_.rear_axle_y;
+}
+double BicycleOdometry::y() const {
+  return py_ - std::sin(yaw_) * geometry_.rear_axle_x - std::cos(yaw_) * geometry_.rear_axle_y;
+}
 double BicycleOdometry::heading() const { return shortestAngularDistance(0.0, yaw_); }
+double BicycleOdometry::linearVelocity() const { return v_ + w_ * geometry_.rear_axle_y; }
 double BicycleOdometry::lateralVelocity() const { return -geometry_.rear_axle_x * w_; }
 
 }  // namespace tianracer_control

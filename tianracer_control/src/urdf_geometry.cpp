@@ -45,9 +45,9 @@ std::string fmt(double v) {
 }  // namespace
 
 const std::vector<std::string>& geometryKeys() {
-  static const std::vector<std::string> keys = {"wheelbase",  "hinge_separation",
-                                                "wheel_radius", "rear_track",
-                                                "max_steering_angle", "rear_axle_x"};
+  static const std::vector<std::string> keys = {
+      "wheelbase",   "hinge_separation", "wheel_radius", "rear_track",    "max_steering_angle",
+      "rear_axle_x", "rear_axle_y",      "hinge_skew_x", "hinge_offset_y"};
   return keys;
 }
 
@@ -97,17 +97,22 @@ UrdfGeometry geometryFromUrdf(const std::string& urdf_xml, const AckermannJointN
 
   if (lr.ok && rr.ok) {
     const double rear_x = 0.5 * (lr.p_B.x() + rr.p_B.x());
+    const double rear_y = 0.5 * (lr.p_B.y() + rr.p_B.y());
     out.values["rear_axle_x"] = {rear_x, "robot_description: origins of " + rears};
+    out.values["rear_axle_y"] = {rear_y, "robot_description: origins of " + rears};
     out.values["rear_track"] = {std::abs(lr.p_B.y() - rr.p_B.y()),
                                 "robot_description: origins of " + rears};
     if (lh.ok && rh.ok) {
-      out.values["wheelbase"] = {0.5 * (lh.p_B.x() + rh.p_B.x()) - rear_x,
-                                 "robot_description: origins of " + hinges + " and " + rears};
+      const std::string both = "robot_description: origins of " + hinges + " and " + rears;
+      out.values["wheelbase"] = {0.5 * (lh.p_B.x() + rh.p_B.x()) - rear_x, both};
+      out.values["hinge_offset_y"] = {0.5 * (lh.p_B.y() + rh.p_B.y()) - rear_y, both};
     }
   }
   if (lh.ok && rh.ok) {
     out.values["hinge_separation"] = {std::abs(lh.p_B.y() - rh.p_B.y()),
                                       "robot_description: origins of " + hinges};
+    out.values["hinge_skew_x"] = {0.5 * (rh.p_B.x() - lh.p_B.x()),
+                                  "robot_description: origins of " + hinges};
     double m = INFINITY;
     bool limited = true;
     for (const Found* h : {&lh, &rh}) {
@@ -166,7 +171,10 @@ ResolvedGeometry resolveGeometry(const std::map<std::string, double>& parameters
       {"wheel_radius", defaults.wheel_radius},
       {"rear_track", defaults.rear_track},
       {"max_steering_angle", defaults.max_steering_angle},
-      {"rear_axle_x", defaults.rear_axle_x}};
+      {"rear_axle_x", defaults.rear_axle_x},
+      {"rear_axle_y", defaults.rear_axle_y},
+      {"hinge_skew_x", defaults.hinge_skew_x},
+      {"hinge_offset_y", defaults.hinge_offset_y}};
   if (urdf) out.warnings = urdf->warnings;
   for (const auto& kv : parameters) {
     if (default_values.count(kv.first) == 0) {
@@ -199,6 +207,9 @@ ResolvedGeometry resolveGeometry(const std::map<std::string, double>& parameters
   out.geometry.rear_track = get("rear_track");
   out.geometry.max_steering_angle = get("max_steering_angle");
   out.geometry.rear_axle_x = get("rear_axle_x");
+  out.geometry.rear_axle_y = get("rear_axle_y");
+  out.geometry.hinge_skew_x = get("hinge_skew_x");
+  out.geometry.hinge_offset_y = get("hinge_offset_y");
   out.geometry.validate();
   return out;
 }

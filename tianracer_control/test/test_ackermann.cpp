@@ -1,6 +1,7 @@
 // Ackermann kinematics against numbers worked out by hand from the formulas in ackermann.h.
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -203,4 +204,103 @@ TEST(Ackermann, FromSteeringMatchesTwistInSteeringMode) {
     EXPECT_EQ(a.right_wheel_omega, b.right_wheel_omega);
     EXPECT_EQ(a.clamped, b.clamped);
   }
+}
+
+namespace {
+
+// The seed tianracer's joint origins in base_link (m): hinges left (0.1237, 0.070647), right
+// (0.12626, -0.065953); rear wheels left (-0.12626, 0.081602), right (-0.1237, -0.086296).
+// Rear axle midpoint P = (-0.12498, -0.002347); L = 0.24996, T = 0.1366;
+// s = (0.12626 - 0.1237) / 2 = 0.00128; c = (0.070647 - 0.065953) / 2 + 0.002347 = 0.004694.
+AckermannGeometry seedGeometry() {
+  AckermannGeometry g;
+  g.wheelbase = 0.24996;
+  g.hinge_separation = 0.1366;
+  g.wheel_radius = 0.032;
+  g.rear_track = 0.167898;
+  g.max_steering_angle = 0.6;
+  g.rear_axle_x = -0.12498;
+  g.rear_axle_y = -0.002347;
+  g.hinge_skew_x = 0.00128;
+  g.hinge_offset_y = 0.004694;
+  return g;
+}
+
+}  // namespace
+
+TEST(Ackermann, AsymmetricHingesHandComputed) {
+  const AckermannGeometry g = seedGeometry();
+  // delta = 0.3: R = L / tan(0.3) = 0.24996 / 0.309336249610 = 0.808052... about P.
+  //   left hinge (dx, dy) = (0.24868, 0.072994): atan(0.24868 / (R - 0.072994)) = 0.3262256332
+  //   right hinge (0.25124, -0.063606):          atan(0.25124 / (R + 0.063606)) = 0.2806258714
+  // (the symmetric formulas give 0.3259 and 0.2778: the outer wheel 2.8 mrad short)
+  EXPECT_NEAR(leftWheelAngle(g, 0.3), 0.3262256332, kTol);
+  EXPECT_NEAR(rightWheelAngle(g, 0.3), 0.2806258714, kTol);
+  // delta = -0.3, centre at -R: left (outer) atan(0.24868 / (-R - 0.072994)) = -0.2750987014,
+  // right (inner) atan(0.25124 / (-R + 0.063606)) = -0.3254828671: not a mirror image.
+  EXPECT_NEAR(leftWheelAngle(g, -0.3), -0.2750987014, kTol);
+  EXPECT_NEAR(rightWheelAngle(g, -0.3), -0.3254828671, kTol);
+  EXPECT_EQ(leftWheelAngle(g, 0.0), 0.0);
+  EXPECT_EQ(rightWheelAngle(g, 0.0), 0.0);
+}
+
+TEST(Ackermann, AsymmetricWheelAxesMeetAtTheTurningCentre) {
+  // Independent check in base_link coordinates: the centre is on the line through P along y,
+  // R from P; each hinge must point perpendicular to the ray from the centre to it.
+  const AckermannGeometry g = seedGeometry();
+  const double px = -0.12498, py = -0.002347;
+  for (double delta : {-0.5, -0.25, -0.05, 0.05, 0.25, 0.5}) {
+    const double R = g.wheelbase / std::tan(delta);
+    for (const auto& [angle, hx, hy] :
+         {std::tuple<double, double, double>{leftWheelAngle(g, delta), 0.1237, 0.070647},
+          {rightWheelAngle(g, delta), 0.12626, -0.065953}}) {
+      // Ray centre -> hinge: (hx - px, hy - py - R); the wheel rolls along (cos a, sin a),
+      // perpendicular to it.
+      const double rx = hx - px, ry = hy - py - R;
+      EXPECT_NEAR(rx * std::cos(angle) + ry * std::sin(angle), 0.0, 1e-12) << delta;
+    }
+  }
+}
+
+TEST(Ackermann, AsymmetricInversesRoundTrip) {
+  const AckermannGeometry g = seedGeometry();
+  for (double delta = -0.5; delta <= 0.5; delta += 0.05) {
+    EXPECT_NEAR(bicycleAngleFromLeft(g, leftWheelAngle(g, delta)), delta, kTol);
+    EXPECT_NEAR(bicycleAngleFromRight(g, rightWheelAngle(g, delta)), delta, kTol);
+  }
+}
+
+TEST(Ackermann, AsymmetricLimitsPutTheInnerWheelAtTheJointLimitEitherWay) {
+  const AckermannGeometry g = seedGeometry();
+  // Left: tan(delta) = L tan(0.6) / (0.24868 + 0.072994 tan(0.6)) -> 0.5200747370
+  // Right: tan(delta) = L tan(0.6) / (0.25124 + 0.063606 tan(0.6)) -> 0.5257077143
+  EXPECT_NEAR(maxBicycleAngleLeft(g), 0.5200747370, kTol);
+  EXPECT_NEAR(maxBicycleAngleRight(g), 0.5257077143, kTol);
+  EXPECT_EQ(maxBicycleAngle(g), maxBicycleAngleLeft(g));
+  const AckermannCommand l = ackermannFromSteering(g, 1.0, 1e9);
+  EXPECT_TRUE(l.clamped);
+  EXPECT_NEAR(l.delta, 0.5200747370, kTol);
+  EXPECT_NEAR(l.left_steer, 0.6, kTol);
+  EXPECT_LT(l.right_steer, 0.6);
+  const AckermannCommand r = ackermannFromSteering(g, 1.0, -1e9);
+  EXPECT_TRUE(r.clamped);
+  EXPECT_NEAR(r.delta, -0.5257077143, kTol);
+  EXPECT_NEAR(r.right_steer, -0.6, kTol);
+  EXPECT_GT(r.left_steer, -0.6);
+  // Between the two limits: not clamped.
+  EXPECT_FALSE(ackermannFromSteering(g, 1.0, -0.5230).clamped);
+  EXPECT_TRUE(ackermannFromSteering(g, 1.0, 0.5230).clamped);
+}
+
+TEST(Ackermann, AsymmetricGeometryValidation) {
+  AckermannGeometry g = seedGeometry();
+  EXPECT_NO_THROW(g.validate());
+  g.hinge_skew_x = 0.3;
+  EXPECT_THROW(g.validate(), AckermannError);
+  g = seedGeometry();
+  g.hinge_offset_y = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(g.validate(), AckermannError);
+  g = seedGeometry();
+  g.rear_axle_y = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(g.validate(), AckermannError);
 }

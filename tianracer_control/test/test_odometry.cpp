@@ -129,3 +129,30 @@ TEST(Odometry, WrappedPositionsAreUnwrapped) {
   ASSERT_TRUE(odo.updateFromPositions(3.2 - 2 * M_PI, 3.2 - 2 * M_PI, 0.0, 0.0, 0.02));
   EXPECT_NEAR(odo.x(), 0.01, 1e-12);
 }
+
+TEST(Odometry, BaseFrameOffsetBothWaysFromTheRearAxle) {
+  // The seed's rear axle midpoint is at (-0.12498, -0.002347) in base_link: base_link is
+  // b = (0.12498, 0.002347) from it in the body frame.
+  AckermannGeometry g = geometry();
+  g.rear_axle_x = -0.12498;
+  g.rear_axle_y = -0.002347;
+  const double bx = 0.12498, by = 0.002347;
+  BicycleOdometry odo(g);
+  odo.reset(1.0, 2.0, 0.7);
+  EXPECT_NEAR(odo.x(), 1.0, 1e-15);
+  EXPECT_NEAR(odo.y(), 2.0, 1e-15);
+  // Rear axle at base - Rot(0.7) b; then a quarter circle of R = 1 left about the point R to
+  // its left.
+  const double c0 = std::cos(0.7), s0 = std::sin(0.7);
+  const double px = 1.0 - (c0 * bx - s0 * by), py = 2.0 - (s0 * bx + c0 * by);
+  const double cx = px - s0, cy = py + c0;  // centre, R = 1
+  const double v = 0.5, w = 0.5;
+  for (int k = 0; k < 157; ++k) ASSERT_TRUE(odo.integrate(v, w, 0.02));
+  const double th = 0.7 + w * 157 * 0.02;
+  const double qx = cx + std::sin(th), qy = cy - std::cos(th);  // rear axle now
+  EXPECT_NEAR(odo.x(), qx + std::cos(th) * bx - std::sin(th) * by, 1e-12);
+  EXPECT_NEAR(odo.y(), qy + std::sin(th) * bx + std::cos(th) * by, 1e-12);
+  // Base velocity in the body frame: (v, 0) + w x b = (v - w by, w bx).
+  EXPECT_NEAR(odo.linearVelocity(), v - w * by, 1e-15);
+  EXPECT_NEAR(odo.lateralVelocity(), w * bx, 1e-15);
+}

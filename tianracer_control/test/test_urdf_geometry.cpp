@@ -49,6 +49,12 @@ TEST(UrdfGeometry, FromJointOriginsThroughAFixedJoint) {
   EXPECT_NEAR(g.values.at("rear_track").value, 0.081602 + 0.086296, 1e-12);
   EXPECT_NEAR(g.values.at("wheel_radius").value, 0.032, 1e-12);
   EXPECT_NEAR(g.values.at("max_steering_angle").value, 0.55, 1e-12);  // the tighter limit
+  // Asymmetry: rear axle midpoint y (0.081602 - 0.086296) / 2 = -0.002347; hinges skewed by
+  // (0.12626 - 0.1237) / 2 = 0.00128 in x, their midpoint y (0.070647 - 0.065953) / 2 =
+  // 0.002347 is 0.004694 left of the rear axle midpoint.
+  EXPECT_NEAR(g.values.at("rear_axle_y").value, -0.002347, 1e-12);
+  EXPECT_NEAR(g.values.at("hinge_skew_x").value, 0.00128, 1e-12);
+  EXPECT_NEAR(g.values.at("hinge_offset_y").value, 0.004694, 1e-12);
   EXPECT_TRUE(g.warnings.empty());
   EXPECT_NE(g.values.at("wheelbase").source.find("robot_description"), std::string::npos);
 }
@@ -71,8 +77,10 @@ TEST(UrdfGeometry, ParametersWin) {
   EXPECT_EQ(valueOf(r, "wheelbase").source, "parameter ~wheelbase");
   EXPECT_EQ(r.geometry.wheel_radius, 0.05);
   EXPECT_NEAR(r.geometry.hinge_separation, 0.1366, 1e-12);
-  ASSERT_EQ(r.values.size(), 6u);
+  EXPECT_NEAR(r.geometry.hinge_skew_x, 0.00128, 1e-12);
+  ASSERT_EQ(r.values.size(), 9u);
   EXPECT_EQ(r.values[0].first, "wheelbase");
+  EXPECT_EQ(r.values[8].first, "hinge_offset_y");
 }
 
 TEST(UrdfGeometry, MissingJointsAreWarnedAndDefaulted) {
@@ -126,6 +134,9 @@ TEST(UrdfGeometry, SeedTianracer) {
   EXPECT_NEAR(g.values.at("rear_track").value, 0.167898, 1e-9);
   EXPECT_NEAR(g.values.at("rear_axle_x").value, -0.12498, 1e-9);
   EXPECT_NEAR(g.values.at("max_steering_angle").value, 0.6, 1e-9);
+  EXPECT_NEAR(g.values.at("rear_axle_y").value, -0.002347, 1e-9);
+  EXPECT_NEAR(g.values.at("hinge_skew_x").value, 0.00128, 1e-9);
+  EXPECT_NEAR(g.values.at("hinge_offset_y").value, 0.004694, 1e-9);
   const ResolvedGeometry r = resolveGeometry({}, &g);
   EXPECT_NEAR(r.geometry.wheel_radius, 0.032, 1e-12);  // mesh wheels: the default
 }

@@ -16,8 +16,9 @@ namespace tianracer_control {
 ///   chord = v dt sinc(w dt / 2),  sinc(x) = sin(x) / x  (-> 1 - x^2/6 for small x)
 ///   P += chord (cos(yaw + w dt / 2), sin(yaw + w dt / 2)),   yaw += w dt
 /// which is x += v/w (sin(yaw') - sin(yaw)), y -= v/w (cos(yaw') - cos(yaw)) without the
-/// cancellation of that form as w -> 0. The base frame sits b = -rear_axle_x ahead of P:
-///   base = P + b (cos yaw, sin yaw); its velocity in the base frame is (v, w b, w).
+/// cancellation of that form as w -> 0. The base frame origin is at b = -(rear_axle_x,
+/// rear_axle_y) from P in the body frame:
+///   base = P + Rot(yaw) b; its velocity in the base frame is (v - w b_y, w b_x, w).
 class BicycleOdometry {
  public:
   explicit BicycleOdometry(const AckermannGeometry& geometry = AckermannGeometry());
@@ -48,8 +49,8 @@ class BicycleOdometry {
   double y() const;
   double yaw() const { return yaw_; }  // rad, not wrapped (heading() wraps)
   double heading() const;               // yaw wrapped into [-pi, pi)
-  double linearVelocity() const { return v_; }    // forward, base frame (m/s)
-  double lateralVelocity() const;                 // w b, base frame (m/s)
+  double linearVelocity() const;                  // v - w b_y, base frame (m/s)
+  double lateralVelocity() const;                 // w b_x, base frame (m/s)
   double angularVelocity() const { return w_; }   // rad/s
   double distance() const { return distance_; }   // |path length| of P so far (m)
 

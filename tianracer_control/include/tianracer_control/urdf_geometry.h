@@ -20,7 +20,8 @@ struct AckermannJointNames {
 };
 
 /// Keys of the geometry values, in logging order: wheelbase, hinge_separation, wheel_radius,
-/// rear_track, max_steering_angle, rear_axle_x (also the parameter names of the nodes).
+/// rear_track, max_steering_angle, rear_axle_x, rear_axle_y, hinge_skew_x, hinge_offset_y
+/// (also the parameter names of the nodes).
 const std::vector<std::string>& geometryKeys();
 
 /// A value and where it came from, e.g. "parameter ~wheelbase" or "robot_description: ...".
@@ -37,9 +38,11 @@ struct UrdfGeometry {
 
 /// Derives from the URDF, all positions expressed in `base_link` (the root link if empty or
 /// absent), composing the fixed/joint origins along the tree:
-///   rear_axle_x        = mean x of the two rear wheel joint origins
+///   rear_axle_x, _y    = mean x, y of the two rear wheel joint origins
 ///   wheelbase          = mean x of the two hinge joint origins - rear_axle_x
 ///   hinge_separation   = |y_left_hinge - y_right_hinge|
+///   hinge_skew_x       = (x_right_hinge - x_left_hinge) / 2
+///   hinge_offset_y     = mean y of the two hinge joint origins - rear_axle_y
 ///   rear_track         = |y_left_rear - y_right_rear|
 ///   wheel_radius       = radius of the rear wheel links' collision cylinder or sphere (meshes
 ///                        are not measured: absent, with a warning)

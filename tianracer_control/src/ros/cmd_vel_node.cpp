@@ -100,7 +100,7 @@ class CmdVelNode {
     const AckermannCommand c = processor_->update(ros::Time::now().toSec());
     if (c.clamped && !clamp_reported_) {
       ROS_WARN("steering request beyond the joint limits: clamped to the bicycle angle %.4f rad "
-               "(minimum turning radius %.3f m); reported once",
+               "(turning radius %.3f m); reported once",
                c.delta, geometry_.wheelbase / std::tan(std::abs(c.delta)));
       clamp_reported_ = true;
     }

@@ -61,10 +61,12 @@ AckermannGeometry loadAckermannGeometry(const ros::NodeHandle& nh, const ros::No
     ROS_INFO_STREAM("geometry: " << kv.first << " = " << kv.second.value << " ("
                                  << kv.second.source << ")");
   }
-  ROS_INFO_STREAM("geometry: largest bicycle steering angle "
-                  << maxBicycleAngle(resolved.geometry) << " rad, minimum turning radius "
-                  << resolved.geometry.wheelbase / std::tan(maxBicycleAngle(resolved.geometry))
-                  << " m (rear axle midpoint)");
+  const AckermannGeometry& g = resolved.geometry;
+  const double left = maxBicycleAngleLeft(g), right = maxBicycleAngleRight(g);
+  ROS_INFO_STREAM("geometry: largest bicycle steering angle " << left << " rad left, " << right
+                  << " rad right; minimum turning radius " << g.wheelbase / std::tan(left)
+                  << " m left, " << g.wheelbase / std::tan(right)
+                  << " m right (rear axle midpoint)");
   return resolved.geometry;
 }
 

@@ -30,6 +30,9 @@ AckermannGeometry urdfGeometry() {
   g.rear_track = 0.167898;
   g.max_steering_angle = 0.55;
   g.rear_axle_x = -0.12498;
+  g.rear_axle_y = -0.002347;
+  g.hinge_skew_x = 0.00128;
+  g.hinge_offset_y = 0.004694;
   return g;
 }
 

@@ -84,8 +84,8 @@ TEST(ShippedConfig, LoadsUnchangedWithoutWarnings) {
   const auto* hinge = dynamic_cast<const EffortJointPositionController*>(
       set.find("left_steering_hinge_position_controller"));
   ASSERT_NE(hinge, nullptr);
-  EXPECT_EQ(hinge->pid().gains().p, 1.0);
-  EXPECT_EQ(hinge->pid().gains().d, 0.05);
+  EXPECT_EQ(hinge->pid().gains().p, 20.0);
+  EXPECT_EQ(hinge->pid().gains().d, 0.2);
   ASSERT_NE(set.find("right_rear_wheel_velocity_controller"), nullptr);
   EXPECT_EQ(set.find("right_rear_wheel_velocity_controller")->joint(), &joints.rr);
 }

@@ -1,0 +1,314 @@
+"""Shared pieces of the Ackermann drive rostests: what the tests observe (ground truth, wheel
+odometry, the cmd_vel node's wheel commands, /rosout), a /cmd_vel publisher, the geometry read
+from robot_description the way tianracer_control reads it, and a least squares circle fit.
+
+Everything is measured in sim time: samples carry the sim's stamps, and waits are
+rospy.sleep() on /clock. Wall time only bounds how long a wait may take, so that a wedged sim
+fails the test instead of hanging it.
+"""
+import math
+import threading
+import time
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import rospy
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
+from rosgraph_msgs.msg import Log
+from std_msgs.msg import Float64
+
+CMD_NODE = '/cmd_vel_node'
+WHEEL_TOPIC = '/tianracer/left_rear_wheel_velocity_controller/command'
+STEER_TOPIC = '/tianracer/left_steering_hinge_position_controller/command'
+
+
+def yaw_of(q):
+    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+
+
+def wrap(a):
+    return math.atan2(math.sin(a), math.cos(a))
+
+
+class Pose2(object):
+    """A planar pose sample: stamp (s, sim), x, y (m), yaw (rad), forward/lateral speed (m/s,
+    body frame) and yaw rate, from a nav_msgs/Odometry."""
+    __slots__ = ('t', 'x', 'y', 'z', 'yaw', 'up', 'vx', 'vy', 'wz', 'finite')
+
+    def __init__(self, msg):
+        p = msg.pose.pose
+        self.t = msg.header.stamp.to_sec()
+        self.x, self.y, self.z = p.position.x, p.position.y, p.position.z
+        self.yaw = yaw_of(p.orientation)
+        q = p.orientation  # up: z component of the body's z axis (1 = upright, < 0 = on its roof)
+        self.up = 1.0 - 2.0 * (q.x * q.x + q.y * q.y)
+        self.vx = msg.twist.twist.linear.x
+        self.vy = msg.twist.twist.linear.y
+        self.wz = msg.twist.twist.angular.z
+        self.finite = all(math.isfinite(v) for v in (
+            p.position.x, p.position.y, p.position.z, p.orientation.x, p.orientation.y,
+            p.orientation.z, p.orientation.w, msg.twist.twist.linear.x,
+            msg.twist.twist.linear.y, msg.twist.twist.linear.z, msg.twist.twist.angular.z))
+
+    @property
+    def speed(self):
+        return math.hypot(self.vx, self.vy)
+
+    def point(self, bx, by):
+        """World position of the body point (bx, by) (base frame)."""
+        c, s = math.cos(self.yaw), math.sin(self.yaw)
+        return self.x + c * bx - s * by, self.y + s * bx + c * by
+
+
+# ---- geometry, as tianracer_control/src/urdf_geometry.cpp derives it -------------------------
+
+def _rpy_matrix(r, p, y):
+    cr, sr, cp, sp, cy, sy = (math.cos(r), math.sin(r), math.cos(p), math.sin(p),
+                              math.cos(y), math.sin(y))
+    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                     [-sp, cp * sr, cp * cr]])
+
+
+def _origin(joint):
+    o = joint.find('origin')
+    X = np.eye(4)
+    if o is not None:
+        X[:3, 3] = [float(v) for v in o.get('xyz', '0 0 0').split()]
+        X[:3, :3] = _rpy_matrix(*[float(v) for v in o.get('rpy', '0 0 0').split()])
+    return X
+
+
+def ackermann_geometry(urdf_xml, base='base_link'):
+    """wheelbase L (mean hinge x - rear axle x), rear axle midpoint (x, y) in the base frame,
+    hinge separation T: joint origins expressed in `base`, as the cmd_vel node computes them."""
+    root = ET.fromstring(urdf_xml)
+    joints = {j.get('name'): j for j in root.findall('joint')}
+    by_child = {j.find('child').get('link'): j for j in joints.values()}
+
+    def link_in_base(link):
+        X = np.eye(4)
+        while link != base:
+            j = by_child[link]  # KeyError: not below base
+            X = _origin(j).dot(X)
+            link = j.find('parent').get('link')
+        return X
+
+    def joint_in_base(name):
+        j = joints[name]
+        return link_in_base(j.find('parent').get('link')).dot(_origin(j))[:3, 3]
+
+    lh, rh = joint_in_base('left_steering_hinge_joint'), joint_in_base('right_steering_hinge_joint')
+    lr, rr = joint_in_base('left_rear_wheel_joint'), joint_in_base('right_rear_wheel_joint')
+    rear_x, rear_y = 0.5 * (lr[0] + rr[0]), 0.5 * (lr[1] + rr[1])
+    return {'wheelbase': 0.5 * (lh[0] + rh[0]) - rear_x,
+            'rear_axle_x': rear_x, 'rear_axle_y': rear_y,
+            'hinge_separation': abs(lh[1] - rh[1])}
+
+
+# ---- analysis ----------------------------------------------------------------------------------
+
+def fit_circle(xs, ys):
+    """Least squares circle through the points: the algebraic (Kasa) fit
+    x^2 + y^2 + D x + E y + F = 0, refined by Gauss-Newton on the geometric distances
+    |p - c| - R. Returns (cx, cy, R, rms residual)."""
+    x, y = np.asarray(xs, float), np.asarray(ys, float)
+    A = np.column_stack([x, y, np.ones_like(x)])
+    D, E, F = np.linalg.lstsq(A, -(x * x + y * y), rcond=None)[0]
+    cx, cy = -D / 2.0, -E / 2.0
+    R = math.sqrt(max(cx * cx + cy * cy - F, 0.0))
+    for _ in range(20):
+        dx, dy = x - cx, y - cy
+        d = np.hypot(dx, dy)
+        res = d - R
+        J = np.column_stack([-dx / d, -dy / d, -np.ones_like(d)])
+        step = np.linalg.lstsq(J, -res, rcond=None)[0]
+        cx, cy, R = cx + step[0], cy + step[1], R + step[2]
+        if np.max(np.abs(step)) < 1e-12:
+            break
+    res = np.hypot(x - cx, y - cy) - R
+    return float(cx), float(cy), float(R), float(math.sqrt(np.mean(res * res)))
+
+
+def path_length(points):
+    return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(points, points[1:]))
+
+
+def relative_pose(start, end):
+    """end in start's frame: (dx, dy, dyaw)."""
+    c, s = math.cos(start.yaw), math.sin(start.yaw)
+    dx, dy = end.x - start.x, end.y - start.y
+    return c * dx + s * dy, -s * dx + c * dy, wrap(end.yaw - start.yaw)
+
+
+# ---- the harness -------------------------------------------------------------------------------
+
+class Harness(object):
+    """Subscribes to what the tests read and publishes /cmd_vel from a thread."""
+
+    def __init__(self):
+        self.lock = threading.Lock()       # sample lists
+        self.pub_lock = threading.Lock()   # the /cmd_vel publisher and what it repeats
+        self.truth = []        # Pose2 of base_link in world
+        self.odom = []         # Pose2 of base_link in odom (wheel odometry)
+        self.wheel_cmd = []    # (receive sim time, rad/s) of the cmd_vel node's left rear command
+        self.steer_cmd = []    # (receive sim time, rad) of its left steering hinge command
+        self.rosout = []       # rosgraph_msgs/Log from the cmd_vel node
+        rospy.Subscriber('/tianracer/ground_truth/odom', Odometry, self._on_truth,
+                         queue_size=200)
+        rospy.Subscriber('/tianracer/odom', Odometry, self._on_odom, queue_size=200)
+        rospy.Subscriber(WHEEL_TOPIC, Float64, self._on_wheel, queue_size=200)
+        rospy.Subscriber(STEER_TOPIC, Float64, self._on_steer, queue_size=200)
+        rospy.Subscriber('/rosout', Log, self._on_rosout, queue_size=200)
+        self.pub = rospy.Publisher('/cmd_vel', Twist, queue_size=10)
+        self._cmd = None       # Twist being repeated, or None
+        self._last_pub = None  # sim time of the last /cmd_vel published
+        self._thread = threading.Thread(target=self._repeat, name='cmd_vel')
+        self._thread.daemon = True
+        self._thread.start()
+
+    # callbacks
+    def _on_truth(self, msg):
+        with self.lock:
+            self.truth.append(Pose2(msg))
+
+    def _on_odom(self, msg):
+        with self.lock:
+            self.odom.append(Pose2(msg))
+
+    def _on_wheel(self, msg):
+        with self.lock:
+            self.wheel_cmd.append((rospy.get_time(), msg.data))
+
+    def _on_steer(self, msg):
+        with self.lock:
+            self.steer_cmd.append((rospy.get_time(), msg.data))
+
+    def _on_rosout(self, msg):
+        if msg.name == CMD_NODE:
+            with self.lock:
+                self.rosout.append(msg)
+
+    # waiting
+    def wait_ready(self, wall_timeout=60.0):
+        """Until the sim, both control nodes and our /cmd_vel link are up."""
+        end = time.time() + wall_timeout
+        while time.time() < end and not rospy.is_shutdown():
+            with self.lock:
+                ok = self.truth and self.odom and self.wheel_cmd
+            if ok and self.pub.get_num_connections() > 0:
+                return True
+            time.sleep(0.05)
+        return False
+
+    def wait_sim(self, seconds, wall_timeout=None):
+        """Sleeps `seconds` of sim time; fails rather than hang if the sim stops."""
+        if wall_timeout is None:
+            wall_timeout = 30.0 + 5.0 * seconds
+        target = rospy.get_time() + seconds
+        end = time.time() + wall_timeout
+        while rospy.get_time() < target:
+            if time.time() > end or rospy.is_shutdown():
+                raise AssertionError('sim time stalled: %.3f s of %.3f s passed in %.0f s wall'
+                                     % (seconds - (target - rospy.get_time()), seconds,
+                                        wall_timeout))
+            rospy.sleep(min(0.05, max(target - rospy.get_time(), 0.001)))
+
+    def wait_until(self, predicate, sim_timeout):
+        target = rospy.get_time() + sim_timeout
+        while rospy.get_time() < target:
+            if predicate():
+                return True
+            self.wait_sim(0.02)
+        return predicate()
+
+    # commanding
+    def drive(self, v, w):
+        """Publish Twist(v, w) now and then every 0.05 s of sim time until stop_publishing()."""
+        msg = Twist()
+        msg.linear.x, msg.angular.z = v, w
+        with self.pub_lock:
+            self._cmd = msg
+            self.pub.publish(msg)
+            self._last_pub = rospy.get_time()
+
+    def publish_once(self, v, w):
+        """One Twist(v, w), not repeated (stops any repetition)."""
+        msg = Twist()
+        msg.linear.x, msg.angular.z = v, w
+        with self.pub_lock:
+            self._cmd = None
+            self.pub.publish(msg)
+            self._last_pub = rospy.get_time()
+
+    def stop_publishing(self):
+        """Stops repeating; returns the sim time of the last /cmd_vel published."""
+        with self.pub_lock:
+            self._cmd = None
+            return self._last_pub
+
+    def _repeat(self):
+        while not rospy.is_shutdown():
+            with self.pub_lock:
+                if self._cmd is not None:
+                    self.pub.publish(self._cmd)
+                    self._last_pub = rospy.get_time()
+            try:
+                rospy.sleep(0.05)
+            except rospy.ROSInterruptException:
+                return
+            except rospy.ROSTimeMovedBackwardsException:
+                pass
+
+    def stop_and_settle(self, max_sim=5.0):
+        """Commands zero and waits until the car stands still; returns the last truth sample."""
+        self.drive(0.0, 0.0)
+        self.wait_until(lambda: self.latest_truth().speed < 1e-3, max_sim)
+        self.wait_sim(0.3)
+        self.stop_publishing()
+        return self.latest_truth()
+
+    # samples
+    def latest_truth(self):
+        with self.lock:
+            return self.truth[-1]
+
+    def latest_odom(self):
+        with self.lock:
+            return self.odom[-1]
+
+    def truth_between(self, t0, t1):
+        with self.lock:
+            return [s for s in self.truth if t0 <= s.t <= t1]
+
+    def wheel_cmds_between(self, t0, t1):
+        with self.lock:
+            return [c for c in self.wheel_cmd if t0 <= c[0] <= t1]
+
+    def steer_cmds_between(self, t0, t1):
+        with self.lock:
+            return [c for c in self.steer_cmd if t0 <= c[0] <= t1]
+
+    def drive_circle(self, v, angular_z, settle, duration, geometry):
+        """From rest: Twist(v, angular_z) for settle + duration s of sim time, then stop. The
+        ground-truth path of the rear axle midpoint (the bicycle model's reference point) over
+        the last `duration` s is fitted with a circle. Returns the figures as a dict."""
+        self.stop_and_settle()
+        self.drive(v, angular_z)
+        t_start = rospy.get_time()
+        self.wait_sim(settle)
+        t0 = rospy.get_time()
+        self.wait_sim(duration)
+        t1 = rospy.get_time()
+        self.stop_and_settle()
+        samples = self.truth_between(t0, t1)
+        rear = [s.point(geometry['rear_axle_x'], geometry['rear_axle_y']) for s in samples]
+        cx, cy, r, rms = fit_circle([p[0] for p in rear], [p[1] for p in rear])
+        _, _, r_base, _ = fit_circle([s.x for s in samples], [s.y for s in samples])
+        turned = sum(wrap(b.yaw - a.yaw) for a, b in zip(samples, samples[1:]))
+        dt = samples[-1].t - samples[0].t
+        return {'radius': r, 'rms': rms, 'radius_base_link': r_base, 'center': (cx, cy),
+                'samples': len(samples), 'duration': dt, 'turned': turned,
+                'yaw_rate': turned / dt, 'speed': path_length(rear) / dt,
+                't_start': t_start, 't_end': t1}
