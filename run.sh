@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The run command: installs what is missing, builds, and runs the main job.
-# For now the main job loads the tianracer model exactly as the simulator does and prints
-# its link/joint tree, transmissions, plugins and sensors (topics and rates).
+# The main job: the model summary as the simulator loads it, then the headless demo: the
+# car drives a lap of the racetrack through /cmd_vel; pictures, a CSV and a summary go to
+# ./output (or the folder given with --out).
 set -euo pipefail
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 
@@ -12,5 +13,7 @@ set +u  # ROS's setup scripts read unset variables
 # shellcheck disable=SC1091
 source "$REPO/.build/devel/setup.bash"
 set -u
-echo "==> [run] tianracer model as the simulator loads it"
-exec rosrun tianracer_sim model_info "$@"
+echo "==> [run] the tianracer as the simulator loads it"
+rosrun tianracer_sim model_info
+echo "==> [run] headless demo: one lap of the racetrack"
+exec rosrun tianracer_bringup demo --out "$REPO/output" "$@"

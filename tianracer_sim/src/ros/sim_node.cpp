@@ -103,7 +103,9 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh
                              std::to_string(real_time_factor_));
   }
   pnh_.param("paused", paused_, false);
-  const double clock_rate = getDouble(pnh_, "clock_rate", 0.0);
+  // /clock every 5 ms of sim time by default: running 10x faster than real time, 1 kHz would
+  // be 10,000 messages a second to every node, more than a rospy node can read.
+  const double clock_rate = getDouble(pnh_, "clock_rate", 200.0);
   clock_schedule_.period = clock_rate > 0.0 ? 1.0 / clock_rate : 0.0;
   ground_truth_rate_ = getDouble(pnh_, "ground_truth_rate", 50.0);
   int seed = 0;

@@ -16,7 +16,7 @@
 //   real_time_factor 1.0 = real time, 0 = as fast as possible (default: the world's)
 //   paused           start paused
 //   max_step_size    physics step (s), default the world's <max_step_size>
-//   clock_rate       /clock messages per sim second (0 = every step; default every step)
+//   clock_rate       /clock messages per sim second (0 = every step; default 200)
 //   ground_truth_rate  <ns>/ground_truth/odom rate (Hz, default 50)
 //   seed             seed of the sensors' noise (default 0): same seed, same noise
 //   odom_frame       static TF world -> <odom_frame> at the spawn pose (default odom; "" = none)
