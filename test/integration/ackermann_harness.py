@@ -9,6 +9,7 @@ fails the test instead of hanging it.
 import math
 import threading
 import time
+import unittest
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -17,6 +18,7 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Float64
+from std_srvs.srv import Empty
 
 CMD_NODE = '/cmd_vel_node'
 WHEEL_TOPIC = '/tianracer/left_rear_wheel_velocity_controller/command'
@@ -311,4 +313,56 @@ class Harness(object):
         return {'radius': r, 'rms': rms, 'radius_base_link': r_base, 'center': (cx, cy),
                 'samples': len(samples), 'duration': dt, 'turned': turned,
                 'yaw_rate': turned / dt, 'speed': path_length(rear) / dt,
-                't_start': t_start, 't_end': t1}
+                't_start': t_start, 't0': t0, 't1': t1}
+
+
+class AckermannTestCase(unittest.TestCase):
+    """Base of the rostests: a node, the harness, the geometry and the sim's pause services."""
+    node_name = 'test_ackermann'
+
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node(cls.node_name)
+        cls.h = Harness()
+        if not cls.h.wait_ready():
+            raise AssertionError('no ground truth, wheel odometry or cmd_vel_node output within '
+                                 '60 s of wall time')
+        cls.geometry = ackermann_geometry(rospy.get_param('/robot_description'))
+        cls.wheel_radius = 0.032  # what cmd_vel_node uses for the seed's mesh wheels (README)
+        cls.max_speed = float(rospy.get_param(CMD_NODE + '/max_speed', 3.0))
+        for srv in ('pause_physics', 'unpause_physics'):
+            rospy.wait_for_service('/gazebo/' + srv, timeout=30)
+        cls.pause = rospy.ServiceProxy('/gazebo/pause_physics', Empty)
+        cls.unpause = rospy.ServiceProxy('/gazebo/unpause_physics', Empty)
+        rospy.loginfo('geometry from robot_description: %s', cls.geometry)
+
+    def report(self, fmt, *args):
+        """Logs a measured figure and returns it for the assertion messages."""
+        text = fmt % args
+        name = self.id().split('.')[-1]
+        rospy.loginfo('[%s] %s', name, text)
+        print('FIGURE %s: %s' % (name, text))
+        return text
+
+    def assert_no_timeout(self, t0, t1, what):
+        """cmd_vel_node kept driving from t0 to t1 (sim time): a zero wheel command in a
+        measurement means the node timed out, i.e. the /cmd_vel stream lapsed (a process starved
+        of CPU); say so rather than report a wrong figure."""
+        cmds = [c[1] for c in self.h.wheel_cmds_between(t0, t1)]
+        stopped = [c for c in cmds if c == 0.0]
+        self.assertTrue(cmds, '%s: no wheel commands seen' % what)
+        self.assertEqual(len(stopped), 0, '%s: cmd_vel_node timed out during the measurement '
+                         '(%d of %d wheel commands were 0): the /cmd_vel stream lapsed'
+                         % (what, len(stopped), len(cmds)))
+
+    def send_paused(self, v, w):
+        """Publishes one Twist with the physics paused, so that it reaches cmd_vel_node at a
+        known sim time however loaded the machine is (the wall sleeps are message delivery, not
+        measurement). Returns that sim time."""
+        self.pause()
+        rospy.rostime.wallsleep(0.3)  # in-flight /clock
+        self.h.publish_once(v, w)
+        t = rospy.get_time()
+        rospy.rostime.wallsleep(0.5)
+        self.unpause()
+        return t

@@ -61,7 +61,9 @@ class WheelOdometryNode {
                                  {0.001, 0.001, 1e6, 1e6, 1e6, 0.01});
 
     pub_ = nh.advertise<nav_msgs::Odometry>(out, 10);
-    sub_ = nh.subscribe(in, 50, &WheelOdometryNode::onJointStates, this);
+    // A deep queue: a node starved of CPU while the sim runs faster than real time must not
+    // drop samples (a gap is integrated with the hinge angles at its end).
+    sub_ = nh.subscribe(in, 1000, &WheelOdometryNode::onJointStates, this);
     ROS_INFO_STREAM("odometry from " << sub_.getTopic() << " (wheel "
                                      << (use_positions_ ? "positions" : "velocities") << ") to "
                                      << pub_.getTopic() << ", TF " << odom_frame_ << " -> "
@@ -78,9 +80,16 @@ class WheelOdometryNode {
     }
     const ros::Time now = ros::Time::now();
     const ros::Time stamp = msg->header.stamp.isZero() ? now : msg->header.stamp;
-    // A message from before a sim reset, arriving after it: drop it rather than jump back and
-    // forth between the two timelines.
-    if (!now.isZero() && stamp > now + ros::Duration(1.0)) return;
+    // A message from before a sim reset, read after this node's clock went back: drop it
+    // rather than jump back and forth between the two timelines. Only after the clock went
+    // back: a node that merely lags (starved of CPU, /clock behind the messages) keeps every
+    // message.
+    if (!last_now_.isZero() && now < last_now_) clock_went_back_ = true;
+    last_now_ = now;
+    if (clock_went_back_) {
+      if (stamp > now + ros::Duration(1.0)) return;
+      clock_went_back_ = false;
+    }
 
     if (has_last_ && stamp < last_stamp_) {
       ROS_WARN_STREAM("time jumped back from " << last_stamp_ << " to " << stamp
@@ -128,6 +137,8 @@ class WheelOdometryNode {
   tf2_ros::TransformBroadcaster tf_;
   bool has_last_ = false;
   ros::Time last_stamp_;
+  ros::Time last_now_;
+  bool clock_went_back_ = false;
 };
 
 }  // namespace tianracer_control

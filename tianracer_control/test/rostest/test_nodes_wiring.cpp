@@ -203,6 +203,22 @@ TEST_F(Wiring, OdometryFromJointStatesAndResetOnTimeJump) {
   EXPECT_EQ(odom_.pose.pose.position.y, 0.0);
 }
 
+TEST_F(Wiring, OdometryKeepsMessagesAheadOfALaggingClock) {
+  // A node starved of CPU while the sim runs faster than real time reads joint_states stamped
+  // well ahead of its own /clock. They are the current timeline, not stale: keep them (they
+  // used to be dropped as "from before a sim reset" when more than 1 s ahead).
+  publishClock(0.6);
+  ros::WallDuration(0.05).sleep();
+  const double ahead = 2.0, t0 = now_;
+  advanceTo(t0 + 0.5, [&](double t) {
+    if (std::fmod(t + 1e-6, 0.02) < 0.01) jointStates(t + ahead, (t - t0) * 0.5 / 0.032, 0.0, 0.0);
+  });
+  ASSERT_TRUE(waitFor([&] { return odom_.header.stamp.toSec() > t0 + ahead + 0.4; }, 5.0))
+      << odom_.header.stamp;
+  EXPECT_NEAR(odom_.pose.pose.position.x, 0.5 * (odom_.header.stamp.toSec() - t0 - ahead), 1e-6);
+  EXPECT_GT(odom_.pose.pose.position.x, 0.2);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
