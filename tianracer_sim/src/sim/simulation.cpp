@@ -131,7 +131,14 @@ SimRobot& Simulation::addRobot(RobotConfig config) {
       }
     }
     std::map<std::string, tc::JointHandle*> joints;
-    for (tc::JointHandle& h : robot->handles) joints[h.name] = &h;
+    for (tc::JointHandle& h : robot->handles) {
+      joints[h.name] = &h;
+      if (h.interface != tc::JointHandle::Interface::kEffort && h.effort_limit <= 0.0 && warn_) {
+        warn_("robot '" + config.name + "': joint '" + h.name +
+              "' has no effort limit in the URDF; its motor is limited to the default " +
+              std::to_string(physics_.options().default_motor_effort) + " N m");
+      }
+    }
     read(*robot);
     for (const tc::ControllerSpec& spec : config.controllers) {
       robot->controllers.load(spec, joints, physics_.time(), [&](const std::string& w) {
