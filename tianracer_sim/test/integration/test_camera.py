@@ -208,7 +208,9 @@ class Camera(unittest.TestCase):
         rospy.loginfo('camera subscribed for 1 s sim: renders_total camera %d -> %d (%d images '
                       'received), depth %d -> %d', cam1, cam2, len(received), depth1, depth2)
         self.assertGreaterEqual(cam2 - cam1, 20)
-        self.assertGreaterEqual(cam2 - cam1, len(received))
+        # Every received image was rendered; the counter is a diagnostics snapshot, and an
+        # image or two rendered after it may already be in `received`.
+        self.assertGreaterEqual(cam2 - cam1, len(received) - 2)
         self.assertEqual(depth2, depth1)  # the depth camera has no subscriber yet
 
         points = rospy.Subscriber(RS_POINTS, PointCloud2, lambda m: None, queue_size=1)
