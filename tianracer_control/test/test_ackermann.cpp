@@ -7,21 +7,15 @@
 
 #include "tianracer_control/ackermann.h"
 
+#include "test_geometry.h"
+
 using namespace tianracer_control;  // NOLINT: test file
 
 namespace {
 
 // Round numbers for hand computation: L = 0.25, T = 0.14 (T/2 = 0.07), r = 0.05, Tr = 0.16,
 // m = 0.6.
-AckermannGeometry geometry() {
-  AckermannGeometry g;
-  g.wheelbase = 0.25;
-  g.hinge_separation = 0.14;
-  g.wheel_radius = 0.05;
-  g.rear_track = 0.16;
-  g.max_steering_angle = 0.6;
-  return g;
-}
+using test::geometry;
 
 constexpr double kTol = 1e-9;
 

@@ -6,18 +6,12 @@
 #include "tianracer_control/ackermann.h"
 #include "tianracer_control/odometry.h"
 
+#include "test_geometry.h"
+
 using namespace tianracer_control;  // NOLINT: test file
 
 namespace {
-AckermannGeometry geometry() {
-  AckermannGeometry g;
-  g.wheelbase = 0.25;
-  g.hinge_separation = 0.14;
-  g.wheel_radius = 0.05;
-  g.rear_track = 0.16;
-  g.max_steering_angle = 0.6;
-  return g;
-}
+using test::geometry;
 }  // namespace
 
 TEST(Odometry, StraightLine) {
