@@ -17,8 +17,10 @@ Constraints respected (checked by test/test_description.cpp):
   * wheels: vertices at most 0.032 m from the y axis, symmetric in y (centred), watertight;
   * nothing that is not a wheel goes below z = -0.003 in base_link (ground is at -0.0095);
   * the chassis stays out of the wheels' volumes, front wheels swept over +-0.6 rad of steering;
-  * the lidar mesh stays at or below z = +0.010 in the lidar frame (scan plane is +0.0124) and the
-    rest of the car below z = 0.125 in base_link, so the car's own lidar sees past it;
+  * the lidar's scanning head (a 42 mm puck, z from -0.005 to +0.025 in the lidar frame) encloses
+    its scan plane (z = +0.0124), so another car's lidar sees it; the simulator's rays pass
+    through their own lidar link. The rest of the car stays below z = 0.125 in base_link, so the
+    car's own lidar sees past it;
   * camera and depth-camera meshes stay behind their optical frames (x <= 0) so they do not
     appear in their own images.
 
@@ -239,10 +241,10 @@ def chassis():
 
 
 def lidar():
-    """2D lidar in its frame; the scan plane is z = +0.0124, the mesh stays at z <= 0.010."""
+    """2D lidar in its frame; the scanning head encloses the scan plane z = +0.0124."""
     m = Mesh()
     box(m, (-0.025, -0.025, -0.035), (0.025, 0.025, -0.005))                 # body
-    cylinder(m, (0.0, 0.0, 0.0025), (0, 0, 1), 0.021, 0.015, 32)            # optical puck
+    cylinder(m, (0.0, 0.0, 0.010), (0, 0, 1), 0.021, 0.030, 32)             # scanning head
     post_bottom = DECK_TOP - LIDAR[2] - 0.001                               # into the deck
     cylinder(m, (0.0, 0.0, 0.5 * (post_bottom - 0.035)), (0, 0, 1), 0.007,
              -0.035 - post_bottom, 16)                                       # mounting post

@@ -349,6 +349,7 @@ struct RayCaster::Impl {
     RTCGeometry instance = nullptr;
     std::vector<Analytic> prims;  // never resized after the user geometry is created
     Eigen::Matrix4d X_WB_last = Eigen::Matrix4d::Zero();
+    unsigned mask = 0xFFFFFFFFu;  // instance mask: 0 while its body is ignored
   };
 
   RTCDevice device = nullptr;
@@ -356,6 +357,7 @@ struct RayCaster::Impl {
   std::vector<std::unique_ptr<SubScene>> subs;
   std::vector<std::pair<int, Eigen::Matrix4d>> static_poses;  // rebuild when one changes
   bool built = false;
+  bool masks_supported = false;
   std::size_t n_bodies = 0, n_items = 0;
   std::size_t n_triangles = 0, n_analytic = 0, n_moving = 0;
   std::string last_error;
@@ -369,6 +371,7 @@ struct RayCaster::Impl {
   Impl() {
     device = rtcNewDevice(nullptr);
     if (!device) throw RayCasterError("Embree: rtcNewDevice failed");
+    masks_supported = rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED) != 0;
     rtcSetDeviceErrorFunction(
         device,
         [](void* user, RTCError, const char* str) {
@@ -533,20 +536,29 @@ void RayCaster::build(const Scene& scene) {
   m.built = true;
 }
 
-void RayCaster::update(const Scene& scene) {
+void RayCaster::update(const Scene& scene, int ignore_body) {
   Impl& m = *impl_;
   bool rebuild = !m.built || m.n_bodies != scene.bodies.size() || m.n_items != scene.items.size();
   for (std::size_t i = 0; !rebuild && i < m.static_poses.size(); ++i) {
     const auto& sp = m.static_poses[i];
     rebuild = !scene.bodies[sp.first].is_static || scene.bodies[sp.first].X_WB.matrix() != sp.second;
   }
-  if (rebuild) {
-    build(scene);
-    return;
+  if (rebuild) build(scene);
+  if (ignore_body >= 0 && !m.masks_supported) {
+    throw RayCasterError(
+        "Embree: this library was built without ray masks (EMBREE_RAY_MASK), so a "
+        "lidar cannot see through its own housing");
   }
   bool changed = false;
   for (auto& sub : m.subs) {
     if (sub->body < 0) continue;
+    const unsigned mask = sub->body == ignore_body ? 0u : 0xFFFFFFFFu;
+    if (mask != sub->mask) {
+      rtcSetGeometryMask(sub->instance, mask);
+      rtcCommitGeometry(sub->instance);
+      sub->mask = mask;
+      changed = true;
+    }
     const Eigen::Isometry3d& X = scene.bodies[sub->body].X_WB;
     if (X.matrix() == sub->X_WB_last) continue;
     float xfm[12];
@@ -649,17 +661,18 @@ void RayCaster::castRays(const Eigen::Vector3d& origin_W,
 }
 
 std::vector<float> RayCaster::scan(const Scene& scene, const Eigen::Isometry3d& X_WS,
-                                   const RaySensorConfig& config, std::mt19937_64& rng) {
+                                   const RaySensorConfig& config, std::mt19937_64& rng,
+                                   int ignore_body) {
   std::vector<float> ranges;
-  scan(scene, X_WS, config, rng, &ranges);
+  scan(scene, X_WS, config, rng, &ranges, ignore_body);
   return ranges;
 }
 
 void RayCaster::scan(const Scene& scene, const Eigen::Isometry3d& X_WS,
                      const RaySensorConfig& config, std::mt19937_64& rng,
-                     std::vector<float>* ranges) {
+                     std::vector<float>* ranges, int ignore_body) {
   Impl& m = *impl_;
-  update(scene);
+  update(scene, ignore_body);
   const int n = std::max(0, config.samples);
   ranges->resize(n);
   const double inc = config.angleIncrement();

@@ -279,8 +279,8 @@ RaySensor::RaySensor(RaySensorConfig config) : config_(std::move(config)), rng_(
 }
 
 const std::vector<float>& RaySensor::scan(RayCaster& caster, const Scene& scene,
-                                          const Eigen::Isometry3d& X_WL) {
-  caster.scan(scene, X_WL * config_.X_LS, config_, rng_, &ranges_);
+                                          const Eigen::Isometry3d& X_WL, int own_body) {
+  caster.scan(scene, X_WL * config_.X_LS, config_, rng_, &ranges_, own_body);
   return ranges_;
 }
 

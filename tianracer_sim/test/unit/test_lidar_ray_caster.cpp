@@ -395,6 +395,37 @@ TEST(RayCaster, MovingBodyIsSeenByTheNextScan) {
   expectScanMatchesReference(scene, pose(0, 0, 0.5), c, r, 1e-3);
 }
 
+TEST(RayCaster, SensorSeesThroughItsOwnHousingButNotAnotherOne) {
+  // Two lidars in housings (0.1 m cubes) 1 m apart in a 6 m room: each scan ignores its own
+  // housing and sees the other's.
+  Scene scene;
+  addRoom(scene, -3, 3, -3, 3);
+  int housing[2];
+  for (int k = 0; k < 2; ++k) {
+    SceneBody b;
+    b.name = "car_" + std::to_string(k) + "::lidar";
+    b.model = "car_" + std::to_string(k);
+    b.is_static = false;
+    b.X_WB = pose(k, 0, 0.5);
+    housing[k] = scene.addBody(b);
+    scene.items.push_back(boxItem(housing[k], pose(0, 0, 0), {0.1, 0.1, 0.1}));
+  }
+  RayCaster caster;
+  const RaySensorConfig c = seedConfig();  // beam 540 along +x, 1080 at +135 deg
+  std::mt19937_64 rng(1);
+  std::vector<float> r = caster.scan(scene, pose(0, 0, 0.5), c, rng, housing[0]);
+  EXPECT_NEAR(r[540], expected(c, 0.95), 1e-5);  // the other housing's near face
+  EXPECT_NEAR(r[180], expected(c, 3.0), 1e-5);     // -90 deg: the room's wall
+  r = caster.scan(scene, pose(1, 0, 0.5, M_PI), c, rng, housing[1]);
+  EXPECT_NEAR(r[540], expected(c, 0.95), 1e-5);
+  // Ignoring nothing, a sensor inside a housing sees its inside: closer than range_min.
+  r = caster.scan(scene, pose(0, 0, 0.5), c, rng);
+  EXPECT_EQ(r[540], -std::numeric_limits<float>::infinity());
+  // And back to ignoring it (the masks are restored per scan).
+  r = caster.scan(scene, pose(0, 0, 0.5), c, rng, housing[0]);
+  EXPECT_NEAR(r[540], expected(c, 0.95), 1e-5);
+}
+
 TEST(RayCaster, SceneChangesAreRebuiltAndStaticBodiesRead) {
   Scene scene;
   addRoom(scene, -3, 3, -3, 3);

@@ -67,8 +67,11 @@ class RayCaster {
   /// update() when the number of bodies or items has changed since the last build.
   void build(const Scene& scene);
   /// Sets the moving bodies' transforms from the scene (commits only if one changed). Static
-  /// bodies are read at build time only.
-  void update(const Scene& scene);
+  /// bodies are read at build time only. Rays pass through the moving body `ignore_body`
+  /// (a Scene body index; -1 = none): a lidar sits inside its own housing, as Gazebo's rays
+  /// start at range_min outside it. Needs Embree's ray masks (throws RayCasterError
+  /// when the library was built without them).
+  void update(const Scene& scene, int ignore_body = -1);
 
   /// Distance along each ray to the first collision surface in [0, t_max), or +inf.
   /// `directions` are unit vectors in the world frame, one result per direction. Call
@@ -79,11 +82,13 @@ class RayCaster {
   /// A full scan per SPEC §5.1 from the sensor pose X_WS: beam i along
   /// (cos a_i, sin a_i, 0) in the sensor frame, a_i = min_angle + i * increment, ranges from
   /// the sensor origin, then applyRangeModel() (noise from `rng`). Updates the scene first.
+  /// `ignore_body` as for update().
   std::vector<float> scan(const Scene& scene, const Eigen::Isometry3d& X_WS,
-                          const RaySensorConfig& config, std::mt19937_64& rng);
+                          const RaySensorConfig& config, std::mt19937_64& rng,
+                          int ignore_body = -1);
   /// As above into `ranges` (resized to samples; no allocation once warm).
   void scan(const Scene& scene, const Eigen::Isometry3d& X_WS, const RaySensorConfig& config,
-            std::mt19937_64& rng, std::vector<float>* ranges);
+            std::mt19937_64& rng, std::vector<float>* ranges, int ignore_body = -1);
 
   /// Statistics of the last build.
   std::size_t triangleCount() const;

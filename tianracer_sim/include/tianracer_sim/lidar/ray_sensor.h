@@ -89,10 +89,11 @@ class RaySensor {
   const RaySensorConfig& config() const { return config_; }
   void reseed(std::uint64_t seed) { rng_.seed(seed); }
 
-  /// One scan from X_WS = X_WL * X_LS (X_WL: the pose of the sensor's link in the world).
+  /// One scan from X_WS = X_WL * X_LS (X_WL: the pose of the sensor's link in the world),
+  /// seeing through the scene body `own_body` (the sensor's link; -1 = none).
   /// The returned buffer is reused by the next call (no allocation once warm).
   const std::vector<float>& scan(RayCaster& caster, const Scene& scene,
-                                 const Eigen::Isometry3d& X_WL);
+                                 const Eigen::Isometry3d& X_WL, int own_body = -1);
 
  private:
   RaySensorConfig config_;
