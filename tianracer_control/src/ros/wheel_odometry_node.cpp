@@ -10,6 +10,7 @@
 #include <tf2_ros/transform_broadcaster.h>
 
 #include "tianracer_control/odometry.h"
+#include "tianracer_control/frames.h"
 #include "tianracer_control/ros/geometry_params.h"
 #include "tianracer_control/ros/msg_conversion.h"
 
@@ -52,6 +53,14 @@ class WheelOdometryNode {
     const std::string out = pnh.param<std::string>("odom_topic", ns + "/odom");
     pnh.param<std::string>("odom_frame", odom_frame_, "odom");
     pnh.param<std::string>("base_frame", base_frame_, "base_link");
+    // Several cars share one TF tree through a tf_prefix found from the robot's namespace, as
+    // robot_state_publisher and the gazebo_ros plugins find it (two_cars.launch).
+    std::string key, tf_prefix;
+    if (ros::NodeHandle(ns.empty() ? "/" : ns).searchParam("tf_prefix", key)) {
+      nh.getParam(key, tf_prefix);
+    }
+    odom_frame_ = resolveFrame(tf_prefix, odom_frame_);
+    base_frame_ = resolveFrame(tf_prefix, base_frame_);
     pnh.param("publish_tf", publish_tf_, true);
     pnh.param("use_wheel_positions", use_positions_, true);
     // Planar motion: z, roll and pitch are not observed (large variance, as diff_drive_controller).
