@@ -10,6 +10,8 @@
 #include <ros/package.h>
 #include <rosgraph_msgs/Clock.h>
 
+#include <tianracer_control/frames.h>
+
 #include "tianracer_sim/model/sensor_topics.h"
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/TransformStamped.h>
@@ -133,7 +135,17 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh
   clock_pub_ = root.advertise<rosgraph_msgs::Clock>("/clock", 10);
   diagnostics_pub_ = root.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10);
 
-  loadRobot();
+  bool several = false;
+  const std::vector<std::string> robot_names = getNameList(pnh_, "robots", &several);
+  if (!several) {
+    loadRobot(pnh_, "");
+  } else if (robot_names.empty()) {
+    throw std::runtime_error("parameter " + pnh_.resolveName("robots") +
+                             " lists no robot: name the robots to spawn, or leave it unset for "
+                             "one robot from the node's own parameters");
+  } else {
+    for (const std::string& name : robot_names) loadRobot(ros::NodeHandle(pnh_, name), name);
+  }
 
   ros::NodeHandle gazebo("/gazebo");
   gazebo.setCallbackQueue(&queue_);
@@ -150,19 +162,19 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh
 
 SimNode::~SimNode() = default;
 
-void SimNode::loadRobot() {
+void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name) {
   LoadOptions options;
   options.resolver.find_package = [](const std::string& pkg) { return ros::package::getPath(pkg); };
   options.warn = [](const std::string& w) { warnOnce(w); };
 
   std::string model_file;
-  pnh_.param<std::string>("model", model_file, "");
+  rp.param<std::string>("model", model_file, "");
   RobotModel model;
   if (!model_file.empty()) {
     model = loadRobotModelFile(model_file, options);
   } else {
     std::string param;
-    pnh_.param<std::string>("robot_param", param, "robot_description");
+    rp.param<std::string>("robot_param", param, "robot_description");
     std::string urdf;
     if (!nh_.getParam(param, urdf)) {
       throw ModelError("parameter " + nh_.resolveName(param) +
@@ -176,34 +188,43 @@ void SimNode::loadRobot() {
 
   RobotIo io;
   io.ns = model.ext.ros_control ? model.ext.ros_control->robot_namespace : "";
-  std::string name;
-  pnh_.param<std::string>("robot_name", name, trimSlashes(io.ns));
+  std::string name = fixed_name;
+  if (name.empty()) rp.param<std::string>("robot_name", name, trimSlashes(io.ns));
   if (name.empty()) name = model.urdf->getName();
   if (io.ns.empty()) io.ns = "/" + name;
   io.ns = "/" + trimSlashes(io.ns);
+  for (const RobotIo& other : robots_) {
+    if (other.ns == io.ns) {
+      throw ModelError("robot '" + name + "' (" + model.source + "): its ros_control namespace " +
+                       io.ns + " is already robot '" + other.robot->name +
+                       "''s; give each robot its own (e.g. xacro robot_namespace:=/" + name + ")");
+    }
+  }
 
   // Spawn pose.
   Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
-  const double roll = getDouble(pnh_, "roll", 0.0), pitch = getDouble(pnh_, "pitch", 0.0),
-               yaw = getDouble(pnh_, "yaw", 0.0);
+  const double roll = getDouble(rp, "roll", 0.0), pitch = getDouble(rp, "pitch", 0.0),
+               yaw = getDouble(rp, "yaw", 0.0);
   X_WB.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
                    Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
                    Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
                       .toRotationMatrix();
-  X_WB.translation() = Eigen::Vector3d(getDouble(pnh_, "x", 0.0), getDouble(pnh_, "y", 0.0), 0.0);
+  X_WB.translation() = Eigen::Vector3d(getDouble(rp, "x", 0.0), getDouble(rp, "y", 0.0), 0.0);
   bool auto_z = true;
   XmlRpc::XmlRpcValue zv;
-  if (pnh_.getParam("z", zv) && !(zv.getType() == XmlRpc::XmlRpcValue::TypeString &&
+  if (rp.getParam("z", zv) && !(zv.getType() == XmlRpc::XmlRpcValue::TypeString &&
                                   static_cast<std::string>(zv) == "auto")) {
-    X_WB.translation().z() = getDouble(pnh_, "z", 0.0);
+    X_WB.translation().z() = getDouble(rp, "z", 0.0);
     auto_z = false;
   }
   if (!X_WB.matrix().allFinite()) throw std::runtime_error("spawn pose (~x ~y ~z ~roll ~pitch ~yaw) is not finite");
 
   // Controllers: the list given, else every controller defined under the namespace.
-  ros::NodeHandle control_nh(io.ns);
+  std::string control_ns;
+  rp.param<std::string>("control_namespace", control_ns, io.ns);
+  ros::NodeHandle control_nh(control_ns);
   bool given = false;
-  std::vector<std::string> names = getNameList(pnh_, "controllers", &given);
+  std::vector<std::string> names = getNameList(rp, "controllers", &given);
   if (!given) names = listControllers(control_nh);
   RobotConfig config;
   config.name = name;
@@ -211,6 +232,11 @@ void SimNode::loadRobot() {
   config.drop_to_ground = auto_z;
   config.controllers = tc::loadControllerSpecs(control_nh, names);
   config.model = std::move(model);
+
+  // Frames: tf_prefix from the robot's namespace, as robot_state_publisher finds it.
+  std::string key;
+  if (ros::NodeHandle(io.ns).searchParam("tf_prefix", key)) nh_.getParam(key, io.tf_prefix);
+  io.tf_prefix = trimSlashes(io.tf_prefix);
 
   SimRobot& robot = sim_->addRobot(std::move(config));
   io.robot = &robot;
@@ -224,16 +250,17 @@ void SimNode::loadRobot() {
                        return s + " ]";
                      }()
                   << " in " << io.ns << ", spawned at (" << pr.spawnPose().translation().transpose()
-                  << ")");
+                  << ")" << (io.tf_prefix.empty() ? "" : ", frames prefixed " + io.tf_prefix + "/"));
+  io.base_frame = tc::resolveFrame(io.tf_prefix, pr.tree().bodies.front().link);
 
   // world -> odom at the spawn pose: wheel odometry starts there, so rviz can show the
   // ground truth (world) and the odometry (odom) together.
   std::string odom_frame;
-  pnh_.param<std::string>("odom_frame", odom_frame, "odom");
+  rp.param<std::string>("odom_frame", odom_frame, "odom");
   if (!odom_frame.empty()) {
     geometry_msgs::TransformStamped tf;
     tf.header.frame_id = "world";
-    tf.child_frame_id = odom_frame;
+    tf.child_frame_id = tc::resolveFrame(io.tf_prefix, odom_frame);
     const geometry_msgs::Pose p = toPose(pr.spawnPose());
     tf.transform.translation.x = p.position.x;
     tf.transform.translation.y = p.position.y;
@@ -249,14 +276,15 @@ void SimNode::loadRobot() {
   io.ground_truth = robot_nh.advertise<nav_msgs::Odometry>("ground_truth/odom", 10);
   io.ground_truth_schedule.period = ground_truth_rate_ > 0.0 ? 1.0 / ground_truth_rate_ : 0.0;
   robots_.push_back(std::move(io));
-  setUpSensors(robots_.size() - 1);
+  setUpSensors(robots_.size() - 1, rp);
 }
 
-void SimNode::setUpSensors(size_t robot_index) {
+void SimNode::setUpSensors(size_t robot_index, const ros::NodeHandle& rp) {
   RobotIo& io = robots_[robot_index];
   const PhysicsRobot& pr = sim_->physics().robot(io.robot->id);
   bool given = false;
-  const std::vector<std::string> disabled = getNameList(pnh_, "disable_sensors", &given);
+  std::vector<std::string> disabled = getNameList(rp, "disable_sensors", &given);
+  if (!given) disabled = getNameList(pnh_, "disable_sensors", &given);
   for (const auto& [link, ext] : io.robot->model.ext.links) {
     for (const SensorSpec& spec : ext.sensors) {
       if (std::find(disabled.begin(), disabled.end(), spec.type) != disabled.end() ||
@@ -278,13 +306,18 @@ void SimNode::setUpSensors(size_t robot_index) {
       try {
         RaySensorConfig config = parseRaySensorConfig(spec, [](const std::string& w) { warnOnce(w); });
         config.seed = seed_ + lidars_.size();
+        config.frame_name = tc::resolveFrame(io.tf_prefix, config.frame_name);
         LidarIo lidar;
         lidar.robot = robot_index;
         lidar.sensor = std::make_unique<RaySensor>(config);
         (void)pr.linkPose(link);  // throws for a sensor on an unknown link
+        for (const auto& [body, body_link] : io.scene_bodies.links) {
+          if (body_link == link) lidar.own_body = body;
+        }
         ros::NodeHandle root;
         root.setCallbackQueue(&queue_);
         const std::string topic = resolveTopic(config.robot_namespace, config.topic_name);
+        claimTopic(topic, "robot '" + io.robot->name + "' sensor '" + spec.name + "'");
         lidar.pub = root.advertise<sensor_msgs::LaserScan>(topic, 5);
         lidar.schedule.period = config.update_rate > 0.0 ? 1.0 / config.update_rate : 0.0;
         ROS_INFO("lidar '%s' on link %s: %d beams, %.4g..%.4g rad, %g Hz on %s (frame %s)",
@@ -298,6 +331,15 @@ void SimNode::setUpSensors(size_t robot_index) {
                   spec.name.c_str(), link.c_str(), e.what());
       }
     }
+  }
+}
+
+void SimNode::claimTopic(const std::string& topic, const std::string& owner) {
+  const auto [it, fresh] = topic_owner_.emplace(topic, owner);
+  if (!fresh) {
+    throw std::runtime_error(topic + " is already published by " + it->second +
+                             "; give each robot's sensors their own namespace (e.g. xacro "
+                             "sensor_namespace:=/<robot name>)");
   }
 }
 
@@ -335,12 +377,15 @@ void SimNode::setUpCamera(size_t robot_index, const std::string& link, const Sen
       return;
     }
     if (!ensureRenderer()) return;
+    camera.frame_name = tc::resolveFrame(io.tf_prefix, camera.frame_name);
+    depth.camera.frame_name = camera.frame_name;
     ros::NodeHandle cam_nh(resolveTopic(camera.robot_namespace, camera.camera_name));
+    claimTopic(cam_nh.getNamespace(), "robot '" + io.robot->name + "' camera '" + spec.name + "'");
     cam_nh.setCallbackQueue(&queue_);
 
     // The optical frame (z forward, x right, y down) that images are stamped with.
     geometry_msgs::TransformStamped tf;
-    tf.header.frame_id = link;
+    tf.header.frame_id = tc::resolveFrame(io.tf_prefix, link);
     tf.child_frame_id = camera.opticalFrame();
     const Eigen::Isometry3d X_LO = camera.X_LO();
     const Eigen::Quaterniond q(X_LO.linear());
@@ -617,8 +662,8 @@ void SimNode::publishDue() {
       s.pub.publish(s.msg);
     }
     if (io.ground_truth_schedule.due(t) && io.ground_truth.getNumSubscribers() > 0) {
-      io.ground_truth.publish(toGroundTruth(pr.basePose(), pr.baseTwist(), stamp, "world",
-                                            pr.tree().bodies.front().link));
+      io.ground_truth.publish(
+          toGroundTruth(pr.basePose(), pr.baseTwist(), stamp, "world", io.base_frame));
     }
   }
   for (LidarIo& lidar : lidars_) {
@@ -632,7 +677,8 @@ void SimNode::publishDue() {
     const RobotIo& io = robots_[lidar.robot];
     const auto& config = lidar.sensor->config();
     const std::vector<float>& ranges = lidar.sensor->scan(
-        caster_, scene_, sim_->physics().robot(io.robot->id).linkPose(config.link));
+        caster_, scene_, sim_->physics().robot(io.robot->id).linkPose(config.link),
+        lidar.own_body);
     toLaserScan(config, ranges, stamp, &lidar.msg);
     lidar.pub.publish(lidar.msg);
     ++stats_[lidar.stat].count;

@@ -3,6 +3,10 @@
 //
 // Parameters (private, ~):
 //   world            a shipped world (empty, walled_room, racetrack) or a .world path
+//   robots           names of several robots to spawn (list or space-separated string); each
+//                    robot's parameters below (model ... disable_sensors, control_namespace)
+//                    are then read from ~<name>/ and its robot_name is <name>. Unset: one
+//                    robot from the parameters in ~ itself.
 //   model            xacro/URDF file; when empty, the URDF is read from robot_param
 //   robot_param      parameter holding the URDF (default: the gazebo_ros_control plugin's
 //                    robotParam, else "robot_description"), resolved in the robot namespace's
@@ -21,10 +25,16 @@
 //   seed             seed of the sensors' noise (default 0): same seed, same noise
 //   odom_frame       static TF world -> <odom_frame> at the spawn pose (default odom; "" = none)
 //   disable_sensors  sensor types (ray, camera, depth) or names to leave out (list or string)
+//   control_namespace  where the controllers' parameters are read (default: the ros_control
+//                    namespace, e.g. /tianracer); command topics stay in the ros_control namespace
+// Frames: a `tf_prefix` parameter found from the robot's ros_control namespace (searchParam,
+// as robot_state_publisher and gazebo_ros plugins do) prefixes every frame published for
+// the robot: sensor frames, optical frames, ground truth's child frame and the odom frame.
 //   status_period    wall seconds between status lines and /diagnostics (default 5; 0 = off)
 #ifndef TIANRACER_SIM_ROS_SIM_NODE_H
 #define TIANRACER_SIM_ROS_SIM_NODE_H
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -88,12 +98,15 @@ class SimNode {
     RobotSceneBodies scene_bodies;
     ros::Publisher ground_truth;
     Schedule ground_truth_schedule;
+    std::string tf_prefix;  // "" for a robot alone; e.g. "tianracer_02"
+    std::string base_frame;  // tf_prefix + root link
   };
 
   /// A lidar of a robot: published at its rate while someone subscribes.
   struct LidarIo {
     size_t robot = 0;  // index into robots_
     std::unique_ptr<RaySensor> sensor;
+    int own_body = -1;  // scene body of the sensor's link: rays pass through its housing
     ros::Publisher pub;
     Schedule schedule;
     sensor_msgs::LaserScan msg;
@@ -131,12 +144,15 @@ class SimNode {
     std::uint64_t renders = 0;  // frames rendered / scans cast in total
   };
 
-  void loadRobot();
+  /// Loads one robot from the parameters in `rp`; `name` fixes its name (else ~robot_name).
+  void loadRobot(const ros::NodeHandle& rp, const std::string& name);
+  /// Advertises `topic` for a robot's sensor; throws when another sensor publishes there.
+  void claimTopic(const std::string& topic, const std::string& owner);
   bool ensureRenderer();
   void setUpCamera(size_t robot_index, const std::string& link, const SensorSpec& spec);
   void publishCameras(double t, const ros::Time& stamp);
   void publishStatus();
-  void setUpSensors(size_t robot_index);
+  void setUpSensors(size_t robot_index, const ros::NodeHandle& rp);
   /// Brings the scene's robot bodies to the current physics poses, once per step.
   void updateScene();
   void setUpJointStates(RobotIo& io);
@@ -172,6 +188,7 @@ class SimNode {
   double status_sim_ = 0.0;
   std::uint64_t seed_ = 0;
   std::vector<RobotIo> robots_;
+  std::map<std::string, std::string> topic_owner_;  // sensor topics: who publishes there
 
   ros::Publisher clock_pub_;
   Schedule clock_schedule_;
