@@ -100,6 +100,46 @@ class SimBadInput(unittest.TestCase):
         rospy.set_param('/robot_description', self.urdf)
         self.assert_fails(['real_time_factor', '-1'], '_real_time_factor:=-1.0')
 
+    def test_empty_robot_list(self):
+        rospy.set_param('/robot_description', self.urdf)
+        rospy.set_param('/sim_under_test/robots', [])
+        self.assert_fails(['/sim_under_test/robots', 'lists no robot'])
+
+    def test_two_robots_in_one_namespace(self):
+        # The same xacro twice without robot_namespace:=...: both cars would answer to
+        # /tianracer/... commands.
+        rospy.set_param('/robot_description', self.urdf)
+        rospy.set_param('/sim_under_test/robots', 'car_a car_b')
+        rospy.set_param('/sim_under_test/car_b/y', 1.0)
+        self.assert_fails(["robot 'car_b'", 'ros_control namespace /tianracer', "robot 'car_a'",
+                           'robot_namespace:=/car_b'], '_disable_sensors:=camera depth')
+
+    def test_two_robots_on_one_sensor_topic(self):
+        # robot_namespace given but not sensor_namespace: car_b's lidar would publish on /scan
+        # too. It is left out with an error naming the topic and its owner; the rest runs on.
+        rospy.set_param('/robot_description', self.urdf)
+        rospy.set_param('/car_b/robot_description', subprocess.check_output(
+            ['xacro', XACRO, 'robot_namespace:=/car_b']).decode())
+        rospy.set_param('/sim_under_test/robots', 'car_a car_b')
+        rospy.set_param('/sim_under_test/car_b/robot_param', '/car_b/robot_description')
+        rospy.set_param('/sim_under_test/car_b/y', 1.0)
+        proc = subprocess.Popen([node_binary(), '__name:=sim_under_test',
+                                 '_disable_sensors:=camera depth'],
+                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+        try:
+            # Up and stepping: both cars' ground truth arrive.
+            from nav_msgs.msg import Odometry
+            for ns in ('/tianracer', '/car_b'):
+                rospy.wait_for_message(ns + '/ground_truth/odom', Odometry, timeout=60)
+            self.assertIsNone(proc.poll())
+        finally:
+            proc.terminate()
+            out = proc.communicate(timeout=30)[0].decode(errors='replace')
+            rospy.delete_param('/car_b')
+        self.assertIn("robot 'car_b': sensor 'hokuyo_sensor' on link 'lidar' left out: /scan is "
+                      "already published by robot 'car_a' sensor 'hokuyo_sensor'", out)
+        self.assertIn('sensor_namespace:=/<robot name>', out)
+
 
 if __name__ == '__main__':
     rostest.rosrun('tianracer_sim', 'sim_bad_input', SimBadInput)
