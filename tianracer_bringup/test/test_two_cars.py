@@ -11,6 +11,9 @@
   +90 deg ends on car 2's lidar head (0.4 m less its 0.021 m radius) instead of the wall
   0.7 m away, and car 2's beam at -90 deg on car 1's.
 - /tianracer_02/cmd_vel drives car 2 only.
+- Car 1's depth camera sees car 2 once car 2 is moved 1 m ahead of it (set_model_state): the
+  centre pixel reads the back of the other car's depth camera bar, 0.975 m away, instead of the
+  far track.
 """
 import math
 import os
@@ -21,6 +24,9 @@ import numpy as np
 import rosgraph
 import rospy
 import rostest
+from geometry_msgs.msg import Pose, Twist
+from sensor_msgs.msg import Image
+from tianracer_sim.srv import SetModelState
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import tf_check  # noqa: E402
@@ -111,6 +117,35 @@ class TwoCars(unittest.TestCase):
         b1, b2 = self.truth1.msg.pose.pose.position, self.truth2.msg.pose.pose.position
         self.assertGreater(b2.x - a2.x, 0.6)
         self.assertLess(math.hypot(b1.x - a1.x, b1.y - a1.y), 0.005)
+
+    def centre_depth(self):
+        """Centre pixel (m, NaN outside the camera's range) of a depth frame rendered after
+        now."""
+        t = rospy.get_time()
+        while True:
+            msg = rospy.wait_for_message('/real_sense/depth/image_raw', Image, timeout=60)
+            if msg.header.stamp.to_sec() > t:
+                break
+        depth = np.frombuffer(msg.data, dtype='<f4').reshape(msg.height, msg.width)
+        return float(depth[msg.height // 2, msg.width // 2])
+
+    def test_e_depth_camera_sees_the_other_car(self):
+        before = self.centre_depth()
+        rospy.wait_for_service('/gazebo/set_model_state', timeout=30)
+        set_state = rospy.ServiceProxy('/gazebo/set_model_state', SetModelState)
+        p1 = self.truth1.msg.pose.pose
+        pose = Pose()
+        pose.position.x, pose.position.y, pose.position.z = p1.position.x + 1.0, p1.position.y, \
+            p1.position.z
+        pose.orientation = p1.orientation
+        self.assertTrue(set_state('tianracer_02', pose, Twist(), 'world').success)
+        tf_check.sim_sleep(0.3)
+        after = self.centre_depth()
+        # Car 1's depth camera sits 0.199 m ahead of its base_link, 0.052 m up. At that height
+        # the centre ray passes over car 2's low tail and ends on the back of car 2's own depth
+        # camera bar, 0.174 m ahead of car 2's base_link: 1.0 + 0.174 - 0.199 = 0.975 m.
+        self.assertTrue(math.isnan(before) or before > 1.5, before)
+        self.assertAlmostEqual(after, 0.975, delta=0.02)
 
 
 if __name__ == '__main__':
