@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <sstream>
 
 #include <Eigen/Geometry>
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
 #include <urdf_parser/urdf_parser.h>
 
 namespace tianracer_control {
@@ -51,8 +55,48 @@ const std::vector<std::string>& geometryKeys() {
   return keys;
 }
 
+std::string resolveMeshUri(const std::string& uri,
+                           const std::function<std::string(const std::string&)>& find_package) {
+  const std::string pkg_scheme = "package://", file_scheme = "file://";
+  if (uri.rfind(file_scheme, 0) == 0) return uri.substr(file_scheme.size());
+  if (uri.rfind(pkg_scheme, 0) != 0) return uri;
+  const std::string rest = uri.substr(pkg_scheme.size());
+  const auto slash = rest.find('/');
+  const std::string dir = find_package ? find_package(rest.substr(0, slash)) : "";
+  if (dir.empty()) return "";
+  return slash == std::string::npos ? dir : dir + rest.substr(slash);
+}
+
+double meshRadiusAboutAxis(const std::string& path, const Eigen::Vector3d& scale,
+                           const Eigen::Isometry3d& X, const Eigen::Vector3d& p,
+                           const Eigen::Vector3d& axis) {
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(path, aiProcess_JoinIdenticalVertices);
+  if (!scene) {
+    throw AckermannError("mesh " + path + " could not be read: " + importer.GetErrorString());
+  }
+  // Walk the node tree so that node transforms are applied, as the mesh appears.
+  double r2 = -1.0;
+  std::function<void(const aiNode*, const aiMatrix4x4&)> visit = [&](const aiNode* node,
+                                                                     const aiMatrix4x4& parent) {
+    const aiMatrix4x4 T = parent * node->mTransformation;
+    for (unsigned i = 0; i < node->mNumMeshes; ++i) {
+      const aiMesh* mesh = scene->mMeshes[node->mMeshes[i]];
+      for (unsigned k = 0; k < mesh->mNumVertices; ++k) {
+        const aiVector3D v = T * mesh->mVertices[k];
+        const Eigen::Vector3d q = X * Eigen::Vector3d(v.x, v.y, v.z).cwiseProduct(scale) - p;
+        r2 = std::max(r2, (q - q.dot(axis) * axis).squaredNorm());
+      }
+    }
+    for (unsigned c = 0; c < node->mNumChildren; ++c) visit(node->mChildren[c], T);
+  };
+  visit(scene->mRootNode, aiMatrix4x4());
+  if (r2 < 0.0) throw AckermannError("mesh " + path + " has no vertices");
+  return std::sqrt(r2);
+}
+
 UrdfGeometry geometryFromUrdf(const std::string& urdf_xml, const AckermannJointNames& names,
-                              const std::string& base_link) {
+                              const std::string& base_link, const MeshPathResolver& mesh_path) {
   if (urdf_xml.empty()) throw AckermannError("robot_description is empty");
   const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(urdf_xml);
   if (!model) throw AckermannError("robot_description does not parse as URDF");
@@ -131,6 +175,7 @@ UrdfGeometry geometryFromUrdf(const std::string& urdf_xml, const AckermannJointN
 
   // Wheel radius from the rear wheels' collision shapes.
   std::vector<double> radii;
+  std::string mesh_source;
   for (const Found* w : {&lr, &rr}) {
     if (!w->joint) continue;
     const urdf::LinkConstSharedPtr link = model->getLink(w->joint->child_link_name);
@@ -144,10 +189,30 @@ UrdfGeometry geometryFromUrdf(const std::string& urdf_xml, const AckermannJointN
       radii.push_back(static_cast<const urdf::Cylinder&>(*c->geometry).radius);
     } else if (c->geometry->type == urdf::Geometry::SPHERE) {
       radii.push_back(static_cast<const urdf::Sphere&>(*c->geometry).radius);
+    } else if (c->geometry->type == urdf::Geometry::MESH) {
+      const auto& mesh = static_cast<const urdf::Mesh&>(*c->geometry);
+      const std::string path = mesh_path ? mesh_path(mesh.filename) : "";
+      if (path.empty()) {
+        out.warnings.push_back(what + " collides with mesh " + mesh.filename +
+                               ", which could not be located: its radius is not measured");
+        continue;
+      }
+      // The axle: the wheel joint's axis through the link origin (the joint frame).
+      Eigen::Vector3d axis(w->joint->axis.x, w->joint->axis.y, w->joint->axis.z);
+      if (axis.norm() < 1e-9) {
+        out.warnings.push_back("joint '" + w->joint->name + "' has no axis: no wheel radius");
+        continue;
+      }
+      try {
+        radii.push_back(meshRadiusAboutAxis(
+            path, Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z),
+            toEigen(c->origin), Eigen::Vector3d::Zero(), axis.normalized()));
+        mesh_source = " (mesh vertices farthest from the axle)";
+      } catch (const AckermannError& e) {
+        out.warnings.push_back(what + ": " + e.what() + ": no wheel radius from it");
+      }
     } else {
-      out.warnings.push_back(what + " collides with a " +
-                             (c->geometry->type == urdf::Geometry::MESH ? "mesh" : "box") +
-                             ": its radius is not measured");
+      out.warnings.push_back(what + " collides with a box: its radius is not measured");
     }
   }
   if (!radii.empty()) {
@@ -156,7 +221,8 @@ UrdfGeometry geometryFromUrdf(const std::string& urdf_xml, const AckermannJointN
       out.warnings.push_back("rear wheel radii differ (" + fmt(radii[0]) + ", " + fmt(radii[1]) +
                              "): using their mean");
     }
-    out.values["wheel_radius"] = {r, "robot_description: collision of the rear wheel links"};
+    out.values["wheel_radius"] = {
+        r, "robot_description: collision of the rear wheel links" + mesh_source};
   }
   return out;
 }

@@ -59,15 +59,52 @@ TEST(UrdfGeometry, FromJointOriginsThroughAFixedJoint) {
   EXPECT_NE(g.values.at("wheelbase").source.find("robot_description"), std::string::npos);
 }
 
-TEST(UrdfGeometry, MeshWheelsGiveNoRadius) {
+TEST(UrdfGeometry, MeshWheelsAreMeasuredAboutTheirAxle) {
+  // The generated wheel meshes reach exactly 0.032 m from the y axis (tianracer_description's
+  // test checks the meshes themselves).
+  const auto find = [](const std::string& pkg) {
+    return pkg == "tianracer_description" ? std::string(TIANRACER_DESCRIPTION_DIR) : std::string();
+  };
+  const UrdfGeometry g =
+      geometryFromUrdf(urdf("ackermann_meshes"), AckermannJointNames(), "base_link",
+                       [&](const std::string& uri) { return resolveMeshUri(uri, find); });
+  EXPECT_NEAR(g.values.at("wheel_radius").value, 0.032, 1e-6);
+  EXPECT_NE(g.values.at("wheel_radius").source.find("mesh vertices farthest from the axle"),
+            std::string::npos);
+  EXPECT_TRUE(g.warnings.empty()) << g.warnings.front();
+}
+
+TEST(UrdfGeometry, UnlocatedMeshWheelsGiveNoRadius) {
   const UrdfGeometry g = geometryFromUrdf(urdf("ackermann_meshes"), AckermannJointNames());
   EXPECT_EQ(g.values.count("wheel_radius"), 0u);
-  EXPECT_TRUE(anyContains(g.warnings, "link 'left_rear_wheel' collides with a mesh"));
+  EXPECT_TRUE(anyContains(g.warnings,
+                          "link 'left_rear_wheel' collides with mesh "
+                          "package://tianracer_description/meshes/left_rear_wheel.STL, which "
+                          "could not be located"));
   // The default 0.032 is used, with a warning.
   const ResolvedGeometry r = resolveGeometry({}, &g);
   EXPECT_EQ(r.geometry.wheel_radius, 0.032);
   EXPECT_EQ(valueOf(r, "wheel_radius").source, "default");
   EXPECT_TRUE(anyContains(r.warnings, "wheel_radius not given and not found in robot_description"));
+}
+
+TEST(UrdfGeometry, UnreadableMeshIsReportedWithItsPath) {
+  const UrdfGeometry g = geometryFromUrdf(urdf("ackermann_meshes"), AckermannJointNames(),
+                                          "base_link",
+                                          [](const std::string&) { return "/nonexistent/w.stl"; });
+  EXPECT_EQ(g.values.count("wheel_radius"), 0u);
+  EXPECT_TRUE(anyContains(g.warnings, "link 'left_rear_wheel': mesh /nonexistent/w.stl could "
+                                      "not be read"));
+}
+
+TEST(UrdfGeometry, MeshUris) {
+  const auto find = [](const std::string& pkg) {
+    return pkg == "known" ? std::string("/opt/known") : std::string();
+  };
+  EXPECT_EQ(resolveMeshUri("package://known/meshes/a.stl", find), "/opt/known/meshes/a.stl");
+  EXPECT_EQ(resolveMeshUri("package://unknown/meshes/a.stl", find), "");
+  EXPECT_EQ(resolveMeshUri("file:///tmp/a.stl", find), "/tmp/a.stl");
+  EXPECT_EQ(resolveMeshUri("/tmp/a.stl", find), "/tmp/a.stl");
 }
 
 TEST(UrdfGeometry, ParametersWin) {
@@ -128,7 +165,13 @@ TEST(UrdfGeometry, SeedTianracer) {
   std::size_t n;
   while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) xml.append(buf, n);
   if (pclose(pipe) != 0 || xml.empty()) GTEST_SKIP() << "xacro failed (not installed?)";
-  const UrdfGeometry g = geometryFromUrdf(xml, AckermannJointNames());
+  const auto find = [](const std::string& pkg) {
+    return pkg == "tianracer_description" ? std::string(TIANRACER_DESCRIPTION_DIR) : std::string();
+  };
+  const UrdfGeometry g =
+      geometryFromUrdf(xml, AckermannJointNames(), "base_link",
+                       [&](const std::string& uri) { return resolveMeshUri(uri, find); });
+  EXPECT_NEAR(g.values.at("wheel_radius").value, 0.032, 1e-6);
   EXPECT_NEAR(g.values.at("wheelbase").value, 0.24996, 1e-9);
   EXPECT_NEAR(g.values.at("hinge_separation").value, 0.1366, 1e-9);
   EXPECT_NEAR(g.values.at("rear_track").value, 0.167898, 1e-9);
@@ -138,5 +181,9 @@ TEST(UrdfGeometry, SeedTianracer) {
   EXPECT_NEAR(g.values.at("hinge_skew_x").value, 0.00128, 1e-9);
   EXPECT_NEAR(g.values.at("hinge_offset_y").value, 0.004694, 1e-9);
   const ResolvedGeometry r = resolveGeometry({}, &g);
-  EXPECT_NEAR(r.geometry.wheel_radius, 0.032, 1e-12);  // mesh wheels: the default
+  // Measured from the mesh (float32 STL vertices): the rolling radius the odometry uses.
+  EXPECT_NEAR(r.geometry.wheel_radius, 0.032, 1e-6);
+  EXPECT_EQ(valueOf(r, "wheel_radius").source,
+            "robot_description: collision of the rear wheel links (mesh vertices farthest from "
+            "the axle)");
 }

@@ -3,9 +3,12 @@
 #ifndef TIANRACER_CONTROL_URDF_GEOMETRY_H
 #define TIANRACER_CONTROL_URDF_GEOMETRY_H
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
+
+#include <Eigen/Geometry>
 
 #include "tianracer_control/ackermann.h"
 
@@ -44,12 +47,29 @@ struct UrdfGeometry {
 ///   hinge_skew_x       = (x_right_hinge - x_left_hinge) / 2
 ///   hinge_offset_y     = mean y of the two hinge joint origins - rear_axle_y
 ///   rear_track         = |y_left_rear - y_right_rear|
-///   wheel_radius       = radius of the rear wheel links' collision cylinder or sphere (meshes
-///                        are not measured: absent, with a warning)
+///   wheel_radius       = radius of the rear wheel links' collision cylinder or sphere; for a
+///                        collision mesh, the largest distance of its (scaled, posed) vertices
+///                        from the wheel joint's axis (needs `mesh_path` to find the file;
+///                        else absent, with a warning)
 ///   max_steering_angle = min(|lower|, |upper|) over both hinges' limits
+/// `mesh_path` maps a mesh URI (package://, file:// or a path) to a file, "" if it cannot.
 /// Throws AckermannError when the XML does not parse as URDF.
+using MeshPathResolver = std::function<std::string(const std::string& uri)>;
 UrdfGeometry geometryFromUrdf(const std::string& urdf_xml, const AckermannJointNames& joints,
-                              const std::string& base_link = "base_link");
+                              const std::string& base_link = "base_link",
+                              const MeshPathResolver& mesh_path = MeshPathResolver());
+
+/// A mesh URI as a file path: "package://<pkg>/<rest>" -> find_package(pkg) + "/<rest>",
+/// "file://<path>" -> path, anything else unchanged; "" when the package is not found.
+std::string resolveMeshUri(const std::string& uri,
+                           const std::function<std::string(const std::string&)>& find_package);
+
+/// Largest distance from the line through `p` along unit `axis` of a mesh file's vertices
+/// mapped by X (scale first, then the pose). Throws AckermannError naming the file when
+/// assimp cannot read it or it has no vertices.
+double meshRadiusAboutAxis(const std::string& path, const Eigen::Vector3d& scale,
+                           const Eigen::Isometry3d& X, const Eigen::Vector3d& p,
+                           const Eigen::Vector3d& axis);
 
 /// The geometry in use and, per key (geometryKeys() order), its value and source.
 struct ResolvedGeometry {

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <ros/console.h>
+#include <ros/package.h>
 
 namespace tianracer_control {
 
@@ -45,7 +46,9 @@ AckermannGeometry loadAckermannGeometry(const ros::NodeHandle& nh, const ros::No
     const std::string base_frame = pnh.param<std::string>("base_frame", "base_link");
     std::string key, xml;
     if (nh.searchParam(param_name, key) && nh.getParam(key, xml)) {
-      urdf = geometryFromUrdf(xml, joints, base_frame);
+      urdf = geometryFromUrdf(xml, joints, base_frame, [](const std::string& uri) {
+        return resolveMeshUri(uri, [](const std::string& pkg) { return ros::package::getPath(pkg); });
+      });
       have_urdf = true;
       ROS_INFO_STREAM("geometry: reading " << key);
     } else {
