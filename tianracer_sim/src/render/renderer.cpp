@@ -16,7 +16,7 @@
 
 #include "geometry.h"
 #include "tianracer_sim/mesh/mesh_loader.h"
-#include "tianracer_sim/render/materials.h"
+#include "tianracer_sim/scene/materials.h"
 
 namespace tianracer_sim {
 

@@ -3,6 +3,8 @@
 // reported once through the WarningSink.
 #include "tianracer_sim/world/world.h"
 
+#include "tianracer_sim/scene/materials.h"
+
 #include <sys/stat.h>
 
 #include <cerrno>
@@ -14,6 +16,8 @@
 
 #include <Eigen/Eigenvalues>
 #include <tinyxml2.h>
+
+#include "tianracer_sim/scene/materials.h"
 
 namespace tianracer_sim {
 
@@ -580,8 +584,8 @@ Material Parser::parseMaterial(const XMLElement* e, const std::string& what) {
       const std::string tag = s->Name();
       if (tag == "name") {
         const std::string name = text(s);
-        if (auto g = gazeboMaterial(name)) {
-          m = *g;
+        if (auto g = findGazeboMaterial(name)) {
+          m = g->material;
         } else {
           warn(s, what + ": unknown material '" + name + "', using the default grey");
           m.name = name;
@@ -691,7 +695,7 @@ std::map<std::string, int> addToScene(const WorldDescription& world, Scene& scen
     item.shape.type = ShapeType::kPlane;
     item.shape.normal = Eigen::Vector3d::UnitZ();
     item.shape.size = Eigen::Vector3d(100.0, 100.0, 0.0);
-    item.material = gazeboMaterial("Gazebo/Grey").value_or(Material{});
+    item.material = findGazeboMaterial("Gazebo/Grey")->material;
     item.visual = false;
     item.collision = true;
     scene.items.push_back(item);

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 #include <sensor_msgs/point_cloud2_iterator.h>
 
-#include "tianracer_sim/render/materials.h"
+#include "tianracer_sim/scene/materials.h"
 #include "tianracer_sim/ros/camera_msgs.h"
 
 namespace tianracer_sim {

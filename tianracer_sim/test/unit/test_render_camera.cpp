@@ -11,7 +11,7 @@
 
 #include "../../src/render/mini_xml.h"
 #include "tianracer_sim/render/camera_sensor.h"
-#include "tianracer_sim/render/materials.h"
+#include "tianracer_sim/scene/materials.h"
 #include "tianracer_sim/render/png_writer.h"
 
 namespace tianracer_sim {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "tianracer_sim/render/materials.h"
+#include "tianracer_sim/scene/materials.h"
 #include "tianracer_sim/render/renderer.h"
 
 namespace tianracer_sim {

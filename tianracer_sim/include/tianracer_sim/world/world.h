@@ -137,10 +137,6 @@ std::string resolveWorld(const std::string& arg, const std::string& worlds_dir);
 /// Returns the index of each body added, by name.
 std::map<std::string, int> addToScene(const WorldDescription& world, Scene& scene);
 
-/// Colours of Gazebo's stock materials ("Gazebo/Red", "Gazebo/Orange", ...) as in
-/// gazebo.material; nullopt for a name not in the table.
-std::optional<Material> gazeboMaterial(const std::string& name);
-
 /// SDF pose "x y z roll pitch yaw": translation, then R = Rz(yaw) Ry(pitch) Rx(roll).
 Eigen::Isometry3d sdfPose(double x, double y, double z, double roll, double pitch, double yaw);
 

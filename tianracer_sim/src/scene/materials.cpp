@@ -1,4 +1,4 @@
-#include "tianracer_sim/render/materials.h"
+#include "tianracer_sim/scene/materials.h"
 
 #include <algorithm>
 #include <map>
@@ -43,6 +43,10 @@ const std::map<std::string, Entry>& table() {
       {"Gazebo/Gold", {{.4f, .24869f, .020759f}, {.8f, .64869f, .120759f}, {.4f, .4f, .4f}, 12.5f}},
       // texture wood.jpg (ambient 1, diffuse 1): its mean colour, a mid brown.
       {"Gazebo/Wood", {{.55f, .38f, .22f}, {.55f, .38f, .22f}, {.2f, .2f, .2f}, 12.5f}},
+      // texture WoodFloor (wood floor boards): their mean colour.
+      {"Gazebo/WoodFloor", {{.45f, .3f, .18f}, {.55f, .38f, .22f}, {.1f, .1f, .1f}, 12.5f}},
+      // texture bricks: their mean colour, a dull red.
+      {"Gazebo/Bricks", {{.5f, .25f, .2f}, {.6f, .3f, .25f}, {.05f, .05f, .05f}, 1}},
       // texture WoodPallet.png (ambient .5, diffuse 1).
       {"Gazebo/WoodPallet", {{.3f, .24f, .16f}, {.6f, .48f, .32f}, {0, 0, 0}, 0.5f}},
   };

@@ -1,7 +1,8 @@
 // Gazebo's stock material names (<material>Gazebo/Red</material>) as Phong colours, with the
-// values of gazebo-classic's media/materials/scripts/gazebo.material. ROS-free.
-#ifndef TIANRACER_SIM_RENDER_MATERIALS_H
-#define TIANRACER_SIM_RENDER_MATERIALS_H
+// values of gazebo-classic's media/materials/scripts/gazebo.material. One table for the world
+// loader (which names it knows) and the renderer (their colours). ROS-free.
+#ifndef TIANRACER_SIM_SCENE_MATERIALS_H
+#define TIANRACER_SIM_SCENE_MATERIALS_H
 
 #include <optional>
 #include <string>
@@ -23,7 +24,8 @@ struct GazeboMaterial {
 /// Gray), DarkGrey (DarkGray), LightGrey (LightGray; not in gazebo.material: Gazebo falls back
 /// to its default grey-white, we give a light grey), White, FlatBlack, Black, Red, RedBright,
 /// Green, Blue, SkyBlue, Yellow, ZincYellow, DarkYellow, Purple, Turquoise, Orange, Indigo,
-/// Gold, Wood, WoodPallet (textures are not drawn: their mean colour is used instead).
+/// Gold, Wood, WoodFloor, WoodPallet, Bricks (textures are not drawn: their mean colour is
+/// used instead).
 std::optional<GazeboMaterial> findGazeboMaterial(const std::string& name);
 
 /// The names findGazeboMaterial() knows, sorted.
@@ -35,4 +37,4 @@ constexpr float kDefaultShininess = 16.0f;
 
 }  // namespace tianracer_sim
 
-#endif  // TIANRACER_SIM_RENDER_MATERIALS_H
+#endif  // TIANRACER_SIM_SCENE_MATERIALS_H
