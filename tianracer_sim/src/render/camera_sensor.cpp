@@ -9,11 +9,11 @@
 #include <set>
 #include <sstream>
 
-#include "mini_xml.h"
+#include <tinyxml2.h>
+
 
 namespace tianracer_sim {
 
-namespace ri = render_internal;
 
 std::string opticalFrameId(const std::string& frame_name) { return frame_name + "_optical_frame"; }
 
@@ -39,6 +39,11 @@ std::string trim(const std::string& s) {
   if (b == std::string::npos) return "";
   return s.substr(b, s.find_last_not_of(ws) - b + 1);
 }
+
+using tinyxml2::XMLElement;
+
+// Text directly inside an element, trimmed ("" when none).
+std::string textOf(const XMLElement* e) { return trim(e->GetText() ? e->GetText() : ""); }
 
 uint32_t fnv1a(const std::string& s) {
   uint32_t h = 2166136261u;
@@ -91,38 +96,44 @@ class Parser {
       fail("<update_rate> " + std::to_string(c->update_rate) + " must be >= 0");
     }
     if (trim(sensor_.xml).empty()) fail("no <sensor> XML to read the <camera> element from");
-    std::unique_ptr<ri::XmlElement> root;
-    try {
-      root = ri::parseXml(sensor_.xml);
-    } catch (const ri::XmlError& e) {
-      fail(e.what());
+    tinyxml2::XMLDocument doc;
+    if (doc.Parse(sensor_.xml.c_str()) != tinyxml2::XML_SUCCESS || !doc.RootElement()) {
+      fail(std::string("its XML does not parse (line ") + std::to_string(doc.ErrorLineNum()) +
+           "): " + (doc.ErrorStr() ? doc.ErrorStr() : "no element"));
     }
-    const ri::XmlElement* cam = root->name == "camera" ? root.get() : root->child("camera");
+    const XMLElement* root = doc.RootElement();
+    const XMLElement* cam =
+        std::string(root->Name()) == "camera" ? root : root->FirstChildElement("camera");
     if (cam == nullptr) fail("has no <camera> element");
-    for (const auto& child : cam->children) {
-      const std::string& n = child->name;
+    for (const XMLElement* child = cam->FirstChildElement(); child;
+         child = child->NextSiblingElement()) {
+      const std::string n = child->Name();
+      const std::string child_text = textOf(child);
       if (n == "horizontal_fov") {
-        c->horizontal_fov = number("<camera><horizontal_fov>", child->text);
+        c->horizontal_fov = number("<camera><horizontal_fov>", child_text);
       } else if (n == "image") {
-        for (const auto& g : child->children) {
-          if (g->name == "width") c->width = integer("<image><width>", g->text);
-          else if (g->name == "height") c->height = integer("<image><height>", g->text);
-          else if (g->name == "format") c->format_name = trim(g->text);
-          else warn("unknown element <camera><image><" + g->name + "> ignored");
+        for (const XMLElement* g = child->FirstChildElement(); g; g = g->NextSiblingElement()) {
+          const std::string g_name = g->Name(), g_text = textOf(g);
+          if (g_name == "width") c->width = integer("<image><width>", g_text);
+          else if (g_name == "height") c->height = integer("<image><height>", g_text);
+          else if (g_name == "format") c->format_name = trim(g_text);
+          else warn("unknown element <camera><image><" + g_name + "> ignored");
         }
       } else if (n == "clip") {
-        for (const auto& g : child->children) {
-          if (g->name == "near") c->near_clip = number("<clip><near>", g->text);
-          else if (g->name == "far") c->far_clip = number("<clip><far>", g->text);
-          else warn("unknown element <camera><clip><" + g->name + "> ignored");
+        for (const XMLElement* g = child->FirstChildElement(); g; g = g->NextSiblingElement()) {
+          const std::string g_name = g->Name(), g_text = textOf(g);
+          if (g_name == "near") c->near_clip = number("<clip><near>", g_text);
+          else if (g_name == "far") c->far_clip = number("<clip><far>", g_text);
+          else warn("unknown element <camera><clip><" + g_name + "> ignored");
         }
       } else if (n == "noise") {
         std::string type = "gaussian";
-        for (const auto& g : child->children) {
-          if (g->name == "type") type = trim(g->text);
-          else if (g->name == "mean") c->noise_mean = number("<noise><mean>", g->text);
-          else if (g->name == "stddev") c->noise_stddev = number("<noise><stddev>", g->text);
-          else warn("unknown element <camera><noise><" + g->name + "> ignored");
+        for (const XMLElement* g = child->FirstChildElement(); g; g = g->NextSiblingElement()) {
+          const std::string g_name = g->Name(), g_text = textOf(g);
+          if (g_name == "type") type = trim(g_text);
+          else if (g_name == "mean") c->noise_mean = number("<noise><mean>", g_text);
+          else if (g_name == "stddev") c->noise_stddev = number("<noise><stddev>", g_text);
+          else warn("unknown element <camera><noise><" + g_name + "> ignored");
         }
         if (type == "none") {
           c->noise = false;
@@ -131,12 +142,13 @@ class Parser {
         } else {
           fail("<noise><type> '" + type + "' is not supported (gaussian, none)");
         }
-        if (c->noise_stddev < 0.0) fail("<noise><stddev> " + child->text + " must be >= 0");
+        if (c->noise_stddev < 0.0) fail("<noise><stddev> " + child_text + " must be >= 0");
       } else if (n == "distortion") {
         bool any = false;
-        for (const auto& g : child->children) {
-          if (g->name == "center") continue;
-          if (number("<distortion><" + g->name + ">", g->text) != 0.0) any = true;
+        for (const XMLElement* g = child->FirstChildElement(); g; g = g->NextSiblingElement()) {
+          const std::string g_name = g->Name(), g_text = textOf(g);
+          if (g_name == "center") continue;
+          if (number("<distortion><" + g_name + ">", g_text) != 0.0) any = true;
         }
         if (any) warn("<camera><distortion> is not applied to the images (like gazebo_ros's camera_info, "
                       "images are undistorted)");

@@ -9,7 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "../../src/render/mini_xml.h"
+#include <tinyxml2.h>
+
 #include "tianracer_sim/render/camera_sensor.h"
 #include "tianracer_sim/scene/materials.h"
 #include "tianracer_sim/render/png_writer.h"
@@ -26,20 +27,25 @@ std::string readFile(const std::string& path) {
 
 // What the model loader makes of a <sensor> element (name, type, rate, xml, plugins).
 SensorSpec specFromXml(const std::string& xml, const std::string& link) {
-  const auto root = render_internal::parseXml(xml);
+  tinyxml2::XMLDocument doc;
+  EXPECT_EQ(doc.Parse(xml.c_str()), tinyxml2::XML_SUCCESS) << xml;
+  const tinyxml2::XMLElement* root = doc.RootElement();
   SensorSpec spec;
-  spec.name = root->attributes.at("name");
-  spec.type = root->attributes.at("type");
+  spec.name = root->Attribute("name");
+  spec.type = root->Attribute("type");
   spec.link = link;
   spec.xml = xml;
   spec.line = 7;
-  if (const auto* rate = root->child("update_rate")) spec.update_rate = std::stod(rate->text);
-  for (const auto& c : root->children) {
-    if (c->name != "plugin") continue;
+  if (const auto* rate = root->FirstChildElement("update_rate")) {
+    spec.update_rate = std::stod(rate->GetText());
+  }
+  for (const auto* c = root->FirstChildElement("plugin"); c; c = c->NextSiblingElement("plugin")) {
     PluginSpec p;
-    p.name = c->attributes.at("name");
-    p.filename = c->attributes.at("filename");
-    for (const auto& param : c->children) p.params[param->name] = param->text;
+    p.name = c->Attribute("name");
+    p.filename = c->Attribute("filename");
+    for (const auto* param = c->FirstChildElement(); param; param = param->NextSiblingElement()) {
+      p.params[param->Name()] = param->GetText() ? param->GetText() : "";
+    }
     spec.plugins.push_back(p);
   }
   return spec;
@@ -205,7 +211,7 @@ TEST(RenderCameraConfig, ValidationErrors) {
   expectError(edited(seed, "<stddev>0.007", "<stddev>-0.1"), {"<noise><stddev>"});
   SensorSpec broken = seed;  // mismatched tags
   broken.xml.replace(broken.xml.find("<camera name=\"head\">"), 20, "<kamera>");
-  expectError(broken, {"XML line 20", "</camera> closes <kamera>"});
+  expectError(broken, {"its XML does not parse (line 4)", "MISMATCHED_ELEMENT", "kamera"});
   expectError(edited(seedRealSense(), "<pointCloudCutoff>0.4", "<pointCloudCutoff>6"),
               {"<pointCloudCutoff> 6", "<pointCloudCutoffMax> 5"}, true);
   SensorSpec no_camera = specFromXml("<sensor name='nocam' type='camera'><update_rate>1</update_rate></sensor>", "l");
