@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer harnesses (tianracer_sim/fuzz) with clang and runs each in turn.
 #   scripts/fuzz.sh [seconds]        seconds per harness, default 600
-#   scripts/fuzz.sh 600 --merge      afterwards, minimise the committed corpora (-merge=1)
+#   scripts/fuzz.sh 600 --merge      afterwards, minimise the committed corpora
+#                                   (-set_cover_merge=1: fewest files
+#                                   that keep every feature)
 # Needs clang and libFuzzer (Debian: apt-get install clang libclang-rt-14-dev). Not part of CI:
 # the unit tests already replay a small mutation set; this is the long run.
 # New inputs go to $OUT/corpus (a scratch copy), crashes to $OUT/crashes; the committed seed
@@ -49,8 +51,9 @@ for name in extensions world; do
   fi
   if ((MERGE)); then
     tmp="$OUT/merged_$name"; rm -rf "$tmp"; mkdir -p "$tmp"
-    "$bin" -merge=1 "$tmp" "$work" "$FUZZ/corpus/$name" >"$OUT/merge_$name.log" 2>&1
-    rm -f "$FUZZ/corpus/$name"/*; cp "$tmp"/* "$FUZZ/corpus/$name"/
+    "$bin" -set_cover_merge=1 "$tmp" "$work" "$FUZZ/corpus/$name" >"$OUT/merge_$name.log" 2>&1
+    # Regression inputs (crash_*: past crashers, named after what they found) stay.
+    find "$FUZZ/corpus/$name" -type f ! -name 'crash_*' -delete; cp "$tmp"/* "$FUZZ/corpus/$name"/
     say "fuzz_$name: corpus minimised to $(ls "$FUZZ/corpus/$name" | wc -l) files in $FUZZ/corpus/$name"
   fi
 done
