@@ -580,7 +580,11 @@ void RayCaster::castRays(const Eigen::Vector3d& origin_W,
   Impl& m = *impl_;
   const int n = static_cast<int>(directions.size());
   const float inf = std::numeric_limits<float>::infinity();
-  if (!m.built || m.subs.empty()) {
+  // Embree aborts (an assertion in Debian's build) on a ray origin that is not finite or beyond
+  // about 1.8e18; a sensor that far out sees nothing (found with set_model_state at 1e30).
+  constexpr double kMaxOrigin = 1e15;
+  if (!m.built || m.subs.empty() || !origin_W.allFinite() ||
+      origin_W.cwiseAbs().maxCoeff() > kMaxOrigin) {
     std::fill(distances, distances + n, inf);
     return;
   }

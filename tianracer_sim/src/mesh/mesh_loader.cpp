@@ -74,7 +74,12 @@ TriangleMesh loadMeshFile(const std::string& path, const Eigen::Vector3d& scale)
       path, aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                 aiProcess_SortByPType);
   if (scene == nullptr || scene->mRootNode == nullptr) {
-    throw MeshError("mesh '" + path + "': unreadable (" + importer.GetErrorString() + ")");
+    // assimp drops points and lines on import, so a file with no triangles fails as
+    // "No meshes remaining": say what that means for the user.
+    const std::string why = importer.GetErrorString();
+    if (why.find("No meshes remaining") != std::string::npos)
+      throw MeshError("mesh '" + path + "': no triangles (assimp: " + why + ")");
+    throw MeshError("mesh '" + path + "': unreadable (" + why + ")");
   }
   TriangleMesh mesh;
   collect(scene, scene->mRootNode, aiMatrix4x4(), scale, &mesh);

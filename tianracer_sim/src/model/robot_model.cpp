@@ -156,8 +156,10 @@ class CaptureHandler : public console_bridge::OutputHandler {
  public:
   void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
     if (level >= console_bridge::CONSOLE_BRIDGE_LOG_WARN) messages.push_back(text);
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) ++errors;
   }
   std::vector<std::string> messages;
+  int errors = 0;
 };
 
 urdf::ModelInterfaceSharedPtr parseWithUrdfdom(const std::string& xml, const std::string& source,
@@ -166,6 +168,10 @@ urdf::ModelInterfaceSharedPtr parseWithUrdfdom(const std::string& xml, const std
   static CaptureHandler handler;  // static: console_bridge keeps a pointer as "previous"
   std::lock_guard<std::mutex> lock(mutex);
   handler.messages.clear();
+  handler.errors = 0;
+  // console_bridge drops messages below its global level before any handler sees them.
+  const console_bridge::LogLevel previous_level = console_bridge::getLogLevel();
+  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_WARN);
   console_bridge::OutputHandler* previous = console_bridge::getOutputHandler();
   console_bridge::useOutputHandler(&handler);
   urdf::ModelInterfaceSharedPtr model;
@@ -175,7 +181,11 @@ urdf::ModelInterfaceSharedPtr parseWithUrdfdom(const std::string& xml, const std
     handler.messages.push_back(e.what());
   }
   console_bridge::useOutputHandler(previous);
-  if (!model) {
+  console_bridge::setLogLevel(previous_level);
+  // urdfdom 3.0 logs an error and still returns a model when a link's <inertial> does not parse
+  // (e.g. a bad <origin xyz>): that link then has mass 0. An error is an error (found by
+  // fuzz_extensions).
+  if (!model || handler.errors > 0) {
     std::string msg = source + ": urdfdom could not parse the URDF";
     for (const auto& m : handler.messages) msg += ": " + m;
     throw ModelError(msg);

@@ -217,7 +217,8 @@ void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name
     X_WB.translation().z() = getDouble(rp, "z", 0.0);
     auto_z = false;
   }
-  if (!X_WB.matrix().allFinite()) throw std::runtime_error("spawn pose (~x ~y ~z ~roll ~pitch ~yaw) is not finite");
+  if (const std::string bad = checkModelState(X_WB, Twist()); !bad.empty())
+    throw std::runtime_error("spawn pose (~x ~y ~z ~roll ~pitch ~yaw): " + bad);
 
   // Controllers: the list given, else every controller defined under the namespace.
   std::string control_ns;
@@ -786,6 +787,9 @@ bool SimNode::onSetModelState(SetModelState::Request& req, SetModelState::Respon
     } else if (!fromTwistMsg(req.twist, &twist)) {
       res.status_message = "set_model_state: twist of '" + req.model_name +
                            "' is not finite; state unchanged";
+    } else if (const std::string bad = checkModelState(X, twist); !bad.empty()) {
+      res.status_message = "set_model_state: " + bad + " for '" + req.model_name +
+                           "'; state unchanged";
     } else {
       PhysicsRobot& pr = sim_->physics().robot(robot->id);
       pr.setBasePose(X);

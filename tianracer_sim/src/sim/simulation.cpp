@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "tianracer_sim/mesh/mesh_loader.h"
@@ -237,6 +238,31 @@ void Simulation::resetWorld() {
     physics_.robot(robot->id).resetToSpawn();
     restartControllers(*robot);
   }
+}
+
+std::string checkModelState(const Eigen::Isometry3d& X_WB, const Twist& V_WB) {
+  if (!X_WB.matrix().allFinite()) return "pose is not finite";
+  if (!V_WB.linear.allFinite() || !V_WB.angular.allFinite()) return "twist is not finite";
+  const char* axes[3] = {"x", "y", "z"};
+  auto fmt = [](double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%g", v);
+    return std::string(buf);
+  };
+  struct Check {
+    const char* what;
+    Eigen::Vector3d v;
+    double bound;
+    const char* unit;
+  };
+  for (const Check& c : {Check{"position", X_WB.translation(), kMaxModelPosition, "m"},
+                         Check{"linear velocity", V_WB.linear, kMaxModelLinearVelocity, "m/s"},
+                         Check{"angular velocity", V_WB.angular, kMaxModelAngularVelocity, "rad/s"}})
+    for (int i = 0; i < 3; ++i)
+      if (std::abs(c.v[i]) > c.bound)
+        return std::string(c.what) + " " + axes[i] + " " + fmt(c.v[i]) + " is out of range (|" +
+               axes[i] + "| <= " + fmt(c.bound) + " " + c.unit + ")";
+  return "";
 }
 
 }  // namespace tianracer_sim

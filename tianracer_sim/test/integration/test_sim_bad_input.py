@@ -12,6 +12,7 @@ import rostest
 
 PKG = rospkg.RosPack().get_path('tianracer_sim')
 DATA = os.path.join(PKG, 'test', 'data', 'urdf')
+WORLDS = os.path.join(PKG, 'test', 'data', 'worlds')
 XACRO = os.path.join(rospkg.RosPack().get_path('tianracer_description'), 'urdf',
                      'tianracer_description.xacro')
 
@@ -95,6 +96,46 @@ class SimBadInput(unittest.TestCase):
     def test_controller_without_parameters(self):
         rospy.set_param('/robot_description', self.urdf)
         self.assert_fails(["controller 'ghost'", '/tianracer/ghost'], '_controllers:=ghost')
+
+    # Issue 9 bad-input matrix (docs/bad_input.md): meshes that exist but hold no triangles are
+    # refused when the physics loads them; world errors; the controller YAML; the spawn pose.
+    def test_empty_mesh(self):
+        self.assert_fails(["meshes/empty.stl': file is empty"],
+                          '_model:=' + os.path.join(DATA, 'invalid_empty_mesh.urdf'))
+
+    def test_zero_triangle_mesh(self):
+        self.assert_fails(["meshes/lines.obj': no triangles"],
+                          '_model:=' + os.path.join(DATA, 'invalid_no_triangles_mesh.urdf'))
+
+    def test_world_with_an_empty_mesh(self):
+        rospy.set_param('/robot_description', self.urdf)
+        self.assert_fails(["worlds/meshes/empty.stl': file is empty"],
+                          '_world:=' + os.path.join(WORLDS, 'invalid_empty_mesh.world'))
+
+    def test_world_syntax_error_names_the_line(self):
+        rospy.set_param('/robot_description', self.urdf)
+        self.assert_fails(['invalid_syntax.world:6: malformed XML'],
+                          '_world:=' + os.path.join(WORLDS, 'invalid_syntax.world'))
+
+    def test_controller_missing_joint(self):
+        rospy.set_param('/robot_description', self.urdf)
+        rospy.set_param('/tianracer/bad', {'type': 'effort_controllers/JointPositionController'})
+        self.assert_fails(["controller 'bad': no joint given"], '_controllers:=bad')
+
+    def test_controller_missing_pid(self):
+        rospy.set_param('/robot_description', self.urdf)
+        rospy.set_param('/tianracer/bad', {'type': 'effort_controllers/JointPositionController',
+                                           'joint': 'left_steering_hinge_joint'})
+        self.assert_fails(["controller 'bad': pid/p is missing"], '_controllers:=bad')
+
+    def test_spawn_pose_out_of_range(self):
+        rospy.set_param('/robot_description', self.urdf)
+        self.assert_fails(['spawn pose', 'position x 1e+30 is out of range (|x| <= 1e+06 m)'],
+                          '_x:=1e30')
+
+    def test_spawn_pose_not_finite(self):
+        rospy.set_param('/robot_description', self.urdf)
+        self.assert_fails(['spawn pose', 'pose is not finite'], '_y:=nan')
 
     def test_bad_real_time_factor(self):
         rospy.set_param('/robot_description', self.urdf)

@@ -298,6 +298,21 @@ TEST(RayCaster, RangeLimitsMapToInfinity) {
   for (float v : r) EXPECT_EQ(v, std::numeric_limits<float>::infinity());
 }
 
+// A sensor teleported to 1e30 (set_model_state) or NaN: Embree would abort on such a ray origin;
+// the caster reports no hit instead (issue 9).
+TEST(RayCaster, SensorFarOutsideTheWorldSeesNothing) {
+  Scene scene;
+  addRoom(scene, -2, 2, -2, 2);
+  RayCaster caster;
+  const RaySensorConfig c = seedConfig();
+  std::mt19937_64 rng(1);
+  for (double x : {1e30, -1e30, 1e19, std::numeric_limits<double>::quiet_NaN(), kInf}) {
+    const std::vector<float> r = caster.scan(scene, pose(x, 0, 0.5), c, rng);
+    for (float v : r) EXPECT_EQ(v, std::numeric_limits<float>::infinity()) << x;
+  }
+  EXPECT_NEAR(caster.scan(scene, pose(0, 0, 0.5), c, rng)[540], 2.0, 0.05);  // still works
+}
+
 TEST(RayCaster, RangeModelClampsNoise) {
   RaySensorConfig c = seedConfig();
   c.noise.type = "gaussian";

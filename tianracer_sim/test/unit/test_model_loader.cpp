@@ -325,6 +325,16 @@ TEST(ModelLoaderBadInput, UrdfdomErrorsNameTheSource) {
               AllOf(HasSubstr("my_param: urdfdom could not parse the URDF"), HasSubstr("sliding")));
 }
 
+// urdfdom logs an error for a link whose <inertial> does not parse and returns the model anyway,
+// with mass 0 on that link; the loader must refuse it (fuzz_extensions crash, issue 9).
+TEST(ModelLoaderBadInput, UrdfdomErrorWithAModelIsStillAnError) {
+  Loader l;
+  EXPECT_THAT(l.error("invalid_inertial_origin.urdf"),
+              AllOf(HasSubstr("invalid_inertial_origin.urdf: urdfdom could not parse the URDF"),
+                    HasSubstr("Unable to parse component [0.1x]"),
+                    HasSubstr("Could not parse inertial element for Link [body]")));
+}
+
 TEST(ModelLoaderBadInput, TransmissionOnUnknownJoint) {
   Loader l;
   EXPECT_THAT(l.error("invalid_transmission_joint.urdf"),

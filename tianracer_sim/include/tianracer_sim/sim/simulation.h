@@ -93,6 +93,16 @@ void buildJointHandles(const RobotModel& model, const PhysicsRobot& robot,
 /// Exact for boxes, spheres and cylinders; meshes by their vertices.
 double depthBelowBase(const RobotModel& model, const Eigen::Matrix3d& R_WB);
 
+/// Bounds of a base state set from outside (spawn, set_model_state): beyond them the physics and
+/// the ray caster lose all precision (Embree refuses ray origins beyond about 1.8e18 and aborts).
+constexpr double kMaxModelPosition = 1e6;         // m, each coordinate
+constexpr double kMaxModelLinearVelocity = 1e3;   // m/s, each component
+constexpr double kMaxModelAngularVelocity = 1e4;  // rad/s, each component
+
+/// "" when the base pose and twist are finite and within the bounds above, else what is wrong,
+/// e.g. "position x 1e+30 is out of range (|x| <= 1e+06 m)".
+std::string checkModelState(const Eigen::Isometry3d& X_WB, const Twist& V_WB);
+
 }  // namespace tianracer_sim
 
 #endif  // TIANRACER_SIM_SIM_SIMULATION_H

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer harnesses (tianracer_sim/fuzz) with clang and runs each in turn.
+#   scripts/fuzz.sh [seconds]        seconds per harness, default 600
+#   scripts/fuzz.sh 600 --merge      afterwards, minimise the committed corpora
+#                                   (-set_cover_merge=1: fewest files
+#                                   that keep every feature)
+# Needs clang and libFuzzer (Debian: apt-get install clang libclang-rt-14-dev). Not part of CI:
+# the unit tests already replay a small mutation set; this is the long run.
+# New inputs go to $OUT/corpus (a scratch copy), crashes to $OUT/crashes; the committed seed
+# corpus in tianracer_sim/fuzz/corpus/ is only rewritten with --merge.
+set -euo pipefail
+
+SECONDS_PER="${1:-600}"
+MERGE=0
+[[ "${2:-}" == "--merge" ]] && MERGE=1
+REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+FUZZ="$REPO/tianracer_sim/fuzz"
+OUT="${FUZZ_OUT:-$REPO/.build/fuzz}"
+CXX_BIN="${CXX:-$(command -v clang++ || command -v clang++-14 || true)}"
+[[ -n "$CXX_BIN" ]] || { echo "ERROR [fuzz] clang++ not found (apt-get install clang libclang-rt-14-dev)" >&2; exit 1; }
+
+say() { printf '==> [fuzz] %s\n' "$*"; }
+say "building with $CXX_BIN in $OUT/build"
+mkdir -p "$OUT/build" "$OUT/crashes"
+cmake -S "$FUZZ" -B "$OUT/build" -DCMAKE_CXX_COMPILER="$CXX_BIN" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  >"$OUT/cmake.log" 2>&1 || { tail -20 "$OUT/cmake.log" >&2; exit 1; }
+cmake --build "$OUT/build" -j"${JOBS:-2}" >"$OUT/build.log" 2>&1 || { tail -30 "$OUT/build.log" >&2; exit 1; }
+
+status=0
+for name in extensions world; do
+  bin="$OUT/build/fuzz_$name"
+  work="$OUT/corpus/$name"
+  mkdir -p "$work" "$OUT/crashes/$name"
+  cp -n "$FUZZ/corpus/$name"/* "$work"/ 2>/dev/null || true
+  log="$OUT/fuzz_$name.log"
+  say "fuzz_$name: ${SECONDS_PER} s, corpus $(ls "$work" | wc -l) files, log $log"
+  rc=0
+  # -rss_limit_mb: urdfdom and tinyxml2 are not instrumented, ASan's shadow adds its share.
+  "$bin" "$work" -dict="$FUZZ/xml.dict" -max_total_time="$SECONDS_PER" -max_len=65536 \
+    -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 \
+    -artifact_prefix="$OUT/crashes/$name/" >"$log" 2>&1 || rc=$?
+  execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
+  speed=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log")
+  cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1)
+  ft=$(grep -o 'ft: [0-9]*' "$log" | tail -1)
+  crashes=$(ls "$OUT/crashes/$name" | wc -l)
+  say "fuzz_$name: exit $rc, ${execs:-?} executions, ${speed:-?} exec/s, ${cov:-cov: ?}, ${ft:-ft: ?}, corpus $(ls "$work" | wc -l) files, crashes $crashes"
+  if ((rc != 0 || crashes != 0)); then
+    status=1
+    grep -m5 -E 'ERROR|SUMMARY|broken promise|deadly' "$log" >&2 || true
+  fi
+  if ((MERGE)); then
+    tmp="$OUT/merged_$name"; rm -rf "$tmp"; mkdir -p "$tmp"
+    "$bin" -set_cover_merge=1 "$tmp" "$work" "$FUZZ/corpus/$name" >"$OUT/merge_$name.log" 2>&1
+    # Regression inputs (crash_*: past crashers, named after what they found) stay.
+    find "$FUZZ/corpus/$name" -type f ! -name 'crash_*' -delete; cp "$tmp"/* "$FUZZ/corpus/$name"/
+    say "fuzz_$name: corpus minimised to $(ls "$FUZZ/corpus/$name" | wc -l) files in $FUZZ/corpus/$name"
+  fi
+done
+exit $status
