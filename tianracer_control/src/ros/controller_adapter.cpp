@@ -1,6 +1,7 @@
 #include "tianracer_control/ros/controller_adapter.h"
 
 #include <cmath>
+#include <sstream>
 
 #include <ros/console.h>
 
@@ -117,12 +118,27 @@ ControllerCommandSubscribers::ControllerCommandSubscribers(ros::NodeHandle ns,
 
 void ControllerCommandSubscribers::onCommand(Controller* controller,
                                              const std_msgs::Float64::ConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(mutex_);
   if (!std::isfinite(msg->data)) {
-    ROS_WARN_STREAM_THROTTLE(1.0, "controller '" << controller->name() << "': ignoring command "
-                                                 << msg->data << " (not finite)");
+    // At most one warning a second per controller (a per-call-site throttle would let one
+    // controller's warnings hide another's).
+    Ignored& ignored = ignored_[controller];
+    const ros::WallTime now = ros::WallTime::now();
+    if (ignored.last_warning.isZero() || (now - ignored.last_warning).toSec() >= 1.0) {
+      std::ostringstream text;
+      text << "controller '" << controller->name() << "': ignoring command " << msg->data
+           << " (not finite)";
+      if (ignored.since_warning > 0) {
+        text << "; " << ignored.since_warning << " more ignored since the last warning";
+      }
+      ROS_WARN_STREAM(text.str());
+      ignored.last_warning = now;
+      ignored.since_warning = 0;
+    } else {
+      ++ignored.since_warning;
+    }
     return;
   }
-  std::lock_guard<std::mutex> lock(mutex_);
   pending_[controller] = msg->data;
 }
 

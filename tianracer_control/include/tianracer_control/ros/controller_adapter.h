@@ -52,6 +52,11 @@ class ControllerCommandSubscribers {
   std::vector<ros::Subscriber> subscribers_;
   std::mutex mutex_;
   std::map<Controller*, double> pending_;
+  struct Ignored {
+    ros::WallTime last_warning;
+    int since_warning = 0;
+  };
+  std::map<Controller*, Ignored> ignored_;  // non-finite commands, for the throttled warning
 };
 
 }  // namespace tianracer_control
