@@ -75,6 +75,9 @@ struct Surface {
 /// or a single one for non-compound objects.
 struct ColliderSurfaces {
   std::vector<Surface> children;
+  // A collider whose shapes are all fitted wheels has a tyre (PhysicsOptions::tyre_*).
+  bool wheel = false;
+  double tyre_stiffness = 0.0, tyre_damping = 0.0;
   const Surface& at(int index) const {
     return (index >= 0 && index < static_cast<int>(children.size())) ? children[index] : children[0];
   }
@@ -121,11 +124,21 @@ bool onContactAdded(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, int
   cp.m_combinedRollingFriction = 0.0;
   cp.m_combinedSpinningFriction = 0.0;
 
-  // Stiffness: springs in series, dampers in parallel (ODE's rule).
-  const double kp = 1.0 / (1.0 / s0.kp + 1.0 / s1.kp);
+  // A tyre on one side (a wheel on a wheel is left to the surfaces).
+  const ColliderSurfaces* tyre = nullptr;
+  if (c0->wheel != c1->wheel) tyre = c0->wheel ? c0 : c1;
+
+  // Stiffness: springs in series, dampers in parallel (ODE's rule); a tyre is one more spring
+  // and damper of the same kind.
+  double kp = 1.0 / (1.0 / s0.kp + 1.0 / s1.kp);
+  double kd = s0.kd + s1.kd;
+  if (tyre != nullptr && tyre->tyre_stiffness > 0.0) {
+    kp = 1.0 / (1.0 / kp + 1.0 / tyre->tyre_stiffness);
+    kd += tyre->tyre_damping;
+  }
   if (kp < 0.5 * kRigidKp) {
     cp.m_combinedContactStiffness1 = kp;
-    cp.m_combinedContactDamping1 = s0.kd + s1.kd;
+    cp.m_combinedContactDamping1 = kd;
     cp.m_contactPointFlags |= BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING;
   } else {
     cp.m_contactPointFlags &= ~BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING;
@@ -139,6 +152,45 @@ bool onContactAdded(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, int
 
   return true;
 }
+
+/// Bullet's multibody world with one step added before each solve (see pruneWheelManifolds).
+class MultiBodyWorld : public btMultiBodyDynamicsWorld {
+ public:
+  using btMultiBodyDynamicsWorld::btMultiBodyDynamicsWorld;
+
+  void solveConstraints(btContactSolverInfo& info) override {
+    pruneWheelManifolds();
+    btMultiBodyDynamicsWorld::solveConstraints(info);
+  }
+
+ private:
+  /// A wheel's manifold keeps the points of earlier steps, which rise off the ground as the
+  /// wheel rolls on (16 um one step later at 1 m/s, 64 um two steps later). With rigid
+  /// contacts they stayed unsolved (wheel colliders solve only touching points), but a tyre
+  /// sinks 0.1-0.3 mm, so a few of them would still count as touching: 9 points solved per
+  /// step for 4 wheels instead of 4, and twice the step time. The narrowphase's fresh point
+  /// is the deepest one (a convex wheel); only it is kept. (A wheel wedged between two faces
+  /// of one triangle mesh keeps only its deeper contact.)
+  void pruneWheelManifolds() {
+    btDispatcher* d = getDispatcher();
+    for (int m = 0; m < d->getNumManifolds(); ++m) {
+      btPersistentManifold* pm = d->getManifoldByIndexInternal(m);
+      if (pm->getNumContacts() < 2) continue;
+      const auto* c0 = static_cast<const ColliderSurfaces*>(pm->getBody0()->getUserPointer());
+      const auto* c1 = static_cast<const ColliderSurfaces*>(pm->getBody1()->getUserPointer());
+      if (!((c0 != nullptr && c0->wheel) || (c1 != nullptr && c1->wheel))) continue;
+      int deepest = 0;
+      for (int p = 1; p < pm->getNumContacts(); ++p) {
+        if (pm->getContactPoint(p).getDistance() < pm->getContactPoint(deepest).getDistance()) {
+          deepest = p;
+        }
+      }
+      const btManifoldPoint keep = pm->getContactPoint(deepest);  // with its warm start
+      pm->clearManifold();
+      pm->addManifoldPoint(keep);
+    }
+  }
+};
 
 /// mu1 != mu2: Bullet's anisotropic friction scales each friction direction's components in the
 /// object's frame, which turns the friction cone into an ellipse with semi-axes mu1 N along
@@ -310,11 +362,17 @@ PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
   if (options.solver_iterations < 1) {
     throw PhysicsError("physics: solver_iterations must be >= 1");
   }
+  if (!(options.tyre_stiffness >= 0.0) || !std::isfinite(options.tyre_stiffness) ||
+      !(options.tyre_damping_ratio >= 0.0) || !std::isfinite(options.tyre_damping_ratio)) {
+    throw PhysicsError("physics: tyre_stiffness and tyre_damping_ratio must be finite and >= 0, got " +
+                       std::to_string(options.tyre_stiffness) + " and " +
+                       std::to_string(options.tyre_damping_ratio));
+  }
   config = std::make_unique<btDefaultCollisionConfiguration>();
   dispatcher = std::make_unique<btCollisionDispatcher>(config.get());
   broadphase = std::make_unique<btDbvtBroadphase>();
   solver = std::make_unique<btMultiBodyConstraintSolver>();
-  world = std::make_unique<btMultiBodyDynamicsWorld>(dispatcher.get(), broadphase.get(),
+  world = std::make_unique<MultiBodyWorld>(dispatcher.get(), broadphase.get(),
                                                      solver.get(), config.get());
   world->setGravity(toBt(options.gravity));
   // Not m_deterministicOverlappingPairs: it sorts a fresh copy of the pair array every step
@@ -637,6 +695,7 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const RobotModel& model) {
       // and a little drag. The narrowphase finds the true contact afresh every step, so only
       // touching points are solved for wheels.
       col->setContactProcessingThreshold(0.0);
+      surfaces->wheel = true;
     }
     world->addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter,
                               btBroadphaseProxy::AllFilter);
@@ -648,6 +707,21 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const RobotModel& model) {
     r->shapes.push_back(std::move(compound));
     r->surfaces.push_back(std::move(surfaces));
     r->colliders[b] = std::move(col);
+  }
+
+  // Tyres: stiffness as given, damping from the damping ratio of one wheel carrying its share
+  // of the robot's mass on that spring, kd = 2 zeta sqrt(k m / wheels).
+  int wheels = 0;
+  double mass = 0.0;
+  for (int b = 0; b < nb; ++b) {
+    mass += tree.bodies[b].mass.mass;
+    if (r->surfaces[b]->wheel) ++wheels;
+  }
+  for (auto& sf : r->surfaces) {
+    if (!sf->wheel || !(options.tyre_stiffness > 0.0)) continue;
+    sf->tyre_stiffness = options.tyre_stiffness;
+    sf->tyre_damping =
+        2.0 * options.tyre_damping_ratio * std::sqrt(options.tyre_stiffness * mass / wheels);
   }
 
   // Joints: info, limits, motors (added to the world when first used).
@@ -1011,6 +1085,24 @@ int PhysicsRobot::contactCount(const std::string& link, double max_distance) con
     }
   }
   return count;
+}
+
+double PhysicsRobot::contactNormalForce(const std::string& link) const {
+  const int b = s_->bodyOf(link);
+  const btCollisionObject* col = s_->colliders[b].get();
+  if (col == nullptr) return 0.0;
+  btDispatcher* d = s_->world->world->getDispatcher();
+  double impulse = 0.0;
+  for (int m = 0; m < d->getNumManifolds(); ++m) {
+    const btPersistentManifold* pm = d->getManifoldByIndexInternal(m);
+    if (pm->getBody0() != col && pm->getBody1() != col) continue;
+    for (int p = 0; p < pm->getNumContacts(); ++p) {
+      const btManifoldPoint& cp = pm->getContactPoint(p);
+      // Points beyond the processing threshold are not solved and keep stale impulses.
+      if (cp.getDistance() <= pm->getContactProcessingThreshold()) impulse += cp.getAppliedImpulse();
+    }
+  }
+  return impulse / s_->world->options.dt;
 }
 
 double PhysicsRobot::kineticEnergy() const {

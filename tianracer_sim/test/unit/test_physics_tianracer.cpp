@@ -351,5 +351,115 @@ TEST(Tianracer, BitIdenticalRepeat) {
   for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << i;
 }
 
+/// Mean normal force on each wheel (kWheels order) and mean longitudinal slip velocity of each
+/// rear wheel (r omega minus its centre's speed along the car, m/s) over `seconds`.
+struct WheelLoads {
+  double load[4] = {0, 0, 0, 0};
+  double slip_left = 0.0, slip_right = 0.0;
+};
+WheelLoads measureLoads(Car& car, double seconds) {
+  WheelLoads w;
+  const long n = std::lround(seconds / car.world->dt());
+  const double dt = car.world->dt();
+  Eigen::Vector3d pl = car.robot->linkPose("left_rear_wheel").translation();
+  Eigen::Vector3d pr = car.robot->linkPose("right_rear_wheel").translation();
+  for (long k = 0; k < n; ++k) {
+    car.step();
+    for (int i = 0; i < 4; ++i) w.load[i] += car.robot->contactNormalForce(kWheels[i]) / n;
+    const Eigen::Vector3d x = car.robot->basePose().rotation().col(0);
+    const Eigen::Vector3d ql = car.robot->linkPose("left_rear_wheel").translation();
+    const Eigen::Vector3d qr = car.robot->linkPose("right_rear_wheel").translation();
+    w.slip_left += (kWheelRadius * car.robot->jointVelocity(car.lr) - (ql - pl).dot(x) / dt) / n;
+    w.slip_right += (kWheelRadius * car.robot->jointVelocity(car.rr) - (qr - pr).dot(x) / dt) / n;
+    pl = ql;
+    pr = qr;
+  }
+  return w;
+}
+
+// Issue 4 (d): in a steady turn all four wheels carry load. The seed's rigid chassis stands on
+// a diagonal once steering makes the contact points non-coplanar (world.h, "Tyres"); with the
+// seed's stiff contacts alone the outer rear wheel carried 0 N in this turn.
+TEST(Tianracer, SteadyTurnSharesTheLoadOverFourWheels) {
+  Car car;
+  car.run(0.5);
+  const WheelLoads straight = measureLoads(car, 0.5);
+  double total = 0.0;
+  for (double f : straight.load) total += f;
+  EXPECT_NEAR(total, car.robot->totalMass() * 9.8, 0.01 * car.robot->totalMass() * 9.8);
+  for (double radius : {0.8, -0.8}) {
+    Car turning;
+    turning.run(0.5);
+    turning.ackermann(std::atan(kWheelbase / radius), 0.5);
+    turning.run(4.0);
+    const WheelLoads w = measureLoads(turning, 4.0);
+    std::cout << std::setprecision(4) << "[tianracer turn R " << radius
+              << " m, 0.5 m/s] loads LF RF LR RR " << w.load[0] << " " << w.load[1] << " "
+              << w.load[2] << " " << w.load[3] << " N (straight " << straight.load[0] << " "
+              << straight.load[1] << " " << straight.load[2] << " " << straight.load[3]
+              << "); rear slip " << w.slip_left * 1e3 << " / " << w.slip_right * 1e3
+              << " mm/s\n";
+    for (int i = 0; i < 4; ++i) {
+      EXPECT_NEAR(w.load[i], straight.load[i], 0.2 * straight.load[i]) << kWheels[i];
+    }
+    EXPECT_LT(std::abs(w.slip_left), 1e-3);
+    EXPECT_LT(std::abs(w.slip_right), 1e-3);
+  }
+}
+
+/// tianracer_control's BicycleOdometry, integrated every step: rear wheel speeds and hinge
+/// angles, the hinges mapped back to the bicycle angle.
+struct WheelOdometry {
+  double x = 0.0, y = 0.0, yaw = 0.0;
+  void update(const Car& car, double dt) {
+    const PhysicsRobot& r = *car.robot;
+    const double v = 0.5 * kWheelRadius * (r.jointVelocity(car.lr) + r.jointVelocity(car.rr));
+    const double tl = std::tan(r.jointPosition(car.lh)), tr = std::tan(r.jointPosition(car.rh));
+    const double dl = std::atan(kWheelbase * tl / (kWheelbase + 0.5 * kHingeTrack * tl));
+    const double dr = std::atan(kWheelbase * tr / (kWheelbase - 0.5 * kHingeTrack * tr));
+    const double w = v * std::tan(0.5 * (dl + dr)) / kWheelbase;
+    x += v * dt * std::cos(yaw + 0.5 * w * dt);
+    y += v * dt * std::sin(yaw + 0.5 * w * dt);
+    yaw += w * dt;
+  }
+};
+
+// Issue 4 (d), physics only: figure-eight of 10 m at 0.5 m/s with exact Ackermann angles and
+// rear wheel speeds; wheel odometry of the rear axle midpoint vs ground truth.
+TEST(Tianracer, FigureEightWheelOdometry) {
+  Car car;
+  car.run(0.5);
+  const double radius = 10.0 / (4.0 * M_PI), v = 0.5, delta = std::atan(kWheelbase / radius);
+  const Eigen::Vector3d p0 = car.rearAxle();
+  const double yaw0 = car.yaw();
+  WheelOdometry odo;
+  double travelled = 0.0;
+  Eigen::Vector3d p = p0;
+  const long lap = std::lround(2.0 * M_PI * radius / v / car.world->dt());
+  for (long k = 0; k < 2 * lap + 2000; ++k) {
+    if (k == 0) car.ackermann(delta, v);
+    if (k == lap) car.ackermann(-delta, v);
+    if (k == 2 * lap) car.ackermann(0.0, 0.0);
+    car.step();
+    odo.update(car, car.world->dt());
+    const Eigen::Vector3d q = car.rearAxle();
+    travelled += (q - p).head<2>().norm();
+    p = q;
+  }
+  // Truth displacement of the rear axle midpoint in the start frame.
+  const Eigen::Vector2d d = Eigen::Rotation2Dd(-yaw0) * (p - p0).head<2>();
+  const double yaw_truth = std::remainder(car.yaw() - yaw0, 2.0 * M_PI);
+  const double pos_err = std::hypot(odo.x - d.x(), odo.y - d.y());
+  const double yaw_err = std::remainder(odo.yaw - yaw_truth, 2.0 * M_PI);
+  std::cout << std::setprecision(4) << "[tianracer figure-eight R " << radius << " m, 0.5 m/s] "
+            << "travelled " << travelled << " m; truth (" << d.x() << ", " << d.y() << ") m, "
+            << yaw_truth * 180 / M_PI << " deg; odometry (" << odo.x << ", " << odo.y << ") m, "
+            << odo.yaw * 180 / M_PI << " deg: position error " << 100 * pos_err / travelled
+            << " %, heading error " << yaw_err * 180 / M_PI << " deg\n";
+  EXPECT_GT(travelled, 9.9);
+  EXPECT_LT(pos_err, 0.02 * travelled);
+  EXPECT_LT(std::abs(yaw_err), 5.0 * M_PI / 180.0);
+}
+
 }  // namespace
 }  // namespace tianracer_sim

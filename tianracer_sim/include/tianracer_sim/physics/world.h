@@ -26,6 +26,19 @@
 //    (erp = dt kp/(dt kp + kd), cfm = 1/(dt kp + kd)). kp >= 1e12 (SDF's default) counts as
 //    rigid: Bullet's rigid contact (erp2 of the solver) is used then. As in ODE, the CFM softens
 //    only the normal rows, not friction.
+//  * Tyres (not in Gazebo): a wheel contact gets one more spring-damper in series with the
+//    surfaces' (PhysicsOptions::tyre_stiffness, default 1e5 N/m, critically damped for a
+//    quarter of the robot's mass). Why: the seed's chassis is rigid and has no suspension, and
+//    its front axle sits 1 mm above the rear; steering moves the front contact points fore and
+//    aft (the wheels are offset from the kingpins), so the four contact points stop being
+//    coplanar by a few tens of um. At the seed's kp (1e7 N/m: 2 um of sink) the car then stands on
+//    a diagonal: in a 0.8 m turn at 0.5 m/s the outer rear wheel carried 0 N (inner 26 N) and
+//    the rear axle's speed followed the loaded wheel alone (+10 % with both rear wheels at
+//    v / r). ODE would do the same at that kp (its contact_surface_layer shifts every spring by
+//    the same depth). A real car absorbs the warp in its tyres and suspension; 1e5 N/m lets
+//    the wheels sink 0.1-0.3 mm (rolling radius unchanged: the no-slip point stays on the
+//    wheel, R below the axle) and in that turn moves a rear corner's load by ~1 N of 13 N
+//    instead of all of it. 0 turns it off.
 //  * Collision shapes: box, sphere and cylinder primitives as themselves; meshes become convex
 //    hulls shrunk by the margin (collision_margin, 0.5 mm), so the hull plus margin is the mesh's
 //    own hull; static world meshes are exact triangle meshes. A mesh on the child of a continuous
@@ -88,6 +101,12 @@ struct PhysicsOptions {
   WheelShape wheel_shape = WheelShape::kRoundedCylinder;
   /// Max torque of a velocity motor on a joint whose URDF gives no effort limit (N m).
   double default_motor_effort = 10.0;
+  /// Tyres (contacts of fitted wheels, i.e. WheelShape other than kMeshHull): a spring of
+  /// tyre_stiffness (N/m) in series with the surfaces' kp and a damper added to their kd,
+  /// 2 zeta sqrt(k m / wheels) with m the robot's mass (zeta 1: the wheel-hop mode does not
+  /// ring). 0 = off, as in Gazebo. See "Tyres" at the top of this file for why.
+  double tyre_stiffness = 1e5;
+  double tyre_damping_ratio = 1.0;
 };
 
 /// Surface of a collision (Gazebo <surface>/<gazebo reference> values; defaults are Gazebo's).
@@ -182,6 +201,9 @@ class PhysicsRobot {
   /// Contact points of the link's body with anything, at distance <= max_distance (m), from
   /// the last step's contact manifolds.
   int contactCount(const std::string& link, double max_distance = 1e-3) const;
+  /// Total normal force (N) on the link's body over the contact points solved in the last
+  /// step: the solver's normal impulses / dt.
+  double contactNormalForce(const std::string& link) const;
 
   /// Energies for tests: kinetic (translation + rotation of every body), and potential
   /// -sum m g.p_com (zero at the world origin).
