@@ -130,6 +130,7 @@ class ImageNoise {
  private:
   bool enabled_ = false;
   std::vector<int16_t> table_;
+  std::vector<uint16_t> saturating_;  // table_ as (max(n, 0) | max(-n, 0) << 8), each <= 255
   std::mt19937 rng_;
 };
 
