@@ -47,6 +47,7 @@
 #include "tianracer_sim/lidar/ray_sensor.h"
 #include "tianracer_sim/render/camera_sensor.h"
 #include "tianracer_sim/render/renderer.h"
+#include "tianracer_sim/ros/borrowed_msgs.h"
 #include "tianracer_sim/scene/scene.h"
 #include "tianracer_sim/sim/robot_scene.h"
 #include "tianracer_sim/sim/simulation.h"
@@ -106,7 +107,7 @@ class SimNode {
     std::unique_ptr<CameraSensor> sensor;
     ros::Publisher image, info;
     Schedule schedule;
-    sensor_msgs::Image image_msg;
+    BorrowedImage image_msg;  // the sensor's buffer, serialised by publish() without a copy
     sensor_msgs::CameraInfo info_msg;
     size_t stat = 0;
   };
@@ -117,8 +118,8 @@ class SimNode {
     std::unique_ptr<DepthCameraSensor> sensor;
     ros::Publisher image, depth, cloud, image_info, depth_info;
     Schedule schedule, info_schedule;
-    sensor_msgs::Image image_msg, depth_msg;
-    sensor_msgs::PointCloud2 cloud_msg;
+    BorrowedImage image_msg, depth_msg;  // borrowed from the sensor, as CameraIo's
+    BorrowedPointCloud2 cloud_msg;
     sensor_msgs::CameraInfo info_msg;
     size_t stat = 0;
   };
