@@ -162,21 +162,18 @@ in vec2 v_world_xy;
 #endif
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out float o_depth;
+// Products of light and material colours are made once per draw, on the CPU.
 #if NUM_LIGHTS > 0
-uniform vec3 u_light_dir[NUM_LIGHTS];   // eye frame, pointing from the light
-uniform vec3 u_light_diffuse[NUM_LIGHTS];
-uniform vec3 u_light_specular[NUM_LIGHTS];
+uniform vec3 u_to_light[NUM_LIGHTS];  // eye frame, towards the light (-direction)
+uniform vec3 u_diffuse[NUM_LIGHTS];   // light diffuse * material diffuse
+uniform vec3 u_specular[NUM_LIGHTS];  // light specular * material specular
 #endif
-uniform vec3 u_scene_ambient;
-uniform vec3 u_ambient;
-uniform vec3 u_diffuse;
-uniform vec3 u_specular;
+uniform vec3 u_ambient;               // scene ambient * material ambient
 uniform float u_shininess;
 void main() {
   vec3 n = normalize(v_eye_normal);
   if (!gl_FrontFacing) n = -n;
-  vec3 ambient = u_ambient;
-  vec3 diffuse = u_diffuse;
+  float k = 1.0;  // the grid's darkening of ambient and diffuse
 #if GRID
   {
     // 1 m grid lines about 2 cm wide, anti-aliased with the screen-space footprint, and a
@@ -188,21 +185,19 @@ void main() {
     vec2 checker_cell = floor(v_world_xy);
     // mod(x, 2.0) of an integer, without mod's division: exact.
     float checker = 2.0 * fract(0.5 * (checker_cell.x + checker_cell.y)) * 0.06;
-    float k = (1.0 - checker) * (1.0 - 0.55 * on_line);
-    ambient *= k;
-    diffuse *= k;
+    k = (1.0 - checker) * (1.0 - 0.55 * on_line);
   }
 #endif
   vec3 v = normalize(-v_eye_position);
-  vec3 c = u_scene_ambient * ambient;
+  vec3 c = k * u_ambient;
 #if NUM_LIGHTS > 0
   for (int i = 0; i < NUM_LIGHTS; ++i) {
-    vec3 l = -u_light_dir[i];
+    vec3 l = u_to_light[i];
     float ndl = dot(n, l);
     if (ndl > 0.0) {
-      c += u_light_diffuse[i] * diffuse * ndl;
+      c += (k * ndl) * u_diffuse[i];
       vec3 h = normalize(l + v);
-      c += u_light_specular[i] * u_specular * pow(max(dot(n, h), 0.0), u_shininess);
+      c += u_specular[i] * pow(max(dot(n, h), 0.0), u_shininess);
     }
   }
 #endif
@@ -257,8 +252,8 @@ struct Renderer::Impl {
   WarningSink warn;
 
   struct Uniforms {
-    GLint model_view, projection, normal_matrix, model, light_dir, light_diffuse, light_specular,
-        scene_ambient, ambient, diffuse, specular, shininess;
+    GLint model_view, projection, normal_matrix, model, to_light, ambient, diffuse, specular,
+        shininess;
   };
   struct Program {
     GLuint id = 0;
@@ -356,10 +351,7 @@ struct Renderer::Impl {
     p.u.projection = loc("u_projection");
     p.u.normal_matrix = loc("u_normal_matrix");
     p.u.model = loc("u_model");
-    p.u.light_dir = loc("u_light_dir");
-    p.u.light_diffuse = loc("u_light_diffuse");
-    p.u.light_specular = loc("u_light_specular");
-    p.u.scene_ambient = loc("u_scene_ambient");
+    p.u.to_light = loc("u_to_light");
     p.u.ambient = loc("u_ambient");
     p.u.diffuse = loc("u_diffuse");
     p.u.specular = loc("u_specular");
@@ -564,16 +556,12 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
                        " directional lights; only the first 4 are drawn");
   }
   glBindVertexArray(m.vao);
-  float dirs[12], diffs[12], specs[12];
+  float to_light[12];
   for (int i = 0; i < num_lights; ++i) {
     const DirectionalLight& L = scene.lights[i];
     Eigen::Vector3d d = L.direction.norm() > 0 ? L.direction.normalized() : Eigen::Vector3d(0, 0, -1);
     d = X_EW.linear() * d;
-    for (int k = 0; k < 3; ++k) {
-      dirs[3 * i + k] = static_cast<float>(d[k]);
-      diffs[3 * i + k] = L.diffuse[k];
-      specs[3 * i + k] = L.specular[k];
-    }
+    for (int k = 0; k < 3; ++k) to_light[3 * i + k] = -static_cast<float>(d[k]);
   }
   // The items' program, then the ground's (with the grid); the per-frame uniforms go to each.
   const Impl::Uniforms* current = nullptr;
@@ -582,12 +570,7 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
     const Impl::Uniforms& u = prog.u;
     glUseProgram(prog.id);
     glUniformMatrix4fv(u.projection, 1, GL_FALSE, Pf.data());
-    if (num_lights > 0) {
-      glUniform3fv(u.light_dir, num_lights, dirs);
-      glUniform3fv(u.light_diffuse, num_lights, diffs);
-      glUniform3fv(u.light_specular, num_lights, specs);
-    }
-    glUniform3f(u.scene_ambient, scene.ambient[0], scene.ambient[1], scene.ambient[2]);
+    if (num_lights > 0) glUniform3fv(u.to_light, num_lights, to_light);
     current = &u;
   };
   use(false);
@@ -603,9 +586,20 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
     glUniformMatrix4fv(u.model_view, 1, GL_FALSE, MVf.data());
     if (u.model >= 0) glUniformMatrix4fv(u.model, 1, GL_FALSE, Mf.data());
     glUniformMatrix3fv(u.normal_matrix, 1, GL_FALSE, N.data());
-    glUniform3fv(u.ambient, 1, amb.data());
-    glUniform3fv(u.diffuse, 1, dif.data());
-    glUniform3fv(u.specular, 1, spe.data());
+    // The colour products the shader would otherwise form at every pixel.
+    const Eigen::Vector3f a = scene.ambient.head<3>().cwiseProduct(amb);
+    float d[12], sp[12];
+    for (int i = 0; i < num_lights; ++i) {
+      for (int k = 0; k < 3; ++k) {
+        d[3 * i + k] = scene.lights[i].diffuse[k] * dif[k];
+        sp[3 * i + k] = scene.lights[i].specular[k] * spe[k];
+      }
+    }
+    glUniform3fv(u.ambient, 1, a.data());
+    if (num_lights > 0) {
+      glUniform3fv(u.diffuse, num_lights, d);
+      glUniform3fv(u.specular, num_lights, sp);
+    }
     glUniform1f(u.shininess, std::max(shininess, 1.0f));
     glDrawArrays(GL_TRIANGLES, range.first, range.count);
   };
