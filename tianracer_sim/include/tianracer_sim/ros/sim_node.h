@@ -49,6 +49,7 @@
 #include "tianracer_sim/render/renderer.h"
 #include "tianracer_sim/ros/borrowed_msgs.h"
 #include "tianracer_sim/scene/scene.h"
+#include "tianracer_sim/sim/frame_worker.h"
 #include "tianracer_sim/sim/robot_scene.h"
 #include "tianracer_sim/sim/simulation.h"
 #include "tianracer_sim/world/world.h"
@@ -132,10 +133,23 @@ class SimNode {
     std::uint64_t renders = 0;  // frames rendered / scans cast in total
   };
 
+  /// The camera frames due at one step: rendered and published on camera_worker_'s thread
+  /// from render_scene_, a snapshot of scene_ at that step.
+  struct CameraJob {
+    ros::Time stamp;
+    struct Camera {
+      size_t index;  // into cameras_ or depth_cameras_
+      Eigen::Isometry3d X_WL;
+      DepthOutputs want;  // depth cameras only
+    };
+    std::vector<Camera> cameras, depths;
+  };
+
   void loadRobot();
   bool ensureRenderer();
   void setUpCamera(size_t robot_index, const std::string& link, const SensorSpec& spec);
   void publishCameras(double t, const ros::Time& stamp);
+  void renderCameras(CameraJob& job);  // on the frame worker's thread
   void publishStatus();
   void setUpSensors(size_t robot_index);
   /// Brings the scene's robot bodies to the current physics poses, once per step.
@@ -181,6 +195,11 @@ class SimNode {
   bool paused_ = false;
   bool pacing_reset_ = true;
   std::vector<ros::ServiceServer> services_;
+
+  CameraJob due_frames_;  // filled each step, handed to the worker (capacity kept)
+  Scene render_scene_;    // the worker's snapshot of scene_
+  // Started with the first frame; reset first in ~SimNode (it uses the sensors above).
+  std::unique_ptr<FrameWorker<CameraJob>> camera_worker_;
 };
 
 }  // namespace tianracer_sim
