@@ -201,7 +201,8 @@ void main() {
     }
   }
 #endif
-  o_color = vec4(clamp(c, 0.0, 1.0), 1.0);
+  // No clamp(): GL clamps what is written to a normalized fixed-point (RGBA8) buffer to [0, 1].
+  o_color = vec4(c, 1.0);
   o_depth = -v_eye_position.z;
 }
 )";
