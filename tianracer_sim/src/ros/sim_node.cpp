@@ -741,6 +741,7 @@ bool SimNode::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
 }
 
 bool SimNode::onResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  if (camera_worker_) camera_worker_->wait();  // the frame in flight goes out before time jumps back
   for (RobotIo& io : robots_) io.commands->clear();
   sim_->resetSimulation();
   restartSchedules();
