@@ -133,6 +133,20 @@ void toPointCloud2(const DepthCameraSensor& camera, const ros::Time& stamp,
                    BorrowedPointCloud2* msg) {
   fillPointCloud2Meta(camera, stamp, &msg->meta);
   borrow(camera.cloud().data(), camera.cloud().size(), &msg->data, &msg->size);
+  msg->write = nullptr;
+  msg->writer = nullptr;
+}
+
+void toPointCloud2Deferred(const DepthCameraSensor& camera, const ros::Time& stamp,
+                           BorrowedPointCloud2* msg) {
+  fillPointCloud2Meta(camera, stamp, &msg->meta);
+  const CameraConfig& c = camera.config().camera;
+  msg->data = nullptr;
+  msg->size = static_cast<uint32_t>(static_cast<std::size_t>(c.width) * c.height * CloudLayout::kPointStep);
+  msg->write = [](const void* writer, uint8_t* out) {
+    static_cast<const DepthCameraSensor*>(writer)->writeCloud(out);
+  };
+  msg->writer = &camera;
 }
 
 sensor_msgs::Image toImage(const CameraSensor& camera, const ros::Time& stamp) {

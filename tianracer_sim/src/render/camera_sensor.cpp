@@ -534,19 +534,24 @@ void DepthCameraSensor::render(const Scene& scene, const Eigen::Isometry3d& X_WL
   }
   cloud_dense_ = dense;
   if (!outputs.cloud) return;
+  writeCloud(cloud_.data());
+}
+
+void DepthCameraSensor::writeCloud(uint8_t* out) const {
+  const CameraConfig& c = config_.camera;
   const int ch = channels();
-  uint8_t* out = cloud_.data();
   for (int v = 0; v < c.height; ++v) {
     const float ry = ray_y_[v];
     for (int u = 0; u < c.width; ++u, out += CloudLayout::kPointStep) {
       const std::size_t i = static_cast<std::size_t>(v) * c.width + u;
       const float d = depth_[i];
-      const float xyz[3] = {d * ray_x_[u], d * ry, d};  // NaN stays NaN
-      std::memcpy(out + CloudLayout::kOffsetX, xyz, sizeof(xyz));
       const uint8_t* px = &image_[i * ch];
       const uint32_t r = px[0], g = px[ch > 1 ? 1 : 0], b = px[ch > 1 ? 2 : 0];
-      const uint32_t packed = (r << 16) | (g << 8) | b;  // PCL: 0x00RRGGBB in a float's bits
-      std::memcpy(out + CloudLayout::kOffsetRgb, &packed, sizeof(packed));
+      // x, y, z, 0 | rgb (PCL: 0x00RRGGBB in a float's bits), 0, 0, 0; NaN depth stays NaN.
+      float xyz0[4] = {d * ray_x_[u], d * ry, d, 0.0f};
+      const uint32_t rgb0[4] = {(r << 16) | (g << 8) | b, 0, 0, 0};
+      std::memcpy(out + CloudLayout::kOffsetX, xyz0, sizeof(xyz0));
+      std::memcpy(out + CloudLayout::kOffsetRgb, rgb0, sizeof(rgb0));
     }
   }
 }

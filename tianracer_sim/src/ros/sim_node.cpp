@@ -469,7 +469,12 @@ void SimNode::renderCameras(CameraJob& job) {
   }
   for (const CameraJob::Camera& f : job.depths) {
     DepthIo& d = depth_cameras_[f.index];
-    d.sensor->render(render_scene_, f.X_WL, f.want);
+    // The cloud is not built by the sensor but written by it into the serialisation buffer.
+    DepthOutputs render = f.want;
+    render.image = f.want.image || f.want.cloud;
+    render.depth = f.want.depth || f.want.cloud;
+    render.cloud = false;
+    d.sensor->render(render_scene_, f.X_WL, render);
     if (f.want.image) {
       toImage(*d.sensor, job.stamp, &d.image_msg);
       d.image.publish(d.image_msg);
@@ -479,7 +484,7 @@ void SimNode::renderCameras(CameraJob& job) {
       d.depth.publish(d.depth_msg);
     }
     if (f.want.cloud) {
-      toPointCloud2(*d.sensor, job.stamp, &d.cloud_msg);
+      toPointCloud2Deferred(*d.sensor, job.stamp, &d.cloud_msg);
       d.cloud.publish(d.cloud_msg);
     }
   }

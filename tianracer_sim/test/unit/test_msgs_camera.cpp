@@ -208,6 +208,16 @@ TEST(CameraMsgs, BorrowedMessagesSerialiseAsTheirSensorMsgs) {
   EXPECT_EQ(wireBytes(rgb), wireBytes(toImage(depth_camera, stamp)));
   EXPECT_EQ(wireBytes(depth), wireBytes(toDepthImage(depth_camera, stamp)));
   EXPECT_EQ(wireBytes(cloud), wireBytes(toPointCloud2(depth_camera, stamp)));
+
+  // The cloud written into the serialisation buffer, from a render without outputs.cloud.
+  const std::vector<uint8_t> rendered_cloud = wireBytes(toPointCloud2(depth_camera, stamp));
+  DepthCameraSensor deferred_camera(d, renderer);
+  DepthOutputs no_cloud;
+  no_cloud.cloud = false;
+  deferred_camera.render(scene, Eigen::Isometry3d::Identity(), no_cloud);
+  BorrowedPointCloud2 deferred;
+  toPointCloud2Deferred(deferred_camera, stamp, &deferred);
+  EXPECT_EQ(wireBytes(deferred), rendered_cloud);
 }
 
 }  // namespace

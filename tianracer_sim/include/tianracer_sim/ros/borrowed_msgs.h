@@ -28,11 +28,15 @@ struct BorrowedImage {
   uint32_t size = 0;
 };
 
-/// A PointCloud2: every field in `meta` except data (left empty), `size` bytes at `data`.
+/// A PointCloud2: every field in `meta` except data (left empty), `size` bytes at `data`, or,
+/// when `write` is set, written by write(writer, destination) straight into the serialisation
+/// buffer (the depth camera builds its 10 MB cloud there: no copy at all).
 struct BorrowedPointCloud2 {
   sensor_msgs::PointCloud2 meta;
   const uint8_t* data = nullptr;
   uint32_t size = 0;
+  void (*write)(const void* writer, uint8_t* out) = nullptr;  // must write all `size` bytes
+  const void* writer = nullptr;
 };
 
 }  // namespace tianracer_sim
@@ -110,7 +114,12 @@ struct Serializer<tianracer_sim::BorrowedPointCloud2> {
     stream.next(m.meta.is_bigendian);
     stream.next(m.meta.point_step);
     stream.next(m.meta.row_step);
-    borrowed_detail::writeBytes(stream, m.data, m.size);
+    if (m.write != nullptr) {
+      stream.next(m.size);
+      m.write(m.writer, stream.advance(m.size));
+    } else {
+      borrowed_detail::writeBytes(stream, m.data, m.size);
+    }
     stream.next(m.meta.is_dense);
   }
   inline static uint32_t serializedLength(const tianracer_sim::BorrowedPointCloud2& m) {

@@ -45,6 +45,11 @@ void toImage(const DepthCameraSensor& camera, const ros::Time& stamp, BorrowedIm
 void toDepthImage(const DepthCameraSensor& camera, const ros::Time& stamp, BorrowedImage* msg);
 void toPointCloud2(const DepthCameraSensor& camera, const ros::Time& stamp,
                    BorrowedPointCloud2* msg);
+/// The cloud written by the sensor straight into roscpp's serialisation buffer when published
+/// (DepthCameraSensor::writeCloud()): for a sensor rendered with image and depth but without
+/// outputs.cloud. Valid until the sensor renders again.
+void toPointCloud2Deferred(const DepthCameraSensor& camera, const ros::Time& stamp,
+                           BorrowedPointCloud2* msg);
 
 }  // namespace tianracer_sim
 
