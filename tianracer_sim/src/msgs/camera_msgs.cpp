@@ -8,8 +8,9 @@
 namespace tianracer_sim {
 namespace {
 
-void fillImage(const std::vector<uint8_t>& data, int width, int height, int channels,
-               const std::string& frame_id, const ros::Time& stamp, sensor_msgs::Image* msg) {
+// Every field but data.
+void fillImageMeta(int width, int height, int channels, const std::string& frame_id,
+                   const ros::Time& stamp, sensor_msgs::Image* msg) {
   msg->header.stamp = stamp;
   msg->header.frame_id = frame_id;
   msg->width = static_cast<uint32_t>(width);
@@ -17,8 +18,56 @@ void fillImage(const std::vector<uint8_t>& data, int width, int height, int chan
   msg->encoding = channels == 1 ? sensor_msgs::image_encodings::MONO8 : sensor_msgs::image_encodings::RGB8;
   msg->is_bigendian = 0;
   msg->step = static_cast<uint32_t>(width * channels);
+}
+
+void fillImage(const std::vector<uint8_t>& data, int width, int height, int channels,
+               const std::string& frame_id, const ros::Time& stamp, sensor_msgs::Image* msg) {
+  fillImageMeta(width, height, channels, frame_id, stamp, msg);
   msg->data.resize(data.size());
   std::memcpy(msg->data.data(), data.data(), data.size());
+}
+
+void fillDepthImageMeta(const DepthCameraSensor& camera, const ros::Time& stamp,
+                        sensor_msgs::Image* msg) {
+  const CameraConfig& c = camera.config().camera;
+  msg->header.stamp = stamp;
+  msg->header.frame_id = c.opticalFrame();
+  msg->width = static_cast<uint32_t>(c.width);
+  msg->height = static_cast<uint32_t>(c.height);
+  msg->encoding = sensor_msgs::image_encodings::TYPE_32FC1;
+  msg->is_bigendian = 0;
+  msg->step = static_cast<uint32_t>(c.width * sizeof(float));
+}
+
+// Every field but data.
+void fillPointCloud2Meta(const DepthCameraSensor& camera, const ros::Time& stamp,
+                         sensor_msgs::PointCloud2* msg) {
+  const CameraConfig& c = camera.config().camera;
+  msg->header.stamp = stamp;
+  msg->header.frame_id = c.opticalFrame();
+  msg->height = static_cast<uint32_t>(c.height);
+  msg->width = static_cast<uint32_t>(c.width);
+  if (msg->fields.size() != 4) {
+    msg->fields.resize(4);
+    const char* names[4] = {"x", "y", "z", "rgb"};
+    const uint32_t offsets[4] = {CloudLayout::kOffsetX, CloudLayout::kOffsetY, CloudLayout::kOffsetZ,
+                                 CloudLayout::kOffsetRgb};
+    for (int i = 0; i < 4; ++i) {
+      msg->fields[i].name = names[i];
+      msg->fields[i].offset = offsets[i];
+      msg->fields[i].datatype = sensor_msgs::PointField::FLOAT32;
+      msg->fields[i].count = 1;
+    }
+  }
+  msg->is_bigendian = false;
+  msg->point_step = CloudLayout::kPointStep;
+  msg->row_step = CloudLayout::kPointStep * msg->width;
+  msg->is_dense = camera.cloudIsDense();
+}
+
+void borrow(const void* data, std::size_t size, const uint8_t** out, uint32_t* out_size) {
+  *out = static_cast<const uint8_t*>(data);
+  *out_size = static_cast<uint32_t>(size);
 }
 
 }  // namespace
@@ -34,14 +83,7 @@ void toImage(const DepthCameraSensor& camera, const ros::Time& stamp, sensor_msg
 }
 
 void toDepthImage(const DepthCameraSensor& camera, const ros::Time& stamp, sensor_msgs::Image* msg) {
-  const CameraConfig& c = camera.config().camera;
-  msg->header.stamp = stamp;
-  msg->header.frame_id = c.opticalFrame();
-  msg->width = static_cast<uint32_t>(c.width);
-  msg->height = static_cast<uint32_t>(c.height);
-  msg->encoding = sensor_msgs::image_encodings::TYPE_32FC1;
-  msg->is_bigendian = 0;
-  msg->step = static_cast<uint32_t>(c.width * sizeof(float));
+  fillDepthImageMeta(camera, stamp, msg);
   const std::vector<float>& depth = camera.depth();
   msg->data.resize(depth.size() * sizeof(float));
   std::memcpy(msg->data.data(), depth.data(), msg->data.size());
@@ -64,30 +106,47 @@ void toCameraInfo(const CameraInfo& info, const ros::Time& stamp, sensor_msgs::C
 
 void toPointCloud2(const DepthCameraSensor& camera, const ros::Time& stamp,
                    sensor_msgs::PointCloud2* msg) {
-  const CameraConfig& c = camera.config().camera;
-  msg->header.stamp = stamp;
-  msg->header.frame_id = c.opticalFrame();
-  msg->height = static_cast<uint32_t>(c.height);
-  msg->width = static_cast<uint32_t>(c.width);
-  if (msg->fields.size() != 4) {
-    msg->fields.resize(4);
-    const char* names[4] = {"x", "y", "z", "rgb"};
-    const uint32_t offsets[4] = {CloudLayout::kOffsetX, CloudLayout::kOffsetY, CloudLayout::kOffsetZ,
-                                 CloudLayout::kOffsetRgb};
-    for (int i = 0; i < 4; ++i) {
-      msg->fields[i].name = names[i];
-      msg->fields[i].offset = offsets[i];
-      msg->fields[i].datatype = sensor_msgs::PointField::FLOAT32;
-      msg->fields[i].count = 1;
-    }
-  }
-  msg->is_bigendian = false;
-  msg->point_step = CloudLayout::kPointStep;
-  msg->row_step = CloudLayout::kPointStep * msg->width;
-  msg->is_dense = camera.cloudIsDense();
+  fillPointCloud2Meta(camera, stamp, msg);
   const std::vector<uint8_t>& cloud = camera.cloud();
   msg->data.resize(cloud.size());
   std::memcpy(msg->data.data(), cloud.data(), cloud.size());
+}
+
+void toImage(const CameraSensor& camera, const ros::Time& stamp, BorrowedImage* msg) {
+  fillImageMeta(camera.config().width, camera.config().height, camera.channels(),
+                camera.config().opticalFrame(), stamp, &msg->meta);
+  borrow(camera.image().data(), camera.image().size(), &msg->data, &msg->size);
+}
+
+void toImage(const DepthCameraSensor& camera, const ros::Time& stamp, BorrowedImage* msg) {
+  const CameraConfig& c = camera.config().camera;
+  fillImageMeta(c.width, c.height, camera.channels(), c.opticalFrame(), stamp, &msg->meta);
+  borrow(camera.image().data(), camera.image().size(), &msg->data, &msg->size);
+}
+
+void toDepthImage(const DepthCameraSensor& camera, const ros::Time& stamp, BorrowedImage* msg) {
+  fillDepthImageMeta(camera, stamp, &msg->meta);
+  borrow(camera.depth().data(), camera.depth().size() * sizeof(float), &msg->data, &msg->size);
+}
+
+void toPointCloud2(const DepthCameraSensor& camera, const ros::Time& stamp,
+                   BorrowedPointCloud2* msg) {
+  fillPointCloud2Meta(camera, stamp, &msg->meta);
+  borrow(camera.cloud().data(), camera.cloud().size(), &msg->data, &msg->size);
+  msg->write = nullptr;
+  msg->writer = nullptr;
+}
+
+void toPointCloud2Deferred(const DepthCameraSensor& camera, const ros::Time& stamp,
+                           BorrowedPointCloud2* msg) {
+  fillPointCloud2Meta(camera, stamp, &msg->meta);
+  const CameraConfig& c = camera.config().camera;
+  msg->data = nullptr;
+  msg->size = static_cast<uint32_t>(static_cast<std::size_t>(c.width) * c.height * CloudLayout::kPointStep);
+  msg->write = [](const void* writer, uint8_t* out) {
+    static_cast<const DepthCameraSensor*>(writer)->writeCloud(out);
+  };
+  msg->writer = &camera;
 }
 
 sensor_msgs::Image toImage(const CameraSensor& camera, const ros::Time& stamp) {

@@ -9,8 +9,11 @@
 #include <set>
 #include <sstream>
 
-#include <tinyxml2.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
+#include <tinyxml2.h>
 
 namespace tianracer_sim {
 
@@ -367,10 +370,16 @@ ImageNoise::ImageNoise(double mean, double stddev, uint32_t seed) : rng_(seed) {
   if (!enabled_) return;
   constexpr int kSize = 1 << 16;
   table_.resize(kSize);
+  saturating_.resize(kSize);
   for (int i = 0; i < kSize; ++i) {
     const double z = inverseNormalCdf((i + 0.5) / kSize);
     const double v = std::round((mean + stddev * z) * 255.0);
     table_[i] = static_cast<int16_t>(std::max(-512.0, std::min(512.0, v)));
+    // clamp(p + n, 0, 255) = saturate_u8(saturate_u8(p + max(n, 0)) - max(-n, 0)) with each
+    // part clamped to 255: the same bytes, as two saturating byte operations.
+    const int pos = std::min(255, std::max(0, static_cast<int>(table_[i])));
+    const int neg = std::min(255, std::max(0, -static_cast<int>(table_[i])));
+    saturating_[i] = static_cast<uint16_t>(pos | (neg << 8));
   }
 }
 
@@ -396,7 +405,35 @@ void ImageNoise::apply(uint8_t* data, std::size_t pixels, int channels) {
     for (int c = 0; c < channels; ++c) px[c] = clampByte(px[c] + n);
   };
   const std::size_t blocks = pixels / 4;
-  for (std::size_t k = 0; k < blocks; ++k) {
+  std::size_t k = 0;
+#if defined(__SSE2__)
+  if (channels == 3) {
+    // 16 pixels (48 bytes, four hashes) at a time: each pixel's (positive, negative) part is
+    // replicated into its 3 bytes of two 48-byte rows, then added to and subtracted from the
+    // pixels with saturation, 16 bytes per instruction. Same samples, same bytes as below.
+    const uint16_t* sat = saturating_.data();
+    alignas(16) uint8_t add_row[48 + 4], sub_row[48 + 4];
+    for (; k + 4 <= blocks; k += 4) {
+      for (int b = 0; b < 4; ++b) {
+        const uint64_t r = splitmix64(frame_seed + 0x9e3779b97f4a7c15ULL * (k + b + 1));
+        for (int j = 0; j < 4; ++j) {
+          const uint32_t v = sat[(r >> (16 * j)) & 0xffff];
+          const uint32_t up = (v & 0xff) * 0x010101u, down = (v >> 8) * 0x010101u;
+          std::memcpy(add_row + 12 * b + 3 * j, &up, 4);  // the 4th byte is the next pixel's
+          std::memcpy(sub_row + 12 * b + 3 * j, &down, 4);
+        }
+      }
+      uint8_t* p = data + 4 * k * 3;
+      for (int q = 0; q < 3; ++q) {
+        __m128i px = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 16 * q));
+        px = _mm_adds_epu8(px, _mm_load_si128(reinterpret_cast<const __m128i*>(add_row + 16 * q)));
+        px = _mm_subs_epu8(px, _mm_load_si128(reinterpret_cast<const __m128i*>(sub_row + 16 * q)));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(p + 16 * q), px);
+      }
+    }
+  }
+#endif
+  for (; k < blocks; ++k) {
     const uint64_t r = splitmix64(frame_seed + 0x9e3779b97f4a7c15ULL * (k + 1));
     uint8_t* p = data + 4 * k * channels;
     if (channels == 3) {
@@ -508,19 +545,24 @@ void DepthCameraSensor::render(const Scene& scene, const Eigen::Isometry3d& X_WL
   }
   cloud_dense_ = dense;
   if (!outputs.cloud) return;
+  writeCloud(cloud_.data());
+}
+
+void DepthCameraSensor::writeCloud(uint8_t* out) const {
+  const CameraConfig& c = config_.camera;
   const int ch = channels();
-  uint8_t* out = cloud_.data();
   for (int v = 0; v < c.height; ++v) {
     const float ry = ray_y_[v];
     for (int u = 0; u < c.width; ++u, out += CloudLayout::kPointStep) {
       const std::size_t i = static_cast<std::size_t>(v) * c.width + u;
       const float d = depth_[i];
-      const float xyz[3] = {d * ray_x_[u], d * ry, d};  // NaN stays NaN
-      std::memcpy(out + CloudLayout::kOffsetX, xyz, sizeof(xyz));
       const uint8_t* px = &image_[i * ch];
       const uint32_t r = px[0], g = px[ch > 1 ? 1 : 0], b = px[ch > 1 ? 2 : 0];
-      const uint32_t packed = (r << 16) | (g << 8) | b;  // PCL: 0x00RRGGBB in a float's bits
-      std::memcpy(out + CloudLayout::kOffsetRgb, &packed, sizeof(packed));
+      // x, y, z, 0 | rgb (PCL: 0x00RRGGBB in a float's bits), 0, 0, 0; NaN depth stays NaN.
+      float xyz0[4] = {d * ray_x_[u], d * ry, d, 0.0f};
+      const uint32_t rgb0[4] = {(r << 16) | (g << 8) | b, 0, 0, 0};
+      std::memcpy(out + CloudLayout::kOffsetX, xyz0, sizeof(xyz0));
+      std::memcpy(out + CloudLayout::kOffsetRgb, rgb0, sizeof(rgb0));
     }
   }
 }

@@ -127,21 +127,27 @@ class GlContext {
 // clamped to [0, 1]; L = -light direction, H = normalize(L + V), V towards the eye.
 // Output 1 is the depth along the optical axis (-z of the GL eye frame), interpolated
 // perspective-correctly from the vertices in float: exact to float rounding at any range.
-const char* kVertexShader = R"(#version 330 core
+// Both shaders are compiled once per (light count, GRID) with those #defined in front: only the
+// ground plane runs the grid code (llvmpipe evaluates both sides of a branch on a uniform).
+const char* kVertexShader = R"(
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 uniform mat4 u_model_view;
 uniform mat4 u_projection;
 uniform mat3 u_normal_matrix;
-uniform mat4 u_model;   // for the ground grid (world x, y)
 out vec3 v_eye_position;
 out vec3 v_eye_normal;
+#if GRID
+uniform mat4 u_model;   // for the ground grid (world x, y)
 out vec2 v_world_xy;
+#endif
 void main() {
   vec4 eye = u_model_view * vec4(a_position, 1.0);
   v_eye_position = eye.xyz;
   v_eye_normal = u_normal_matrix * a_normal;
+#if GRID
   v_world_xy = (u_model * vec4(a_position, 1.0)).xy;
+#endif
   gl_Position = u_projection * eye;
 }
 )";
@@ -151,26 +157,25 @@ void main() {
 const char* kFragmentShader = R"(
 in vec3 v_eye_position;
 in vec3 v_eye_normal;
+#if GRID
 in vec2 v_world_xy;
+#endif
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out float o_depth;
+// Products of light and material colours are made once per draw, on the CPU.
 #if NUM_LIGHTS > 0
-uniform vec3 u_light_dir[NUM_LIGHTS];   // eye frame, pointing from the light
-uniform vec3 u_light_diffuse[NUM_LIGHTS];
-uniform vec3 u_light_specular[NUM_LIGHTS];
+uniform vec3 u_to_light[NUM_LIGHTS];  // eye frame, towards the light (-direction)
+uniform vec3 u_diffuse[NUM_LIGHTS];   // light diffuse * material diffuse
+uniform vec3 u_specular[NUM_LIGHTS];  // light specular * material specular
 #endif
-uniform vec3 u_scene_ambient;
-uniform vec3 u_ambient;
-uniform vec3 u_diffuse;
-uniform vec3 u_specular;
+uniform vec3 u_ambient;               // scene ambient * material ambient
 uniform float u_shininess;
-uniform int u_grid;
 void main() {
   vec3 n = normalize(v_eye_normal);
   if (!gl_FrontFacing) n = -n;
-  vec3 ambient = u_ambient;
-  vec3 diffuse = u_diffuse;
-  if (u_grid != 0) {
+  float k = 1.0;  // the grid's darkening of ambient and diffuse
+#if GRID
+  {
     // 1 m grid lines about 2 cm wide, anti-aliased with the screen-space footprint, and a
     // faint 1 m checker so that motion is visible between lines.
     vec2 cell = abs(fract(v_world_xy - 0.5) - 0.5);
@@ -178,25 +183,26 @@ void main() {
     vec2 line = 1.0 - smoothstep(vec2(0.01), vec2(0.01) + 1.5 * fw, cell);
     float on_line = max(line.x, line.y);
     vec2 checker_cell = floor(v_world_xy);
-    float checker = mod(checker_cell.x + checker_cell.y, 2.0) * 0.06;
-    float k = (1.0 - checker) * (1.0 - 0.55 * on_line);
-    ambient *= k;
-    diffuse *= k;
+    // mod(x, 2.0) of an integer, without mod's division: exact.
+    float checker = 2.0 * fract(0.5 * (checker_cell.x + checker_cell.y)) * 0.06;
+    k = (1.0 - checker) * (1.0 - 0.55 * on_line);
   }
+#endif
   vec3 v = normalize(-v_eye_position);
-  vec3 c = u_scene_ambient * ambient;
+  vec3 c = k * u_ambient;
 #if NUM_LIGHTS > 0
   for (int i = 0; i < NUM_LIGHTS; ++i) {
-    vec3 l = -u_light_dir[i];
+    vec3 l = u_to_light[i];
     float ndl = dot(n, l);
     if (ndl > 0.0) {
-      c += u_light_diffuse[i] * diffuse * ndl;
+      c += (k * ndl) * u_diffuse[i];
       vec3 h = normalize(l + v);
-      c += u_light_specular[i] * u_specular * pow(max(dot(n, h), 0.0), u_shininess);
+      c += u_specular[i] * pow(max(dot(n, h), 0.0), u_shininess);
     }
   }
 #endif
-  o_color = vec4(clamp(c, 0.0, 1.0), 1.0);
+  // No clamp(): GL clamps what is written to a normalized fixed-point (RGBA8) buffer to [0, 1].
+  o_color = vec4(c, 1.0);
   o_depth = -v_eye_position.z;
 }
 )";
@@ -247,15 +253,15 @@ struct Renderer::Impl {
   WarningSink warn;
 
   struct Uniforms {
-    GLint model_view, projection, normal_matrix, model, light_dir, light_diffuse, light_specular,
-        scene_ambient, ambient, diffuse, specular, shininess, grid;
+    GLint model_view, projection, normal_matrix, model, to_light, ambient, diffuse, specular,
+        shininess;
   };
   struct Program {
     GLuint id = 0;
     Uniforms u{};
   };
   static constexpr int kMaxLights = 4;
-  Program programs[kMaxLights + 1];  // by light count, built on first use
+  Program programs[kMaxLights + 1][2];  // by light count and grid, built on first use
 
   GLuint vao = 0;
   GLuint vbo = 0;
@@ -314,14 +320,15 @@ struct Renderer::Impl {
   };
   std::map<std::pair<int, int>, Target> targets;
 
-  Program& program(int num_lights) {
-    Program& p = programs[num_lights];
+  Program& program(int num_lights, bool grid) {
+    Program& p = programs[num_lights][grid ? 1 : 0];
     if (p.id != 0) return p;
-    const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader);
+    const std::string defines = "#version 330 core\n#define NUM_LIGHTS " + std::to_string(num_lights) +
+                                "\n#define GRID " + (grid ? "1" : "0") + "\n";
+    const GLuint vs = compile(GL_VERTEX_SHADER, defines + kVertexShader);
     GLuint fs = 0;
     try {
-      fs = compile(GL_FRAGMENT_SHADER, "#version 330 core\n#define NUM_LIGHTS " +
-                                           std::to_string(num_lights) + "\n" + kFragmentShader);
+      fs = compile(GL_FRAGMENT_SHADER, defines + kFragmentShader);
     } catch (...) {
       glDeleteShader(vs);
       throw;
@@ -345,15 +352,11 @@ struct Renderer::Impl {
     p.u.projection = loc("u_projection");
     p.u.normal_matrix = loc("u_normal_matrix");
     p.u.model = loc("u_model");
-    p.u.light_dir = loc("u_light_dir");
-    p.u.light_diffuse = loc("u_light_diffuse");
-    p.u.light_specular = loc("u_light_specular");
-    p.u.scene_ambient = loc("u_scene_ambient");
+    p.u.to_light = loc("u_to_light");
     p.u.ambient = loc("u_ambient");
     p.u.diffuse = loc("u_diffuse");
     p.u.specular = loc("u_specular");
     p.u.shininess = loc("u_shininess");
-    p.u.grid = loc("u_grid");
     p.id = id;
     return p;
   }
@@ -440,7 +443,8 @@ Renderer::Renderer(WarningSink warn) : impl_(new Impl) {
   auto lock = impl_->context->lock();
   Impl& m = *impl_;
 
-  m.program(1);  // the common case, and a check that the shaders build here
+  m.program(1, false);  // the common case, and a check that the shaders build here
+  m.program(1, true);
 
   glGenVertexArrays(1, &m.vao);
   glGenBuffers(1, &m.vbo);
@@ -472,8 +476,10 @@ Renderer::~Renderer() {
     }
     glDeleteBuffers(1, &impl_->vbo);
     glDeleteVertexArrays(1, &impl_->vao);
-    for (const auto& p : impl_->programs) {
-      if (p.id != 0) glDeleteProgram(p.id);
+    for (const auto& by_grid : impl_->programs) {
+      for (const auto& p : by_grid) {
+        if (p.id != 0) glDeleteProgram(p.id);
+      }
     }
   } catch (...) {
     // The context is going away with us; nothing else to release.
@@ -550,44 +556,52 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
     if (m.warn) m.warn("renderer: the scene has " + std::to_string(scene.lights.size()) +
                        " directional lights; only the first 4 are drawn");
   }
-  const Impl::Program& prog = m.program(num_lights);
-  const Impl::Uniforms& u = prog.u;
-  glUseProgram(prog.id);
   glBindVertexArray(m.vao);
-  glUniformMatrix4fv(u.projection, 1, GL_FALSE, Pf.data());
-  float dirs[12], diffs[12], specs[12];
+  float to_light[12];
   for (int i = 0; i < num_lights; ++i) {
     const DirectionalLight& L = scene.lights[i];
     Eigen::Vector3d d = L.direction.norm() > 0 ? L.direction.normalized() : Eigen::Vector3d(0, 0, -1);
     d = X_EW.linear() * d;
-    for (int k = 0; k < 3; ++k) {
-      dirs[3 * i + k] = static_cast<float>(d[k]);
-      diffs[3 * i + k] = L.diffuse[k];
-      specs[3 * i + k] = L.specular[k];
-    }
+    for (int k = 0; k < 3; ++k) to_light[3 * i + k] = -static_cast<float>(d[k]);
   }
-  if (num_lights > 0) {
-    glUniform3fv(u.light_dir, num_lights, dirs);
-    glUniform3fv(u.light_diffuse, num_lights, diffs);
-    glUniform3fv(u.light_specular, num_lights, specs);
-  }
-  glUniform3f(u.scene_ambient, scene.ambient[0], scene.ambient[1], scene.ambient[2]);
+  // The items' program, then the ground's (with the grid); the per-frame uniforms go to each.
+  const Impl::Uniforms* current = nullptr;
+  auto use = [&](bool grid) {
+    const Impl::Program& prog = m.program(num_lights, grid);
+    const Impl::Uniforms& u = prog.u;
+    glUseProgram(prog.id);
+    glUniformMatrix4fv(u.projection, 1, GL_FALSE, Pf.data());
+    if (num_lights > 0) glUniform3fv(u.to_light, num_lights, to_light);
+    current = &u;
+  };
+  use(false);
 
   auto draw = [&](const Eigen::Isometry3d& X_WS, const Eigen::Vector3d& scale,
                   const Impl::Range& range, const Eigen::Vector3f& amb, const Eigen::Vector3f& dif,
-                  const Eigen::Vector3f& spe, float shininess, bool grid) {
+                  const Eigen::Vector3f& spe, float shininess) {
+    const Impl::Uniforms& u = *current;
     const Eigen::Matrix4d M = X_WS.matrix() * Eigen::Vector4d(scale.x(), scale.y(), scale.z(), 1.0).asDiagonal();
     const Eigen::Matrix4d MV = X_EW.matrix() * M;
     const Eigen::Matrix3f N = MV.topLeftCorner<3, 3>().inverse().transpose().cast<float>();
     const Eigen::Matrix4f MVf = MV.cast<float>(), Mf = M.cast<float>();
     glUniformMatrix4fv(u.model_view, 1, GL_FALSE, MVf.data());
-    glUniformMatrix4fv(u.model, 1, GL_FALSE, Mf.data());
+    if (u.model >= 0) glUniformMatrix4fv(u.model, 1, GL_FALSE, Mf.data());
     glUniformMatrix3fv(u.normal_matrix, 1, GL_FALSE, N.data());
-    glUniform3fv(u.ambient, 1, amb.data());
-    glUniform3fv(u.diffuse, 1, dif.data());
-    glUniform3fv(u.specular, 1, spe.data());
+    // The colour products the shader would otherwise form at every pixel.
+    const Eigen::Vector3f a = scene.ambient.head<3>().cwiseProduct(amb);
+    float d[12], sp[12];
+    for (int i = 0; i < num_lights; ++i) {
+      for (int k = 0; k < 3; ++k) {
+        d[3 * i + k] = scene.lights[i].diffuse[k] * dif[k];
+        sp[3 * i + k] = scene.lights[i].specular[k] * spe[k];
+      }
+    }
+    glUniform3fv(u.ambient, 1, a.data());
+    if (num_lights > 0) {
+      glUniform3fv(u.diffuse, num_lights, d);
+      glUniform3fv(u.specular, num_lights, sp);
+    }
     glUniform1f(u.shininess, std::max(shininess, 1.0f));
-    glUniform1i(u.grid, grid ? 1 : 0);
     glDrawArrays(GL_TRIANGLES, range.first, range.count);
   };
 
@@ -642,7 +656,7 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
     }
     const Material& mat = item.material;
     draw(scene.bodies[item.body].X_WB * X_BS, scale, slot.range, mat.ambient.head<3>(),
-         mat.diffuse.head<3>(), mat.specular.head<3>(), slot.shininess, false);
+         mat.diffuse.head<3>(), mat.specular.head<3>(), slot.shininess);
   }
 
   // The ground plane last, so that the depth test skips shading what the items hide: a square
@@ -653,9 +667,10 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
                                          std::round(X_WC.translation().y()), 0.0);
     const double size = 2.0 * f + 2.0;
     const auto grey = findGazeboMaterial("Gazebo/Grey");
+    use(true);
     draw(X_WG, Eigen::Vector3d(size, size, 1.0), m.geometry.at("quad"),
          Eigen::Vector3f(0.8f, 0.8f, 0.8f), Eigen::Vector3f(0.8f, 0.8f, 0.8f),
-         grey->material.specular.head<3>(), grey->shininess, true);
+         grey->material.specular.head<3>(), grey->shininess);
   }
 
   glPixelStorei(GL_PACK_ALIGNMENT, 1);

@@ -160,7 +160,9 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh
            real_time_factor_ == 0.0 ? " (as fast as possible)" : "", paused_ ? "paused" : "running");
 }
 
-SimNode::~SimNode() = default;
+SimNode::~SimNode() {
+  camera_worker_.reset();  // finish the frame in flight while its sensors still exist
+}
 
 void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name) {
   LoadOptions options;
@@ -442,17 +444,18 @@ void SimNode::setUpCamera(size_t robot_index, const std::string& link, const Sen
 }
 
 void SimNode::publishCameras(double t, const ros::Time& stamp) {
-  for (CameraIo& c : cameras_) {
+  // What is due and wanted is decided here, at the step; the frames are rendered and
+  // published on the frame worker from a snapshot of this step's scene (frame_worker.h).
+  due_frames_.cameras.clear();
+  due_frames_.depths.clear();
+  for (size_t k = 0; k < cameras_.size(); ++k) {
+    CameraIo& c = cameras_[k];
     if (!c.schedule.due(t)) continue;
-    const bool want_image = c.image.getNumSubscribers() > 0;
-    if (want_image) {
-      updateScene();
-      c.sensor->render(scene_, sim_->physics().robot(robots_[c.robot].robot->id)
-                                   .linkPose(c.sensor->config().link));
-      toImage(*c.sensor, stamp, &c.image_msg);
-      c.image.publish(c.image_msg);
+    if (c.image.getNumSubscribers() > 0) {
+      due_frames_.cameras.push_back({k, sim_->physics().robot(robots_[c.robot].robot->id)
+                                            .linkPose(c.sensor->config().link), {}});
       ++stats_[c.stat].count;
-      stats_[c.stat].renders = c.sensor->renderCount();
+      ++stats_[c.stat].renders;
     } else {
       ++stats_[c.stat].skipped;
     }
@@ -461,32 +464,18 @@ void SimNode::publishCameras(double t, const ros::Time& stamp) {
       c.info.publish(c.info_msg);
     }
   }
-  for (DepthIo& d : depth_cameras_) {
+  for (size_t k = 0; k < depth_cameras_.size(); ++k) {
+    DepthIo& d = depth_cameras_[k];
     if (d.schedule.due(t)) {
       DepthOutputs want;
       want.image = d.image.getNumSubscribers() > 0;
       want.depth = d.depth.getNumSubscribers() > 0;
       want.cloud = d.cloud.getNumSubscribers() > 0;
       if (want.image || want.depth || want.cloud) {
-        updateScene();
-        d.sensor->render(scene_,
-                         sim_->physics().robot(robots_[d.robot].robot->id)
-                             .linkPose(d.sensor->config().camera.link),
-                         want);
-        if (want.image) {
-          toImage(*d.sensor, stamp, &d.image_msg);
-          d.image.publish(d.image_msg);
-        }
-        if (want.depth) {
-          toDepthImage(*d.sensor, stamp, &d.depth_msg);
-          d.depth.publish(d.depth_msg);
-        }
-        if (want.cloud) {
-          toPointCloud2(*d.sensor, stamp, &d.cloud_msg);
-          d.cloud.publish(d.cloud_msg);
-        }
+        due_frames_.depths.push_back({k, sim_->physics().robot(robots_[d.robot].robot->id)
+                                             .linkPose(d.sensor->config().camera.link), want});
         ++stats_[d.stat].count;
-        stats_[d.stat].renders = d.sensor->renderCount();
+        ++stats_[d.stat].renders;
       } else {
         ++stats_[d.stat].skipped;
       }
@@ -496,6 +485,53 @@ void SimNode::publishCameras(double t, const ros::Time& stamp) {
       toCameraInfo(d.sensor->info(), stamp, &d.info_msg);
       d.image_info.publish(d.info_msg);
       d.depth_info.publish(d.info_msg);
+    }
+  }
+  if (due_frames_.cameras.empty() && due_frames_.depths.empty()) return;
+  updateScene();
+  if (!camera_worker_) {
+    camera_worker_ = std::make_unique<FrameWorker<CameraJob>>([this](CameraJob& job) {
+      try {
+        renderCameras(job);
+      } catch (const std::exception& e) {
+        ROS_ERROR_STREAM_THROTTLE(10.0, "camera frame not published: " << e.what());
+      }
+    });
+  }
+  camera_worker_->submit([&](CameraJob& job) {
+    job.stamp = stamp;
+    std::swap(job.cameras, due_frames_.cameras);
+    std::swap(job.depths, due_frames_.depths);
+    snapshotScene(scene_, &render_scene_);
+  });
+}
+
+void SimNode::renderCameras(CameraJob& job) {
+  for (const CameraJob::Camera& f : job.cameras) {
+    CameraIo& c = cameras_[f.index];
+    c.sensor->render(render_scene_, f.X_WL);
+    toImage(*c.sensor, job.stamp, &c.image_msg);
+    c.image.publish(c.image_msg);
+  }
+  for (const CameraJob::Camera& f : job.depths) {
+    DepthIo& d = depth_cameras_[f.index];
+    // The cloud is not built by the sensor but written by it into the serialisation buffer.
+    DepthOutputs render = f.want;
+    render.image = f.want.image || f.want.cloud;
+    render.depth = f.want.depth || f.want.cloud;
+    render.cloud = false;
+    d.sensor->render(render_scene_, f.X_WL, render);
+    if (f.want.image) {
+      toImage(*d.sensor, job.stamp, &d.image_msg);
+      d.image.publish(d.image_msg);
+    }
+    if (f.want.depth) {
+      toDepthImage(*d.sensor, job.stamp, &d.depth_msg);
+      d.depth.publish(d.depth_msg);
+    }
+    if (f.want.cloud) {
+      toPointCloud2Deferred(*d.sensor, job.stamp, &d.cloud_msg);
+      d.cloud.publish(d.cloud_msg);
     }
   }
 }
@@ -757,6 +793,7 @@ bool SimNode::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
 }
 
 bool SimNode::onResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  if (camera_worker_) camera_worker_->wait();  // the frame in flight goes out before time jumps back
   for (RobotIo& io : robots_) io.commands->clear();
   sim_->resetSimulation();
   restartSchedules();

@@ -170,6 +170,56 @@ TEST(CameraMsgs, DepthImageAndCloud) {
   EXPECT_TRUE(toPointCloud2(camera, stamp).is_dense);
 }
 
+// The serialised bytes of a message (what a subscriber receives).
+template <typename M>
+std::vector<uint8_t> wireBytes(const M& msg) {
+  const ros::SerializedMessage m = ros::serialization::serializeMessage(msg);
+  return std::vector<uint8_t>(m.buf.get(), m.buf.get() + m.num_bytes);
+}
+
+TEST(CameraMsgs, BorrowedMessagesSerialiseAsTheirSensorMsgs) {
+  namespace mt = ros::message_traits;
+  EXPECT_STREQ(mt::md5sum<BorrowedImage>(), mt::md5sum<sensor_msgs::Image>());
+  EXPECT_STREQ(mt::datatype<BorrowedPointCloud2>(), "sensor_msgs/PointCloud2");
+  EXPECT_STREQ(mt::md5sum<BorrowedPointCloud2>(), mt::md5sum<sensor_msgs::PointCloud2>());
+
+  Renderer renderer;
+  DepthCameraConfig d;
+  d.camera = cameraConfig(64, 48);
+  d.camera.type = "depth";
+  d.camera.frame_name = "real_sense";
+  DepthCameraSensor depth_camera(d, renderer);
+  Scene scene = wall(2.0);
+  scene.items[1].X_BS.translation().x() = 6.0;  // NaN points too
+  depth_camera.render(scene, Eigen::Isometry3d::Identity());
+  CameraSensor camera(cameraConfig(80, 60), renderer);
+  camera.render(scene, Eigen::Isometry3d::Identity());
+  const ros::Time stamp(7, 5);
+
+  BorrowedImage image, rgb, depth;
+  BorrowedPointCloud2 cloud;
+  toImage(camera, stamp, &image);
+  toImage(depth_camera, stamp, &rgb);
+  toDepthImage(depth_camera, stamp, &depth);
+  toPointCloud2(depth_camera, stamp, &cloud);
+  EXPECT_TRUE(image.meta.data.empty());
+  EXPECT_EQ(cloud.data, depth_camera.cloud().data());  // borrowed, not copied
+  EXPECT_EQ(wireBytes(image), wireBytes(toImage(camera, stamp)));
+  EXPECT_EQ(wireBytes(rgb), wireBytes(toImage(depth_camera, stamp)));
+  EXPECT_EQ(wireBytes(depth), wireBytes(toDepthImage(depth_camera, stamp)));
+  EXPECT_EQ(wireBytes(cloud), wireBytes(toPointCloud2(depth_camera, stamp)));
+
+  // The cloud written into the serialisation buffer, from a render without outputs.cloud.
+  const std::vector<uint8_t> rendered_cloud = wireBytes(toPointCloud2(depth_camera, stamp));
+  DepthCameraSensor deferred_camera(d, renderer);
+  DepthOutputs no_cloud;
+  no_cloud.cloud = false;
+  deferred_camera.render(scene, Eigen::Isometry3d::Identity(), no_cloud);
+  BorrowedPointCloud2 deferred;
+  toPointCloud2Deferred(deferred_camera, stamp, &deferred);
+  EXPECT_EQ(wireBytes(deferred), rendered_cloud);
+}
+
 }  // namespace
 }  // namespace tianracer_sim
 

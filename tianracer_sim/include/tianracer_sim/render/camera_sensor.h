@@ -130,6 +130,7 @@ class ImageNoise {
  private:
   bool enabled_ = false;
   std::vector<int16_t> table_;
+  std::vector<uint16_t> saturating_;  // table_ as (max(n, 0) | max(-n, 0) << 8), each <= 255
   std::mt19937 rng_;
 };
 
@@ -195,6 +196,10 @@ class DepthCameraSensor {
   const std::vector<uint8_t>& cloud() const { return cloud_; }
   /// False when any cloud point is NaN.
   bool cloudIsDense() const { return cloud_dense_; }
+  /// Writes the cloud of the last render (rendered with image and depth) to `out`:
+  /// H*W*CloudLayout::kPointStep bytes, padding zero, the bytes cloud() holds after a render
+  /// with outputs.cloud. For callers that build it straight into their own buffer.
+  void writeCloud(uint8_t* out) const;
   uint64_t renderCount() const { return renders_; }
 
  private:

@@ -12,6 +12,7 @@
 #include <sensor_msgs/PointCloud2.h>
 
 #include "tianracer_sim/render/camera_sensor.h"
+#include "tianracer_sim/ros/borrowed_msgs.h"
 
 namespace tianracer_sim {
 
@@ -35,6 +36,20 @@ void toDepthImage(const DepthCameraSensor& camera, const ros::Time& stamp, senso
 void toCameraInfo(const CameraInfo& info, const ros::Time& stamp, sensor_msgs::CameraInfo* msg);
 void toPointCloud2(const DepthCameraSensor& camera, const ros::Time& stamp,
                    sensor_msgs::PointCloud2* msg);
+
+/// The same, the data borrowed from the sensor's buffer instead of copied (borrowed_msgs.h):
+/// valid until the sensor renders again. Serialised, each is byte for byte its sensor_msgs
+/// counterpart.
+void toImage(const CameraSensor& camera, const ros::Time& stamp, BorrowedImage* msg);
+void toImage(const DepthCameraSensor& camera, const ros::Time& stamp, BorrowedImage* msg);
+void toDepthImage(const DepthCameraSensor& camera, const ros::Time& stamp, BorrowedImage* msg);
+void toPointCloud2(const DepthCameraSensor& camera, const ros::Time& stamp,
+                   BorrowedPointCloud2* msg);
+/// The cloud written by the sensor straight into roscpp's serialisation buffer when published
+/// (DepthCameraSensor::writeCloud()): for a sensor rendered with image and depth but without
+/// outputs.cloud. Valid until the sensor renders again.
+void toPointCloud2Deferred(const DepthCameraSensor& camera, const ros::Time& stamp,
+                           BorrowedPointCloud2* msg);
 
 }  // namespace tianracer_sim
 

@@ -57,7 +57,9 @@
 #include "tianracer_sim/lidar/ray_sensor.h"
 #include "tianracer_sim/render/camera_sensor.h"
 #include "tianracer_sim/render/renderer.h"
+#include "tianracer_sim/ros/borrowed_msgs.h"
 #include "tianracer_sim/scene/scene.h"
+#include "tianracer_sim/sim/frame_worker.h"
 #include "tianracer_sim/sim/robot_scene.h"
 #include "tianracer_sim/sim/simulation.h"
 #include "tianracer_sim/world/world.h"
@@ -119,7 +121,7 @@ class SimNode {
     std::unique_ptr<CameraSensor> sensor;
     ros::Publisher image, info;
     Schedule schedule;
-    sensor_msgs::Image image_msg;
+    BorrowedImage image_msg;  // the sensor's buffer, serialised by publish() without a copy
     sensor_msgs::CameraInfo info_msg;
     size_t stat = 0;
   };
@@ -130,8 +132,8 @@ class SimNode {
     std::unique_ptr<DepthCameraSensor> sensor;
     ros::Publisher image, depth, cloud, image_info, depth_info;
     Schedule schedule, info_schedule;
-    sensor_msgs::Image image_msg, depth_msg;
-    sensor_msgs::PointCloud2 cloud_msg;
+    BorrowedImage image_msg, depth_msg;  // borrowed from the sensor, as CameraIo's
+    BorrowedPointCloud2 cloud_msg;
     sensor_msgs::CameraInfo info_msg;
     size_t stat = 0;
   };
@@ -144,6 +146,18 @@ class SimNode {
     std::uint64_t renders = 0;  // frames rendered / scans cast in total
   };
 
+  /// The camera frames due at one step: rendered and published on camera_worker_'s thread
+  /// from render_scene_, a snapshot of scene_ at that step.
+  struct CameraJob {
+    ros::Time stamp;
+    struct Camera {
+      size_t index;  // into cameras_ or depth_cameras_
+      Eigen::Isometry3d X_WL;
+      DepthOutputs want;  // depth cameras only
+    };
+    std::vector<Camera> cameras, depths;
+  };
+
   /// Loads one robot from the parameters in `rp`; `name` fixes its name (else ~robot_name).
   void loadRobot(const ros::NodeHandle& rp, const std::string& name);
   /// Advertises `topic` for a robot's sensor; throws when another sensor publishes there.
@@ -151,6 +165,7 @@ class SimNode {
   bool ensureRenderer();
   void setUpCamera(size_t robot_index, const std::string& link, const SensorSpec& spec);
   void publishCameras(double t, const ros::Time& stamp);
+  void renderCameras(CameraJob& job);  // on the frame worker's thread
   void publishStatus();
   void setUpSensors(size_t robot_index, const ros::NodeHandle& rp);
   /// Brings the scene's robot bodies to the current physics poses, once per step.
@@ -197,6 +212,11 @@ class SimNode {
   bool paused_ = false;
   bool pacing_reset_ = true;
   std::vector<ros::ServiceServer> services_;
+
+  CameraJob due_frames_;  // filled each step, handed to the worker (capacity kept)
+  Scene render_scene_;    // the worker's snapshot of scene_
+  // Started with the first frame; reset first in ~SimNode (it uses the sensors above).
+  std::unique_ptr<FrameWorker<CameraJob>> camera_worker_;
 };
 
 }  // namespace tianracer_sim
