@@ -175,6 +175,10 @@ void setNormalRow(btManifoldPoint& cp, const ContactLaw& law) {
   }
 }
 
+/// Marks a point the narrowphase added or replaced in this step (a bit Bullet does not use;
+/// cleared again by pruneWheelManifolds).
+constexpr int kFreshContact = 1 << 20;
+
 /// Gazebo/ODE surface combination for every new or refreshed contact point (see world.h).
 bool onContactAdded(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, int /*part0*/,
                     int index0, const btCollisionObjectWrapper* w1, int /*part1*/, int index1) {
@@ -191,6 +195,7 @@ bool onContactAdded(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, int
   cp.m_combinedSpinningFriction = 0.0;
 
   setNormalRow(cp, contactLaw(*c0, s0, *c1, s1));
+  cp.m_contactPointFlags |= kFreshContact;
 
   // Friction: ODE takes the minimum per direction; the cone gets the larger of the two and
   // the collider's anisotropic-friction factors (set at build time) shrink the other one.
@@ -259,24 +264,35 @@ class MultiBodyWorld : public btMultiBodyDynamicsWorld {
   /// wheel rolls on (16 um one step later at 1 m/s, 64 um two steps later). With rigid
   /// contacts they stayed unsolved (wheel colliders solve only touching points), but a tyre
   /// sinks 0.1-0.3 mm, so a few of them would still count as touching: 9 points solved per
-  /// step for 4 wheels instead of 4, and twice the step time. The narrowphase's fresh point
-  /// is the deepest one (a convex wheel); only it is kept. (A wheel wedged between two faces
-  /// of one triangle mesh keeps only its deeper contact.)
+  /// step for 4 wheels instead of 4, and twice the step time. Only the narrowphase's fresh
+  /// point is kept: the deepest of those it found this step (on the ground, the deepest of
+  /// all), else the deepest of all. Not simply the deepest of all: a point keeps its normal,
+  /// and a stale one whose wheel has since moved the other way gets ever deeper along it (a
+  /// wheel spawned in a wall, pushed out through the near face while its first point still
+  /// pointed to the far one, hung on that point at 107 mm "deep"). (A wheel wedged between
+  /// two faces of one triangle mesh keeps only its deeper contact.)
   void pruneWheelManifolds() {
     btDispatcher* d = getDispatcher();
     for (int m = 0; m < d->getNumManifolds(); ++m) {
       btPersistentManifold* pm = d->getManifoldByIndexInternal(m);
-      if (pm->getNumContacts() < 2) continue;
       const auto* c0 = static_cast<const ColliderSurfaces*>(pm->getBody0()->getUserPointer());
       const auto* c1 = static_cast<const ColliderSurfaces*>(pm->getBody1()->getUserPointer());
       if (!((c0 != nullptr && c0->wheel) || (c1 != nullptr && c1->wheel))) continue;
-      int deepest = 0;
-      for (int p = 1; p < pm->getNumContacts(); ++p) {
-        if (pm->getContactPoint(p).getDistance() < pm->getContactPoint(deepest).getDistance()) {
-          deepest = p;
+      int deepest = 0, fresh = -1;
+      for (int p = 0; p < pm->getNumContacts(); ++p) {
+        btManifoldPoint& cp = pm->getContactPoint(p);
+        const double dist = cp.getDistance();
+        if (dist < pm->getContactPoint(deepest).getDistance()) deepest = p;
+        if ((cp.m_contactPointFlags & kFreshContact) &&
+            (fresh < 0 || dist < pm->getContactPoint(fresh).getDistance())) {
+          fresh = p;
         }
       }
-      const btManifoldPoint keep = pm->getContactPoint(deepest);  // with its warm start
+      for (int p = 0; p < pm->getNumContacts(); ++p) {
+        pm->getContactPoint(p).m_contactPointFlags &= ~kFreshContact;
+      }
+      if (pm->getNumContacts() < 2) continue;
+      const btManifoldPoint keep = pm->getContactPoint(fresh >= 0 ? fresh : deepest);  // warm start
       pm->clearManifold();
       pm->addManifoldPoint(keep);
     }
