@@ -67,6 +67,7 @@ constexpr double kRigidKp = 1e12;  // SDF's default kp: treated as a rigid conta
 
 struct Surface {
   double mu1 = 1.0, mu2 = 1.0, kp = 1e12, kd = 1.0;
+  double max_vel = 0.1, min_depth = 0.0;  // robots only; max_vel infinite: the world's cap
   bool has_fdir1 = false;
   btVector3 fdir1_C{0, 0, 0};  // in the collision object's frame
 };
@@ -75,6 +76,8 @@ struct Surface {
 /// or a single one for non-compound objects.
 struct ColliderSurfaces {
   std::vector<Surface> children;
+  // A robot's body (ODE would give it a body; static shapes have none).
+  bool robot = false;
   // A collider whose shapes are all fitted wheels has a tyre (PhysicsOptions::tyre_*).
   bool wheel = false;
   double tyre_stiffness = 0.0, tyre_damping = 0.0;
@@ -109,6 +112,73 @@ SurfaceParams surfaceOfLink(const RobotModel& model, const std::string& link) {
   return p;
 }
 
+/// A robot link's <maxVel> and <minDepth> (penetration recovery, world.h); a negative maxVel
+/// means the world's cap, as in Gazebo.
+void setRecovery(const RobotModel& model, const std::string& link, const PhysicsOptions& options,
+                 Surface* s) {
+  s->max_vel = options.contact_max_vel;
+  s->min_depth = 0.0;
+  auto it = model.ext.links.find(link);
+  if (it == model.ext.links.end()) return;
+  if (it->second.max_vel) s->max_vel = *it->second.max_vel;
+  if (it->second.min_depth) s->min_depth = std::max(0.0, *it->second.min_depth);
+  if (!(s->max_vel >= 0.0)) s->max_vel = std::numeric_limits<double>::infinity();
+}
+
+/// How the normal row of one contact behaves (see world.h, "Contact softness", "Tyres" and
+/// "Penetration recovery"): everything but the time step and the world's cap.
+struct ContactLaw {
+  bool soft = false;             // kp/kd below: Bullet's stiffness/damping; else rigid (erp2)
+  double kp = 0.0, kd = 0.0;     // with the tyre, if any
+  double max_vel = std::numeric_limits<double>::infinity();  // robot sides' (m/s)
+  double min_depth = 0.0;        // depth left uncorrected (m)
+};
+
+ContactLaw contactLaw(const ColliderSurfaces& c0, const Surface& s0, const ColliderSurfaces& c1,
+                      const Surface& s1) {
+  ContactLaw law;
+  // Stiffness: springs in series, dampers in parallel (ODE's rule); a tyre (on one side only:
+  // a wheel on a wheel is left to the surfaces) is one more spring and damper of the same kind.
+  law.kp = 1.0 / (1.0 / s0.kp + 1.0 / s1.kp);
+  law.kd = s0.kd + s1.kd;
+  if (c0.wheel != c1.wheel) {
+    const ColliderSurfaces& tyre = c0.wheel ? c0 : c1;
+    if (tyre.tyre_stiffness > 0.0) {
+      law.kp = 1.0 / (1.0 / law.kp + 1.0 / tyre.tyre_stiffness);
+      law.kd += tyre.tyre_damping;
+    }
+  }
+  law.soft = law.kp < 0.5 * kRigidKp;
+  // ODE/Gazebo: max_vel and min_depth of the bodies (the smaller of two); static shapes have
+  // no ODE body.
+  bool first = true;
+  for (const auto& side : {std::make_pair(&c0, &s0), std::make_pair(&c1, &s1)}) {
+    if (!side.first->robot) continue;
+    law.max_vel = std::min(law.max_vel, side.second->max_vel);
+    law.min_depth = first ? side.second->min_depth : std::min(law.min_depth, side.second->min_depth);
+    first = false;
+  }
+  return law;
+}
+
+/// The normal row as Bullet computes it from the point's flags: kp/kd (ERP/CFM from
+/// stiffness and damping, as ODE) or rigid (the solver's erp2). Clears a per-point ERP/CFM
+/// set by a capped earlier step (they share storage with kp/kd in btManifoldPoint).
+void setNormalRow(btManifoldPoint& cp, const ContactLaw& law) {
+  cp.m_contactPointFlags &= ~(BT_CONTACT_FLAG_HAS_CONTACT_ERP | BT_CONTACT_FLAG_HAS_CONTACT_CFM);
+  if (law.soft) {
+    cp.m_combinedContactStiffness1 = law.kp;
+    cp.m_combinedContactDamping1 = law.kd;
+    cp.m_contactPointFlags |= BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING;
+  } else {
+    cp.m_contactPointFlags &= ~BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING;
+  }
+}
+
+/// Marks a point the narrowphase added or replaced in this step (a bit Bullet does not use;
+/// cleared again by pruneWheelManifolds).
+constexpr int kFreshContact = 1 << 20;
+
 /// Gazebo/ODE surface combination for every new or refreshed contact point (see world.h).
 bool onContactAdded(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, int /*part0*/,
                     int index0, const btCollisionObjectWrapper* w1, int /*part1*/, int index1) {
@@ -124,25 +194,8 @@ bool onContactAdded(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, int
   cp.m_combinedRollingFriction = 0.0;
   cp.m_combinedSpinningFriction = 0.0;
 
-  // A tyre on one side (a wheel on a wheel is left to the surfaces).
-  const ColliderSurfaces* tyre = nullptr;
-  if (c0->wheel != c1->wheel) tyre = c0->wheel ? c0 : c1;
-
-  // Stiffness: springs in series, dampers in parallel (ODE's rule); a tyre is one more spring
-  // and damper of the same kind.
-  double kp = 1.0 / (1.0 / s0.kp + 1.0 / s1.kp);
-  double kd = s0.kd + s1.kd;
-  if (tyre != nullptr && tyre->tyre_stiffness > 0.0) {
-    kp = 1.0 / (1.0 / kp + 1.0 / tyre->tyre_stiffness);
-    kd += tyre->tyre_damping;
-  }
-  if (kp < 0.5 * kRigidKp) {
-    cp.m_combinedContactStiffness1 = kp;
-    cp.m_combinedContactDamping1 = kd;
-    cp.m_contactPointFlags |= BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING;
-  } else {
-    cp.m_contactPointFlags &= ~BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING;
-  }
+  setNormalRow(cp, contactLaw(*c0, s0, *c1, s1));
+  cp.m_contactPointFlags |= kFreshContact;
 
   // Friction: ODE takes the minimum per direction; the cone gets the larger of the two and
   // the collider's anisotropic-friction factors (set at build time) shrink the other one.
@@ -153,39 +206,93 @@ bool onContactAdded(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, int
   return true;
 }
 
-/// Bullet's multibody world with one step added before each solve (see pruneWheelManifolds).
+/// Bullet's multibody world with two steps added before each solve (pruneWheelManifolds,
+/// capCorrection).
 class MultiBodyWorld : public btMultiBodyDynamicsWorld {
  public:
   using btMultiBodyDynamicsWorld::btMultiBodyDynamicsWorld;
 
+  /// PhysicsOptions::contact_max_correcting_vel.
+  double max_correcting_vel = 100.0;
+
   void solveConstraints(btContactSolverInfo& info) override {
     pruneWheelManifolds();
+    capCorrection(info);
     btMultiBodyDynamicsWorld::solveConstraints(info);
   }
 
  private:
+  /// Penetration recovery (world.h): Bullet pushes a penetrating point apart at
+  /// c = erp depth / dt with no cap. Where ODE's min_depth or max_vel would change c, the point
+  /// gets its own ERP, erp' = min(erp (depth - min_depth), max_vel dt) / depth, and the CFM
+  /// Bullet would have used; elsewhere it is left exactly as the contact callback set it.
+  /// Redone every step from the current depth: a manifold keeps points between narrowphase
+  /// refreshes, and the callback runs only when a point is added or replaced.
+  void capCorrection(const btContactSolverInfo& info) {
+    const double dt = info.m_timeStep;
+    btDispatcher* d = getDispatcher();
+    for (int m = 0; m < d->getNumManifolds(); ++m) {
+      btPersistentManifold* pm = d->getManifoldByIndexInternal(m);
+      const auto* c0 = static_cast<const ColliderSurfaces*>(pm->getBody0()->getUserPointer());
+      const auto* c1 = static_cast<const ColliderSurfaces*>(pm->getBody1()->getUserPointer());
+      if (c0 == nullptr || c1 == nullptr) continue;
+      for (int p = 0; p < pm->getNumContacts(); ++p) {
+        btManifoldPoint& cp = pm->getContactPoint(p);
+        const bool capped = (cp.m_contactPointFlags & BT_CONTACT_FLAG_HAS_CONTACT_ERP) != 0;
+        const double depth = -cp.getDistance();
+        if (!(depth > 0.0) && !capped) continue;  // not penetrating, untouched
+        const ContactLaw law = contactLaw(*c0, c0->at(cp.m_index0), *c1, c1->at(cp.m_index1));
+        double erp = info.m_erp2, cfm = info.m_globalCfm;
+        if (law.soft) {  // as btMultiBodyConstraintSolver::setupMultiBodyContactConstraint
+          const double denom = std::max(dt * law.kp + law.kd, double(SIMD_EPSILON));
+          cfm = 1.0 / denom;
+          erp = dt * law.kp / denom;
+        }
+        const double cap = std::min(law.max_vel, max_correcting_vel);
+        if (depth > 0.0 && (law.min_depth > 0.0 || erp * depth > cap * dt)) {
+          cp.m_contactERP = std::min(erp * std::max(depth - law.min_depth, 0.0), cap * dt) / depth;
+          cp.m_contactCFM = cfm;
+          cp.m_contactPointFlags |= BT_CONTACT_FLAG_HAS_CONTACT_ERP | BT_CONTACT_FLAG_HAS_CONTACT_CFM;
+        } else if (capped) {
+          setNormalRow(cp, law);  // back to the uncapped row (ERP/CFM overwrote kp/kd)
+        }
+      }
+    }
+  }
+
   /// A wheel's manifold keeps the points of earlier steps, which rise off the ground as the
   /// wheel rolls on (16 um one step later at 1 m/s, 64 um two steps later). With rigid
   /// contacts they stayed unsolved (wheel colliders solve only touching points), but a tyre
   /// sinks 0.1-0.3 mm, so a few of them would still count as touching: 9 points solved per
-  /// step for 4 wheels instead of 4, and twice the step time. The narrowphase's fresh point
-  /// is the deepest one (a convex wheel); only it is kept. (A wheel wedged between two faces
-  /// of one triangle mesh keeps only its deeper contact.)
+  /// step for 4 wheels instead of 4, and twice the step time. Only the narrowphase's fresh
+  /// point is kept: the deepest of those it found this step (on the ground, the deepest of
+  /// all), else the deepest of all. Not simply the deepest of all: a point keeps its normal,
+  /// and a stale one whose wheel has since moved the other way gets ever deeper along it (a
+  /// wheel spawned in a wall, pushed out through the near face while its first point still
+  /// pointed to the far one, hung on that point at 107 mm "deep"). (A wheel wedged between
+  /// two faces of one triangle mesh keeps only its deeper contact.)
   void pruneWheelManifolds() {
     btDispatcher* d = getDispatcher();
     for (int m = 0; m < d->getNumManifolds(); ++m) {
       btPersistentManifold* pm = d->getManifoldByIndexInternal(m);
-      if (pm->getNumContacts() < 2) continue;
       const auto* c0 = static_cast<const ColliderSurfaces*>(pm->getBody0()->getUserPointer());
       const auto* c1 = static_cast<const ColliderSurfaces*>(pm->getBody1()->getUserPointer());
       if (!((c0 != nullptr && c0->wheel) || (c1 != nullptr && c1->wheel))) continue;
-      int deepest = 0;
-      for (int p = 1; p < pm->getNumContacts(); ++p) {
-        if (pm->getContactPoint(p).getDistance() < pm->getContactPoint(deepest).getDistance()) {
-          deepest = p;
+      int deepest = 0, fresh = -1;
+      for (int p = 0; p < pm->getNumContacts(); ++p) {
+        btManifoldPoint& cp = pm->getContactPoint(p);
+        const double dist = cp.getDistance();
+        if (dist < pm->getContactPoint(deepest).getDistance()) deepest = p;
+        if ((cp.m_contactPointFlags & kFreshContact) &&
+            (fresh < 0 || dist < pm->getContactPoint(fresh).getDistance())) {
+          fresh = p;
         }
       }
-      const btManifoldPoint keep = pm->getContactPoint(deepest);  // with its warm start
+      for (int p = 0; p < pm->getNumContacts(); ++p) {
+        pm->getContactPoint(p).m_contactPointFlags &= ~kFreshContact;
+      }
+      if (pm->getNumContacts() < 2) continue;
+      const btManifoldPoint keep = pm->getContactPoint(fresh >= 0 ? fresh : deepest);  // warm start
       pm->clearManifold();
       pm->addManifoldPoint(keep);
     }
@@ -368,12 +475,19 @@ PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
                        std::to_string(options.tyre_stiffness) + " and " +
                        std::to_string(options.tyre_damping_ratio));
   }
+  if (!(options.contact_max_vel >= 0.0) || !(options.contact_max_correcting_vel > 0.0)) {
+    throw PhysicsError("physics: contact_max_vel must be >= 0 and contact_max_correcting_vel > 0, got " +
+                       std::to_string(options.contact_max_vel) + " and " +
+                       std::to_string(options.contact_max_correcting_vel));
+  }
   config = std::make_unique<btDefaultCollisionConfiguration>();
   dispatcher = std::make_unique<btCollisionDispatcher>(config.get());
   broadphase = std::make_unique<btDbvtBroadphase>();
   solver = std::make_unique<btMultiBodyConstraintSolver>();
-  world = std::make_unique<MultiBodyWorld>(dispatcher.get(), broadphase.get(),
-                                                     solver.get(), config.get());
+  auto mbw = std::make_unique<MultiBodyWorld>(dispatcher.get(), broadphase.get(), solver.get(),
+                                              config.get());
+  mbw->max_correcting_vel = options.contact_max_correcting_vel;
+  world = std::move(mbw);
   world->setGravity(toBt(options.gravity));
   // Static shapes never move: their AABBs are computed once, when added (below they are put
   // to ISLAND_SLEEPING, as Bullet does for static rigid bodies). Updating them every step
@@ -681,8 +795,10 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const RobotModel& model) {
       compound->addChildShape(toBt(Eigen::Isometry3d(X_CB * X_BS)), shape.get());
       const Eigen::Matrix3d R_CL = X_CB.linear() * body.X_BL.at(g.link).linear();
       surfaces->children.push_back(toSurface(surfaceOfLink(model, g.link), R_CL));
+      setRecovery(model, g.link, options, &surfaces->children.back());
       r->shapes.push_back(std::move(shape));
     }
+    surfaces->robot = true;
     auto col = std::make_unique<btMultiBodyLinkCollider>(r->mb.get(), b - 1);
     col->setCollisionShape(compound.get());
     setAnisotropy(col.get(), *surfaces);

@@ -26,6 +26,24 @@
 //    (erp = dt kp/(dt kp + kd), cfm = 1/(dt kp + kd)). kp >= 1e12 (SDF's default) counts as
 //    rigid: Bullet's rigid contact (erp2 of the solver) is used then. As in ODE, the CFM softens
 //    only the normal rows, not friction.
+//  * Penetration recovery: ODE's rule (Gazebo's ode/joints/contact.cpp). A penetrating contact
+//    is pushed apart at the error-correction velocity c = erp max(depth - min_depth, 0) / dt,
+//    capped at max_vel. min_depth and max_vel are the smaller of the two robot sides' <minDepth>
+//    and <maxVel> (a static shape has no ODE body: its side does not count); max_vel is then
+//    truncated by PhysicsOptions::contact_max_correcting_vel (100 m/s). Only c is capped, not
+//    the removal of the approach velocity: an impact still stops dead. Why: Bullet's multibody
+//    contacts have no cap of their own (split impulse is not implemented for multibodies and
+//    m_maxErrorReduction is not read for them), so a car spawned 0.1 m into a wall left it at
+//    erp2 x 0.1 m / dt = 20 m/s, spinning at 460 rad/s. Bullet gets c as a per-point ERP,
+//    recomputed before every solve from the current depth. A link without <maxVel> gets
+//    PhysicsOptions::contact_max_vel = 0.1 m/s, not Gazebo's 0.01: Bullet's rigid contacts
+//    (erp2 0.2, ODE's rigid erp is ~1) sink 0.1-0.15 mm under a box sliding at 1 m/s, and a
+//    0.01 m/s cap bound there and took 2-10 % off its friction; 0.1 m/s binds only beyond
+//    0.5 mm. The cap also bounds the force a soft contact builds at rest, max_vel (dt kp + kd):
+//    ~100 N for a tyre contact (see Tyres), 3.4x the front wheels' static load (Gazebo's
+//    0.01 m/s on the seed's kp 1e7 wheels gives the same ~100 N); soft surfaces with kp far
+//    below the seed's need a larger <maxVel> here as in Gazebo. In the tianracer's regression
+//    runs the cap never binds (bit-identical figures).
 //  * Tyres (not in Gazebo): a wheel contact gets one more spring-damper in series with the
 //    surfaces' (PhysicsOptions::tyre_stiffness, default 1e5 N/m, critically damped for a
 //    quarter of the robot's mass). Why: the seed's chassis is rigid and has no suspension, and
@@ -107,6 +125,11 @@ struct PhysicsOptions {
   /// ring). 0 = off, as in Gazebo. See "Tyres" at the top of this file for why.
   double tyre_stiffness = 1e5;
   double tyre_damping_ratio = 1.0;
+  /// Penetration recovery (see the top of this file). contact_max_vel: a robot link's
+  /// <maxVel> where its <gazebo> tag sets none (m/s; Gazebo's is 0.01, see why we differ);
+  /// contact_max_correcting_vel: ODE's world cap over all contacts (Gazebo's default).
+  double contact_max_vel = 0.1;
+  double contact_max_correcting_vel = 100.0;
 };
 
 /// Surface of a collision (Gazebo <surface>/<gazebo reference> values; defaults are Gazebo's).
