@@ -25,7 +25,6 @@ import threading
 import time
 import unittest
 
-import numpy as np
 import rosnode
 import rospy
 import rostest

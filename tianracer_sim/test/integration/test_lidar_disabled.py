@@ -6,7 +6,6 @@ and neither its output nor /rosout carries an ERROR or FATAL line.
 This node starts tianracer_sim_node itself, so that it reads all of the node's output: lines
 logged at start-up, before the node's /rosout publisher is connected, never reach /rosout.
 """
-import os
 import re
 import signal
 import subprocess
@@ -20,13 +19,7 @@ import rostest
 from rosgraph_msgs.msg import Clock, Log
 from sensor_msgs.msg import JointState
 
-
-def node_binary():
-    for d in os.environ.get('CMAKE_PREFIX_PATH', '').split(':'):
-        path = os.path.join(d, 'lib', 'tianracer_sim', 'tianracer_sim_node')
-        if os.path.exists(path):
-            return path
-    raise RuntimeError('tianracer_sim_node not found on CMAKE_PREFIX_PATH')
+from sim_node_binary import node_binary
 
 
 class LidarDisabled(unittest.TestCase):

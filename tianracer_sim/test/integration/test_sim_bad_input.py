@@ -10,19 +10,13 @@ import rospkg
 import rospy
 import rostest
 
+from sim_node_binary import node_binary
+
 PKG = rospkg.RosPack().get_path('tianracer_sim')
 DATA = os.path.join(PKG, 'test', 'data', 'urdf')
 WORLDS = os.path.join(PKG, 'test', 'data', 'worlds')
 XACRO = os.path.join(rospkg.RosPack().get_path('tianracer_description'), 'urdf',
                      'tianracer_description.xacro')
-
-
-def node_binary():
-    for d in os.environ.get('CMAKE_PREFIX_PATH', '').split(':'):
-        path = os.path.join(d, 'lib', 'tianracer_sim', 'tianracer_sim_node')
-        if os.path.exists(path):
-            return path
-    raise RuntimeError('tianracer_sim_node not found on CMAKE_PREFIX_PATH')
 
 
 class SimBadInput(unittest.TestCase):
