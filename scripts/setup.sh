@@ -22,6 +22,10 @@ APT_PACKAGES=(
   git pkg-config libtinyxml2-dev libyaml-cpp-dev libgtest-dev libgmock-dev liburdfdom-tools
   libstd-srvs-dev python3-std-srvs libdiagnostic-msgs-dev python3-diagnostic-msgs
   libros-rosgraph-msgs-dev python3-rosgraph-msgs python3-numpy python3-pil python3-yaml python3-catkin-pkg python3-nose
+
+  # the real viewers and the tutorial's joint sliders (display.launch, the rviz check under Xvfb),
+  # and the benchmark's PyBullet virtual environment
+  joint-state-publisher joint-state-publisher-gui rviz xvfb xauth imagemagick python3-venv
 )
 PIP_PACKAGES=(xacro==1.13.3)   # ROS 1 xacro; 2.x is the ROS 2 one (TOOLCHAIN.md)
 
