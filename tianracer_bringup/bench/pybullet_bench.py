@@ -8,7 +8,7 @@ same sensor schedule: rayTestBatch of 1081 rays every 40 ms; getCameraImage with
 at 800x800 every 1/30 s and at 640x480 every 1/20 s, the latter turned into a point cloud with
 numpy. Prints one JSON object (rtf, wall, counts) on stdout.
 
-    pybullet_bench.py --urdf robot.urdf --world racetrack.world --scenario full --duration 20
+    pybullet_bench.py --urdf robot.urdf --world racetrack.world --sensors lidar,camera,depth --duration 20
 """
 import argparse
 import json
@@ -29,7 +29,7 @@ CAMERA = dict(width=800, height=800, hfov=1.3962634, near=0.02, far=300.0, perio
 DEPTH = dict(width=640, height=480, hfov=1.0466666666666666, near=0.05, far=8.0, period=1.0 / 20.0,
              link="real_sense")
 EYE_OFFSET = 0.02
-SCENARIOS = {"physics": (), "lidar": ("lidar",), "full": ("lidar", "camera", "depth")}
+SENSORS = ("lidar", "camera", "depth")
 
 
 def parse_pose(text):
@@ -176,7 +176,7 @@ class Camera:
         return cloud, packed
 
 
-def run(urdf, world, scenario, duration, wheel_omega, steer, max_wall):
+def run(urdf, world, kinds, duration, wheel_omega, steer, max_wall):
     p.connect(p.DIRECT)
     p.setGravity(0, 0, -9.8)
     p.setPhysicsEngineParameter(fixedTimeStep=STEP, numSolverIterations=20)
@@ -190,7 +190,6 @@ def run(urdf, world, scenario, duration, wheel_omega, steer, max_wall):
     for name in ("left_steering_hinge_joint", "right_steering_hinge_joint"):
         p.setJointMotorControl2(robot, joints[name], p.POSITION_CONTROL, targetPosition=steer, force=10)
     sensors = []
-    kinds = SCENARIOS[scenario]
     if "lidar" in kinds:
         sensors.append(["lidar", LIDAR["period"], Lidar(robot, links[LIDAR["link"]]).scan])
     if "camera" in kinds:
@@ -221,7 +220,7 @@ def run(urdf, world, scenario, duration, wheel_omega, steer, max_wall):
     cpu = time.process_time() - cpu0
     base, _ = p.getBasePositionAndOrientation(robot)
     p.disconnect()
-    return dict(scenario=scenario, sim_seconds=i * STEP, requested_sim_seconds=steps * STEP, wall_seconds=wall,
+    return dict(sensors=list(kinds), sim_seconds=i * STEP, requested_sim_seconds=steps * STEP, wall_seconds=wall,
                 rtf=i * STEP / wall, cpu_seconds=cpu, cpu_cores=cpu / wall, counts=counts,
                 sensor_cpu_ms_each={k: 1000 * v / max(1, counts[k]) for k, v in sensor_cpu.items()},
                 world_shapes=n_world, final_base_xy=list(base[:2]), pybullet_version=p.getAPIVersion())
@@ -231,13 +230,17 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--urdf", required=True, help="URDF with absolute mesh paths")
     ap.add_argument("--world", default="", help="SDF .world (boxes, cylinders, spheres are used)")
-    ap.add_argument("--scenario", choices=sorted(SCENARIOS), required=True)
+    ap.add_argument("--sensors", default="", help="comma-separated subset of %s (default: none)" % ",".join(SENSORS))
     ap.add_argument("--duration", type=float, default=20.0, help="sim seconds")
     ap.add_argument("--wheel-omega", type=float, default=1.0 / 0.032, help="rear wheel rad/s")
     ap.add_argument("--steer", type=float, default=0.2, help="hinge angle, rad")
     ap.add_argument("--max-wall", type=float, default=0.0, help="stop after this many wall seconds (0: never)")
     a = ap.parse_args()
-    res = run(a.urdf, a.world, a.scenario, a.duration, a.wheel_omega, a.steer, a.max_wall)
+    kinds = [k for k in a.sensors.split(",") if k]
+    for k in kinds:
+        if k not in SENSORS:
+            ap.error("unknown sensor '%s' (known: %s)" % (k, ", ".join(SENSORS)))
+    res = run(a.urdf, a.world, kinds, a.duration, a.wheel_omega, a.steer, a.max_wall)
     with open("/proc/self/status") as f:
         for line in f:
             if line.startswith("VmHWM:"):

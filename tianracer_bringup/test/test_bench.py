@@ -1,0 +1,87 @@
+"""The benchmark harness end to end at a tiny duration, as a user runs it from a shell whose
+python3 is not the system one: both sides produce their figures and the table is written.
+No timing is asserted: figures are for the benchmark, not for tests."""
+import os
+import re
+import shutil
+import subprocess
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+BENCH = os.path.join(os.path.dirname(HERE), "bench")
+HARNESS = os.path.join(BENCH, "run_benchmarks")
+COMMITTED = os.path.join(BENCH, "results.md")
+
+
+class BenchHarnessTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix="test_bench_")
+        # A python3 first on PATH that sees neither ROS nor numpy nor pybullet (the system
+        # interpreter without site-packages), as a pyenv or conda python3 would.
+        shim = os.path.join(cls.tmp, "bin")
+        os.makedirs(shim)
+        with open(os.path.join(shim, "python3"), "w") as f:
+            f.write('#!/bin/sh\nexec /usr/bin/python3 -S -E "$@"\n')
+        os.chmod(os.path.join(shim, "python3"), 0o755)
+        cls.env = dict(os.environ, PATH=shim + ":" + os.environ["PATH"], ROS_HOSTNAME="localhost")
+        cls.env.pop("ROS_IP", None)
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def harness(self, *args, timeout=240):
+        # Run as a user does: the script's '#!/usr/bin/env python3' picks the shim.
+        p = subprocess.run([HARNESS] + list(args), env=self.env, capture_output=True, text=True,
+                           timeout=timeout)
+        return p.returncode, p.stdout + p.stderr
+
+    def test_the_shim_is_not_the_pybullet_interpreter(self):
+        rc, out = subprocess.run(["python3", "-c", "import numpy"], env=self.env, capture_output=True,
+                                 text=True).returncode, ""
+        self.assertNotEqual(rc, 0, "the shim python3 should not import numpy")
+
+    def test_tiny_run_writes_both_sides_and_compares(self):
+        out_md = os.path.join(self.tmp, "results.md")
+        rc, out = self.harness("--duration", "0.5", "--scenarios", "physics,lidar", "--first-scan-runs", "1",
+                               "--no-install", "--output", out_md, "--compare", COMMITTED)
+        self.assertEqual(rc, 0, out)
+        self.assertRegex(out, r"interpreters: PyBullet side \S+bench_venv/bin/python \(Python [\d.]+, "
+                              r"pybullet 3\.2\.7, numpy [\d.]+\); ROS side /usr/bin/python3")
+        text = open(out_md).read()
+        rows = {}
+        for line in text.splitlines():
+            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            if line.startswith("|") and len(cells) == 10:
+                rows[cells[0]] = cells
+        for title in ("physics only", "physics + lidar (1081 beams, 40 Hz)"):
+            self.assertIn(title, rows, text)
+            ours, pybullet = rows[title][1], rows[title][2]
+            self.assertRegex(ours, r"^\d+\.\d\d$", "ours has no figure in: %s" % rows[title])
+            self.assertRegex(pybullet, r"^\d+\.\d\d$", "PyBullet has no figure in: %s" % rows[title])
+        self.assertRegex(text, r"Machine: \d+ cores, CPU model: .+,")
+        self.assertRegex(text, r"Speed index of this machine \(PyBullet physics only.*\): \d+\.\d\d sim s/wall s")
+        self.assertRegex(text, r"Launch to first /scan .* median \d+\.\d\d s")
+        # --compare: one line per figure against the committed table
+        self.assertIn("Change against %s" % COMMITTED, out)
+        self.assertRegex(out, r"physics only: ours sim s/wall s +\d+\.\d\d -> \d+\.\d\d +[+-]\d+\.\d %")
+
+    def test_compare_two_files_without_running(self):
+        rc, out = self.harness("--compare", COMMITTED, COMMITTED, timeout=60)
+        self.assertEqual(rc, 0, out)
+        self.assertRegex(out, r"full seed sensor set: ours sim s/wall s +\d+\.\d\d -> \d+\.\d\d +\+0\.0 %")
+
+    def test_missing_environment_names_the_command(self):
+        venv = os.path.join(self.tmp, "no_such_venv")
+        rc, out = self.harness("--duration", "0.5", "--scenarios", "physics", "--no-install", "--venv", venv,
+                               "--output", os.path.join(self.tmp, "never.md"), timeout=60)
+        self.assertEqual(rc, 2, out)
+        self.assertIn("run_benchmarks --install-only --venv %s" % venv, out)
+        self.assertFalse(os.path.exists(os.path.join(self.tmp, "never.md")))
+        self.assertNotIn("|", out)  # no table, not even a half one
+
+
+if __name__ == "__main__":
+    unittest.main()
