@@ -1,0 +1,178 @@
+#!/usr/bin/env python3
+"""The shipped rviz config in the real viewer (see rviz_view.test).
+
+rviz reports transform trouble only in its Displays panel; with its `ros.rviz` loggers at DEBUG
+it also logs it ("Error transforming from frame ...", and messages that wait for a transform
+until its queue overflows: "Removed oldest message because buffer is full"). Those lines, and
+any WARN/ERROR/FATAL rviz logs while the car drives (after a second of start-up), fail the test. A second rviz with the fixed frame misspelt shows
+that the check catches what it is meant to catch."""
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import unittest
+
+import rosgraph
+import rospkg
+import rospy
+import rostest
+import yaml
+from geometry_msgs.msg import Twist
+from PIL import Image
+
+CONFIG = os.path.join(rospkg.RosPack().get_path("tianracer_bringup"), "rviz", "tianracer.rviz")
+SCREEN = (1400, 900)
+SHOT = os.path.join(os.environ.get("ROS_LOG_DIR", tempfile.gettempdir()), "rviz_view.png")
+TROUBLE = re.compile(r"^(WARN|ERROR|FATAL) |Error transforming|No transform|does not exist|Fixed Frame|"
+                     r"buffer is full|Discarding message")
+ROSCONSOLE_CONFIG = "log4j.logger.ros=INFO\nlog4j.logger.ros.rviz=DEBUG\n"
+SCAN_RGB = (255, 40, 40)   # the Scan display's flat colour in the shipped config
+
+
+def displays(config):
+    """(name, topic) of every enabled display that subscribes to a topic."""
+    out = []
+    for d in yaml.safe_load(open(config))["Visualization Manager"]["Displays"]:
+        topic = d.get("Topic") or d.get("Image Topic")
+        if d.get("Enabled") and topic:
+            out.append((d["Name"], topic))
+    return out
+
+
+def trouble(log_text):
+    """rviz's log lines (ESC colour codes removed) that report a transform or topic problem."""
+    lines = (re.sub(r"\x1b\[[0-9;]*m", "", l).strip() for l in log_text.splitlines())
+    return [l for l in lines if TROUBLE.search(l)]
+
+
+class Viewer(object):
+    """rviz with `config` on its own Xvfb screen (xvfb-run -a), its console in a file."""
+
+    def __init__(self, config, tmp):
+        self.tmp = tmp
+        self.log = os.path.join(tmp, "rviz.log")
+        rc = os.path.join(tmp, "rosconsole.config")
+        with open(rc, "w") as f:
+            f.write(ROSCONSOLE_CONFIG)
+        env = dict(os.environ, ROSCONSOLE_CONFIG_FILE=rc, ROSCONSOLE_FORMAT="${severity} ${logger}: ${message}",
+                   XDG_RUNTIME_DIR=tmp)
+        self.display_file = os.path.join(tmp, "display")
+        script = 'echo "$DISPLAY" > "%s"; exec rviz -d "%s" __name:=rviz_view_check' % (self.display_file, config)
+        self.proc = subprocess.Popen(
+            ["xvfb-run", "-a", "-f", os.path.join(tmp, "Xauthority"),
+             "-s", "-screen 0 %dx%dx24" % SCREEN, "sh", "-c", script],
+            stdout=open(self.log, "w"), stderr=subprocess.STDOUT, env=env, start_new_session=True)
+
+    def screenshot(self, path):
+        display = open(self.display_file).read().strip()
+        env = dict(os.environ, XAUTHORITY=os.path.join(self.tmp, "Xauthority"))
+        subprocess.check_call(["import", "-display", display, "-window", "root", path], env=env)
+        return path
+
+    def console(self):
+        return open(self.log, errors="replace").read()
+
+    def close(self):
+        if self.proc.poll() is None:
+            os.killpg(self.proc.pid, signal.SIGTERM)
+            try:
+                self.proc.wait(10)
+            except subprocess.TimeoutExpired:
+                os.killpg(self.proc.pid, signal.SIGKILL)
+                self.proc.wait()
+
+
+def wall_wait(predicate, timeout):
+    end = time.time() + timeout
+    while time.time() < end and not rospy.is_shutdown():
+        if predicate():
+            return True
+        time.sleep(0.2)
+    return predicate()
+
+
+class RvizViewTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("test_rviz_view")
+        cls.missing = [t for t in ("xvfb-run", "rviz", "import") if not shutil.which(t)]
+        cls.master = rosgraph.Master("/test_rviz_view")
+        cls.cmd = rospy.Publisher("/cmd_vel", Twist, queue_size=1)
+
+    def setUp(self):
+        if self.missing:
+            self.skipTest("needs %s (apt-get install xvfb rviz imagemagick; scripts/setup.sh installs them)"
+                          % ", ".join(self.missing))
+        self.tmp = tempfile.mkdtemp(prefix="rviz_view_")
+
+    def tearDown(self):
+        shutil.rmtree(getattr(self, "tmp", ""), ignore_errors=True)
+
+    def subscribed(self, node, topics):
+        pubs, subs, _ = self.master.getSystemState()
+        published = {t for t, nodes in pubs if nodes}
+        mine = {t for t, nodes in subs if node in nodes}
+        return all(t in mine and t in published for t in topics)
+
+    def drive(self, sim_seconds, twist):
+        """Publish twist at 10 Hz for sim_seconds of sim time (bounded in wall time)."""
+        end = rospy.get_time() + sim_seconds
+        deadline = time.time() + 60
+        while rospy.get_time() < end and time.time() < deadline and not rospy.is_shutdown():
+            self.cmd.publish(twist)
+            time.sleep(0.1)
+
+    def view(self, config, sim_seconds):
+        """Start rviz on config, wait until it subscribes to every topic, drive, screenshot."""
+        viewer = Viewer(config, self.tmp)
+        try:
+            topics = [t for _, t in displays(config)]
+            ok = wall_wait(lambda: viewer.proc.poll() is None and self.subscribed("/rviz_view_check", topics), 60)
+            self.assertTrue(ok, "rviz did not subscribe to every topic of %s (%s) within 60 s; its console:\n%s"
+                            % (config, topics, viewer.console()[-3000:]))
+            twist = Twist()
+            twist.linear.x = 0.6
+            # The first second is rviz's start-up (its TF listener catching up with /tf_static,
+            # as for any user): what it logs from then on, while the car drives, is checked.
+            self.drive(1.0, twist)
+            start = len(viewer.console())
+            self.drive(sim_seconds, twist)
+            shot = viewer.screenshot(os.path.join(self.tmp, "shot.png"))
+            self.drive(0.5, Twist())
+            return viewer.console()[start:], shot
+        finally:
+            viewer.close()
+
+    def test_shipped_config_clean_and_drawn(self):
+        console, shot = self.view(CONFIG, 4.0)
+        shutil.copy(shot, SHOT)
+        self.assertEqual(trouble(console), [], "rviz reported problems (screenshot %s)" % SHOT)
+        img = Image.open(shot).convert("RGB")
+        self.assertEqual(img.size, SCREEN)
+        # Not blank: many colours, and the scan's colour in the 3D view (right of the panels).
+        colours = img.getcolors(maxcolors=1 << 20)
+        self.assertGreater(len(colours), 200, "screenshot %s has %d colours" % (SHOT, len(colours)))
+        view = img.crop((360, 70, SCREEN[0], SCREEN[1] - 40))
+        scan = sum(n for n, c in view.getcolors(maxcolors=1 << 20)
+                   if all(abs(a - b) <= 30 for a, b in zip(c, SCAN_RGB)))
+        self.assertGreater(scan, 200, "the scan is not drawn in %s (%d pixels of its colour)" % (SHOT, scan))
+        # The camera panel (top left) shows the camera image, not an empty panel.
+        panel = img.crop((30, 90, 300, 350)).getcolors(maxcolors=1 << 20)
+        self.assertGreater(len(panel), 20, "the camera panel of %s looks empty" % SHOT)
+
+    def test_the_check_catches_a_wrong_fixed_frame(self):
+        bad = os.path.join(self.tmp, "bad.rviz")
+        with open(bad, "w") as f:
+            f.write(open(CONFIG).read().replace("Fixed Frame: world", "Fixed Frame: no_such_frame"))
+        console, _ = self.view(bad, 1.0)
+        found = trouble(console)
+        self.assertTrue(any("no_such_frame" in l for l in found), "not caught; console:\n%s" % console[-3000:])
+
+
+if __name__ == "__main__":
+    rostest.rosrun("tianracer_bringup", "test_rviz_view", RvizViewTest, sys.argv)
