@@ -15,7 +15,37 @@ std::string opticalFrameId(const std::string& frame_name) { return frame_name + 
 double CameraConfig::focalLength() const { return width / (2.0 * std::tan(horizontal_fov / 2.0)); }
 
 CameraIntrinsics CameraConfig::intrinsics() const {
-  return CameraIntrinsics::fromHorizontalFov(width, height, horizontal_fov, near_clip, far_clip);
+  const CameraInfo info = makeCameraInfo(*this);
+  CameraIntrinsics k;
+  k.width = width;
+  k.height = height;
+  k.fx = info.K[0];
+  k.fy = info.K[4];
+  k.cx = info.K[2];
+  k.cy = info.K[5];
+  k.near_clip = near_clip;
+  k.far_clip = far_clip;
+  return k;
+}
+
+const char* imageEncoding(ImageFormat format) {
+  switch (format) {
+    case ImageFormat::kR8G8B8: return "rgb8";
+    case ImageFormat::kB8G8R8: return "bgr8";
+    case ImageFormat::kL8: return "mono8";
+    case ImageFormat::kL16: return "mono16";
+  }
+  return "rgb8";
+}
+
+int bytesPerPixel(ImageFormat format) {
+  switch (format) {
+    case ImageFormat::kR8G8B8:
+    case ImageFormat::kB8G8R8: return 3;
+    case ImageFormat::kL8: return 1;
+    case ImageFormat::kL16: return 2;
+  }
+  return 3;
 }
 
 Eigen::Isometry3d CameraConfig::X_LO() const { return X_LS * opticalFromLinkRotation(); }
@@ -167,9 +197,21 @@ class Parser {
     if (!(c->near_clip < c->far_clip)) {
       fail("<clip><near> " + str(c->near_clip) + " must be less than <clip><far> " + str(c->far_clip));
     }
-    if (c->format_name == "R8G8B8") c->format = ImageFormat::kR8G8B8;
-    else if (c->format_name == "L8") c->format = ImageFormat::kL8;
-    else fail("<image><format> '" + c->format_name + "' is not supported (R8G8B8, L8)");
+    // Gazebo's names (and its *_INT* aliases); the float and Bayer formats are Gazebo's too,
+    // but not simulated here.
+    const std::string& f = c->format_name;
+    if (f == "R8G8B8" || f == "RGB_INT8") c->format = ImageFormat::kR8G8B8;
+    else if (f == "B8G8R8" || f == "BGR_INT8") c->format = ImageFormat::kB8G8R8;
+    else if (f == "L8" || f == "L_INT8") c->format = ImageFormat::kL8;
+    else if (f == "L16" || f == "L_INT16") c->format = ImageFormat::kL16;
+    else if (f == "R_FLOAT16" || f == "R_FLOAT32" || f == "BAYER_RGGB8" || f == "BAYER_BGGR8" ||
+             f == "BAYER_GBRG8" || f == "BAYER_GRBG8") {
+      fail("<image><format> '" + f + "' is a Gazebo format that is not simulated (supported: "
+           "R8G8B8, B8G8R8, L8, L16); the camera is left out");
+    } else {
+      fail("<image><format> '" + f + "' is not a Gazebo image format (supported: R8G8B8, "
+           "B8G8R8, L8, L16)");
+    }
     c->noise_seed = fnv1a(sensor_.name);
     c->frame_name = sensor_.link;
   }
@@ -231,7 +273,7 @@ class Parser {
         std::fabs(c->focal_length_override - c->focalLength()) > 1e-6 * c->focalLength()) {
       warn("plugin <focalLength> " + std::to_string(c->focal_length_override) +
            " disagrees with width and hfov (f = " + std::to_string(c->focalLength()) +
-           "); camera_info reports it, images use the hfov");
+           "); camera_info reports it and the images are rendered with it");
     }
   }
 

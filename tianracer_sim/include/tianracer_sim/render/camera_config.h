@@ -24,7 +24,17 @@ class CameraError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-enum class ImageFormat { kR8G8B8, kL8 };
+/// <image><format>: R8G8B8 (alias RGB_INT8) -> rgb8, B8G8R8 (BGR_INT8) -> bgr8, L8 (L_INT8) ->
+/// mono8, L16 (L_INT16) -> mono16. Mono images are the Rec. 601 luma of the rendered colour,
+/// Y = 0.299 R + 0.587 G + 0.114 B (what cv_bridge/OpenCV use for rgb8 -> mono8): mono8 =
+/// round(Y) of the 8-bit channels, mono16 = round(Y * 65535 / 255) (full range, 255 -> 65535,
+/// little-endian).
+enum class ImageFormat { kR8G8B8, kB8G8R8, kL8, kL16 };
+
+/// sensor_msgs/image_encodings name of a format ("rgb8", "bgr8", "mono8", "mono16").
+const char* imageEncoding(ImageFormat format);
+/// Bytes per pixel of a format (3, 3, 1, 2).
+int bytesPerPixel(ImageFormat format);
 
 /// The optical frame published for `frame_name` (by TF, rotated rpy(-pi/2, 0, -pi/2) from
 /// it) and written in every image, cloud and camera_info header: "<frame_name>_optical_frame",
@@ -71,7 +81,11 @@ struct CameraConfig {
   double publishRate() const { return plugin_update_rate > 0.0 ? plugin_update_rate : update_rate; }
   /// f = W / (2 tan(hfov / 2)).
   double focalLength() const;
-  /// Intrinsics for rendering: f both axes, centred ((W-1)/2, (H-1)/2), the clip planes.
+  /// Intrinsics for rendering: exactly the published K (makeCameraInfo), read with 0-based
+  /// pixel indices: f both axes (focalLength or the plugin's focalLength), principal point
+  /// (cx, cy) = K's (Gazebo's (W+1)/2, (H+1)/2 unless Cx/Cy are given), and the clip planes.
+  /// Gazebo renders its images centred at ((W-1)/2, (H-1)/2), one pixel off its own K; we
+  /// render where K says.
   CameraIntrinsics intrinsics() const;
   std::string opticalFrame() const { return opticalFrameId(frame_name); }
   /// Pose of the optical frame in the link frame: X_LS * rpy(-pi/2, 0, -pi/2).
@@ -95,10 +109,11 @@ CameraConfig parseCameraConfig(const SensorSpec& sensor, const WarningSink& warn
 /// The same for type "depth" (also accepts "camera" sensors with an openni plugin).
 DepthCameraConfig parseDepthCameraConfig(const SensorSpec& sensor, const WarningSink& warn = {});
 
-/// sensor_msgs/CameraInfo as gazebo_ros fills it (SPEC §5.2), frame = the optical frame:
-/// f = W / (2 tan(hfov/2)), cx = (W+1)/2, cy = (H+1)/2 (gazebo_ros's values; the rendered
-/// principal point is at (W-1)/2, (H-1)/2 in 0-based pixels, i.e. cx - 1), K = [f 0 cx; 0 f cy;
-/// 0 0 1], R = I, P = [f 0 cx -f*hackBaseline; 0 f cy 0; 0 0 1 0], D = [k1 k2 t1 t2 k3] (plumb_bob).
+/// sensor_msgs/CameraInfo as gazebo_ros fills it, frame = the optical frame:
+/// f = W / (2 tan(hfov/2)), cx = (W+1)/2, cy = (H+1)/2 (gazebo_ros's values, kept so that
+/// users' calibrations stay valid; the images are rendered with this K, see intrinsics()),
+/// K = [f 0 cx; 0 f cy; 0 0 1], R = I, P = [f 0 cx -f*hackBaseline; 0 f cy 0; 0 0 1 0],
+/// D = [k1 k2 t1 t2 k3] (plumb_bob).
 struct CameraInfo {
   std::string frame_id;
   int width = 0;

@@ -37,9 +37,11 @@ class CameraSensor {
 
   const CameraConfig& config() const { return config_; }
   const CameraInfo& info() const { return info_; }
-  /// W*H*channels() bytes, rows top to bottom.
+  /// W*H*bytesPerPixel() bytes, rows top to bottom, in the configured format (encoding()).
   const std::vector<uint8_t>& image() const { return image_; }
-  int channels() const { return config_.format == ImageFormat::kL8 ? 1 : 3; }
+  int channels() const { return bytesPerPixel() == 3 ? 3 : 1; }
+  int bytesPerPixel() const { return tianracer_sim::bytesPerPixel(config_.format); }
+  const char* encoding() const { return imageEncoding(config_.format); }
   uint64_t renderCount() const { return renders_; }
 
  private:
@@ -49,7 +51,7 @@ class CameraSensor {
   CameraIntrinsics intrinsics_;
   ImageNoise noise_;
   std::vector<uint8_t> image_;
-  std::vector<uint8_t> rgb_scratch_;  // L8 only
+  std::vector<uint8_t> rgb_scratch_;  // formats other than R8G8B8
   uint64_t renders_ = 0;
 };
 
@@ -70,12 +72,16 @@ class DepthCameraSensor {
 
   const DepthCameraConfig& config() const { return config_; }
   const CameraInfo& info() const { return info_; }  // both camera_infos carry this
-  const std::vector<uint8_t>& image() const { return image_; }  // rgb8 (or mono8 for L8)
-  int channels() const { return config_.camera.format == ImageFormat::kL8 ? 1 : 3; }
+  /// The colour image in the configured format, as CameraSensor::image().
+  const std::vector<uint8_t>& image() const { return image_; }
+  int channels() const { return bytesPerPixel() == 3 ? 3 : 1; }
+  int bytesPerPixel() const { return tianracer_sim::bytesPerPixel(config_.camera.format); }
+  const char* encoding() const { return imageEncoding(config_.camera.format); }
   /// W*H metres along the optical axis, NaN outside (cutoff, cutoffMax).
   const std::vector<float>& depth() const { return depth_; }
-  /// H*W*CloudLayout::kPointStep bytes: x = d (u - (W-1)/2) / f, y = d (v - (H-1)/2) / f,
-  /// z = d, NaN where the depth is NaN; rgb from the (noisy) image.
+  /// H*W*CloudLayout::kPointStep bytes, built with the published K (0-based pixel indices
+  /// u, v): x = d (u - cx) / fx, y = d (v - cy) / fy, z = d, NaN where the depth is NaN; rgb
+  /// from the (noisy) image (grey for mono formats).
   const std::vector<uint8_t>& cloud() const { return cloud_; }
   /// False when any cloud point is NaN.
   bool cloudIsDense() const { return cloud_dense_; }
@@ -95,7 +101,7 @@ class DepthCameraSensor {
   std::vector<uint8_t> rgb_scratch_;
   std::vector<float> depth_;
   std::vector<uint8_t> cloud_;
-  std::vector<float> ray_x_, ray_y_;  // (u - (W-1)/2) / f and (v - (H-1)/2) / f
+  std::vector<float> ray_x_, ray_y_;  // (u - cx) / fx and (v - cy) / fy of the published K
   bool cloud_dense_ = false;
   uint64_t renders_ = 0;
 };
