@@ -9,20 +9,21 @@ namespace tianracer_sim {
 namespace {
 
 // Every field but data.
-void fillImageMeta(int width, int height, int channels, const std::string& frame_id,
-                   const ros::Time& stamp, sensor_msgs::Image* msg) {
+void fillImageMeta(int width, int height, int bytes_per_pixel, const char* encoding,
+                   const std::string& frame_id, const ros::Time& stamp, sensor_msgs::Image* msg) {
   msg->header.stamp = stamp;
   msg->header.frame_id = frame_id;
   msg->width = static_cast<uint32_t>(width);
   msg->height = static_cast<uint32_t>(height);
-  msg->encoding = channels == 1 ? sensor_msgs::image_encodings::MONO8 : sensor_msgs::image_encodings::RGB8;
-  msg->is_bigendian = 0;
-  msg->step = static_cast<uint32_t>(width * channels);
+  msg->encoding = encoding;
+  msg->is_bigendian = 0;  // mono16 is little-endian
+  msg->step = static_cast<uint32_t>(width * bytes_per_pixel);
 }
 
-void fillImage(const std::vector<uint8_t>& data, int width, int height, int channels,
-               const std::string& frame_id, const ros::Time& stamp, sensor_msgs::Image* msg) {
-  fillImageMeta(width, height, channels, frame_id, stamp, msg);
+void fillImage(const std::vector<uint8_t>& data, int width, int height, int bytes_per_pixel,
+               const char* encoding, const std::string& frame_id, const ros::Time& stamp,
+               sensor_msgs::Image* msg) {
+  fillImageMeta(width, height, bytes_per_pixel, encoding, frame_id, stamp, msg);
   msg->data.resize(data.size());
   std::memcpy(msg->data.data(), data.data(), data.size());
 }
@@ -73,13 +74,14 @@ void borrow(const void* data, std::size_t size, const uint8_t** out, uint32_t* o
 }  // namespace
 
 void toImage(const CameraSensor& camera, const ros::Time& stamp, sensor_msgs::Image* msg) {
-  fillImage(camera.image(), camera.config().width, camera.config().height, camera.channels(),
-            camera.config().opticalFrame(), stamp, msg);
+  fillImage(camera.image(), camera.config().width, camera.config().height,
+            camera.bytesPerPixel(), camera.encoding(), camera.config().opticalFrame(), stamp, msg);
 }
 
 void toImage(const DepthCameraSensor& camera, const ros::Time& stamp, sensor_msgs::Image* msg) {
   const CameraConfig& c = camera.config().camera;
-  fillImage(camera.image(), c.width, c.height, camera.channels(), c.opticalFrame(), stamp, msg);
+  fillImage(camera.image(), c.width, c.height, camera.bytesPerPixel(), camera.encoding(),
+            c.opticalFrame(), stamp, msg);
 }
 
 void toDepthImage(const DepthCameraSensor& camera, const ros::Time& stamp, sensor_msgs::Image* msg) {
@@ -113,14 +115,15 @@ void toPointCloud2(const DepthCameraSensor& camera, const ros::Time& stamp,
 }
 
 void toImage(const CameraSensor& camera, const ros::Time& stamp, BorrowedImage* msg) {
-  fillImageMeta(camera.config().width, camera.config().height, camera.channels(),
-                camera.config().opticalFrame(), stamp, &msg->meta);
+  fillImageMeta(camera.config().width, camera.config().height, camera.bytesPerPixel(),
+                camera.encoding(), camera.config().opticalFrame(), stamp, &msg->meta);
   borrow(camera.image().data(), camera.image().size(), &msg->data, &msg->size);
 }
 
 void toImage(const DepthCameraSensor& camera, const ros::Time& stamp, BorrowedImage* msg) {
   const CameraConfig& c = camera.config().camera;
-  fillImageMeta(c.width, c.height, camera.channels(), c.opticalFrame(), stamp, &msg->meta);
+  fillImageMeta(c.width, c.height, camera.bytesPerPixel(), camera.encoding(), c.opticalFrame(),
+                stamp, &msg->meta);
   borrow(camera.image().data(), camera.image().size(), &msg->data, &msg->size);
 }
 

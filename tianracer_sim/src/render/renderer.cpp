@@ -15,213 +15,17 @@
 #include <vector>
 
 #include "geometry.h"
+#include "gl_context.h"
+#include "shaders.h"
 #include "tianracer_sim/mesh/mesh_loader.h"
 #include "tianracer_sim/scene/materials.h"
 
 namespace tianracer_sim {
 
 namespace ri = render_internal;
-
-CameraIntrinsics CameraIntrinsics::fromHorizontalFov(int width, int height, double hfov,
-                                                     double near_clip, double far_clip) {
-  CameraIntrinsics k;
-  k.width = width;
-  k.height = height;
-  k.fx = k.fy = width / (2.0 * std::tan(hfov / 2.0));
-  k.cx = (width - 1) / 2.0;
-  k.cy = (height - 1) / 2.0;
-  k.near_clip = near_clip;
-  k.far_clip = far_clip;
-  return k;
-}
-
-Eigen::Isometry3d opticalFromLinkRotation() {
-  // Columns: the optical axes in the link frame. x_O = -y_L, y_O = -z_L, z_O = x_L.
-  Eigen::Matrix3d R;
-  R << 0, 0, 1,
-      -1, 0, 0,
-      0, -1, 0;
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = R;
-  return X;
-}
+using render_internal::GlContext;
 
 namespace {
-
-// ---------------------------------------------------------------------------------------------
-// The process-wide context. OSMesa binds a context to the calling thread, so every GL call
-// goes through lock(): it takes the process-wide mutex and makes the context current.
-class GlContext {
- public:
-  static std::shared_ptr<GlContext> acquire() {
-    static std::mutex mutex;
-    static std::weak_ptr<GlContext> shared;
-    std::lock_guard<std::mutex> lock(mutex);
-    if (auto existing = shared.lock()) return existing;
-    auto created = std::shared_ptr<GlContext>(new GlContext());
-    shared = created;
-    return created;
-  }
-
-  ~GlContext() {
-    if (ctx_ != nullptr) OSMesaDestroyContext(ctx_);
-  }
-
-  std::unique_lock<std::recursive_mutex> lock() {
-    std::unique_lock<std::recursive_mutex> guard(gl_mutex());
-    if (OSMesaGetCurrentContext() != ctx_) {
-      if (!OSMesaMakeCurrent(ctx_, dummy_, GL_UNSIGNED_BYTE, 1, 1)) {
-        throw RenderError("OSMesaMakeCurrent failed");
-      }
-    }
-    return guard;
-  }
-
-  const std::string& info() const { return info_; }
-
- private:
-  GlContext() {
-    const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS,
-                           0, OSMESA_PROFILE, OSMESA_COMPAT_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION,
-                           3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
-    ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
-    if (ctx_ == nullptr) ctx_ = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
-    if (ctx_ == nullptr) {
-      throw RenderError("OSMesa could not create an OpenGL 3.3 context (is libOSMesa / Mesa's "
-                        "llvmpipe installed?)");
-    }
-    std::lock_guard<std::recursive_mutex> guard(gl_mutex());
-    if (!OSMesaMakeCurrent(ctx_, dummy_, GL_UNSIGNED_BYTE, 1, 1)) {
-      OSMesaDestroyContext(ctx_);
-      ctx_ = nullptr;
-      throw RenderError("OSMesa: could not make the context current");
-    }
-    auto str = [](GLenum e) {
-      const GLubyte* s = glGetString(e);
-      return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
-    };
-    info_ = "OpenGL " + str(GL_VERSION) + ", " + str(GL_RENDERER);
-    GLint major = 0;
-    glGetIntegerv(GL_MAJOR_VERSION, &major);
-    if (major < 3) {
-      OSMesaDestroyContext(ctx_);
-      ctx_ = nullptr;
-      throw RenderError("OSMesa gives " + info_ + "; OpenGL 3.3 is needed");
-    }
-  }
-
-  static std::recursive_mutex& gl_mutex() {
-    static std::recursive_mutex m;
-    return m;
-  }
-
-  OSMesaContext ctx_ = nullptr;
-  uint32_t dummy_[1] = {0};  // OSMesa wants a colour buffer; we draw into FBOs only
-  std::string info_;
-};
-
-// ---------------------------------------------------------------------------------------------
-// Shaders. Lighting is Ogre's fixed-function model, per pixel, in eye space:
-//   c = A_scene * m_ambient + sum_l [ D_l * m_diffuse * max(N.L, 0)
-//                                     + S_l * m_specular * max(N.H, 0)^shininess (if N.L > 0) ]
-// clamped to [0, 1]; L = -light direction, H = normalize(L + V), V towards the eye.
-// Output 1 is the depth along the optical axis (-z of the GL eye frame), interpolated
-// perspective-correctly from the vertices in float: exact to float rounding at any range.
-// Both shaders are compiled once per (light count, GRID) with those #defined in front: only the
-// ground plane runs the grid code (llvmpipe evaluates both sides of a branch on a uniform).
-const char* kVertexShader = R"(
-layout(location = 0) in vec3 a_position;
-layout(location = 1) in vec3 a_normal;
-uniform mat4 u_model_view;
-uniform mat4 u_projection;
-uniform mat3 u_normal_matrix;
-out vec3 v_eye_position;
-out vec3 v_eye_normal;
-#if GRID
-uniform mat4 u_model;   // for the ground grid (world x, y)
-out vec2 v_world_xy;
-#endif
-void main() {
-  vec4 eye = u_model_view * vec4(a_position, 1.0);
-  v_eye_position = eye.xyz;
-  v_eye_normal = u_normal_matrix * a_normal;
-#if GRID
-  v_world_xy = (u_model * vec4(a_position, 1.0)).xy;
-#endif
-  gl_Position = u_projection * eye;
-}
-)";
-
-// The light count is a compile-time constant (one program per count): llvmpipe runs a loop
-// with a uniform bound at about half the speed of an unrolled one.
-const char* kFragmentShader = R"(
-in vec3 v_eye_position;
-in vec3 v_eye_normal;
-#if GRID
-in vec2 v_world_xy;
-#endif
-layout(location = 0) out vec4 o_color;
-layout(location = 1) out float o_depth;
-// Products of light and material colours are made once per draw, on the CPU.
-#if NUM_LIGHTS > 0
-uniform vec3 u_to_light[NUM_LIGHTS];  // eye frame, towards the light (-direction)
-uniform vec3 u_diffuse[NUM_LIGHTS];   // light diffuse * material diffuse
-uniform vec3 u_specular[NUM_LIGHTS];  // light specular * material specular
-#endif
-uniform vec3 u_ambient;               // scene ambient * material ambient
-uniform float u_shininess;
-void main() {
-  vec3 n = normalize(v_eye_normal);
-  if (!gl_FrontFacing) n = -n;
-  float k = 1.0;  // the grid's darkening of ambient and diffuse
-#if GRID
-  {
-    // 1 m grid lines about 2 cm wide, anti-aliased with the screen-space footprint, and a
-    // faint 1 m checker so that motion is visible between lines.
-    vec2 cell = abs(fract(v_world_xy - 0.5) - 0.5);
-    vec2 fw = max(fwidth(v_world_xy), vec2(1e-6));
-    vec2 line = 1.0 - smoothstep(vec2(0.01), vec2(0.01) + 1.5 * fw, cell);
-    float on_line = max(line.x, line.y);
-    vec2 checker_cell = floor(v_world_xy);
-    // mod(x, 2.0) of an integer, without mod's division: exact.
-    float checker = 2.0 * fract(0.5 * (checker_cell.x + checker_cell.y)) * 0.06;
-    k = (1.0 - checker) * (1.0 - 0.55 * on_line);
-  }
-#endif
-  vec3 v = normalize(-v_eye_position);
-  vec3 c = k * u_ambient;
-#if NUM_LIGHTS > 0
-  for (int i = 0; i < NUM_LIGHTS; ++i) {
-    vec3 l = u_to_light[i];
-    float ndl = dot(n, l);
-    if (ndl > 0.0) {
-      c += (k * ndl) * u_diffuse[i];
-      vec3 h = normalize(l + v);
-      c += u_specular[i] * pow(max(dot(n, h), 0.0), u_shininess);
-    }
-  }
-#endif
-  // No clamp(): GL clamps what is written to a normalized fixed-point (RGBA8) buffer to [0, 1].
-  o_color = vec4(c, 1.0);
-  o_depth = -v_eye_position.z;
-}
-)";
-
-GLuint compile(GLenum type, const std::string& src) {
-  GLuint s = glCreateShader(type);
-  const char* text = src.c_str();
-  glShaderSource(s, 1, &text, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[4096];
-    glGetShaderInfoLog(s, sizeof(log), nullptr, log);
-    glDeleteShader(s);
-    throw RenderError(std::string("shader compilation failed: ") + log);
-  }
-  return s;
-}
 
 Eigen::Matrix4f toFloat(const Eigen::Matrix4d& m) { return m.cast<float>(); }
 
@@ -325,10 +129,10 @@ struct Renderer::Impl {
     if (p.id != 0) return p;
     const std::string defines = "#version 330 core\n#define NUM_LIGHTS " + std::to_string(num_lights) +
                                 "\n#define GRID " + (grid ? "1" : "0") + "\n";
-    const GLuint vs = compile(GL_VERTEX_SHADER, defines + kVertexShader);
+    const GLuint vs = ri::compile(GL_VERTEX_SHADER, defines + ri::kVertexShader);
     GLuint fs = 0;
     try {
-      fs = compile(GL_FRAGMENT_SHADER, defines + kFragmentShader);
+      fs = ri::compile(GL_FRAGMENT_SHADER, defines + ri::kFragmentShader);
     } catch (...) {
       glDeleteShader(vs);
       throw;

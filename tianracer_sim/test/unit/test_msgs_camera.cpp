@@ -98,6 +98,31 @@ TEST(CameraMsgs, Mono8) {
   EXPECT_EQ(img.data.size(), 32u);
 }
 
+TEST(CameraMsgs, Bgr8AndMono16EncodingAndStep) {
+  Renderer renderer;
+  CameraConfig c = cameraConfig(8, 4);
+  c.format = ImageFormat::kB8G8R8;
+  CameraSensor bgr(c, renderer);
+  bgr.render(wall(2.0), Eigen::Isometry3d::Identity());
+  sensor_msgs::Image img = toImage(bgr, ros::Time(1, 0));
+  EXPECT_EQ(img.encoding, "bgr8");
+  EXPECT_EQ(img.step, 24u);
+  EXPECT_EQ(img.data, bgr.image());
+  c.format = ImageFormat::kL16;
+  CameraSensor mono16(c, renderer);
+  mono16.render(wall(2.0), Eigen::Isometry3d::Identity());
+  img = toImage(mono16, ros::Time(1, 0));
+  EXPECT_EQ(img.encoding, "mono16");
+  EXPECT_EQ(img.step, 16u);
+  EXPECT_EQ(img.is_bigendian, 0);
+  EXPECT_EQ(img.data.size(), 64u);
+  BorrowedImage borrowed;
+  toImage(mono16, ros::Time(1, 0), &borrowed);
+  EXPECT_EQ(borrowed.meta.encoding, "mono16");
+  EXPECT_EQ(borrowed.meta.step, 16u);
+  EXPECT_EQ(borrowed.size, 64u);
+}
+
 TEST(CameraMsgs, DepthImageAndCloud) {
   Renderer renderer;
   DepthCameraConfig d;
@@ -152,8 +177,9 @@ TEST(CameraMsgs, DepthImageAndCloud) {
       if (u >= 28 && u <= 35) continue;  // the seam between the halves
       if (u < 32) {
         EXPECT_NEAR(*z, 2.0, 1e-4);
-        EXPECT_NEAR(*x, 2.0 * (u - 31.5) / f, 1e-5);
-        EXPECT_NEAR(*y, 2.0 * (v - 23.5) / f, 1e-5);
+        // The published K's principal point, (W+1)/2 and (H+1)/2 as gazebo_ros writes it.
+        EXPECT_NEAR(*x, 2.0 * (u - 32.5) / f, 1e-5);
+        EXPECT_NEAR(*y, 2.0 * (v - 24.5) / f, 1e-5);
         // PCL's byte order: B, G, R in bytes 16, 17, 18 (Gazebo writes R, G, B: its bug).
         const uint8_t* px = &rgb.data[(v * 64 + u) * 3];
         EXPECT_EQ(bgr[0], px[2]);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -206,7 +207,10 @@ TEST(RenderCameraConfig, ValidationErrors) {
   expectError(edited(seed, "<near>0.02", "<near>300"), {"<clip><near> 300", "<clip><far> 300"});
   expectError(edited(seed, "<near>0.02", "<near>400"), {"<clip><near> 400"});
   expectError(edited(seed, "<near>0.02", "<near>0"), {"<clip><near> 0", "> 0"});
-  expectError(edited(seed, "<format>R8G8B8", "<format>BAYER_RGGB8"), {"'BAYER_RGGB8'", "not supported"});
+  expectError(edited(seed, "<format>R8G8B8", "<format>BAYER_RGGB8"),
+              {"camera1", "<image><format> 'BAYER_RGGB8'", "Gazebo format that is not simulated", "left out"});
+  expectError(edited(seed, "<format>R8G8B8", "<format>R_FLOAT32"), {"'R_FLOAT32'", "not simulated"});
+  expectError(edited(seed, "<format>R8G8B8", "<format>RGBA8"), {"'RGBA8' is not a Gazebo image format"});
   expectError(edited(seed, "<type>gaussian", "<type>poisson"), {"'poisson'"});
   expectError(edited(seed, "<stddev>0.007", "<stddev>-0.1"), {"<noise><stddev>"});
   SensorSpec broken = seed;  // mismatched tags
@@ -216,8 +220,20 @@ TEST(RenderCameraConfig, ValidationErrors) {
               {"<pointCloudCutoff> 6", "<pointCloudCutoffMax> 5"}, true);
   SensorSpec no_camera = specFromXml("<sensor name='nocam' type='camera'><update_rate>1</update_rate></sensor>", "l");
   expectError(no_camera, {"no <camera> element"});
-  // L8 is accepted.
-  EXPECT_EQ(parseCameraConfig(edited(seed, "<format>R8G8B8", "<format>L8")).format, ImageFormat::kL8);
+  // Gazebo's formats and their *_INT* aliases are accepted.
+  const std::vector<std::pair<std::string, ImageFormat>> formats = {
+      {"L8", ImageFormat::kL8},         {"L_INT8", ImageFormat::kL8},
+      {"L16", ImageFormat::kL16},       {"L_INT16", ImageFormat::kL16},
+      {"B8G8R8", ImageFormat::kB8G8R8}, {"BGR_INT8", ImageFormat::kB8G8R8},
+      {"RGB_INT8", ImageFormat::kR8G8B8}};
+  for (const auto& f : formats) {
+    EXPECT_EQ(parseCameraConfig(edited(seed, "<format>R8G8B8", "<format>" + f.first)).format, f.second)
+        << f.first;
+  }
+  EXPECT_STREQ(imageEncoding(ImageFormat::kR8G8B8), "rgb8");
+  EXPECT_STREQ(imageEncoding(ImageFormat::kB8G8R8), "bgr8");
+  EXPECT_STREQ(imageEncoding(ImageFormat::kL8), "mono8");
+  EXPECT_STREQ(imageEncoding(ImageFormat::kL16), "mono16");
 }
 
 // --- Sensors -------------------------------------------------------------------------------------
@@ -340,11 +356,9 @@ TEST(RenderDepthCamera, DepthAndCloudOfAWall) {
       std::memcpy(xyz, p, sizeof(xyz));
       ASSERT_TRUE(std::isfinite(xyz[2]));
       EXPECT_FLOAT_EQ(xyz[2], cam.depth()[v * W + u]);
-      // Reprojection through K: gazebo_ros's K has cx = (W+1)/2, i.e. 1-based pixel
-      // indices; the cloud (x = d (u - (W-1)/2) / f) reprojects to pixel u + 1 of that
-      // convention, and to u exactly with the rendered principal point (W-1)/2.
-      EXPECT_NEAR(f * xyz[0] / xyz[2] + info.K[2], u + 1.0, 1e-3);
-      EXPECT_NEAR(f * xyz[1] / xyz[2] + info.K[5], v + 1.0, 1e-3);
+      // Reprojection through the published K lands on the pixel itself (0-based indices).
+      EXPECT_NEAR(f * xyz[0] / xyz[2] + info.K[2], u, 1e-3);
+      EXPECT_NEAR(f * xyz[1] / xyz[2] + info.K[5], v, 1e-3);
       // The point lies on the wall: in the link frame (x = z_O, y = -x_O) x = 2 - tan(t) y.
       const double xl = xyz[2], yl = -xyz[0];
       EXPECT_NEAR(xl, 2.0 - std::tan(tilt) * yl, 1e-4);
@@ -399,6 +413,262 @@ TEST(RenderDepthCamera, OnlyWhatIsAskedFor) {
   cam.render(wallScene(2.0), Eigen::Isometry3d::Identity(), DepthOutputs{false, true, false});
   EXPECT_EQ(renderer.frameCount(), before + 1);
   EXPECT_NEAR(cam.depth()[24 * 64 + 32], 2.0, 1e-4);
+}
+
+// --- Principal point: images, depth and cloud agree with the published K ---------------------
+
+// Thin discs facing the camera (cylinders 0.2 mm long, axis along the optical axis) centred at
+// optical-frame points: every point of a disc's face is at the same depth, so its image is the
+// exactly scaled disc and its centroid is the projection of the disc's centre.
+Scene discScene(const std::vector<Eigen::Vector3d>& centres_O, double radius) {
+  Scene scene;
+  scene.lights.push_back(DirectionalLight{});
+  scene.addBody(SceneBody{"discs::link", "discs", true, Eigen::Isometry3d::Identity()});
+  for (const Eigen::Vector3d& p : centres_O) {
+    SceneItem item;
+    item.shape.type = ShapeType::kCylinder;
+    item.shape.radius = radius;
+    item.shape.length = 0.0002;
+    // Camera link = world: optical (X, Y, Z) is world (Z, -X, -Y); the disc's axis along x.
+    item.X_BS = Eigen::Translation3d(p.z() + 0.0001, -p.x(), -p.y()) *
+                Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY());
+    item.material = findGazeboMaterial("Gazebo/Red")->material;
+    scene.items.push_back(item);
+  }
+  return scene;
+}
+
+// Centroid (u, v) of the pixels in the box around (u0, v0) for which `hit(u, v)` holds.
+template <typename Hit>
+Eigen::Vector2d centroid(int W, int H, double u0, double v0, int half, Hit hit, int* count) {
+  double su = 0, sv = 0;
+  int n = 0;
+  for (int v = std::max(0, int(v0) - half); v <= std::min(H - 1, int(v0) + half); ++v) {
+    for (int u = std::max(0, int(u0) - half); u <= std::min(W - 1, int(u0) + half); ++u) {
+      if (!hit(u, v)) continue;
+      su += u;
+      sv += v;
+      ++n;
+    }
+  }
+  *count = n;
+  return n ? Eigen::Vector2d(su / n, sv / n) : Eigen::Vector2d(-1, -1);
+}
+
+const std::vector<Eigen::Vector3d> kDiscCentres = {
+    {0.0, 0.0, 3.0}, {-1.1, -0.7, 3.0}, {1.2, 0.8, 3.5}, {0.6, -0.9, 2.5}, {-0.9, 0.6, 4.0}};
+
+TEST(RenderPrincipalPoint, CameraImageMatchesThePublishedK) {
+  Renderer renderer;
+  CameraConfig c = parseCameraConfig(edited(seedCamera(), "<width>800", "<width>640"));
+  c.height = 480;
+  c.noise = false;
+  CameraSensor cam(c, renderer);
+  const CameraInfo& info = cam.info();
+  EXPECT_DOUBLE_EQ(info.K[2], 320.5);  // Gazebo's (W+1)/2, kept
+  EXPECT_DOUBLE_EQ(info.K[5], 240.5);
+  const Scene scene = discScene(kDiscCentres, 0.15);
+  cam.render(scene, Eigen::Isometry3d::Identity());
+  const auto& img = cam.image();
+  const uint8_t sky[3] = {img[0], img[1], img[2]};  // a corner sees only the sky
+  for (const Eigen::Vector3d& p : kDiscCentres) {
+    const double z = p.z() - 0.0001;  // the disc's front face
+    // Projection through P (= K here: no baseline): u = (P00 X + P02 Z) / Z.
+    const double u = (info.P[0] * p.x() + info.P[2] * z) / z;
+    const double v = (info.P[5] * p.y() + info.P[6] * z) / z;
+    int n = 0;
+    const Eigen::Vector2d m = centroid(640, 480, u, v, 60, [&](int x, int y) {
+      const uint8_t* px = &img[(y * 640 + x) * 3];
+      return px[0] != sky[0] || px[1] != sky[1] || px[2] != sky[2];
+    }, &n);
+    EXPECT_GT(n, 300) << p.transpose();
+    EXPECT_NEAR(m.x(), u, 0.1) << p.transpose();
+    EXPECT_NEAR(m.y(), v, 0.1) << p.transpose();
+  }
+}
+
+TEST(RenderPrincipalPoint, DepthCameraImageDepthAndCloudMatchThePublishedK) {
+  Renderer renderer;
+  DepthCameraConfig d = parseDepthCameraConfig(seedRealSense());  // 640 x 480
+  d.point_cloud_cutoff_max = 10.0;
+  DepthCameraSensor cam(d, renderer);
+  const CameraInfo& info = cam.info();
+  EXPECT_DOUBLE_EQ(info.K[2], 320.5);
+  EXPECT_DOUBLE_EQ(info.K[5], 240.5);
+  const int W = 640, H = 480;
+  cam.render(discScene(kDiscCentres, 0.15), Eigen::Isometry3d::Identity());
+  const auto& img = cam.image();
+  const uint8_t sky[3] = {img[0], img[1], img[2]};
+  for (const Eigen::Vector3d& p : kDiscCentres) {
+    const double z = p.z() - 0.0001;
+    const double u = info.K[0] * p.x() / z + info.K[2];
+    const double v = info.K[4] * p.y() / z + info.K[5];
+    int n_img = 0, n_depth = 0;
+    const Eigen::Vector2d m_img = centroid(W, H, u, v, 60, [&](int x, int y) {
+      const uint8_t* px = &img[(y * W + x) * 3];
+      return px[0] != sky[0] || px[1] != sky[1] || px[2] != sky[2];
+    }, &n_img);
+    const Eigen::Vector2d m_depth = centroid(W, H, u, v, 60, [&](int x, int y) {
+      return std::isfinite(cam.depth()[y * W + x]);
+    }, &n_depth);
+    EXPECT_GT(n_img, 300);
+    EXPECT_EQ(n_img, n_depth);  // colour and depth from one pass: the same pixels
+    EXPECT_NEAR(m_img.x(), u, 0.1) << p.transpose();
+    EXPECT_NEAR(m_img.y(), v, 0.1) << p.transpose();
+    EXPECT_NEAR(m_depth.x(), u, 0.1) << p.transpose();
+    EXPECT_NEAR(m_depth.y(), v, 0.1) << p.transpose();
+    // The cloud's points of the disc average to its centre (a disc is symmetric about it).
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    int n = 0;
+    for (int y = 0; y < H; ++y) {
+      for (int x = 0; x < W; ++x) {
+        float xyz[3];
+        std::memcpy(xyz, &cam.cloud()[(y * W + x) * CloudLayout::kPointStep], sizeof(xyz));
+        if (!std::isfinite(xyz[2]) || std::fabs(xyz[2] - z) > 0.01) continue;
+        if ((Eigen::Vector3d(xyz[0], xyz[1], xyz[2]) - Eigen::Vector3d(p.x(), p.y(), z)).norm() > 0.3) continue;
+        sum += Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
+        ++n;
+      }
+    }
+    ASSERT_GT(n, 300);
+    EXPECT_NEAR(sum.x() / n, p.x(), 0.1 * z / info.K[0]) << p.transpose();  // 0.1 px at z
+    EXPECT_NEAR(sum.y() / n, p.y(), 0.1 * z / info.K[4]) << p.transpose();
+  }
+}
+
+// What depth_image_proc (point_cloud_xyz) and every perception stack do with depth + camera_info.
+TEST(RenderPrincipalPoint, CloudIsTheStandardPinholeCloudOfDepthAndCameraInfo) {
+  Renderer renderer;
+  DepthCameraSensor cam(parseDepthCameraConfig(seedRealSense()), renderer);
+  Scene scene = wallScene(2.0, "Gazebo/Red");
+  scene.items[0].X_BS = Eigen::Translation3d(2.0, 0, 0) *
+                        Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()) *
+                        Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitY()) * Eigen::Translation3d(0.1, 0, 0);
+  cam.render(scene, Eigen::Isometry3d::Identity());
+  const CameraInfo& info = cam.info();
+  const double fx = info.K[0], fy = info.K[4], cx = info.K[2], cy = info.K[5];
+  double worst = 0.0;
+  int finite = 0;
+  for (int v = 0; v < info.height; ++v) {
+    for (int u = 0; u < info.width; ++u) {
+      const std::size_t i = static_cast<std::size_t>(v) * info.width + u;
+      const double d = cam.depth()[i];
+      float xyz[3];
+      std::memcpy(xyz, &cam.cloud()[i * CloudLayout::kPointStep], sizeof(xyz));
+      if (!std::isfinite(d)) {
+        EXPECT_TRUE(std::isnan(xyz[0]) && std::isnan(xyz[1]) && std::isnan(xyz[2]));
+        continue;
+      }
+      ++finite;
+      const Eigen::Vector3d expected(d * (u - cx) / fx, d * (v - cy) / fy, d);
+      worst = std::max(worst, (expected - Eigen::Vector3d(xyz[0], xyz[1], xyz[2])).norm());
+    }
+  }
+  EXPECT_GT(finite, 640 * 480 / 2);
+  EXPECT_LT(worst, 1e-4);  // 0.1 mm
+}
+
+// --- Image formats ---------------------------------------------------------------------------
+
+// Coloured boxes in front of a coloured sky: every channel differs somewhere.
+Scene colourfulScene() {
+  Scene scene = wallScene(4.0, "Gazebo/Blue");
+  scene.sky = Eigen::Vector4f(0.9f, 0.3f, 0.1f, 1.0f);
+  scene.items[0].shape.size = Eigen::Vector3d(0.2, 2.0, 2.0);
+  for (const auto& m : {std::make_pair("Gazebo/Red", -0.6), std::make_pair("Gazebo/Green", 0.6)}) {
+    SceneItem item = scene.items[0];
+    item.shape.size = Eigen::Vector3d(0.5, 0.5, 0.5);
+    item.X_BS.translation() = Eigen::Vector3d(2.0, m.second, 0.2);
+    item.material = findGazeboMaterial(m.first)->material;
+    scene.items.push_back(item);
+  }
+  return scene;
+}
+
+CameraConfig formatCamera(const std::string& format, bool noise) {
+  CameraConfig c = parseCameraConfig(edited(seedCamera(), "<format>R8G8B8", "<format>" + format));
+  c.width = 96;
+  c.height = 72;
+  c.noise = noise;
+  return c;
+}
+
+TEST(RenderImageFormats, Bgr8IsRgb8WithRedAndBlueSwapped) {
+  Renderer renderer;
+  const Scene scene = colourfulScene();
+  for (bool noise : {false, true}) {
+    CameraSensor rgb(formatCamera("R8G8B8", noise), renderer);
+    CameraSensor bgr(formatCamera("B8G8R8", noise), renderer);
+    rgb.render(scene, Eigen::Isometry3d::Identity());
+    bgr.render(scene, Eigen::Isometry3d::Identity());
+    EXPECT_STREQ(bgr.encoding(), "bgr8");
+    ASSERT_EQ(bgr.image().size(), rgb.image().size());
+    std::size_t differing_rb = 0;
+    for (std::size_t i = 0; i < rgb.image().size(); i += 3) {
+      ASSERT_EQ(bgr.image()[i], rgb.image()[i + 2]) << "pixel " << i / 3;
+      ASSERT_EQ(bgr.image()[i + 1], rgb.image()[i + 1]) << "pixel " << i / 3;
+      ASSERT_EQ(bgr.image()[i + 2], rgb.image()[i]) << "pixel " << i / 3;
+      differing_rb += rgb.image()[i] != rgb.image()[i + 2];
+    }
+    EXPECT_GT(differing_rb, rgb.image().size() / 6);  // the swap is visible
+  }
+}
+
+TEST(RenderImageFormats, Mono8AndMono16AreRec601Luma) {
+  Renderer renderer;
+  const Scene scene = colourfulScene();
+  CameraSensor rgb(formatCamera("R8G8B8", false), renderer);
+  CameraSensor mono8(formatCamera("L8", false), renderer);
+  CameraSensor mono16(formatCamera("L16", false), renderer);
+  rgb.render(scene, Eigen::Isometry3d::Identity());
+  mono8.render(scene, Eigen::Isometry3d::Identity());
+  mono16.render(scene, Eigen::Isometry3d::Identity());
+  EXPECT_STREQ(mono8.encoding(), "mono8");
+  EXPECT_STREQ(mono16.encoding(), "mono16");
+  const std::size_t pixels = 96 * 72;
+  ASSERT_EQ(mono8.image().size(), pixels);
+  ASSERT_EQ(mono16.image().size(), 2 * pixels);
+  std::set<int> values;
+  for (std::size_t i = 0; i < pixels; ++i) {
+    const uint8_t* p = &rgb.image()[3 * i];
+    const double y = 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2];
+    EXPECT_EQ(mono8.image()[i], static_cast<int>(std::lround(y))) << "pixel " << i;
+    const int y16 = mono16.image()[2 * i] | (mono16.image()[2 * i + 1] << 8);  // little-endian
+    EXPECT_EQ(y16, static_cast<int>(std::lround(y * 65535.0 / 255.0))) << "pixel " << i;
+    values.insert(mono8.image()[i]);
+  }
+  EXPECT_GE(values.size(), 3u);
+  // Full scale: white is 65535.
+  Scene white;
+  white.sky = Eigen::Vector4f(1, 1, 1, 1);
+  mono16.render(white, Eigen::Isometry3d::Identity());
+  EXPECT_EQ(mono16.image()[0] | (mono16.image()[1] << 8), 65535);
+}
+
+TEST(RenderImageFormats, DepthCameraFormatsAndTheDepthCameraPlugin) {
+  // libgazebo_ros_depth_camera.so is read as openni_kinect: same topics, same outputs.
+  SensorSpec spec = seedRealSense();
+  spec.plugins[0].filename = "libgazebo_ros_depth_camera.so";
+  const DepthCameraConfig a = parseDepthCameraConfig(seedRealSense());
+  const DepthCameraConfig b = parseDepthCameraConfig(spec);
+  EXPECT_TRUE(b.camera.has_plugin);
+  EXPECT_EQ(b.depth_image_topic, a.depth_image_topic);
+  EXPECT_EQ(b.point_cloud_topic, a.point_cloud_topic);
+  EXPECT_EQ(b.camera.image_topic, a.camera.image_topic);
+  EXPECT_EQ(b.camera.camera_info_topic, a.camera.camera_info_topic);
+  EXPECT_EQ(b.depth_camera_info_topic, a.depth_camera_info_topic);
+  // A bgr8 depth camera: image swapped, cloud colours still 0x00RRGGBB.
+  Renderer renderer;
+  DepthCameraConfig rgb_cfg = smallDepthConfig(), bgr_cfg = smallDepthConfig();
+  bgr_cfg.camera.format = ImageFormat::kB8G8R8;
+  DepthCameraSensor rgb(rgb_cfg, renderer), bgr(bgr_cfg, renderer);
+  rgb.render(colourfulScene(), Eigen::Isometry3d::Identity());
+  bgr.render(colourfulScene(), Eigen::Isometry3d::Identity());
+  for (std::size_t i = 0; i < rgb.image().size(); i += 3) {
+    ASSERT_EQ(bgr.image()[i], rgb.image()[i + 2]);
+    ASSERT_EQ(bgr.image()[i + 2], rgb.image()[i]);
+  }
+  EXPECT_EQ(rgb.cloud(), bgr.cloud());
 }
 
 TEST(RenderPng, WritesColourAndDepth) {

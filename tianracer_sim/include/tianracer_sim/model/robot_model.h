@@ -14,6 +14,8 @@
 #include <urdf_model/model.h>
 #include <urdf_world/types.h>  // urdf::ModelInterfaceSharedPtr
 
+#include "tianracer_sim/common/warning.h"
+
 namespace tianracer_sim {
 
 /// Errors in a model file; the message names the file, element and value.
@@ -22,8 +24,6 @@ class ModelError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Receives each warning once (unknown tag, unknown plugin, defaulted value...).
-using WarningSink = std::function<void(const std::string&)>;
 
 /// A <plugin> element: filename, name and its child elements as text (whitespace trimmed).
 struct PluginSpec {

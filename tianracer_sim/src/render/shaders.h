@@ -1,0 +1,25 @@
+// The renderer's GLSL sources and their compilation (internal to the render library).
+#ifndef TIANRACER_SIM_SRC_RENDER_SHADERS_H
+#define TIANRACER_SIM_SRC_RENDER_SHADERS_H
+
+#define GL_GLEXT_PROTOTYPES
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include <string>
+
+namespace tianracer_sim {
+namespace render_internal {
+
+/// Vertex and fragment shader bodies; compiled with "#version 330 core" and the defines
+/// NUM_LIGHTS (0..4) and GRID (0/1) in front (see shaders.cpp for the lighting model).
+extern const char* const kVertexShader;
+extern const char* const kFragmentShader;
+
+/// Compiles one shader stage. Throws RenderError with the compiler's log.
+GLuint compile(GLenum type, const std::string& src);
+
+}  // namespace render_internal
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_SRC_RENDER_SHADERS_H
