@@ -73,6 +73,9 @@ command -v xacro >/dev/null || fail "step 'pip': xacro is not on PATH after inst
 # ROS tools want the system Python first on PATH (TOOLCHAIN.md: python3 may be a pyenv).
 export PATH="/usr/bin:$PATH"
 mkdir -p "$LOG_DIR"
+# Our gazebo_msgs / ackermann_msgs only where the system has none (never shadow the real ones).
+msgs="$("$REPO/scripts/msg_packages.sh" "$REPO")" || fail "step 'build': scripts/msg_packages.sh failed"
+while read -r line; do say "msgs: $line"; done <<<"$msgs"
 say "build: catkin_make in $WS (log: $LOG_DIR/build.log)"
 start=$(date +%s)
 if ! catkin_make -C "$WS" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 \
