@@ -20,7 +20,7 @@ APT_PACKAGES=(
   libtf2-ros-dev python3-tf2-ros liburdf-dev liburdfdom-dev libbullet-dev libbullet-extras-dev
   libeigen3-dev libassimp-dev libosmesa6-dev libembree-dev libpng-dev ros-robot-state-publisher python3-pip g++ cmake make
   git pkg-config libtinyxml2-dev libyaml-cpp-dev libgtest-dev libgmock-dev liburdfdom-tools
-  libstd-srvs-dev python3-std-srvs libdiagnostic-msgs-dev python3-diagnostic-msgs
+  libstd-srvs-dev python3-std-srvs libtopic-tools-dev libdiagnostic-msgs-dev python3-diagnostic-msgs
   libros-rosgraph-msgs-dev python3-rosgraph-msgs python3-numpy python3-pil python3-yaml python3-catkin-pkg python3-nose
 )
 PIP_PACKAGES=(xacro==1.13.3)   # ROS 1 xacro; 2.x is the ROS 2 one (TOOLCHAIN.md)
