@@ -20,6 +20,7 @@
 
 #include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/physics/world.h"
+#include "tianracer_sim/sim/robot_physics.h"
 
 #ifndef TIANRACER_DESCRIPTION_DIR
 #define TIANRACER_DESCRIPTION_DIR "../tianracer_description"
@@ -66,7 +67,7 @@ Result run(const RobotModel& model, const Scenario& sc, int steps) {
   for (int i = 0; i < sc.robots; ++i) {
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
     X.translation() = Eigen::Vector3d(0.0, 1.0 * i, 0.0095);
-    cars.push_back(&world.robot(world.addRobot(model, X, "car" + std::to_string(i))));
+    cars.push_back(&world.robot(addRobotModel(&world, model, X, "car" + std::to_string(i))));
   }
   struct Pid {
     double prev = 0.0;

@@ -7,6 +7,7 @@
 
 #include "tianracer_sim/mesh/mesh_loader.h"
 #include "tianracer_sim/physics/rigid_tree.h"
+#include "tianracer_sim/sim/robot_physics.h"
 
 namespace tianracer_sim {
 
@@ -116,7 +117,7 @@ SimRobot& Simulation::addRobot(RobotConfig config) {
   if (config.drop_to_ground) {
     config.X_WB_spawn.translation().z() = depthBelowBase(robot->model, config.X_WB_spawn.linear());
   }
-  robot->id = physics_.addRobot(robot->model, config.X_WB_spawn, config.name);
+  robot->id = addRobotModel(&physics_, robot->model, config.X_WB_spawn, config.name);
   PhysicsRobot& physics_robot = physics_.robot(robot->id);
   try {
     buildJointHandles(robot->model, physics_robot, &robot->handles, &robot->handle_joint);
