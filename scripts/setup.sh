@@ -20,7 +20,7 @@ APT_PACKAGES=(
   libtf2-ros-dev python3-tf2-ros liburdf-dev liburdfdom-dev libbullet-dev libbullet-extras-dev
   libeigen3-dev libassimp-dev libosmesa6-dev libembree-dev libpng-dev ros-robot-state-publisher python3-pip g++ cmake make
   git pkg-config libtinyxml2-dev libyaml-cpp-dev libgtest-dev libgmock-dev liburdfdom-tools
-  libstd-srvs-dev python3-std-srvs libdiagnostic-msgs-dev python3-diagnostic-msgs
+  libstd-srvs-dev python3-std-srvs libtopic-tools-dev libdiagnostic-msgs-dev python3-diagnostic-msgs
   libros-rosgraph-msgs-dev python3-rosgraph-msgs python3-numpy python3-pil python3-yaml python3-catkin-pkg python3-nose
 
   # the real viewers and the tutorial's joint sliders (display.launch, the rviz check under Xvfb),
@@ -84,6 +84,9 @@ fi
 # ROS tools want the system Python first on PATH (TOOLCHAIN.md: python3 may be a pyenv).
 export PATH="/usr/bin:$PATH"
 mkdir -p "$LOG_DIR"
+# Our gazebo_msgs / ackermann_msgs only where the system has none (never shadow the real ones).
+msgs="$("$REPO/scripts/msg_packages.sh" "$REPO")" || fail "step 'build': scripts/msg_packages.sh failed"
+while read -r line; do say "msgs: $line"; done <<<"$msgs"
 say "build: catkin_make in $WS (log: $LOG_DIR/build.log)"
 start=$(date +%s)
 if ! catkin_make -C "$WS" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 \

@@ -26,13 +26,16 @@ import rospy
 import rostest
 from geometry_msgs.msg import Pose, Twist
 from sensor_msgs.msg import Image
-from tianracer_sim.srv import SetModelState
+from gazebo_msgs.msg import ModelState
+from gazebo_msgs.srv import SetModelState
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import tf_check  # noqa: E402
 
 CAR2 = '/tianracer_02'
-SHARED = {'/clock', '/tf', '/tf_static', '/diagnostics', '/rosout'}
+# World-wide topics: one for both cars (the Gazebo interface's are the world's, as in Gazebo).
+SHARED = {'/clock', '/tf', '/tf_static', '/diagnostics', '/rosout', '/gazebo/model_states',
+          '/gazebo/link_states', '/gazebo/set_model_state', '/gazebo/set_link_state'}
 CAR1_NODES = {'/tianracer_sim', '/robot_state_publisher', '/cmd_vel_node', '/wheel_odometry_node'}
 
 
@@ -138,7 +141,7 @@ class TwoCars(unittest.TestCase):
         pose.position.x, pose.position.y, pose.position.z = p1.position.x + 1.0, p1.position.y, \
             p1.position.z
         pose.orientation = p1.orientation
-        self.assertTrue(set_state('tianracer_02', pose, Twist(), 'world').success)
+        self.assertTrue(set_state(ModelState('tianracer_02', pose, Twist(), 'world')).success)
         tf_check.sim_sleep(0.3)
         after = self.centre_depth()
         # Car 1's depth camera sits 0.199 m ahead of its base_link, 0.052 m up. At that height

@@ -112,3 +112,132 @@ TEST(CmdVel, TimeGoingBackwardsResets) {
   EXPECT_EQ(c.speed, 0.0);
   EXPECT_FALSE(p.timedOut());
 }
+
+// --- Ackermann drive commands (ackermann_msgs/AckermannDrive) ---------------------------
+
+namespace {
+AckermannDriveInput drive(double speed, double angle, double angle_rate = 0.0,
+                          double accel = 0.0) {
+  AckermannDriveInput d;
+  d.speed = speed;
+  d.steering_angle = angle;
+  d.steering_angle_velocity = angle_rate;
+  d.acceleration = accel;
+  return d;
+}
+}  // namespace
+
+TEST(CmdVelAckermann, SpeedAndAngleToWheels) {
+  CmdVelProcessor p(geometry(), AckermannOptions(), CmdVelLimits());
+  const AckermannDriveResult r = p.setAckermann(drive(1.0, 0.3), 1.0);
+  EXPECT_FALSE(r.rejected || r.speed_clamped || r.steering_clamped);
+  const AckermannCommand c = p.update(1.02);
+  EXPECT_NEAR(c.delta, 0.3, 1e-12);                   // the bicycle angle itself
+  EXPECT_NEAR(c.left_steer, 0.3265457065, 1e-9);      // as in steering-angle mode
+  EXPECT_NEAR(c.left_wheel_omega, 20.0, 1e-12);       // v / r
+  EXPECT_NEAR(c.yaw_rate, std::tan(0.3) / 0.25, 1e-12);  // radius L / tan(0.3)
+}
+
+TEST(CmdVelAckermann, SteeringAngleVelocityLimitsTheSteeringRate) {
+  CmdVelLimits limits;
+  limits.cmd_timeout = 0.0;
+  CmdVelProcessor p(geometry(), AckermannOptions(), limits);
+  p.update(0.0);
+  p.setAckermann(drive(0.5, 0.4, 1.0), 0.0);  // 1 rad/s toward 0.4 rad
+  EXPECT_NEAR(p.update(0.1).delta, 0.1, 1e-12);
+  EXPECT_NEAR(p.update(0.2).delta, 0.2, 1e-12);
+  EXPECT_NEAR(p.update(1.0).delta, 0.4, 1e-12);  // reached, held
+  // Negative rates are magnitudes too; back toward -0.2 at 2 rad/s.
+  p.setAckermann(drive(0.5, -0.2, -2.0), 1.0);
+  EXPECT_NEAR(p.update(1.1).delta, 0.2, 1e-12);
+  EXPECT_NEAR(p.update(1.5).delta, -0.2, 1e-12);
+  // Zero: steer at once.
+  p.setAckermann(drive(0.5, 0.25, 0.0), 1.5);
+  EXPECT_NEAR(p.update(1.52).delta, 0.25, 1e-12);
+}
+
+TEST(CmdVelAckermann, AccelerationLimitsTheSpeedRamp) {
+  CmdVelLimits limits;
+  limits.cmd_timeout = 0.0;
+  CmdVelProcessor p(geometry(), AckermannOptions(), limits);
+  p.update(0.0);
+  p.setAckermann(drive(1.0, 0.0, 0.0, 2.0), 0.0);
+  EXPECT_NEAR(p.update(0.1).speed, 0.2, 1e-12);
+  EXPECT_NEAR(p.update(0.6).speed, 1.0, 1e-12);
+  // The node's max_accel still applies: the smaller of the two wins.
+  limits.max_accel = 0.5;
+  CmdVelProcessor q(geometry(), AckermannOptions(), limits);
+  q.update(0.0);
+  q.setAckermann(drive(1.0, 0.0, 0.0, 2.0), 0.0);
+  EXPECT_NEAR(q.update(0.1).speed, 0.05, 1e-12);
+  q.setAckermann(drive(1.0, 0.0, 0.0, 0.1), 0.1);
+  EXPECT_NEAR(q.update(0.2).speed, 0.06, 1e-12);
+}
+
+TEST(CmdVelAckermann, TimeoutStopsAndHoldsTheSteering) {
+  CmdVelLimits limits;
+  limits.cmd_timeout = 0.5;
+  CmdVelProcessor p(geometry(), AckermannOptions(), limits);
+  p.setAckermann(drive(1.0, 0.3), 0.0);
+  const AckermannCommand before = p.update(0.5);
+  EXPECT_NEAR(before.speed, 1.0, 1e-12);
+  const AckermannCommand after = p.update(0.52);
+  EXPECT_TRUE(p.timedOut());
+  EXPECT_EQ(after.speed, 0.0);
+  EXPECT_EQ(after.left_steer, before.left_steer);
+}
+
+TEST(CmdVelAckermann, NonFiniteValuesAreRejected) {
+  CmdVelProcessor p(geometry(), AckermannOptions(), CmdVelLimits());
+  p.setAckermann(drive(0.5, 0.1), 0.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(p.setAckermann(drive(nan, 0.0), 0.1).rejected);
+  EXPECT_TRUE(p.setAckermann(drive(0.0, inf), 0.1).rejected);
+  EXPECT_TRUE(p.setAckermann(drive(-inf, 0.0), 0.1).rejected);
+  EXPECT_TRUE(p.setAckermann(drive(0.0, 0.0, nan), 0.1).rejected);
+  EXPECT_TRUE(p.setAckermann(drive(0.0, 0.0, 0.0, inf), 0.1).rejected);
+  const AckermannCommand c = p.update(0.2);  // the previous command stays
+  EXPECT_NEAR(c.speed, 0.5, 1e-12);
+  EXPECT_NEAR(c.delta, 0.1, 1e-12);
+  EXPECT_TRUE(std::isfinite(c.left_steer) && std::isfinite(c.left_wheel_omega));
+}
+
+TEST(CmdVelAckermann, HugeValuesAreClamped) {
+  CmdVelLimits limits;
+  limits.max_speed = 2.0;
+  CmdVelProcessor p(geometry(), AckermannOptions(), limits);
+  p.update(0.0);
+  // Rate limits of 1e30 are no limits: the targets are reached in the first tick.
+  const AckermannDriveResult r = p.setAckermann(drive(1e30, 1e30, 1e30, 1e30), 0.0);
+  EXPECT_FALSE(r.rejected);
+  EXPECT_TRUE(r.speed_clamped);
+  EXPECT_TRUE(r.steering_clamped);
+  const AckermannCommand c = p.update(0.02);
+  EXPECT_NEAR(c.speed, 2.0, 1e-12);
+  EXPECT_NEAR(c.delta, maxBicycleAngleLeft(geometry()), 1e-12);
+  EXPECT_NEAR(c.left_steer, 0.6, 1e-12);  // the inner wheel at its joint limit
+  // The steering comes back from the limit at once, not from 1e30.
+  p.setAckermann(drive(1.0, -1e30, 1.0), 0.02);
+  EXPECT_NEAR(p.update(0.04).delta, maxBicycleAngleLeft(geometry()) - 0.02, 1e-12);
+  EXPECT_NEAR(p.update(10.0).delta, -maxBicycleAngleRight(geometry()), 1e-12);
+  EXPECT_NEAR(p.update(10.02).right_steer, -0.6, 1e-12);
+}
+
+TEST(CmdVelAckermann, LatestOfTwistAndAckermannWins) {
+  CmdVelLimits limits;
+  limits.cmd_timeout = 0.5;
+  CmdVelProcessor p(geometry(), AckermannOptions(), limits);
+  p.setTwist(0.5, 0.0, 0.0);
+  EXPECT_FALSE(p.twoSourcesActive(0.0));
+  p.setAckermann(drive(1.0, 0.2, 1.0), 0.1);
+  EXPECT_TRUE(p.twoSourcesActive(0.1));
+  EXPECT_NEAR(p.update(0.12).speed, 1.0, 1e-12);
+  // A Twist afterwards steers at once (no rate limit of the Ackermann command left over).
+  p.setTwist(0.3, 0.0, 0.2);
+  const AckermannCommand c = p.update(0.22);
+  EXPECT_NEAR(c.speed, 0.3, 1e-12);
+  EXPECT_NEAR(c.delta, 0.0, 1e-12);
+  // Once the Ackermann source has been silent for the timeout only one is active.
+  EXPECT_FALSE(p.twoSourcesActive(0.7));
+}

@@ -26,6 +26,22 @@ TEST(MsgConversion, TwistRejectsNonFinite) {
   EXPECT_FALSE(fromTwistMsg(t, &v, &w));
 }
 
+TEST(MsgConversion, AckermannDriveFieldsAsTheyAre) {
+  ackermann_msgs::AckermannDrive m;
+  m.speed = 1.5f;
+  m.steering_angle = -0.25f;
+  m.steering_angle_velocity = 2.0f;
+  m.acceleration = 0.5f;
+  m.jerk = 9.0f;  // not used
+  const AckermannDriveInput d = fromAckermannDriveMsg(m);
+  EXPECT_EQ(d.speed, 1.5);
+  EXPECT_EQ(d.steering_angle, -0.25);
+  EXPECT_EQ(d.steering_angle_velocity, 2.0);
+  EXPECT_EQ(d.acceleration, 0.5);
+  m.speed = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_TRUE(std::isnan(fromAckermannDriveMsg(m).speed));  // rejected later, not hidden here
+}
+
 TEST(MsgConversion, JointStatePicksJointsByName) {
   sensor_msgs::JointState js;
   js.name = {"left_front_wheel_joint", "right_rear_wheel_joint", "left_steering_hinge_joint",

@@ -1,13 +1,17 @@
-// cmd_vel_node: /cmd_vel (geometry_msgs/Twist) -> the steering hinge position controllers and
-// rear wheel velocity controllers (std_msgs/Float64), through exact Ackermann geometry.
+// cmd_vel_node: /cmd_vel (geometry_msgs/Twist) or ackermann_cmd (ackermann_msgs/
+// AckermannDriveStamped or AckermannDrive) -> the steering hinge position controllers and rear
+// wheel velocity controllers (std_msgs/Float64), through exact Ackermann geometry.
 // The maths is in CmdVelProcessor / ackermann.h; this file wires parameters, topics and time.
 #include <cmath>
 #include <memory>
 #include <string>
 
+#include <ackermann_msgs/AckermannDrive.h>
+#include <ackermann_msgs/AckermannDriveStamped.h>
 #include <geometry_msgs/Twist.h>
 #include <ros/ros.h>
 #include <std_msgs/Float64.h>
+#include <topic_tools/shape_shifter.h>
 
 #include "tianracer_control/cmd_vel.h"
 #include "tianracer_control/ros/geometry_params.h"
@@ -50,6 +54,8 @@ class CmdVelNode {
     std::string ns = pnh.param<std::string>("robot_namespace", "/tianracer");
     if (!ns.empty() && ns.back() == '/') ns.pop_back();
     const std::string cmd_vel_topic = pnh.param<std::string>("cmd_vel_topic", "cmd_vel");
+    const std::string ackermann_topic =
+        pnh.param<std::string>("ackermann_topic", "ackermann_cmd");
     const std::string left_steer = pnh.param<std::string>(
         "left_steering_topic", ns + "/left_steering_hinge_position_controller/command");
     const std::string right_steer = pnh.param<std::string>(
@@ -77,7 +83,18 @@ class CmdVelNode {
                                   << left_wheel_pub_.getTopic() << ", "
                                   << right_wheel_pub_.getTopic());
     sub_ = nh.subscribe(cmd_vel_topic, 10, &CmdVelNode::onTwist, this);
-    ROS_INFO_STREAM("listening on " << sub_.getTopic());
+    // Either Ackermann type on one topic, whichever its publishers use (F1TENTH stacks send
+    // the stamped one, simpler drivers the bare AckermannDrive).
+    if (!ackermann_topic.empty()) {
+      nh_ = nh;
+      ackermann_topic_ = ackermann_topic;
+      ackermann_sub_ = nh.subscribe(ackermann_topic, 10, &CmdVelNode::onAckermann, this);
+    }
+    ROS_INFO_STREAM("listening on " << sub_.getTopic() << " (geometry_msgs/Twist)"
+                    << (ackermann_topic.empty() ? std::string()
+                                                : " and " + ackermann_sub_.getTopic() +
+                                                      " (ackermann_msgs/AckermannDriveStamped "
+                                                      "or AckermannDrive)"));
     timer_ = nh.createTimer(ros::Duration(1.0 / rate), &CmdVelNode::onTimer, this);
   }
 
@@ -93,9 +110,63 @@ class CmdVelNode {
     if (processor_->setTwist(v, w, t) == CmdVelProcessor::Input::kSpeedClamped) {
       ROS_WARN_THROTTLE(5.0, "linear.x %g clamped to max_speed", v);
     }
+    reportTwoSources(t);
+  }
+
+  void onAckermann(const topic_tools::ShapeShifter::ConstPtr& msg) {
+    ackermann_msgs::AckermannDrive drive;
+    const std::string& type = msg->getDataType();
+    if (type == ros::message_traits::DataType<ackermann_msgs::AckermannDriveStamped>::value() &&
+        msg->getMD5Sum() == ros::message_traits::MD5Sum<ackermann_msgs::AckermannDriveStamped>::value()) {
+      drive = msg->instantiate<ackermann_msgs::AckermannDriveStamped>()->drive;
+    } else if (type == ros::message_traits::DataType<ackermann_msgs::AckermannDrive>::value() &&
+               msg->getMD5Sum() == ros::message_traits::MD5Sum<ackermann_msgs::AckermannDrive>::value()) {
+      drive = *msg->instantiate<ackermann_msgs::AckermannDrive>();
+    } else {
+      ROS_WARN_THROTTLE(5.0, "ignoring %s of type %s (md5sum %s): expected "
+                        "ackermann_msgs/AckermannDriveStamped or AckermannDrive",
+                        ackermann_sub_.getTopic().c_str(), type.c_str(), msg->getMD5Sum().c_str());
+      return;
+    }
+    const double t = ros::Time::now().toSec();
+    const AckermannDriveResult r = processor_->setAckermann(fromAckermannDriveMsg(drive), t);
+    if (r.rejected) {
+      ROS_WARN_THROTTLE(1.0, "ignoring %s with a non-finite value (speed %g, steering_angle %g, "
+                        "steering_angle_velocity %g, acceleration %g)",
+                        ackermann_sub_.getTopic().c_str(), drive.speed, drive.steering_angle,
+                        drive.steering_angle_velocity, drive.acceleration);
+      return;
+    }
+    if (r.speed_clamped) {
+      ROS_WARN_THROTTLE(5.0, "%s: speed %g clamped to max_speed",
+                        ackermann_sub_.getTopic().c_str(), drive.speed);
+    }
+    if (r.steering_clamped) {
+      ROS_WARN_THROTTLE(5.0, "%s: steering_angle %g clamped to the joint limits",
+                        ackermann_sub_.getTopic().c_str(), drive.steering_angle);
+    }
+    reportTwoSources(t);
+  }
+
+  void reportTwoSources(double t) {
+    if (two_sources_reported_ || !processor_->twoSourcesActive(t)) return;
+    ROS_WARN("both %s and %s are commanding the car: the latest message wins (reported once)",
+             sub_.getTopic().c_str(), ackermann_sub_.getTopic().c_str());
+    two_sources_reported_ = true;
   }
 
   void onTimer(const ros::TimerEvent&) {
+    // A type-agnostic subscriber takes the md5sum of its first publisher for good; once every
+    // publisher has left, subscribe afresh so that the next one may use the other type.
+    if (ackermann_sub_) {
+      if (ackermann_sub_.getNumPublishers() > 0) {
+        ackermann_connected_ = true;
+      } else if (ackermann_connected_) {
+        ackermann_sub_.shutdown();  // first: a live subscription would be reused as it is
+        ackermann_sub_ = nh_.subscribe(ackermann_topic_, 10, &CmdVelNode::onAckermann, this);
+        ackermann_connected_ = false;
+      }
+    }
     const bool was_timed_out = processor_->timedOut();
     const AckermannCommand c = processor_->update(ros::Time::now().toSec());
     if (c.clamped && !clamp_reported_) {
@@ -105,7 +176,9 @@ class CmdVelNode {
       clamp_reported_ = true;
     }
     if (processor_->timedOut() && !was_timed_out) {
-      ROS_INFO("no %s for the command timeout: stopping (steering held)", sub_.getTopic().c_str());
+      ROS_INFO("no command on %s%s%s for the command timeout: stopping (steering held)",
+               sub_.getTopic().c_str(), ackermann_sub_ ? " or " : "",
+               ackermann_sub_ ? ackermann_sub_.getTopic().c_str() : "");
     }
     left_steer_pub_.publish(toFloat64Msg(c.left_steer));
     right_steer_pub_.publish(toFloat64Msg(c.right_steer));
@@ -116,9 +189,13 @@ class CmdVelNode {
   AckermannGeometry geometry_;
   std::unique_ptr<CmdVelProcessor> processor_;
   ros::Publisher left_steer_pub_, right_steer_pub_, left_wheel_pub_, right_wheel_pub_;
-  ros::Subscriber sub_;
+  ros::NodeHandle nh_;
+  std::string ackermann_topic_;
+  ros::Subscriber sub_, ackermann_sub_;
+  bool ackermann_connected_ = false;
   ros::Timer timer_;
   bool clamp_reported_ = false;
+  bool two_sources_reported_ = false;
 };
 
 }  // namespace tianracer_control

@@ -28,6 +28,15 @@ bool fromTwistMsg(const geometry_msgs::Twist& msg, double* linear_x, double* ang
   return true;
 }
 
+AckermannDriveInput fromAckermannDriveMsg(const ackermann_msgs::AckermannDrive& msg) {
+  AckermannDriveInput d;
+  d.speed = msg.speed;
+  d.steering_angle = msg.steering_angle;
+  d.steering_angle_velocity = msg.steering_angle_velocity;
+  d.acceleration = msg.acceleration;
+  return d;
+}
+
 bool fromJointStateMsg(const sensor_msgs::JointState& msg, const AckermannJointNames& joints,
                        AckermannJointSample* sample, std::string* missing) {
   auto index = [&](const std::string& name) -> long {

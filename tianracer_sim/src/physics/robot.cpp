@@ -42,6 +42,18 @@ void PhysicsWorld::Impl::applyCommands(RobotState* r) {
       r->limit_in_world[k] = near;
     }
   }
+  if (r->has_ext_wrench) {
+    for (std::size_t b = 0; b < r->ext_force.size(); ++b) {
+      const btVector3 f = toBt(r->ext_force[b]), t = toBt(r->ext_torque[b]);
+      if (b == 0) {
+        r->mb->addBaseForce(f);
+        r->mb->addBaseTorque(t);
+      } else {
+        r->mb->addLinkForce(static_cast<int>(b) - 1, f);
+        r->mb->addLinkTorque(static_cast<int>(b) - 1, t);
+      }
+    }
+  }
   for (std::size_t i = 0; i < r->joints.size(); ++i) {
     const JointInfo& j = r->joints[i];
     const RobotState::Command& c = r->commands[i];
@@ -197,6 +209,9 @@ void PhysicsRobot::resetToSpawn() {
   s_->mb->setBaseOmega(btVector3(0, 0, 0));
   s_->mb->clearForcesAndTorques();
   s_->mb->clearConstraintForces();
+  std::fill(s_->ext_force.begin(), s_->ext_force.end(), Eigen::Vector3d::Zero());
+  std::fill(s_->ext_torque.begin(), s_->ext_torque.end(), Eigen::Vector3d::Zero());
+  s_->has_ext_wrench = false;
   s_->syncColliders();
   // Forget contacts (and their warm-start impulses) of the old pose.
   auto* w = s_->world->world.get();
@@ -218,6 +233,33 @@ Eigen::Isometry3d PhysicsRobot::linkPose(const std::string& link) const {
   }
   const int b = it->second.first;
   return toEigen(s_->comFrame(b)) * s_->X_BC[b].inverse() * it->second.second;
+}
+
+Twist PhysicsRobot::linkTwist(const std::string& link) const {
+  const int b = s_->bodyOf(link);
+  // Bullet gives each body's COM velocity and angular velocity in the body's COM frame.
+  s_->mb->compTreeLinkVelocities(&s_->scratch_w[0], &s_->scratch_v[0]);
+  const btTransform X_WC = s_->comFrame(b);
+  Twist t;
+  t.angular = toEigen(X_WC.getBasis() * s_->scratch_w[b]);
+  const Eigen::Vector3d v_com = toEigen(X_WC.getBasis() * s_->scratch_v[b]);
+  t.linear = v_com + t.angular.cross(linkPose(link).translation() - toEigen(X_WC.getOrigin()));
+  return t;
+}
+
+void PhysicsRobot::setExternalWrench(const std::string& link, const Eigen::Vector3d& force_W,
+                                     const Eigen::Vector3d& torque_W) {
+  const int b = s_->bodyOf(link);
+  if (!force_W.allFinite() || !torque_W.allFinite()) {
+    ++s_->rejected;
+    return;
+  }
+  s_->ext_force[b] = force_W;
+  s_->ext_torque[b] = torque_W;
+  s_->has_ext_wrench = false;
+  for (std::size_t k = 0; k < s_->ext_force.size(); ++k) {
+    if (!s_->ext_force[k].isZero(0.0) || !s_->ext_torque[k].isZero(0.0)) s_->has_ext_wrench = true;
+  }
 }
 
 int PhysicsRobot::contactCount(const std::string& link, double max_distance) const {

@@ -191,6 +191,10 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
   }
   r->scratch_q.resize(nb);
   r->scratch_p.resize(nb);
+  r->scratch_w.resize(nb);
+  r->scratch_v.resize(nb);
+  r->ext_force.assign(nb, Eigen::Vector3d::Zero());
+  r->ext_torque.assign(nb, Eigen::Vector3d::Zero());
 }
 
 void PhysicsWorld::Impl::removeFromWorld(RobotState* r) {

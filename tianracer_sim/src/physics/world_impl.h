@@ -54,6 +54,10 @@ struct RobotState {
   // Scratch for forward kinematics (no allocation once warm).
   mutable btAlignedObjectArray<btQuaternion> scratch_q;
   mutable btAlignedObjectArray<btVector3> scratch_p;
+  mutable btAlignedObjectArray<btVector3> scratch_w, scratch_v;  // compTreeLinkVelocities
+  /// External wrench per body (world frame, force through the COM); applied every step.
+  std::vector<Eigen::Vector3d> ext_force, ext_torque;
+  bool has_ext_wrench = false;
 
   PhysicsRobot handle{this};
 

@@ -153,8 +153,9 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh
   services_.push_back(gazebo.advertiseService("unpause_physics", &SimNode::onUnpause, this));
   services_.push_back(gazebo.advertiseService("reset_simulation", &SimNode::onResetSimulation, this));
   services_.push_back(gazebo.advertiseService("reset_world", &SimNode::onResetWorld, this));
-  services_.push_back(gazebo.advertiseService("set_model_state", &SimNode::onSetModelState, this));
-  services_.push_back(gazebo.advertiseService("get_model_state", &SimNode::onGetModelState, this));
+  GazeboInterface::Options gazebo_options;
+  gazebo_options.states_rate = getDouble(pnh_, "gazebo_states_rate", gazebo_options.states_rate);
+  gazebo_ = std::make_unique<GazeboInterface>(gazebo, *sim_, *world_, gazebo_options);
 
   ROS_INFO("tianracer_sim: step %.4f s, real_time_factor %g%s, %s", physics.dt, real_time_factor_,
            real_time_factor_ == 0.0 ? " (as fast as possible)" : "", paused_ ? "paused" : "running");
@@ -742,8 +743,10 @@ void SimNode::restartSchedules() {
 
 void SimNode::stepOnce() {
   for (RobotIo& io : robots_) io.commands->apply();
+  gazebo_->beforeStep();
   sim_->step();
   publishDue();
+  gazebo_->afterStep();
 }
 
 void SimNode::run() {
@@ -797,6 +800,7 @@ bool SimNode::onResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Resp
   if (camera_worker_) camera_worker_->wait();  // the frame in flight goes out before time jumps back
   for (RobotIo& io : robots_) io.commands->clear();
   sim_->resetSimulation();
+  gazebo_->onReset();
   restartSchedules();
   pacing_reset_ = true;
   publishClock();
@@ -805,55 +809,7 @@ bool SimNode::onResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Resp
 
 bool SimNode::onResetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   sim_->resetWorld();
-  return true;
-}
-
-bool SimNode::onSetModelState(SetModelState::Request& req, SetModelState::Response& res) {
-  SimRobot* robot = sim_->findRobot(req.model_name);
-  res.success = false;
-  if (!robot) {
-    res.status_message = "set_model_state: no model named '" + req.model_name + "'";
-  } else if (!req.reference_frame.empty() && req.reference_frame != "world") {
-    res.status_message = "set_model_state: reference_frame '" + req.reference_frame +
-                         "' is not supported (use \"\" or \"world\")";
-  } else {
-    Eigen::Isometry3d X;
-    Twist twist;
-    if (!fromPose(req.pose, &X)) {
-      res.status_message = "set_model_state: pose of '" + req.model_name +
-                           "' is not finite or has a zero quaternion; state unchanged";
-    } else if (!fromTwistMsg(req.twist, &twist)) {
-      res.status_message = "set_model_state: twist of '" + req.model_name +
-                           "' is not finite; state unchanged";
-    } else if (const std::string bad = checkModelState(X, twist); !bad.empty()) {
-      res.status_message = "set_model_state: " + bad + " for '" + req.model_name +
-                           "'; state unchanged";
-    } else {
-      PhysicsRobot& pr = sim_->physics().robot(robot->id);
-      pr.setBasePose(X);
-      pr.setBaseTwist(twist);
-      res.success = true;
-      res.status_message = "ok";
-    }
-  }
-  if (!res.success) ROS_WARN_STREAM(res.status_message);
-  return true;
-}
-
-bool SimNode::onGetModelState(GetModelState::Request& req, GetModelState::Response& res) {
-  const PhysicsRobot* model = sim_->findModel(req.model_name);  // a robot or a free body
-  res.header.stamp = ros::Time(sim_->time());
-  res.header.frame_id = "world";
-  if (!model) {
-    res.success = false;
-    res.status_message = "get_model_state: no model named '" + req.model_name + "'";
-    return true;
-  }
-  const PhysicsRobot& pr = *model;
-  res.pose = toPose(pr.basePose());
-  res.twist = toTwistMsg(pr.baseTwist());
-  res.success = true;
-  res.status_message = "ok";
+  gazebo_->onReset();
   return true;
 }
 

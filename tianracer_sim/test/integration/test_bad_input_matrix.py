@@ -25,7 +25,8 @@ from sensor_msgs.msg import JointState, LaserScan
 from std_msgs.msg import Float64
 from std_srvs.srv import Empty
 
-from tianracer_sim.srv import GetModelState, SetModelState
+from gazebo_msgs.msg import ModelState
+from gazebo_msgs.srv import GetModelState, SetModelState
 
 NS = '/tianracer'
 MODEL = 'tianracer'
@@ -113,7 +114,9 @@ class MatrixCase(unittest.TestCase):
         cls.mon = Monitor()
         for srv in ('set_model_state', 'get_model_state', 'reset_world'):
             rospy.wait_for_service('/gazebo/' + srv, timeout=60)
-        cls.set_state = rospy.ServiceProxy('/gazebo/set_model_state', SetModelState)
+        set_state = rospy.ServiceProxy('/gazebo/set_model_state', SetModelState)
+        cls.set_state = staticmethod(
+            lambda name, pose, twist, frame: set_state(ModelState(name, pose, twist, frame)))
         cls.get_state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
         cls.reset_world = rospy.ServiceProxy('/gazebo/reset_world', Empty)
         deadline = time.time() + 60

@@ -6,6 +6,7 @@
 #include <array>
 #include <string>
 
+#include <ackermann_msgs/AckermannDrive.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <geometry_msgs/Twist.h>
 #include <nav_msgs/Odometry.h>
@@ -13,6 +14,7 @@
 #include <sensor_msgs/JointState.h>
 #include <std_msgs/Float64.h>
 
+#include "tianracer_control/cmd_vel.h"
 #include "tianracer_control/odometry.h"
 #include "tianracer_control/urdf_geometry.h"
 
@@ -22,6 +24,9 @@ std_msgs::Float64 toFloat64Msg(double value);
 
 /// linear.x and angular.z; false (outputs untouched) if either is NaN/inf.
 bool fromTwistMsg(const geometry_msgs::Twist& msg, double* linear_x, double* angular_z);
+
+/// The fields as they are (float32 widened); validation is CmdVelProcessor::setAckermann's.
+AckermannDriveInput fromAckermannDriveMsg(const ackermann_msgs::AckermannDrive& msg);
 
 /// The four joints the odometry needs, picked out of a JointState by name.
 struct AckermannJointSample {

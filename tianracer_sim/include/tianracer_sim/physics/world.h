@@ -156,6 +156,13 @@ class PhysicsRobot {
   const std::vector<std::string>& linkNames() const;
   /// World pose of a URDF link frame; throws PhysicsError for an unknown link.
   Eigen::Isometry3d linkPose(const std::string& link) const;
+  /// Velocity of a URDF link frame's origin and the link's angular velocity, world frame.
+  Twist linkTwist(const std::string& link) const;
+  /// An external force through the centre of mass of the link's body plus a torque, both in
+  /// the world frame, applied at every step until replaced (zeros = none; resetToSpawn clears
+  /// it). Non-finite values are rejected and counted. Throws PhysicsError for an unknown link.
+  void setExternalWrench(const std::string& link, const Eigen::Vector3d& force_W,
+                         const Eigen::Vector3d& torque_W);
 
   /// Contact points of the link's body with anything, at distance <= max_distance (m), from
   /// the last step's contact manifolds.

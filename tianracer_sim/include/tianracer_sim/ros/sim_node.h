@@ -22,6 +22,7 @@
 //   max_step_size    physics step (s), default the world's <max_step_size>
 //   clock_rate       /clock messages per sim second (0 = every step; default 200)
 //   ground_truth_rate  <ns>/ground_truth/odom rate (Hz, default 50)
+//   gazebo_states_rate /gazebo/model_states and link_states rate (Hz, default 50; 0 = every step)
 //   seed             seed of the sensors' noise (default 0): same seed, same noise
 //   odom_frame       static TF world -> <odom_frame> at the spawn pose (default odom; "" = none)
 //   disable_sensors  sensor types (ray, camera, depth) or names to leave out (list or string)
@@ -51,12 +52,11 @@
 
 #include <tianracer_control/ros/controller_adapter.h>
 
-#include "tianracer_sim/GetModelState.h"
-#include "tianracer_sim/SetModelState.h"
 #include "tianracer_sim/lidar/ray_caster.h"
 #include "tianracer_sim/lidar/ray_sensor.h"
 #include "tianracer_sim/render/camera_sensor.h"
 #include "tianracer_sim/render/renderer.h"
+#include "tianracer_sim/ros/gazebo_interface.h"
 #include "tianracer_sim/ros/borrowed_msgs.h"
 #include "tianracer_sim/scene/scene.h"
 #include "tianracer_sim/sim/frame_worker.h"
@@ -180,8 +180,6 @@ class SimNode {
   bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onResetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
-  bool onSetModelState(SetModelState::Request& req, SetModelState::Response& res);
-  bool onGetModelState(GetModelState::Request& req, GetModelState::Response& res);
 
   ros::NodeHandle nh_, pnh_;
   ros::CallbackQueue queue_;  // commands and services run between steps, in this thread
@@ -212,6 +210,7 @@ class SimNode {
   bool paused_ = false;
   bool pacing_reset_ = true;
   std::vector<ros::ServiceServer> services_;
+  std::unique_ptr<GazeboInterface> gazebo_;  // gazebo_msgs topics and services
 
   CameraJob due_frames_;  // filled each step, handed to the worker (capacity kept)
   Scene render_scene_;    // the worker's snapshot of scene_

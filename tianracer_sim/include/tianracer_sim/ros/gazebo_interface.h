@@ -1,0 +1,120 @@
+// gazebo_ros's world interface (gazebo_ros_api_plugin) with gazebo_msgs types, over the
+// Simulation: /gazebo/model_states and /gazebo/link_states, the set_model_state and
+// set_link_state topics, and the services get/set_model_state, get/set_link_state,
+// get_model_properties, get_world_properties, apply_body_wrench and clear_body_wrenches.
+// Entities are gazebo_ros's: a model by name (a robot, or a model of the world file, the
+// ground plane included), a link as "model::link". What differs from gazebo_ros is listed in
+// the README's "Gazebo interface" section.
+//
+// The owner (the sim node) calls beforeStep() before and afterStep() after each physics step,
+// and onReset() when time goes back to 0 or the world is reset; callbacks run on the owner's
+// callback queue, between steps.
+#ifndef TIANRACER_SIM_ROS_GAZEBO_INTERFACE_H
+#define TIANRACER_SIM_ROS_GAZEBO_INTERFACE_H
+
+#include <string>
+#include <vector>
+
+#include <gazebo_msgs/ApplyBodyWrench.h>
+#include <gazebo_msgs/BodyRequest.h>
+#include <gazebo_msgs/GetLinkState.h>
+#include <gazebo_msgs/GetModelProperties.h>
+#include <gazebo_msgs/GetModelState.h>
+#include <gazebo_msgs/GetWorldProperties.h>
+#include <gazebo_msgs/LinkStates.h>
+#include <gazebo_msgs/ModelStates.h>
+#include <gazebo_msgs/SetLinkState.h>
+#include <gazebo_msgs/SetModelState.h>
+#include <ros/ros.h>
+
+#include "tianracer_sim/sim/entity_state.h"
+#include "tianracer_sim/sim/simulation.h"
+#include "tianracer_sim/world/world.h"
+
+namespace tianracer_sim {
+
+class GazeboInterface {
+ public:
+  struct Options {
+    /// model_states / link_states per sim second; 0 = every step. gazebo_ros publishes at
+    /// every step (1 kHz), more than a rospy subscriber reads; 50 Hz is the ground truth's and
+    /// joint_states' rate, on the same steps, so a relay's odometry lines up with them.
+    double states_rate = 50.0;
+  };
+
+  /// Advertises on `gazebo_nh` (the /gazebo namespace, with the owner's callback queue).
+  GazeboInterface(ros::NodeHandle gazebo_nh, Simulation& sim, const WorldDescription& world,
+                  const Options& options);
+
+  /// Applies the external wrenches due in the coming step.
+  void beforeStep();
+  /// Publishes model_states and link_states when due (and subscribed).
+  void afterStep();
+  /// Time went back (reset_simulation) or the world was reset: wrenches are cleared and the
+  /// publishing schedule restarts.
+  void onReset();
+
+  // The handlers, public so that tests and the topics share them. Each answers success false
+  // with a message naming the entity and the value on bad input, and changes nothing then.
+  bool getModelState(gazebo_msgs::GetModelState::Request& req,
+                     gazebo_msgs::GetModelState::Response& res);
+  bool setModelState(gazebo_msgs::SetModelState::Request& req,
+                     gazebo_msgs::SetModelState::Response& res);
+  bool getLinkState(gazebo_msgs::GetLinkState::Request& req,
+                    gazebo_msgs::GetLinkState::Response& res);
+  bool setLinkState(gazebo_msgs::SetLinkState::Request& req,
+                    gazebo_msgs::SetLinkState::Response& res);
+  bool getModelProperties(gazebo_msgs::GetModelProperties::Request& req,
+                          gazebo_msgs::GetModelProperties::Response& res);
+  bool getWorldProperties(gazebo_msgs::GetWorldProperties::Request& req,
+                          gazebo_msgs::GetWorldProperties::Response& res);
+  bool applyBodyWrench(gazebo_msgs::ApplyBodyWrench::Request& req,
+                       gazebo_msgs::ApplyBodyWrench::Response& res);
+  bool clearBodyWrenches(gazebo_msgs::BodyRequest::Request& req,
+                         gazebo_msgs::BodyRequest::Response& res);
+
+ private:
+  /// A model or link found by name.
+  struct Entity {
+    SimRobot* robot = nullptr;                // a robot, or
+    const ModelDescription* model = nullptr;  // a model of the world file, or
+    bool ground_plane = false;                // model://ground_plane
+    std::string model_name;
+    std::string link;  // "" = the model itself (its canonical link)
+  };
+  /// Finds "model" (when allow_model) or "model::link"; a link of a robot may be any URDF link,
+  /// merged ones included. On failure *error says what is wrong.
+  bool resolve(const std::string& name, bool allow_model, Entity* e, std::string* error) const;
+  /// The world state of an entity (static models: their pose, zero twist).
+  EntityState stateOf(const Entity& e) const;
+  /// The frame named by reference_frame (world when isWorldFrame()).
+  bool frameState(const std::string& name, EntityState* frame, std::string* error) const;
+  bool setRobotBase(SimRobot* robot, const EntityState& X_WB, std::string* error);
+  std::vector<std::string> modelNames() const;
+  void rebuildStateMessages();
+  void onModelStateTopic(const gazebo_msgs::ModelState::ConstPtr& msg);
+  void onLinkStateTopic(const gazebo_msgs::LinkState::ConstPtr& msg);
+
+  Simulation& sim_;
+  const WorldDescription& world_;
+  Options options_;
+  WrenchSchedule wrenches_;
+
+  ros::Publisher model_states_pub_, link_states_pub_;
+  ros::Subscriber set_model_state_sub_, set_link_state_sub_;
+  std::vector<ros::ServiceServer> services_;
+  double period_ = 0.0, next_ = 0.0;  // publishing schedule (sim time)
+  std::size_t robots_in_msgs_ = ~std::size_t(0);  // robot count the messages were built for
+  gazebo_msgs::ModelStates model_states_;
+  gazebo_msgs::LinkStates link_states_;
+  /// link_states_ entries: robot index and body link, or -1 and a fixed world pose.
+  struct LinkSlot {
+    int robot = -1;
+    std::string link;
+  };
+  std::vector<LinkSlot> link_slots_;
+};
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_ROS_GAZEBO_INTERFACE_H

@@ -1,0 +1,521 @@
+#include "tianracer_sim/ros/gazebo_interface.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "tianracer_sim/ros/state_msgs.h"
+
+namespace tianracer_sim {
+
+namespace {
+
+/// Bound on an external force / torque: beyond it one step throws a 1 kg body at 1 km/s.
+constexpr double kMaxWrench = 1e6;  // N, N m
+
+EntityState stateFromMsg(const geometry_msgs::Pose& pose, const geometry_msgs::Twist& twist,
+                         bool* ok) {
+  EntityState s;
+  *ok = fromPose(pose, &s.X_WE) && fromTwistMsg(twist, &s.V_WE);
+  return s;
+}
+
+bool finiteVec(const geometry_msgs::Vector3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+std::string fmt(const geometry_msgs::Vector3& v) {
+  std::ostringstream o;
+  o << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+  return o.str();
+}
+
+Eigen::Vector3d vec(const geometry_msgs::Vector3& v) { return {v.x, v.y, v.z}; }
+
+}  // namespace
+
+GazeboInterface::GazeboInterface(ros::NodeHandle nh, Simulation& sim,
+                                 const WorldDescription& world, const Options& options)
+    : sim_(sim), world_(world), options_(options) {
+  if (!(options_.states_rate >= 0.0) || !std::isfinite(options_.states_rate)) {
+    throw std::runtime_error("parameter ~gazebo_states_rate must be >= 0 (0 = every step), got " +
+                             std::to_string(options_.states_rate));
+  }
+  period_ = options_.states_rate > 0.0 ? 1.0 / options_.states_rate : 0.0;
+  // The node publishes its ground truth at the start time; these first come a period later,
+  // then on the same steps.
+  next_ = sim_.time() + period_;
+  model_states_pub_ = nh.advertise<gazebo_msgs::ModelStates>("model_states", 1);
+  link_states_pub_ = nh.advertise<gazebo_msgs::LinkStates>("link_states", 1);
+  set_model_state_sub_ =
+      nh.subscribe("set_model_state", 10, &GazeboInterface::onModelStateTopic, this);
+  set_link_state_sub_ = nh.subscribe("set_link_state", 10, &GazeboInterface::onLinkStateTopic, this);
+  services_.push_back(nh.advertiseService("get_model_state", &GazeboInterface::getModelState, this));
+  services_.push_back(nh.advertiseService("set_model_state", &GazeboInterface::setModelState, this));
+  services_.push_back(nh.advertiseService("get_link_state", &GazeboInterface::getLinkState, this));
+  services_.push_back(nh.advertiseService("set_link_state", &GazeboInterface::setLinkState, this));
+  services_.push_back(
+      nh.advertiseService("get_model_properties", &GazeboInterface::getModelProperties, this));
+  services_.push_back(
+      nh.advertiseService("get_world_properties", &GazeboInterface::getWorldProperties, this));
+  services_.push_back(
+      nh.advertiseService("apply_body_wrench", &GazeboInterface::applyBodyWrench, this));
+  services_.push_back(
+      nh.advertiseService("clear_body_wrenches", &GazeboInterface::clearBodyWrenches, this));
+  ROS_INFO("%s and %s at %g Hz (sim time)%s", model_states_pub_.getTopic().c_str(),
+           link_states_pub_.getTopic().c_str(), options_.states_rate,
+           options_.states_rate > 0.0 ? "" : " (every step)");
+}
+
+// --- entities ---------------------------------------------------------------------------------
+
+bool GazeboInterface::resolve(const std::string& name, bool allow_model, Entity* e,
+                              std::string* error) const {
+  const ScopedName n = splitScopedName(name);
+  *e = Entity();
+  e->model_name = n.model;
+  e->link = n.link;
+  if (n.model.empty()) {
+    *error = "'" + name + "' names no model (use \"model\" or \"model::link\")";
+    return false;
+  }
+  if (n.link.empty() && !allow_model) {
+    *error = "'" + name + "' is not a link: use gazebo's scoped name \"model::link\"";
+    return false;
+  }
+  if (SimRobot* robot = sim_.findRobot(n.model)) {
+    e->robot = robot;
+    if (!n.link.empty() && !robot->model.urdf->getLink(n.link)) {
+      *error = "model '" + n.model + "' has no link '" + n.link + "'";
+      return false;
+    }
+    return true;
+  }
+  if (world_.ground_plane && n.model == "ground_plane") {
+    e->ground_plane = true;
+    if (!n.link.empty() && n.link != "link") {
+      *error = "model 'ground_plane' has no link '" + n.link + "' (its one link is 'link')";
+      return false;
+    }
+    return true;
+  }
+  for (const ModelDescription& m : world_.models) {
+    if (m.name != n.model) continue;
+    e->model = &m;
+    if (!n.link.empty() &&
+        std::none_of(m.links.begin(), m.links.end(),
+                     [&](const LinkDescription& l) { return l.name == n.link; })) {
+      *error = "model '" + n.model + "' has no link '" + n.link + "'";
+      return false;
+    }
+    return true;
+  }
+  std::string known;
+  for (const std::string& m : modelNames()) known += (known.empty() ? "" : ", ") + m;
+  *error = "no model named '" + n.model + "' (models: " + known + ")";
+  return false;
+}
+
+EntityState GazeboInterface::stateOf(const Entity& e) const {
+  EntityState s;
+  if (e.robot) {
+    const PhysicsRobot& pr = sim_.physics().robot(e.robot->id);
+    if (e.link.empty()) {
+      s.X_WE = pr.basePose();
+      s.V_WE = pr.baseTwist();
+    } else {
+      s.X_WE = pr.linkPose(e.link);
+      s.V_WE = pr.linkTwist(e.link);
+    }
+  } else if (e.ground_plane) {
+    s.X_WE = world_.X_WG;
+  } else if (e.model) {
+    s.X_WE = e.model->X_WM;
+    if (!e.link.empty()) {
+      for (const LinkDescription& l : e.model->links) {
+        if (l.name == e.link) s.X_WE = e.model->X_WM * l.X_ML;
+      }
+    }
+  }
+  return s;
+}
+
+bool GazeboInterface::frameState(const std::string& name, EntityState* frame,
+                                 std::string* error) const {
+  if (isWorldFrame(name)) {
+    *frame = EntityState();
+    return true;
+  }
+  Entity e;
+  if (!resolve(name, true, &e, error)) {
+    *error = "reference_frame: " + *error;
+    return false;
+  }
+  *frame = stateOf(e);
+  return true;
+}
+
+std::vector<std::string> GazeboInterface::modelNames() const {
+  std::vector<std::string> names;
+  if (world_.ground_plane) names.push_back("ground_plane");
+  for (const ModelDescription& m : world_.models) names.push_back(m.name);
+  for (const auto& r : const_cast<Simulation&>(sim_).robots()) names.push_back(r->name);
+  return names;
+}
+
+bool GazeboInterface::setRobotBase(SimRobot* robot, const EntityState& s, std::string* error) {
+  if (const std::string bad = checkModelState(s.X_WE, s.V_WE); !bad.empty()) {
+    *error = bad;
+    return false;
+  }
+  PhysicsRobot& pr = sim_.physics().robot(robot->id);
+  pr.setBasePose(s.X_WE);
+  pr.setBaseTwist(s.V_WE);
+  return true;
+}
+
+// --- model and link states ----------------------------------------------------------------------
+
+bool GazeboInterface::getModelState(gazebo_msgs::GetModelState::Request& req,
+                                    gazebo_msgs::GetModelState::Response& res) {
+  res.header.stamp = ros::Time(sim_.time());
+  res.header.frame_id = req.relative_entity_name;
+  res.success = false;
+  Entity e;
+  EntityState frame;
+  std::string error;
+  if (!resolve(req.model_name, true, &e, &error) ||
+      !frameState(req.relative_entity_name, &frame, &error)) {
+    res.status_message = "get_model_state: " + error;
+    return true;
+  }
+  if (!e.link.empty()) {
+    res.status_message = "get_model_state: '" + req.model_name +
+                         "' is a link; use get_link_state or the model's name";
+    return true;
+  }
+  const EntityState s = relativeTo(stateOf(e), frame);
+  res.pose = toPose(s.X_WE);
+  res.twist = toTwistMsg(s.V_WE);
+  res.success = true;
+  res.status_message = "GetModelState: got properties";
+  return true;
+}
+
+bool GazeboInterface::setModelState(gazebo_msgs::SetModelState::Request& req,
+                                    gazebo_msgs::SetModelState::Response& res) {
+  const gazebo_msgs::ModelState& m = req.model_state;
+  res.success = false;
+  Entity e;
+  EntityState frame;
+  std::string error;
+  EntityState in_frame;
+  if (!resolve(m.model_name, true, &e, &error) || !frameState(m.reference_frame, &frame, &error)) {
+    res.status_message = "set_model_state: " + error;
+  } else if (!e.link.empty()) {
+    res.status_message = "set_model_state: '" + m.model_name + "' is a link; use set_link_state";
+  } else if (!e.robot) {
+    res.status_message = "set_model_state: model '" + m.model_name +
+                         "' is static in this simulator (a world model) and cannot be moved";
+  } else if (!fromPose(m.pose, &in_frame.X_WE)) {
+    res.status_message = "set_model_state: pose of '" + m.model_name +
+                         "' is not finite or has a zero quaternion; state unchanged";
+  } else if (!fromTwistMsg(m.twist, &in_frame.V_WE)) {
+    res.status_message = "set_model_state: twist of '" + m.model_name +
+                         "' is not finite; state unchanged";
+  } else if (!setRobotBase(e.robot, fromFrame(in_frame, frame), &error)) {
+    res.status_message = "set_model_state: " + error + " for '" + m.model_name +
+                         "'; state unchanged";
+  } else {
+    res.success = true;
+    res.status_message = "SetModelState: set model state done";
+  }
+  if (!res.success) ROS_WARN_STREAM(res.status_message);
+  return true;
+}
+
+bool GazeboInterface::getLinkState(gazebo_msgs::GetLinkState::Request& req,
+                                   gazebo_msgs::GetLinkState::Response& res) {
+  res.success = false;
+  res.link_state.link_name = req.link_name;
+  res.link_state.reference_frame = req.reference_frame;
+  Entity e;
+  EntityState frame;
+  std::string error;
+  if (!resolve(req.link_name, false, &e, &error) ||
+      !frameState(req.reference_frame, &frame, &error)) {
+    res.status_message = "get_link_state: " + error;
+    return true;
+  }
+  const EntityState s = relativeTo(stateOf(e), frame);
+  res.link_state.pose = toPose(s.X_WE);
+  res.link_state.twist = toTwistMsg(s.V_WE);
+  res.success = true;
+  res.status_message = "GetLinkState: got state";
+  return true;
+}
+
+bool GazeboInterface::setLinkState(gazebo_msgs::SetLinkState::Request& req,
+                                   gazebo_msgs::SetLinkState::Response& res) {
+  const gazebo_msgs::LinkState& l = req.link_state;
+  res.success = false;
+  Entity e;
+  EntityState frame;
+  std::string error;
+  bool finite = false;
+  const EntityState in_frame = stateFromMsg(l.pose, l.twist, &finite);
+  if (!resolve(l.link_name, false, &e, &error) || !frameState(l.reference_frame, &frame, &error)) {
+    res.status_message = "set_link_state: " + error;
+  } else if (!e.robot) {
+    res.status_message = "set_link_state: '" + l.link_name +
+                         "' belongs to a static model in this simulator and cannot be moved";
+  } else if (!finite) {
+    res.status_message = "set_link_state: pose or twist of '" + l.link_name +
+                         "' is not finite or has a zero quaternion; state unchanged";
+  } else {
+    // The whole robot moves rigidly so that the link gets the state (joints kept): gazebo
+    // moves the one link and lets the joints pull the others after it.
+    const PhysicsRobot& pr = sim_.physics().robot(e.robot->id);
+    const EntityState L = fromFrame(in_frame, frame);
+    const Eigen::Isometry3d X_LB = pr.linkPose(e.link).inverse() * pr.basePose();
+    EntityState B;
+    B.X_WE = L.X_WE * X_LB;
+    B.V_WE = shiftTwist(L.V_WE, L.X_WE.translation(), B.X_WE.translation());
+    if (!setRobotBase(e.robot, B, &error)) {
+      res.status_message = "set_link_state: " + error + " for '" + l.link_name +
+                           "' (its model's base); state unchanged";
+    } else {
+      res.success = true;
+      res.status_message = "SetLinkState: success";
+    }
+  }
+  if (!res.success) ROS_WARN_STREAM(res.status_message);
+  return true;
+}
+
+void GazeboInterface::onModelStateTopic(const gazebo_msgs::ModelState::ConstPtr& msg) {
+  gazebo_msgs::SetModelState::Request req;
+  gazebo_msgs::SetModelState::Response res;
+  req.model_state = *msg;
+  setModelState(req, res);  // a failure is logged there
+}
+
+void GazeboInterface::onLinkStateTopic(const gazebo_msgs::LinkState::ConstPtr& msg) {
+  gazebo_msgs::SetLinkState::Request req;
+  gazebo_msgs::SetLinkState::Response res;
+  req.link_state = *msg;
+  setLinkState(req, res);
+}
+
+// --- properties ---------------------------------------------------------------------------------
+
+bool GazeboInterface::getModelProperties(gazebo_msgs::GetModelProperties::Request& req,
+                                         gazebo_msgs::GetModelProperties::Response& res) {
+  res.success = false;
+  Entity e;
+  std::string error;
+  if (!resolve(req.model_name, true, &e, &error) || !e.link.empty()) {
+    res.status_message = "get_model_properties: " +
+                         (error.empty() ? "'" + req.model_name + "' is a link, not a model" : error);
+    return true;
+  }
+  if (e.robot) {
+    // Bodies as Gazebo's URDF import makes them: links joined by fixed joints are lumped into
+    // their parent, and the lumped collisions are named <parent>_fixed_joint_lump__<link>_collision.
+    const PhysicsRobot& pr = sim_.physics().robot(e.robot->id);
+    for (const TreeBody& b : pr.tree().bodies) {
+      res.body_names.push_back(b.link);
+      std::map<std::string, int> count;
+      for (const CollisionGeometry& c : b.collisions) {
+        std::string name = c.link == b.link ? c.link + "_collision"
+                                             : b.link + "_fixed_joint_lump__" + c.link + "_collision";
+        const int k = count[name]++;
+        if (k > 0) name += "_" + std::to_string(k);
+        res.geom_names.push_back(name);
+      }
+    }
+    for (const JointInfo& j : pr.joints()) res.joint_names.push_back(j.name);
+    res.canonical_body_name = pr.tree().bodies.front().link;
+    res.is_static = false;
+  } else if (e.ground_plane) {
+    res.body_names = {"link"};
+    res.geom_names = {"collision"};
+    res.canonical_body_name = "link";
+    res.is_static = true;
+  } else {
+    for (const LinkDescription& l : e.model->links) {
+      res.body_names.push_back(l.name);
+      for (const CollisionDescription& c : l.collisions) res.geom_names.push_back(c.name);
+    }
+    if (!e.model->links.empty()) res.canonical_body_name = e.model->links.front().name;
+    // Dynamic world models are simulated as static here (see the README).
+    res.is_static = e.model->is_static;
+  }
+  res.success = true;
+  res.status_message = "GetModelProperties: got properties";
+  return true;
+}
+
+bool GazeboInterface::getWorldProperties(gazebo_msgs::GetWorldProperties::Request&,
+                                         gazebo_msgs::GetWorldProperties::Response& res) {
+  res.sim_time = sim_.time();
+  res.model_names = modelNames();
+  res.rendering_enabled = true;
+  res.success = true;
+  res.status_message = "GetWorldProperties: got properties";
+  return true;
+}
+
+// --- wrenches -----------------------------------------------------------------------------------
+
+bool GazeboInterface::applyBodyWrench(gazebo_msgs::ApplyBodyWrench::Request& req,
+                                      gazebo_msgs::ApplyBodyWrench::Response& res) {
+  res.success = false;
+  Entity e;
+  EntityState frame;
+  std::string error;
+  const auto& w = req.wrench;
+  const auto& p = req.reference_point;
+  if (!resolve(req.body_name, false, &e, &error) ||
+      !frameState(req.reference_frame, &frame, &error)) {
+    res.status_message = "apply_body_wrench: " + error;
+  } else if (!e.robot) {
+    res.status_message = "apply_body_wrench: '" + req.body_name +
+                         "' belongs to a static model in this simulator: nothing to push";
+  } else if (!finiteVec(w.force) || !finiteVec(w.torque) || !std::isfinite(p.x) ||
+             !std::isfinite(p.y) || !std::isfinite(p.z)) {
+    res.status_message = "apply_body_wrench: force " + fmt(w.force) + ", torque " +
+                         fmt(w.torque) + " or reference_point is not finite; nothing applied";
+  } else if (vec(w.force).cwiseAbs().maxCoeff() > kMaxWrench ||
+             vec(w.torque).cwiseAbs().maxCoeff() > kMaxWrench) {
+    res.status_message = "apply_body_wrench: force " + fmt(w.force) + " or torque " +
+                         fmt(w.torque) + " is out of range (each component <= 1e6 N, N m)";
+  } else {
+    // gazebo_ros: the force acts through the body's centre of mass; a reference point adds
+    // p x F to the torque; both are turned from the reference frame into the world once, now.
+    const Eigen::Vector3d F = vec(w.force);
+    const Eigen::Vector3d tau = vec(w.torque) + Eigen::Vector3d(p.x, p.y, p.z).cross(F);
+    ScheduledWrench s;
+    s.body = e.model_name + "::" + e.link;
+    s.force_W = frame.X_WE.linear() * F;
+    s.torque_W = frame.X_WE.linear() * tau;
+    s.start = req.start_time.toSec();
+    if (!wrenches_.add(s, sim_.time(), req.duration.toSec(), sim_.dt())) {
+      res.status_message = "apply_body_wrench: duration 0: nothing applied";
+    } else {
+      res.success = true;
+      res.status_message = "";
+    }
+  }
+  if (!res.success && !res.status_message.empty()) ROS_WARN_STREAM(res.status_message);
+  return true;
+}
+
+bool GazeboInterface::clearBodyWrenches(gazebo_msgs::BodyRequest::Request& req,
+                                        gazebo_msgs::BodyRequest::Response&) {
+  Entity e;
+  std::string error;
+  if (!resolve(req.body_name, false, &e, &error)) {
+    ROS_WARN_STREAM("clear_body_wrenches: " << error);
+    return true;
+  }
+  wrenches_.clear(e.model_name + "::" + e.link);
+  return true;
+}
+
+// --- stepping -----------------------------------------------------------------------------------
+
+void GazeboInterface::beforeStep() {
+  if (wrenches_.empty()) return;
+  for (const WrenchSchedule::Total& w : wrenches_.totals(sim_.time())) {
+    const ScopedName n = splitScopedName(w.body);
+    SimRobot* robot = sim_.findRobot(n.model);
+    if (!robot) continue;  // deleted since
+    sim_.physics().robot(robot->id).setExternalWrench(n.link, w.force_W, w.torque_W);
+  }
+}
+
+void GazeboInterface::onReset() {
+  wrenches_.clear();
+  beforeStep();  // switches the forces off
+  next_ = sim_.time();
+}
+
+void GazeboInterface::rebuildStateMessages() {
+  auto& robots = sim_.robots();
+  model_states_.name = modelNames();
+  const std::size_t n_models = model_states_.name.size();
+  model_states_.pose.assign(n_models, geometry_msgs::Pose());
+  model_states_.twist.assign(n_models, geometry_msgs::Twist());
+  std::size_t k = 0;
+  if (world_.ground_plane) model_states_.pose[k++] = toPose(world_.X_WG);
+  for (const ModelDescription& m : world_.models) model_states_.pose[k++] = toPose(m.X_WM);
+
+  link_states_.name.clear();
+  link_slots_.clear();
+  std::vector<geometry_msgs::Pose> fixed;
+  if (world_.ground_plane) {
+    link_states_.name.push_back("ground_plane::link");
+    link_slots_.push_back({-1, ""});
+    fixed.push_back(toPose(world_.X_WG));
+  }
+  for (const ModelDescription& m : world_.models) {
+    for (const LinkDescription& l : m.links) {
+      link_states_.name.push_back(m.name + "::" + l.name);
+      link_slots_.push_back({-1, ""});
+      fixed.push_back(toPose(m.X_WM * l.X_ML));
+    }
+  }
+  for (std::size_t r = 0; r < robots.size(); ++r) {
+    // One entry per rigid body, named after its first link: what Gazebo lists after lumping
+    // the links joined by fixed joints.
+    for (const TreeBody& b : sim_.physics().robot(robots[r]->id).tree().bodies) {
+      link_states_.name.push_back(robots[r]->name + "::" + b.link);
+      link_slots_.push_back({static_cast<int>(r), b.link});
+      fixed.push_back(geometry_msgs::Pose());
+    }
+  }
+  link_states_.pose = fixed;
+  link_states_.twist.assign(fixed.size(), geometry_msgs::Twist());
+  robots_in_msgs_ = robots.size();
+}
+
+void GazeboInterface::afterStep() {
+  // The ground truth's schedule (sim_node's Schedule): a fixed grid, restarted after a pause
+  // or reset rather than bursting to catch up.
+  const double t = sim_.time();
+  if (t + 1e-9 < next_) return;
+  if (period_ > 0.0) {
+    next_ += period_;
+    if (next_ <= t) next_ = t + period_;
+  } else {
+    next_ = t;
+  }
+  const bool want_models = model_states_pub_.getNumSubscribers() > 0;
+  const bool want_links = link_states_pub_.getNumSubscribers() > 0;
+  if (!want_models && !want_links) return;
+  auto& robots = sim_.robots();
+  if (robots_in_msgs_ != robots.size()) rebuildStateMessages();
+  const std::size_t first_robot = model_states_.name.size() - robots.size();
+  if (want_models) {
+    for (std::size_t r = 0; r < robots.size(); ++r) {
+      const PhysicsRobot& pr = sim_.physics().robot(robots[r]->id);
+      model_states_.pose[first_robot + r] = toPose(pr.basePose());
+      model_states_.twist[first_robot + r] = toTwistMsg(pr.baseTwist());
+    }
+    model_states_pub_.publish(model_states_);
+  }
+  if (want_links) {
+    for (std::size_t i = 0; i < link_slots_.size(); ++i) {
+      const LinkSlot& s = link_slots_[i];
+      if (s.robot < 0) continue;
+      const PhysicsRobot& pr = sim_.physics().robot(robots[s.robot]->id);
+      link_states_.pose[i] = toPose(pr.linkPose(s.link));
+      link_states_.twist[i] = toTwistMsg(pr.linkTwist(s.link));
+    }
+    link_states_pub_.publish(link_states_);
+  }
+}
+
+}  // namespace tianracer_sim
