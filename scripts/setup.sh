@@ -22,8 +22,10 @@ APT_PACKAGES=(
   git pkg-config libtinyxml2-dev libyaml-cpp-dev libgtest-dev libgmock-dev liburdfdom-tools
   libstd-srvs-dev python3-std-srvs libdiagnostic-msgs-dev python3-diagnostic-msgs
   libros-rosgraph-msgs-dev python3-rosgraph-msgs python3-numpy python3-pil python3-yaml python3-catkin-pkg python3-nose
+  python3-matplotlib python3-tqdm
 )
-PIP_PACKAGES=(xacro==1.13.3)   # ROS 1 xacro; 2.x is the ROS 2 one (TOOLCHAIN.md)
+# xacro: the ROS 1 one (2.x is the ROS 2 one, TOOLCHAIN.md); ray: scenario batches (`batch`)
+PIP_PACKAGES=(xacro==1.13.3 ray==2.60.0)
 
 say()  { printf '==> [setup] %s\n' "$*"; }
 fail() { printf '\nERROR [setup] %s\n' "$*" >&2; exit 1; }
