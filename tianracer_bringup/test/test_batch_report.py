@@ -190,5 +190,49 @@ class TestReport(unittest.TestCase):
             shutil.rmtree(out)
 
 
+class TestFollowTheGap(unittest.TestCase):
+    """The example driver's choice of direction (tianracer_control/scripts/follow_the_gap)."""
+
+    @classmethod
+    def setUpClass(cls):
+        from importlib.machinery import SourceFileLoader
+        from importlib.util import module_from_spec, spec_from_loader
+        path = os.path.join(HERE, '..', '..', 'tianracer_control', 'scripts', 'follow_the_gap')
+        loader = SourceFileLoader('follow_the_gap', path)
+        cls.ftg = module_from_spec(spec_from_loader('follow_the_gap', loader))
+        loader.exec_module(cls.ftg)
+
+    def choose(self, ranges_of_angle):
+        import math
+        n = 181
+        angles = [math.radians(-90 + k) for k in range(n)]
+        ranges = [ranges_of_angle(a) for a in angles]
+        return self.ftg.choose_direction(ranges, angles[0], math.radians(1), math.radians(180),
+                                         3.0, 0.35, 1.0)
+
+    def test_open_space_goes_ahead(self):
+        direction, ahead = self.choose(lambda a: float('inf'))
+        self.assertAlmostEqual(direction, 0.0, delta=0.02)
+        self.assertEqual(ahead, 3.0)
+
+    def test_wall_ahead_with_an_opening_on_the_left(self):
+        import math
+        # a wall 0.8 m ahead across the right half and the front; open from +30 deg leftwards
+        direction, ahead = self.choose(lambda a: float('inf') if a > math.radians(30) else 0.8)
+        self.assertGreater(direction, math.radians(30))
+        self.assertAlmostEqual(ahead, 0.8)
+
+    def test_no_gap(self):
+        direction, _ = self.choose(lambda a: 0.5)
+        self.assertIsNone(direction)
+
+    def test_bubble_round_the_nearest_return(self):
+        import math
+        # open everywhere but a post 0.6 m away, 10 deg right: the gap is to its left
+        direction, _ = self.choose(lambda a: 0.6 if abs(a - math.radians(-10)) < math.radians(3)
+                                   else float('inf'))
+        self.assertGreater(direction, math.radians(-10) + math.atan2(0.35, 0.6))
+
+
 if __name__ == '__main__':
     unittest.main()
