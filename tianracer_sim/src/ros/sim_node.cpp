@@ -613,6 +613,7 @@ void SimNode::updateScene() {
   for (const RobotIo& io : robots_) {
     updateRobotScene(sim_->physics().robot(io.robot->id), io.scene_bodies, &scene_);
   }
+  updateFreeBodyScene(sim_->physics(), &scene_);
   scene_step_ = sim_->stepCount();
 }
 
@@ -840,15 +841,15 @@ bool SimNode::onSetModelState(SetModelState::Request& req, SetModelState::Respon
 }
 
 bool SimNode::onGetModelState(GetModelState::Request& req, GetModelState::Response& res) {
-  SimRobot* robot = sim_->findRobot(req.model_name);
+  const PhysicsRobot* model = sim_->findModel(req.model_name);  // a robot or a free body
   res.header.stamp = ros::Time(sim_->time());
   res.header.frame_id = "world";
-  if (!robot) {
+  if (!model) {
     res.success = false;
     res.status_message = "get_model_state: no model named '" + req.model_name + "'";
     return true;
   }
-  const PhysicsRobot& pr = sim_->physics().robot(robot->id);
+  const PhysicsRobot& pr = *model;
   res.pose = toPose(pr.basePose());
   res.twist = toTwistMsg(pr.baseTwist());
   res.success = true;

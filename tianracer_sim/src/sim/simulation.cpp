@@ -7,6 +7,7 @@
 
 #include "tianracer_sim/mesh/mesh_loader.h"
 #include "tianracer_sim/physics/rigid_tree.h"
+#include "tianracer_sim/sim/robot_physics.h"
 
 namespace tianracer_sim {
 
@@ -116,7 +117,7 @@ SimRobot& Simulation::addRobot(RobotConfig config) {
   if (config.drop_to_ground) {
     config.X_WB_spawn.translation().z() = depthBelowBase(robot->model, config.X_WB_spawn.linear());
   }
-  robot->id = physics_.addRobot(robot->model, config.X_WB_spawn, config.name);
+  robot->id = addRobotModel(&physics_, robot->model, config.X_WB_spawn, config.name);
   PhysicsRobot& physics_robot = physics_.robot(robot->id);
   try {
     buildJointHandles(robot->model, physics_robot, &robot->handles, &robot->handle_joint);
@@ -238,6 +239,16 @@ void Simulation::resetWorld() {
     physics_.robot(robot->id).resetToSpawn();
     restartControllers(*robot);
   }
+  // The world's free bodies back to their poses in the world file.
+  for (int i = 0; i < physics_.freeBodyCount(); ++i) physics_.freeBody(i).resetToSpawn();
+}
+
+const PhysicsRobot* Simulation::findModel(const std::string& name) const {
+  for (const auto& r : robots_) {
+    if (r->name == name) return &physics_.robot(r->id);
+  }
+  const int i = physics_.freeBodyIndex(name);
+  return i >= 0 ? &physics_.freeBody(i) : nullptr;
 }
 
 std::string checkModelState(const Eigen::Isometry3d& X_WB, const Twist& V_WB) {

@@ -8,14 +8,15 @@
 
 #include <urdf_parser/urdf_parser.h>
 
+#include "physics_test_support.h"
 #include "tianracer_sim/physics/world.h"
 
 namespace tianracer_sim {
 namespace {
 
-RobotModel cube(double side = 0.1) {
+TestRobot cube(double side = 0.1) {
   const double m = 2.0, I = m * side * side / 6.0;
-  RobotModel model;
+  TestRobot model;
   model.urdf = urdf::parseURDF(
       "<robot name='cube'><link name='base_link'><inertial><mass value='" + std::to_string(m) +
       "'/><inertia ixx='" + std::to_string(I) + "' ixy='0' ixz='0' iyy='" + std::to_string(I) +
@@ -70,7 +71,7 @@ double run(PhysicsWorld& w, const PhysicsRobot& r, double seconds) {
 TEST(PenetrationRecovery, CubeInAStaticBoxLeavesAtTheCap) {
   PhysicsWorld w(weightless());
   w.addStaticShape(block());
-  PhysicsRobot& r = w.robot(w.addRobot(cube(), at(0.5 + 0.05 - 0.03, 0, 0), "cube"));
+  PhysicsRobot& r = w.robot(addTestRobot(w, cube(), at(0.5 + 0.05 - 0.03, 0, 0), "cube"));
   const double top = run(w, r, 1.0);
   const Twist t = r.baseTwist();
   std::cout << "[cube 3 cm in a box] exit velocity " << t.linear.transpose() << " m/s (cap "
@@ -93,9 +94,9 @@ TEST(PenetrationRecovery, MaxVelTagAndWorldCap) {
     o.contact_max_correcting_vel = c.world;
     PhysicsWorld w(o);
     w.addStaticShape(block());
-    RobotModel m = cube();
-    m.ext.links["base_link"].max_vel = c.tag;  // < 0: the world's cap (Gazebo)
-    PhysicsRobot& r = w.robot(w.addRobot(m, at(0.5 + 0.05 - 0.03, 0, 0), "cube"));
+    TestRobot m = cube();
+    m.surfaces["base_link"].max_vel = c.tag;  // < 0: the world's cap (Gazebo)
+    PhysicsRobot& r = w.robot(addTestRobot(w, m, at(0.5 + 0.05 - 0.03, 0, 0), "cube"));
     run(w, r, 0.5);
     EXPECT_NEAR(r.baseTwist().linear.x(), c.expected, 1e-6) << c.tag << " " << c.world;
   }
@@ -107,9 +108,9 @@ TEST(PenetrationRecovery, MaxVelTagAndWorldCap) {
 TEST(PenetrationRecovery, MinDepthIsPenetrationLeftAlone) {
   for (const double min_depth : {0.0, 0.001}) {
     PhysicsWorld w;
-    RobotModel m = cube();
-    m.ext.links["base_link"].min_depth = min_depth;
-    PhysicsRobot& r = w.robot(w.addRobot(m, at(0, 0, 0.05 - 0.003), "cube"));
+    TestRobot m = cube();
+    m.surfaces["base_link"].min_depth = min_depth;
+    PhysicsRobot& r = w.robot(addTestRobot(w, m, at(0, 0, 0.05 - 0.003), "cube"));
     const double top = run(w, r, 2.0);
     const double depth = 0.05 - r.basePose().translation().z();
     std::cout << "[cube 3 mm into the ground, minDepth " << min_depth * 1e3 << " mm] depth after 2 s "
@@ -123,8 +124,8 @@ TEST(PenetrationRecovery, MinDepthIsPenetrationLeftAlone) {
 // Two robots spawned 4 cm into each other: they part at the cap (relative normal velocity).
 TEST(PenetrationRecovery, OverlappingRobotsPartAtTheCap) {
   PhysicsWorld w(weightless());
-  PhysicsRobot& a = w.robot(w.addRobot(cube(), at(0, 0, 0), "a"));
-  PhysicsRobot& b = w.robot(w.addRobot(cube(), at(0.06, 0, 0), "b"));
+  PhysicsRobot& a = w.robot(addTestRobot(w, cube(), at(0, 0, 0), "a"));
+  PhysicsRobot& b = w.robot(addTestRobot(w, cube(), at(0.06, 0, 0), "b"));
   double top = 0.0;
   for (int k = 0; k < 1000; ++k) {
     w.step();
@@ -145,7 +146,7 @@ TEST(PenetrationRecovery, HalfBuriedCubeStaysBoundedOnTheGround) {
   StaticShape s = block();
   s.X_WS = at(0, 0, 0.5);
   w.addStaticShape(s);
-  PhysicsRobot& r = w.robot(w.addRobot(cube(), at(0.5, 0, 0.05), "cube"));
+  PhysicsRobot& r = w.robot(addTestRobot(w, cube(), at(0.5, 0, 0.05), "cube"));
   const double top = run(w, r, 3.0);
   const Eigen::Vector3d p = r.basePose().translation();
   std::cout << "[cube half in a box on the ground] highest speed " << top << " m/s, after 3 s at "

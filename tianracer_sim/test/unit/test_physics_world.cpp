@@ -8,6 +8,8 @@
 
 #include <urdf_parser/urdf_parser.h>
 
+#include "physics_test_support.h"
+#include "tianracer_sim/physics/shape_fit.h"
 #include "tianracer_sim/physics/world.h"
 
 namespace tianracer_sim {
@@ -15,12 +17,7 @@ namespace {
 
 const std::string kCube = std::string(TEST_DATA_DIR) + "/physics/cube_10cm.stl";
 
-RobotModel modelFrom(const std::string& xml) {
-  RobotModel m;
-  m.urdf = urdf::parseURDF(xml);
-  if (!m.urdf) throw std::runtime_error("bad test URDF");
-  return m;
-}
+TestRobot modelFrom(const std::string& xml) { return parseTestRobot(xml); }
 
 Eigen::Isometry3d at(double x, double y, double z, double yaw = 0.0) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
@@ -61,7 +58,7 @@ TEST(PhysicsWorld, FreeFallMatchesSemiImplicitEuler) {
   PhysicsOptions o;
   o.ground_plane = false;
   PhysicsWorld w(o);
-  PhysicsRobot& r = w.robot(w.addRobot(modelFrom(boxRobot("<geometry><box size='0.1 0.1 0.1'/></geometry>")),
+  PhysicsRobot& r = w.robot(addTestRobot(w, modelFrom(boxRobot("<geometry><box size='0.1 0.1 0.1'/></geometry>")),
                                        at(0, 0, 10), "box"));
   const int n = 1000;
   for (int k = 0; k < n; ++k) w.step();
@@ -86,7 +83,7 @@ TEST(PhysicsWorld, BoxRestsOnGroundWithoutMarginGap) {
   for (const std::string& col : {std::string("<geometry><box size='0.1 0.1 0.1'/></geometry>"),
                                  "<geometry><mesh filename='" + kCube + "'/></geometry>"}) {
     PhysicsWorld w;
-    PhysicsRobot& r = w.robot(w.addRobot(modelFrom(boxRobot(col)), at(0, 0, 0.06), "box"));
+    PhysicsRobot& r = w.robot(addTestRobot(w, modelFrom(boxRobot(col)), at(0, 0, 0.06), "box"));
     for (int k = 0; k < 2000; ++k) w.step();
     const double z = r.basePose().translation().z();
     std::cout << "[resting 10 cm cube] " << (col.find("mesh") != std::string::npos ? "mesh hull" : "box")
@@ -111,9 +108,9 @@ TEST(PhysicsWorld, StaticShapesCollide) {
   mesh.mesh_path = kCube;
   mesh.X_WS = at(2, 0, 0.05);
   EXPECT_EQ(w.addStaticShape(mesh), 1);
-  PhysicsRobot& on_table = w.robot(w.addRobot(
+  PhysicsRobot& on_table = w.robot(addTestRobot(w, 
       modelFrom(boxRobot("<geometry><sphere radius='0.05'/></geometry>")), at(0, 0, 0.3), "ball"));
-  PhysicsRobot& on_mesh = w.robot(w.addRobot(
+  PhysicsRobot& on_mesh = w.robot(addTestRobot(w, 
       modelFrom(boxRobot("<geometry><sphere radius='0.05'/></geometry>")), at(2, 0, 0.3), "ball2"));
   for (int k = 0; k < 1500; ++k) w.step();
   EXPECT_NEAR(on_table.basePose().translation().z(), 0.25, 2e-4);
@@ -126,10 +123,10 @@ TEST(PhysicsWorld, RobotsCollideWithEachOther) {
   o.ground_plane = false;
   o.gravity.setZero();
   PhysicsWorld w(o);
-  const RobotModel ball = modelFrom(boxRobot("<geometry><sphere radius='0.05'/></geometry>"));
-  PhysicsRobot& a = w.robot(w.addRobot(ball, at(0, 0, 0), "a"));
-  PhysicsRobot& b = w.robot(w.addRobot(ball, at(0.3, 0, 0), "b"));
-  EXPECT_THROW(w.addRobot(ball, at(1, 0, 0), "a"), PhysicsError);  // names are unique
+  const TestRobot ball = modelFrom(boxRobot("<geometry><sphere radius='0.05'/></geometry>"));
+  PhysicsRobot& a = w.robot(addTestRobot(w, ball, at(0, 0, 0), "a"));
+  PhysicsRobot& b = w.robot(addTestRobot(w, ball, at(0.3, 0, 0), "b"));
+  EXPECT_THROW(addTestRobot(w, ball, at(1, 0, 0), "a"), PhysicsError);  // names are unique
   a.setBaseTwist({Eigen::Vector3d(1, 0, 0), Eigen::Vector3d::Zero()});
   for (int k = 0; k < 400; ++k) w.step();
   // Equal masses, no restitution: they end up moving together at 0.5 m/s.
@@ -144,7 +141,7 @@ TEST(PhysicsWorld, JointConventionsAndLinkPoses) {
   o.ground_plane = false;
   o.gravity.setZero();
   PhysicsWorld w(o);
-  PhysicsRobot& r = w.robot(w.addRobot(modelFrom(kArm), at(1, 2, 3, 0.5), "arm"));
+  PhysicsRobot& r = w.robot(addTestRobot(w, modelFrom(kArm), at(1, 2, 3, 0.5), "arm"));
   ASSERT_EQ(r.joints().size(), 2u);
   const int hinge = r.jointIndex("hinge"), spin = r.jointIndex("spin");
   EXPECT_EQ(r.joints()[hinge].type, JointType::kRevolute);
@@ -170,7 +167,7 @@ TEST(PhysicsWorld, JointLimitHoldsAndEffortIsClamped) {
   o.ground_plane = false;
   o.gravity.setZero();
   PhysicsWorld w(o);
-  PhysicsRobot& r = w.robot(w.addRobot(modelFrom(kArm), at(0, 0, 0), "arm"));
+  PhysicsRobot& r = w.robot(addTestRobot(w, modelFrom(kArm), at(0, 0, 0), "arm"));
   const int hinge = r.jointIndex("hinge");
   r.setJointEffort(hinge, 100.0);  // clamped to 5
   for (int k = 0; k < 2000; ++k) w.step();
@@ -186,7 +183,7 @@ TEST(PhysicsWorld, VelocityMotorReachesTargetWithinItsEffort) {
   o.ground_plane = false;
   o.gravity.setZero();
   PhysicsWorld w(o);
-  PhysicsRobot& r = w.robot(w.addRobot(modelFrom(kArm), at(0, 0, 0), "arm"));
+  PhysicsRobot& r = w.robot(addTestRobot(w, modelFrom(kArm), at(0, 0, 0), "arm"));
   const int spin = r.jointIndex("spin");
   // Izz 0.001 about x; 0.01 N m -> 10 rad/s^2: 20 rad/s needs 2 s.
   r.setJointVelocityTarget(spin, 20.0, 0.01);
@@ -204,7 +201,7 @@ TEST(PhysicsWorld, VelocityMotorReachesTargetWithinItsEffort) {
 #ifdef NDEBUG  // debug builds assert on non-finite commands instead
 TEST(PhysicsWorld, NonFiniteCommandsNeverReachBullet) {
   PhysicsWorld w;
-  PhysicsRobot& r = w.robot(w.addRobot(modelFrom(kArm), at(0, 0, 1), "arm"));
+  PhysicsRobot& r = w.robot(addTestRobot(w, modelFrom(kArm), at(0, 0, 1), "arm"));
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
   r.setJointEffort(0, nan);
@@ -221,7 +218,7 @@ TEST(PhysicsWorld, NonFiniteCommandsNeverReachBullet) {
 
 TEST(PhysicsWorld, ResetToSpawnAndSetState) {
   PhysicsWorld w;
-  PhysicsRobot& r = w.robot(w.addRobot(modelFrom(kArm), at(0, 0, 1), "arm"));
+  PhysicsRobot& r = w.robot(addTestRobot(w, modelFrom(kArm), at(0, 0, 1), "arm"));
   r.setJointEffort(0, 2.0);
   r.setBaseTwist({Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 0, 1)});
   for (int k = 0; k < 300; ++k) w.step();
@@ -245,9 +242,9 @@ TEST(PhysicsWorld, ResetToSpawnAndSetState) {
 TEST(PhysicsWorld, Deterministic) {
   auto run = [](std::vector<double>* out) {
     PhysicsWorld w;
-    const RobotModel m = modelFrom(kArm);
-    PhysicsRobot& a = w.robot(w.addRobot(m, at(0, 0, 0.8), "a"));
-    PhysicsRobot& b = w.robot(w.addRobot(m, at(0.3, 0.1, 1.5, 0.7), "b"));
+    const TestRobot m = modelFrom(kArm);
+    PhysicsRobot& a = w.robot(addTestRobot(w, m, at(0, 0, 0.8), "a"));
+    PhysicsRobot& b = w.robot(addTestRobot(w, m, at(0.3, 0.1, 1.5, 0.7), "b"));
     for (int k = 0; k < 3000; ++k) {
       a.setJointEffort(0, std::sin(k * 0.01));
       b.setJointVelocityTarget(1, 5.0);
@@ -271,15 +268,15 @@ TEST(PhysicsWorld, Deterministic) {
 // so min() leaves the box's own values: sliding decelerates at mu g in each direction.
 TEST(PhysicsWorld, AnisotropicSlidingFriction) {
   // A flat plate: a cube at mu 1 would be on the verge of tipping over its front edge.
-  RobotModel m = modelFrom(boxRobot("<geometry><box size='0.2 0.2 0.02'/></geometry>"));
-  LinkExtension e;
+  TestRobot m = modelFrom(boxRobot("<geometry><box size='0.2 0.2 0.02'/></geometry>"));
+  SurfaceParams e;
   e.mu1 = 1.0;
   e.mu2 = 0.2;
   e.fdir1 = Eigen::Vector3d::UnitX();
-  m.ext.links["base_link"] = e;
+  m.surfaces["base_link"] = e;
   for (int dir = 0; dir < 2; ++dir) {
     PhysicsWorld w;
-    PhysicsRobot& r = w.robot(w.addRobot(m, at(0, 0, 0.01), "box"));
+    PhysicsRobot& r = w.robot(addTestRobot(w, m, at(0, 0, 0.01), "box"));
     for (int k = 0; k < 200; ++k) w.step();  // settle
     Twist t;
     t.linear = dir == 0 ? Eigen::Vector3d(1, 0, 0) : Eigen::Vector3d(0, 1, 0);
@@ -295,12 +292,12 @@ TEST(PhysicsWorld, AnisotropicSlidingFriction) {
 
 // Ground friction combines by min(): a box with mu 0.5 on Gazebo's ground (mu 100).
 TEST(PhysicsWorld, FrictionCombinesByMinimum) {
-  RobotModel m = modelFrom(boxRobot("<geometry><box size='0.2 0.2 0.02'/></geometry>"));
-  LinkExtension e;
+  TestRobot m = modelFrom(boxRobot("<geometry><box size='0.2 0.2 0.02'/></geometry>"));
+  SurfaceParams e;
   e.mu1 = e.mu2 = 0.5;
-  m.ext.links["base_link"] = e;
+  m.surfaces["base_link"] = e;
   PhysicsWorld w;
-  PhysicsRobot& r = w.robot(w.addRobot(m, at(0, 0, 0.01, 0.3), "box"));
+  PhysicsRobot& r = w.robot(addTestRobot(w, m, at(0, 0, 0.01, 0.3), "box"));
   for (int k = 0; k < 200; ++k) w.step();
   r.setBaseTwist({Eigen::Vector3d(0.6, 0.8, 0), Eigen::Vector3d::Zero()});
   for (int k = 0; k < 100; ++k) w.step();
@@ -327,7 +324,7 @@ TEST(PhysicsWorld, JointDampingAndFriction) {
               variant == 0 ? "<axis xyz=\"1 0 0\"/><dynamics damping=\"0.001\"/>\n  </joint>"
                            : "<axis xyz=\"1 0 0\"/><dynamics friction=\"0.002\"/>\n  </joint>");
     PhysicsWorld w(o);
-    PhysicsRobot& r = w.robot(w.addRobot(modelFrom(v), at(0, 0, 0), "arm"));
+    PhysicsRobot& r = w.robot(addTestRobot(w, modelFrom(v), at(0, 0, 0), "arm"));
     const int spin = r.jointIndex("spin");
     r.setJointState(spin, 0.0, 10.0);
     for (int k = 0; k < 500; ++k) w.step();
@@ -346,7 +343,7 @@ TEST(PhysicsWorld, WorldRootIsFixed) {
   PhysicsOptions o;
   o.ground_plane = false;
   PhysicsWorld w(o);
-  PhysicsRobot& r = w.robot(w.addRobot(modelFrom(xml), at(0, 0, 1), "pinned"));
+  PhysicsRobot& r = w.robot(addTestRobot(w, modelFrom(xml), at(0, 0, 1), "pinned"));
   for (int k = 0; k < 1000; ++k) w.step();
   EXPECT_TRUE(r.basePose().isApprox(at(0, 0, 1), 1e-12));
   EXPECT_NEAR(r.jointPosition(r.jointIndex("hinge")), 1.0, 0.01);  // swung down onto its limit

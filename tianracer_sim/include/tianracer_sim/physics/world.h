@@ -1,81 +1,21 @@
-// PhysicsWorld: N robots (URDF + Gazebo extension tags) and static shapes in a Bullet
+// PhysicsWorld: N robots (rigid trees with per-link surfaces) and static shapes in a Bullet
 // btMultiBodyDynamicsWorld, stepped at a fixed dt. ROS-free; Bullet stays out of this header.
-//
-// What Gazebo (ODE) does and how it maps here — every approximation in one place:
-//  * Robots: fixed joints are merged (rigid_tree.h); each revolute/continuous/prismatic joint is a
-//    btMultiBody link whose frame sits at the merged COM with principal axes (Bullet needs a
-//    diagonal inertia). Self-collision is off between the links of one robot (Gazebo's default
-//    <self_collide>false); robots collide with each other and with the world.
-//  * Revolute/prismatic <limit lower upper> -> btMultiBodyJointLimitConstraint, solved only while
-//    the joint is within 0.05 rad (or two steps of travel) of an end; continuous joints are free. <dynamics damping> is an explicit torque -d*qdot each step; <dynamics friction> is a
-//    velocity motor towards 0 whose impulse is capped at friction*dt. The URDF velocity limit is
-//    not enforced by the physics (ODE does not either for effort-driven joints).
-//  * Friction: mu = min(mu_a, mu_b) per direction, as ODE's collide callback does (Bullet's own
-//    rule would be the product: 2.0 * 100 on Gazebo's ground plane). Bullet's multibody solver
-//    solves two friction rows per contact, along directions it picks itself (it overwrites any
-//    set by a contact callback), and clamps them to a cone |f| <= mu N (ODE: a pyramid along
-//    fdir1). Sliding along a row is exact; a diagonal slide can fall ~10% short of mu N.
-//    mu1 != mu2 on a robot link uses Bullet's anisotropic friction: the collider's axis nearest
-//    to fdir1 gets mu1, the other axes mu2 (an elliptic cone, exact for an axis-aligned fdir1);
-//    the ratio is the link's own, a merged body takes its first such link, and static shapes
-//    are isotropic. With fdir1 fixed in a spinning wheel, which direction gets mu1 turns with
-//    the wheel in Gazebo too; the seed's wheels have mu1 = mu2. Rolling and spinning friction
-//    are 0, restitution 0 (Gazebo's defaults).
-//  * Contact softness: kp/kd become Bullet's contact stiffness/damping with ODE's combination
-//    kp = 1/(1/kp_a + 1/kp_b), kd = kd_a + kd_b, which Bullet turns into the same ERP/CFM as ODE
-//    (erp = dt kp/(dt kp + kd), cfm = 1/(dt kp + kd)). kp >= 1e12 (SDF's default) counts as
-//    rigid: Bullet's rigid contact (erp2 of the solver) is used then. As in ODE, the CFM softens
-//    only the normal rows, not friction.
-//  * Penetration recovery: ODE's rule (Gazebo's ode/joints/contact.cpp). A penetrating contact
-//    is pushed apart at the error-correction velocity c = erp max(depth - min_depth, 0) / dt,
-//    capped at max_vel. min_depth and max_vel are the smaller of the two robot sides' <minDepth>
-//    and <maxVel> (a static shape has no ODE body: its side does not count); max_vel is then
-//    truncated by PhysicsOptions::contact_max_correcting_vel (100 m/s). Only c is capped, not
-//    the removal of the approach velocity: an impact still stops dead. Why: Bullet's multibody
-//    contacts have no cap of their own (split impulse is not implemented for multibodies and
-//    m_maxErrorReduction is not read for them), so a car spawned 0.1 m into a wall left it at
-//    erp2 x 0.1 m / dt = 20 m/s, spinning at 460 rad/s. Bullet gets c as a per-point ERP,
-//    recomputed before every solve from the current depth. A link without <maxVel> gets
-//    PhysicsOptions::contact_max_vel = 0.1 m/s, not Gazebo's 0.01: Bullet's rigid contacts
-//    (erp2 0.2, ODE's rigid erp is ~1) sink 0.1-0.15 mm under a box sliding at 1 m/s, and a
-//    0.01 m/s cap bound there and took 2-10 % off its friction; 0.1 m/s binds only beyond
-//    0.5 mm. The cap also bounds the force a soft contact builds at rest, max_vel (dt kp + kd):
-//    ~100 N for a tyre contact (see Tyres), 3.4x the front wheels' static load (Gazebo's
-//    0.01 m/s on the seed's kp 1e7 wheels gives the same ~100 N); soft surfaces with kp far
-//    below the seed's need a larger <maxVel> here as in Gazebo. In the tianracer's regression
-//    runs the cap never binds (bit-identical figures).
-//  * Tyres (not in Gazebo): a wheel contact gets one more spring-damper in series with the
-//    surfaces' (PhysicsOptions::tyre_stiffness, default 1e5 N/m, critically damped for a
-//    quarter of the robot's mass). Why: the seed's chassis is rigid and has no suspension, and
-//    its front axle sits 1 mm above the rear; steering moves the front contact points fore and
-//    aft (the wheels are offset from the kingpins), so the four contact points stop being
-//    coplanar by a few tens of um. At the seed's kp (1e7 N/m: 2 um of sink) the car then stands on
-//    a diagonal: in a 0.8 m turn at 0.5 m/s the outer rear wheel carried 0 N (inner 26 N) and
-//    the rear axle's speed followed the loaded wheel alone (+10 % with both rear wheels at
-//    v / r). ODE would do the same at that kp (its contact_surface_layer shifts every spring by
-//    the same depth). A real car absorbs the warp in its tyres and suspension; 1e5 N/m lets
-//    the wheels sink 0.1-0.3 mm (rolling radius unchanged: the no-slip point stays on the
-//    wheel, R below the axle) and in that turn moves a rear corner's load by ~1 N of 13 N
-//    instead of all of it. 0 turns it off.
-//  * Collision shapes: box, sphere and cylinder primitives as themselves; meshes become convex
-//    hulls shrunk by the margin (collision_margin, 0.5 mm), so the hull plus margin is the mesh's
-//    own hull; static world meshes are exact triangle meshes. A mesh on the child of a continuous
-//    joint that is round about the joint axis is a wheel and gets an exact fitted shape (see
-//    WheelShape); wheels solve only touching contact points (no speculative ones).
-//  * Only the ground plane and robots/static shapes of this world exist; there is no sleeping,
-//    no threading, and the solver runs a fixed number of iterations: the same inputs give
-//    bit-identical outputs.
+// How it maps Gazebo/ODE (joints, friction, contact softness, penetration recovery, tyres,
+// collision shapes) and every approximation made: docs/physics.md. The contact law itself is
+// in contact_law.h. Same inputs, same calls: bit-identical outputs (no sleeping, no threads, a
+// fixed number of solver iterations).
 #ifndef TIANRACER_SIM_PHYSICS_WORLD_H
 #define TIANRACER_SIM_PHYSICS_WORLD_H
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
 
-#include "tianracer_sim/model/robot_model.h"
+#include "tianracer_sim/physics/contact_law.h"
 #include "tianracer_sim/physics/rigid_tree.h"
 
 class btMultiBodyDynamicsWorld;
@@ -122,22 +62,18 @@ struct PhysicsOptions {
   /// Tyres (contacts of fitted wheels, i.e. WheelShape other than kMeshHull): a spring of
   /// tyre_stiffness (N/m) in series with the surfaces' kp and a damper added to their kd,
   /// 2 zeta sqrt(k m / wheels) with m the robot's mass (zeta 1: the wheel-hop mode does not
-  /// ring). 0 = off, as in Gazebo. See "Tyres" at the top of this file for why.
+  /// ring). 0 = off, as in Gazebo. Why: docs/physics.md, Tyres.
   double tyre_stiffness = 1e5;
   double tyre_damping_ratio = 1.0;
-  /// Penetration recovery (see the top of this file). contact_max_vel: a robot link's
+  /// Penetration recovery (docs/physics.md). contact_max_vel: a robot link's
   /// <maxVel> where its <gazebo> tag sets none (m/s; Gazebo's is 0.01, see why we differ);
   /// contact_max_correcting_vel: ODE's world cap over all contacts (Gazebo's default).
   double contact_max_vel = 0.1;
   double contact_max_correcting_vel = 100.0;
 };
 
-/// Surface of a collision (Gazebo <surface>/<gazebo reference> values; defaults are Gazebo's).
-struct SurfaceParams {
-  double mu1 = 1.0, mu2 = 1.0;
-  double kp = 1e12, kd = 1.0;
-  Eigen::Vector3d fdir1 = Eigen::Vector3d::Zero();  // in the link/shape frame; zero = none
-};
+/// Surface of each URDF link of a robot, by link name; links not listed get SurfaceParams{}.
+using LinkSurfaces = std::map<std::string, SurfaceParams>;
 
 /// A static body of a world (walls, boxes, cones, track meshes).
 struct StaticShape {
@@ -212,7 +148,7 @@ class PhysicsRobot {
   Twist baseTwist() const;
   void setBasePose(const Eigen::Isometry3d& X_WB);
   void setBaseTwist(const Twist& twist);
-  /// Spawn pose, joints at 0, all velocities and commands zero.
+  /// Spawn pose, joints at 0, all velocities and commands zero (free bodies: their initial pose).
   void resetToSpawn();
   const Eigen::Isometry3d& spawnPose() const;
 
@@ -245,8 +181,9 @@ class PhysicsRobot {
 };
 
 /// Where a ray/contact hit lands: btCollisionObject user indices set by the world.
-/// getUserIndex() = robot id (-1 for static shapes and the ground), getUserIndex2() = body
-/// index in the robot's RigidTree (static: index of addStaticShape, ground: -1).
+/// getUserIndex() = robot id (-1 for static shapes and the ground, -2 - index for free bodies),
+/// getUserIndex2() = body index in the robot's RigidTree (static: index of addStaticShape,
+/// ground: -1).
 
 class PhysicsWorld {
  public:
@@ -255,13 +192,25 @@ class PhysicsWorld {
   PhysicsWorld(const PhysicsWorld&) = delete;
   PhysicsWorld& operator=(const PhysicsWorld&) = delete;
 
-  /// Adds a robot with base_link (the URDF root) at X_WB_spawn. Surfaces come from
-  /// model.ext.links (mu1, mu2, kp, kd, fdir1), Gazebo's defaults where unset.
-  /// Throws PhysicsError / MeshError naming the robot, link and file.
-  RobotId addRobot(const RobotModel& model, const Eigen::Isometry3d& X_WB_spawn,
-                   const std::string& name);
+  /// Adds a robot (its rigid tree, buildRigidTree) with its root body's frame at X_WB_spawn;
+  /// each collision gets the surface of its URDF link. Throws PhysicsError / MeshError naming
+  /// the robot, link and file; on failure nothing of the robot stays in the world.
+  RobotId addRobot(RigidTree tree, const LinkSurfaces& surfaces,
+                   const Eigen::Isometry3d& X_WB_spawn, const std::string& name);
   /// Adds a static body; returns its index.
   int addStaticShape(const StaticShape& shape);
+
+  /// Adds a free rigid body (a world's dynamic model): a rigid tree of one body (its links
+  /// merged) with its frame at X_WB, surfaces[k] for its k-th collision (missing: defaults).
+  /// Meshes collide as convex hulls. It is handled like a robot without joints (pose, twist,
+  /// reset to X_WB, link poses, contacts). Throws PhysicsError / MeshError naming the body.
+  int addFreeBody(RigidTree tree, const std::vector<SurfaceParams>& surfaces,
+                  const Eigen::Isometry3d& X_WB, const std::string& name);
+  int freeBodyCount() const;
+  PhysicsRobot& freeBody(int index);
+  const PhysicsRobot& freeBody(int index) const;
+  /// -1 when no free body has that name.
+  int freeBodyIndex(const std::string& name) const;
 
   /// Advances exactly dt: apply commands -> Bullet step (collide, solve, integrate).
   void step();
@@ -288,18 +237,6 @@ class PhysicsWorld {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-
-/// Wheel fit of a mesh about an axis through the origin of frame B: vertices given in B.
-struct WheelFit {
-  bool is_wheel = false;
-  double radius = 0.0;                            // max distance from the axis
-  double width = 0.0;                             // extent along the axis
-  Eigen::Vector3d center = Eigen::Vector3d::Zero();  // on the axis, mid-width, in B
-  double roundness = 0.0;  // (min rim distance) / radius, 1 for a perfect cylinder
-};
-/// A mesh is a wheel when its outer vertices (distance > 0.9 R) lie within 2% of R from the
-/// axis and cover every 30 degree sector around it.
-WheelFit fitWheel(const std::vector<Eigen::Vector3d>& vertices_B, const Eigen::Vector3d& axis_B);
 
 }  // namespace tianracer_sim
 

@@ -13,6 +13,7 @@
 
 #include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/physics/world.h"
+#include "tianracer_sim/sim/robot_physics.h"
 
 namespace tianracer_sim {
 namespace {
@@ -74,7 +75,7 @@ struct Car {
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
     X.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     X.translation().z() = kSpawnZ;
-    robot = &world->robot(world->addRobot(tianracer(), X, "tianracer"));
+    robot = &world->robot(addRobotModel(world.get(), tianracer(), X, "tianracer"));
     lr = robot->jointIndex("left_rear_wheel_joint");
     rr = robot->jointIndex("right_rear_wheel_joint");
     lh = robot->jointIndex("left_steering_hinge_joint");

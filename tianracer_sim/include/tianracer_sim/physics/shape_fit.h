@@ -1,0 +1,25 @@
+// Fitting collision shapes to meshes: which wheel mesh is round about its axis, and how big.
+#ifndef TIANRACER_SIM_PHYSICS_SHAPE_FIT_H
+#define TIANRACER_SIM_PHYSICS_SHAPE_FIT_H
+
+#include <vector>
+
+#include <Eigen/Geometry>
+
+namespace tianracer_sim {
+
+/// Wheel fit of a mesh about an axis through the origin of frame B: vertices given in B.
+struct WheelFit {
+  bool is_wheel = false;
+  double radius = 0.0;                               // max distance from the axis
+  double width = 0.0;                                // extent along the axis
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();  // on the axis, mid-width, in B
+  double roundness = 0.0;  // (min rim distance) / radius, 1 for a perfect cylinder
+};
+/// A mesh is a wheel when its outer vertices (distance > 0.9 R) lie within 2% of R from the
+/// axis and cover every 30 degree sector around it.
+WheelFit fitWheel(const std::vector<Eigen::Vector3d>& vertices_B, const Eigen::Vector3d& axis_B);
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_PHYSICS_SHAPE_FIT_H

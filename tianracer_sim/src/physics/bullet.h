@@ -1,0 +1,58 @@
+// Internal: Bullet's headers (with their warnings silenced) and Eigen <-> Bullet conversions.
+#ifndef TIANRACER_SIM_PHYSICS_BULLET_H
+#define TIANRACER_SIM_PHYSICS_BULLET_H
+
+#include <Eigen/Geometry>
+
+// Bullet's headers trip -Wunused-parameter; keep our own warnings meaningful.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#include <btBulletDynamicsCommon.h>
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+#include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointLimitConstraint.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+#include <LinearMath/btConvexHullComputer.h>
+#pragma GCC diagnostic pop
+
+#ifndef BT_USE_DOUBLE_PRECISION
+#error "tianracer_sim_physics needs double-precision Bullet (pkg-config bullet-float64)"
+#endif
+
+namespace tianracer_sim {
+
+inline btVector3 toBt(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.z()); }
+inline Eigen::Vector3d toEigen(const btVector3& v) { return Eigen::Vector3d(v.x(), v.y(), v.z()); }
+
+inline btTransform toBt(const Eigen::Isometry3d& X) {
+  const Eigen::Matrix3d& R = X.linear();
+  btMatrix3x3 basis(R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0), R(2, 1),
+                    R(2, 2));
+  return btTransform(basis, toBt(Eigen::Vector3d(X.translation())));
+}
+
+inline Eigen::Isometry3d toEigen(const btTransform& t) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  const btMatrix3x3& B = t.getBasis();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) X.linear()(r, c) = B[r][c];
+  }
+  X.translation() = toEigen(t.getOrigin());
+  return X;
+}
+
+inline btQuaternion toBtQuat(const Eigen::Matrix3d& R) {
+  const Eigen::Quaterniond q(R);
+  return btQuaternion(q.x(), q.y(), q.z(), q.w());
+}
+
+/// A rotation taking +Y to `axis` (unit), for Bullet's Y-up cylinders.
+inline Eigen::Matrix3d rotationYTo(const Eigen::Vector3d& axis) {
+  return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), axis).toRotationMatrix();
+}
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_PHYSICS_BULLET_H

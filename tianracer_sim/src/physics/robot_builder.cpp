@@ -1,0 +1,209 @@
+// Building a robot's Bullet multibody from its rigid tree, and taking it out again.
+#include <cmath>
+
+#include "world_impl.h"
+
+namespace tianracer_sim {
+
+void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) {
+  const RigidTree& tree = r->tree;
+  const int nb = static_cast<int>(tree.bodies.size());
+  const int nlinks = nb - 1;
+
+  // Principal COM frames.
+  std::vector<Eigen::Vector3d> moments(nb);
+  r->X_BC.assign(nb, Eigen::Isometry3d::Identity());
+  for (int b = 0; b < nb; ++b) {
+    const MassProperties& m = tree.bodies[b].mass;
+    if (m.mass > 0.0) {
+      const PrincipalInertia p = principalInertia(m.inertia);
+      moments[b] = p.moments;
+      r->X_BC[b].linear() = p.R;
+      r->X_BC[b].translation() = m.com;
+    } else {
+      moments[b].setZero();
+    }
+  }
+
+  const TreeBody& root = tree.bodies[0];
+  r->mb = std::make_unique<btMultiBody>(nlinks, tree.fixed_base ? 0.0 : root.mass.mass,
+                                        toBt(moments[0]), tree.fixed_base, false);
+  r->mb->setBaseName(nullptr);
+  for (int b = 1; b < nb; ++b) {
+    const TreeBody& body = tree.bodies[b];
+    const int link = b - 1, parent_link = body.parent - 1;
+    const Eigen::Isometry3d X_PcB = r->X_BC[body.parent].inverse() * body.X_PB;  // joint in Pc
+    const Eigen::Isometry3d X_CcB = r->X_BC[b].inverse();                         // joint in Cc
+    const btQuaternion rot_parent_to_this =
+        toBtQuat(X_CcB.linear() * X_PcB.linear().transpose());
+    const btVector3 axis_C = toBt(Eigen::Vector3d(X_CcB.linear() * body.axis_B));
+    const btVector3 parent_com_to_pivot = toBt(Eigen::Vector3d(X_PcB.translation()));
+    const btVector3 pivot_to_com = toBt(Eigen::Vector3d(-X_CcB.translation()));
+    if (body.joint_type == TreeJointType::kPrismatic) {
+      r->mb->setupPrismatic(link, body.mass.mass, toBt(moments[b]), parent_link,
+                            rot_parent_to_this, axis_C, parent_com_to_pivot, pivot_to_com, true);
+    } else {
+      r->mb->setupRevolute(link, body.mass.mass, toBt(moments[b]), parent_link,
+                           rot_parent_to_this, axis_C, parent_com_to_pivot, pivot_to_com, true);
+    }
+  }
+  r->mb->finalizeMultiDof();
+  // Gazebo/ODE have no velocity damping and no speed cap.
+  r->mb->setLinearDamping(0.0);
+  r->mb->setAngularDamping(0.0);
+  r->mb->setMaxCoordinateVelocity(1e4);
+  r->mb->setHasSelfCollision(false);
+  r->mb->setCanSleep(false);
+  r->mb->setUseGyroTerm(true);
+  world->addMultiBody(r->mb.get());
+
+  // Colliders, one per body with collisions: a compound in the COM frame.
+  r->colliders.resize(nb);
+  int collision_index = 0;
+  for (int b = 0; b < nb; ++b) {
+    const TreeBody& body = tree.bodies[b];
+    if (body.collisions.empty()) {
+      // Bullet files a joint motor or limit under the island of its link's collider and skips
+      // it when there is none: a body without geometry gets a 1 mm sphere that collides with
+      // nothing (mask 0).
+      auto sphere = std::make_unique<btSphereShape>(1e-3);
+      auto surfaces = std::make_unique<ColliderSurfaces>();
+      surfaces->children.emplace_back();
+      auto col = std::make_unique<btMultiBodyLinkCollider>(r->mb.get(), b - 1);
+      col->setCollisionShape(sphere.get());
+      col->setActivationState(DISABLE_DEACTIVATION);
+      col->setUserPointer(surfaces.get());
+      col->setUserIndex(r->user_index);
+      col->setUserIndex2(b);
+      world->addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter, 0);
+      if (b == 0) {
+        r->mb->setBaseCollider(col.get());
+      } else {
+        r->mb->getLink(b - 1).m_collider = col.get();
+      }
+      r->shapes.push_back(std::move(sphere));
+      r->surfaces.push_back(std::move(surfaces));
+      r->colliders[b] = std::move(col);
+      continue;
+    }
+    auto compound = std::make_unique<btCompoundShape>(false, static_cast<int>(body.collisions.size()));
+    auto surfaces = std::make_unique<ColliderSurfaces>();
+    const Eigen::Isometry3d X_CB = r->X_BC[b].inverse();
+    bool all_wheels = true;
+    for (const CollisionGeometry& g : body.collisions) {
+      Eigen::Isometry3d X_BS;
+      bool is_wheel = false;
+      std::unique_ptr<btCollisionShape> shape =
+          makeLinkShape(body, g, options.collision_margin, options.wheel_shape,
+                        "robot '" + r->name + "' link '" + g.link + "'", &X_BS, &is_wheel);
+      all_wheels = all_wheels && is_wheel;
+      compound->addChildShape(toBt(Eigen::Isometry3d(X_CB * X_BS)), shape.get());
+      const Eigen::Matrix3d R_CL = X_CB.linear() * body.X_BL.at(g.link).linear();
+      surfaces->children.push_back(
+          toSurface(surface_of(g, collision_index++), R_CL, options.contact_max_vel));
+      r->shapes.push_back(std::move(shape));
+    }
+    surfaces->body = true;
+    auto col = std::make_unique<btMultiBodyLinkCollider>(r->mb.get(), b - 1);
+    col->setCollisionShape(compound.get());
+    setAnisotropy(col.get(), *surfaces);
+    col->setCollisionFlags(col->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+    col->setActivationState(DISABLE_DEACTIVATION);
+    col->setFriction(surfaces->children[0].mu1);
+    col->setRestitution(0.0);
+    col->setRollingFriction(0.0);
+    col->setSpinningFriction(0.0);
+    col->setUserPointer(surfaces.get());
+    col->setUserIndex(r->user_index);
+    col->setUserIndex2(b);
+    if (all_wheels) {
+      // A rolling wheel's manifold keeps up to 3 stale points behind the contact (rising off
+      // the ground, 0.01-1 mm up) which Bullet would solve as speculative contacts: 4x the rows
+      // and a little drag. The narrowphase finds the true contact afresh every step, so only
+      // touching points are solved for wheels.
+      col->setContactProcessingThreshold(0.0);
+      surfaces->wheel = true;
+    }
+    world->addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter,
+                              btBroadphaseProxy::AllFilter);
+    if (b == 0) {
+      r->mb->setBaseCollider(col.get());
+    } else {
+      r->mb->getLink(b - 1).m_collider = col.get();
+    }
+    r->shapes.push_back(std::move(compound));
+    r->surfaces.push_back(std::move(surfaces));
+    r->colliders[b] = std::move(col);
+  }
+
+  // Tyres: stiffness as given, damping from the damping ratio of one wheel carrying its share
+  // of the robot's mass on that spring, kd = 2 zeta sqrt(k m / wheels).
+  int wheels = 0;
+  double mass = 0.0;
+  for (int b = 0; b < nb; ++b) {
+    mass += tree.bodies[b].mass.mass;
+    if (r->surfaces[b]->wheel) ++wheels;
+  }
+  for (auto& sf : r->surfaces) {
+    if (!sf->wheel || !(options.tyre_stiffness > 0.0)) continue;
+    sf->tyre_stiffness = options.tyre_stiffness;
+    sf->tyre_damping =
+        2.0 * options.tyre_damping_ratio * std::sqrt(options.tyre_stiffness * mass / wheels);
+  }
+
+  // Joints: info, limits, motors (added to the world when first used).
+  for (int b = 1; b < nb; ++b) {
+    const TreeBody& body = tree.bodies[b];
+    JointInfo j;
+    j.name = body.joint;
+    j.type = body.joint_type == TreeJointType::kRevolute
+                 ? JointType::kRevolute
+                 : (body.joint_type == TreeJointType::kPrismatic ? JointType::kPrismatic
+                                                                 : JointType::kContinuous);
+    j.parent_link = tree.bodies[body.parent].link;
+    j.child_link = body.link;
+    j.axis = body.axis_B;
+    j.has_position_limits = body.has_position_limits;
+    j.lower = body.lower;
+    j.upper = body.upper;
+    j.effort_limit = body.effort_limit;
+    j.velocity_limit = body.velocity_limit;
+    j.damping = body.damping;
+    j.friction = body.friction;
+    j.motor_effort = body.effort_limit > 0.0 ? body.effort_limit : options.default_motor_effort;
+    r->joint_index[j.name] = static_cast<int>(r->joints.size());
+    r->joints.push_back(j);
+    if (j.has_position_limits) {
+      auto lim = std::make_unique<btMultiBodyJointLimitConstraint>(r->mb.get(), b - 1, j.lower, j.upper);
+      lim->finalizeMultiDof();
+      r->limits.push_back(std::move(lim));
+      r->limit_joint.push_back(static_cast<int>(r->joints.size()) - 1);
+      r->limit_in_world.push_back(false);
+    }
+    r->motors.push_back(std::make_unique<btMultiBodyJointMotor>(r->mb.get(), b - 1, 0.0, 0.0));
+    r->motors.back()->finalizeMultiDof();  // allocates the row data read by jointEffort()
+    r->motor_in_world.push_back(false);
+  }
+  r->commands.assign(r->joints.size(), RobotState::Command());
+  r->applied_effort.assign(r->joints.size(), 0.0);
+  for (const TreeBody& body : tree.bodies) {
+    for (const auto& l : body.merged_links) r->link_names.push_back(l);
+  }
+  r->scratch_q.resize(nb);
+  r->scratch_p.resize(nb);
+}
+
+void PhysicsWorld::Impl::removeFromWorld(RobotState* r) {
+  for (std::size_t j = 0; j < r->motors.size(); ++j) {
+    if (r->motor_in_world[j]) world->removeMultiBodyConstraint(r->motors[j].get());
+  }
+  for (std::size_t k = 0; k < r->limits.size(); ++k) {
+    if (r->limit_in_world[k]) world->removeMultiBodyConstraint(r->limits[k].get());
+  }
+  for (auto& c : r->colliders) {
+    if (c) world->removeCollisionObject(c.get());
+  }
+  if (r->mb) world->removeMultiBody(r->mb.get());
+}
+
+}  // namespace tianracer_sim

@@ -1,0 +1,188 @@
+#include "shapes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "tianracer_sim/mesh/mesh_loader.h"
+#include "tianracer_sim/physics/shape_fit.h"
+
+namespace tianracer_sim {
+
+std::unique_ptr<btCollisionShape> makeBox(const Eigen::Vector3d& size, double margin,
+                                          const std::string& what) {
+  if (!(size.minCoeff() > 0.0)) throw PhysicsError(what + ": box sizes must be positive");
+  auto box = std::make_unique<btBoxShape>(toBt(Eigen::Vector3d(0.5 * size)));
+  box->setMargin(std::min(margin, 0.25 * size.minCoeff()));
+  return box;
+}
+
+std::unique_ptr<btCollisionShape> makeCylinderZ(double radius, double length, double margin,
+                                                const std::string& what) {
+  if (!(radius > 0.0) || !(length > 0.0)) {
+    throw PhysicsError(what + ": cylinder radius and length must be positive");
+  }
+  auto cyl = std::make_unique<btCylinderShapeZ>(btVector3(radius, radius, 0.5 * length));
+  cyl->setMargin(std::min(margin, 0.25 * std::min(radius, length)));
+  return cyl;
+}
+
+std::unique_ptr<btCollisionShape> makeSphere(double radius, const std::string& what) {
+  if (!(radius > 0.0)) throw PhysicsError(what + ": sphere radius must be positive");
+  return std::make_unique<btSphereShape>(radius);
+}
+
+std::unique_ptr<btConvexHullShape> makeHull(const std::vector<btVector3>& points, double margin) {
+  btConvexHullComputer hc;
+  const double shrunk = hc.compute(&points[0].x(), sizeof(btVector3), static_cast<int>(points.size()),
+                                   margin, 0.25);
+  auto hull = std::make_unique<btConvexHullShape>();
+  if (shrunk >= 0.0 && hc.vertices.size() >= 4) {
+    for (int i = 0; i < hc.vertices.size(); ++i) hull->addPoint(hc.vertices[i], false);
+    hull->setMargin(std::max(shrunk, 1e-6));
+  } else {  // degenerate (flat) mesh: keep the points, accept a margin-thick inflation
+    for (const auto& p : points) hull->addPoint(p, false);
+    hull->setMargin(margin);
+  }
+  hull->recalcLocalAabb();
+  hull->optimizeConvexHull();
+  return hull;
+}
+
+WheelFit fitWheel(const std::vector<Eigen::Vector3d>& vertices_B, const Eigen::Vector3d& axis_B) {
+  WheelFit fit;
+  if (vertices_B.size() < 6 || !(axis_B.norm() > 0.0)) return fit;
+  const Eigen::Vector3d a = axis_B.normalized();
+  double amin = std::numeric_limits<double>::infinity(), amax = -amin, rmax = 0.0;
+  for (const auto& v : vertices_B) {
+    const double s = v.dot(a);
+    amin = std::min(amin, s);
+    amax = std::max(amax, s);
+    rmax = std::max(rmax, (v - s * a).norm());
+  }
+  if (!(rmax > 0.0)) return fit;
+  // Outer vertices must go all the way round the axis: 12 sectors of 30 degrees.
+  const Eigen::Vector3d e1 = a.unitOrthogonal(), e2 = a.cross(e1);
+  constexpr int kSectors = 12;
+  double sector_r[kSectors] = {0};
+  for (const auto& v : vertices_B) {
+    const Eigen::Vector3d r = v - v.dot(a) * a;
+    const double ang = std::atan2(r.dot(e2), r.dot(e1));
+    int k = static_cast<int>(std::floor((ang + M_PI) / (2.0 * M_PI) * kSectors));
+    k = std::min(std::max(k, 0), kSectors - 1);
+    sector_r[k] = std::max(sector_r[k], r.norm());
+  }
+  fit.roundness = *std::min_element(sector_r, sector_r + kSectors) / rmax;
+  fit.radius = rmax;
+  fit.width = amax - amin;
+  fit.center = 0.5 * (amin + amax) * a;
+  fit.is_wheel = fit.roundness > 0.98 && fit.width > 0.0;
+  return fit;
+}
+
+void makeStaticShape(const StaticShape& s, double margin, OwnedShape* out) {
+  const std::string what = "static shape '" + s.name + "'";
+  if (!s.size.allFinite()) throw PhysicsError(what + ": non-finite size");
+  switch (s.type) {
+    case StaticShape::Type::kBox:
+      out->shape = makeBox(s.size, margin, what);
+      return;
+    case StaticShape::Type::kCylinder:
+      out->shape = makeCylinderZ(s.size.x(), s.size.z(), margin, what);
+      return;
+    case StaticShape::Type::kSphere:
+      out->shape = makeSphere(s.size.x(), what);
+      return;
+    case StaticShape::Type::kPlane:
+      if (!(s.size.norm() > 0.0)) throw PhysicsError(what + ": plane normal is zero");
+      out->shape = std::make_unique<btStaticPlaneShape>(toBt(Eigen::Vector3d(s.size.normalized())), 0.0);
+      return;
+    case StaticShape::Type::kMesh: {
+      const auto mesh = MeshCache::global().get(s.mesh_path, s.mesh_scale);
+      out->mesh_vertices.reserve(mesh->vertices.size() * 3);
+      for (const auto& v : mesh->vertices) {
+        out->mesh_vertices.insert(out->mesh_vertices.end(), {v.x(), v.y(), v.z()});
+      }
+      out->mesh_indices.assign(mesh->indices.begin(), mesh->indices.end());
+      out->mesh_interface = std::make_unique<btTriangleIndexVertexArray>(
+          static_cast<int>(mesh->triangleCount()), out->mesh_indices.data(), 3 * sizeof(int),
+          static_cast<int>(mesh->vertices.size()), out->mesh_vertices.data(), 3 * sizeof(btScalar));
+      out->shape = std::make_unique<btBvhTriangleMeshShape>(out->mesh_interface.get(), true);
+      return;
+    }
+  }
+  throw PhysicsError(what + ": unsupported shape type");
+}
+
+std::unique_ptr<btCollisionShape> makeLinkShape(const TreeBody& body, const CollisionGeometry& g,
+                                                double margin, WheelShape wheel_shape,
+                                                const std::string& what, Eigen::Isometry3d* X_BS,
+                                                bool* is_wheel) {
+  *X_BS = g.X_BG;
+
+  // Wheels: a round mesh (or a cylinder along the axis) on a continuous joint's child link.
+  const bool wheel_joint = body.parent >= 0 && body.joint_type == TreeJointType::kContinuous;
+  WheelFit fit;
+  std::vector<Eigen::Vector3d> verts_B;
+  if (g.type == GeometryType::kMesh) {
+    const auto mesh = MeshCache::global().get(g.mesh_path, g.mesh_scale);
+    verts_B.reserve(mesh->vertices.size());
+    for (const auto& v : mesh->vertices) verts_B.push_back(g.X_BG * v.cast<double>());
+    if (wheel_joint && wheel_shape != WheelShape::kMeshHull) fit = fitWheel(verts_B, body.axis_B);
+  } else if (g.type == GeometryType::kCylinder && wheel_joint) {
+    const Eigen::Vector3d cyl_axis = g.X_BG.linear().col(2);
+    const Eigen::Vector3d c = g.X_BG.translation();
+    const Eigen::Vector3d off = c - c.dot(body.axis_B) * body.axis_B;
+    if (std::abs(std::abs(cyl_axis.dot(body.axis_B)) - 1.0) < 1e-9 && off.norm() < 1e-9) {
+      fit.is_wheel = true;
+      fit.radius = g.size.x();
+      fit.width = g.size.z();
+      fit.center = c;
+      fit.roundness = 1.0;
+    }
+  }
+  *is_wheel = fit.is_wheel && wheel_shape != WheelShape::kMeshHull;
+  if (fit.is_wheel) {
+    X_BS->linear() = rotationYTo(body.axis_B);
+    X_BS->translation() = fit.center;
+    const double R = fit.radius, W = fit.width;
+    switch (wheel_shape) {
+      case WheelShape::kRoundedCylinder: {
+        // Margin W/2 rounds the whole tread: the implicit disc has radius R - W/2, height 0.
+        const double m = std::min(0.5 * W, 0.5 * R);
+        auto s = std::make_unique<btCylinderShape>(btVector3(R, 0.5 * W, R));
+        s->setMargin(m);
+        return s;
+      }
+      case WheelShape::kCylinder: {
+        auto s = std::make_unique<btCylinderShape>(btVector3(R, 0.5 * W, R));
+        s->setMargin(std::min(margin, 0.25 * std::min(R, 0.5 * W)));
+        return s;
+      }
+      case WheelShape::kSphere:
+        return std::make_unique<btSphereShape>(R);
+      case WheelShape::kMeshHull:
+        break;
+    }
+  }
+
+  switch (g.type) {
+    case GeometryType::kBox:
+      return makeBox(g.size, margin, what);
+    case GeometryType::kCylinder:
+      return makeCylinderZ(g.size.x(), g.size.z(), margin, what);
+    case GeometryType::kSphere:
+      return makeSphere(g.size.x(), what);
+    case GeometryType::kMesh: {
+      // Hull in the body frame (vertices already there): the child transform is identity.
+      X_BS->setIdentity();
+      std::vector<btVector3> pts;
+      pts.reserve(verts_B.size());
+      for (const auto& v : verts_B) pts.push_back(toBt(v));
+      return makeHull(pts, margin);
+    }
+  }
+  throw PhysicsError(what + ": unsupported geometry");
+}
+
+}  // namespace tianracer_sim

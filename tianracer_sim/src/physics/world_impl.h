@@ -1,0 +1,113 @@
+// Internal: the state behind PhysicsWorld and PhysicsRobot, shared by world.cpp (stepping and
+// the world API), robot_builder.cpp (building and removing robots) and robot.cpp (the robot API
+// and command application).
+#ifndef TIANRACER_SIM_PHYSICS_WORLD_IMPL_H
+#define TIANRACER_SIM_PHYSICS_WORLD_IMPL_H
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bullet.h"
+#include "contact_solver.h"
+#include "shapes.h"
+#include "tianracer_sim/physics/world.h"
+
+namespace tianracer_sim {
+
+struct RobotState {
+  enum class Mode { kNone, kEffort, kVelocity };
+  struct Command {
+    Mode mode = Mode::kNone;
+    double effort = 0.0;
+    double velocity = 0.0;
+    double max_effort = 0.0;
+  };
+
+  PhysicsWorld::Impl* world = nullptr;
+  RobotId id = -1;          // robots: robot id; free bodies: free body index
+  int user_index = -1;      // btCollisionObject::getUserIndex() of its colliders
+  std::string name;
+  RigidTree tree;
+  std::vector<JointInfo> joints;
+  std::map<std::string, int> joint_index;
+  std::vector<std::string> link_names;
+  Eigen::Isometry3d spawn = Eigen::Isometry3d::Identity();
+
+  std::unique_ptr<btMultiBody> mb;
+  std::vector<Eigen::Isometry3d> X_BC;  // per body: COM principal frame C in body frame B
+  std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;  // per body, may be null
+  std::vector<std::unique_ptr<ColliderSurfaces>> surfaces;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btMultiBodyJointLimitConstraint>> limits;
+  std::vector<int> limit_joint;       // joint index of each limit
+  std::vector<bool> limit_in_world;   // added only near the limit (see applyCommands)
+  std::vector<std::unique_ptr<btMultiBodyJointMotor>> motors;  // per joint
+  std::vector<bool> motor_in_world;
+  std::vector<Command> commands;
+  std::vector<double> applied_effort;
+  std::uint64_t rejected = 0;
+
+  // Scratch for forward kinematics (no allocation once warm).
+  mutable btAlignedObjectArray<btQuaternion> scratch_q;
+  mutable btAlignedObjectArray<btVector3> scratch_p;
+
+  PhysicsRobot handle{this};
+
+  explicit RobotState() = default;
+  int bodyOf(const std::string& link) const {
+    auto it = tree.links.find(link);
+    if (it == tree.links.end()) {
+      throw PhysicsError("robot '" + name + "': unknown link '" + link + "'");
+    }
+    return it->second.first;
+  }
+  /// World pose of body b's COM frame C (Bullet's frame for that body).
+  btTransform comFrame(int b) const;
+  void syncColliders();
+};
+
+struct PhysicsWorld::Impl {
+  PhysicsOptions options;
+  std::unique_ptr<btDefaultCollisionConfiguration> config;
+  std::unique_ptr<btCollisionDispatcher> dispatcher;
+  std::unique_ptr<btDbvtBroadphase> broadphase;
+  std::unique_ptr<btMultiBodyConstraintSolver> solver;
+  std::unique_ptr<btMultiBodyDynamicsWorld> world;
+
+  std::vector<std::unique_ptr<RobotState>> robots;
+  std::vector<std::unique_ptr<RobotState>> free_bodies;  // robots without joints
+
+  struct StaticBody {
+    std::unique_ptr<btCollisionObject> object;
+    OwnedShape shape;
+    std::unique_ptr<ColliderSurfaces> surfaces;
+  };
+  std::vector<std::unique_ptr<StaticBody>> statics;
+  std::unique_ptr<StaticBody> ground;
+
+  std::uint64_t steps = 0;
+
+  explicit Impl(const PhysicsOptions& o);
+  ~Impl();
+  std::unique_ptr<StaticBody> makeStatic(const StaticShape& shape, int index);
+  /// The surface of collision `index` (in body order) of a robot's tree.
+  using SurfaceOf = std::function<const SurfaceParams&(const CollisionGeometry& g, int index)>;
+  /// Builds the robot's multibody, colliders, joints, limits and motors and adds them to the
+  /// world; what is added is recorded in r, so removeFromWorld can undo a partial build.
+  void buildRobot(RobotState* r, const SurfaceOf& surface_of);
+  /// addRobot / addFreeBody: r (with name, tree, spawn, ids set) is built into the world and
+  /// appended to `list`, or nothing of it stays.
+  void add(std::unique_ptr<RobotState> r, const SurfaceOf& surface_of,
+           std::vector<std::unique_ptr<RobotState>>* list);
+  /// Takes everything of r out of the Bullet world (constraints, colliders, multibody).
+  void removeFromWorld(RobotState* r);
+  void applyCommands(RobotState* r);
+};
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_PHYSICS_WORLD_IMPL_H
