@@ -26,8 +26,10 @@ APT_PACKAGES=(
   # the real viewers and the tutorial's joint sliders (display.launch, the rviz check under Xvfb),
   # and the benchmark's PyBullet virtual environment
   joint-state-publisher joint-state-publisher-gui rviz xvfb xauth imagemagick python3-venv
+  python3-matplotlib python3-tqdm
 )
-PIP_PACKAGES=(xacro==1.13.3)   # ROS 1 xacro; 2.x is the ROS 2 one (TOOLCHAIN.md)
+# xacro: the ROS 1 one (2.x is the ROS 2 one, TOOLCHAIN.md); ray: scenario batches (`batch`)
+PIP_PACKAGES=(xacro==1.13.3 ray==2.60.0)
 
 say()  { printf '==> [setup] %s\n' "$*"; }
 fail() { printf '\nERROR [setup] %s\n' "$*" >&2; exit 1; }

@@ -1,0 +1,171 @@
+"""Scenario batches on Ray: `rosrun tianracer_bringup batch scenarios.yaml --out results/`.
+
+Every run of the scenario's matrix is one Ray task that starts its own ROS master, simulator,
+recorder and driver (run.run_one). Without --address a local Ray is started with --cpus CPUs
+(default: all of this machine's); with --address (auto, host:port, ray://host:port) the runs go to
+an existing Ray cluster, each node of which must have this workspace built and sourced when its
+`ray start` was run. Results come back to this process, which writes results.csv, report.md and
+the pictures into --out.
+
+Exit code: 0 when every run completed (ran and met its success conditions), 1 when some did not,
+2 when the scenario file is invalid (nothing is started then).
+"""
+import argparse
+import json
+import logging
+import os
+import shutil
+import socket
+import sys
+import tempfile
+import time
+
+from tianracer_bringup import scenario as scenario_mod
+
+
+def _remote_run(run_id, cfg, run_dir):
+    from tianracer_bringup.run import run_one
+    try:
+        os.makedirs(run_dir, exist_ok=True)
+    except OSError:
+        # Another host of a cluster: the driver's output folder is not here.
+        run_dir = tempfile.mkdtemp(prefix='tianracer_batch_%s_' % run_id)
+    return run_one(run_id, cfg, run_dir)
+
+
+def parse_args(argv):
+    ap = argparse.ArgumentParser(prog='batch', description=__doc__.split('\n')[0])
+    ap.add_argument('scenario', help='scenario YAML file')
+    ap.add_argument('--out', default='results', help='output folder (default: results)')
+    ap.add_argument('--limit', type=int, default=None, metavar='N', help='run only the first N runs')
+    ap.add_argument('--duration', type=float, default=None, metavar='S',
+                    help="override every run's sim duration (seconds)")
+    ap.add_argument('--dry-run', action='store_true', help='print the expanded runs and stop')
+    ap.add_argument('--address', default=None,
+                    help='an existing Ray cluster: auto, host:port or ray://host:port')
+    ap.add_argument('--cpus', type=float, default=None,
+                    help='CPUs of the local Ray (default: all of this machine)')
+    ap.add_argument('--cpus-per-run', type=float, default=1.0,
+                    help='CPUs Ray reserves for each run (default 1)')
+    ap.add_argument('--no-progress', action='store_true', help='no progress bar')
+    args = ap.parse_args(argv)
+    if args.limit is not None and args.limit < 1:
+        ap.error('--limit must be >= 1')
+    if args.duration is not None and args.duration <= 0:
+        ap.error('--duration must be > 0')
+    if args.cpus_per_run <= 0:
+        ap.error('--cpus-per-run must be > 0')
+    return args
+
+
+def select_runs(sc, args):
+    runs = sc.runs[:args.limit] if args.limit else list(sc.runs)
+    if args.duration is not None:
+        for run in runs:
+            run.config['duration'] = args.duration
+    return runs
+
+
+def print_runs(sc, runs, out=sys.stdout):
+    out.write('%s: %d run(s) of %d\n' % (sc.name, len(runs), len(sc.runs)))
+    for run in runs:
+        c = run.config
+        drv = c['driver']
+        what = ('launch %s' % drv['launch']) if drv and drv['launch'] else \
+            ('command %s' % ' '.join(drv['command'])) if drv else 'no driver'
+        if drv and drv['args']:
+            prefix = '' if drv['launch'] else '_'
+            what += ' ' + ' '.join('%s%s:=%s' % (prefix, k, v) for k, v in drv['args'].items())
+        out.write('  %s  %-40s world %s, %g s, seed %d, timeout %.0f s, %s\n' % (
+            run.id, run.label, os.path.basename(c['world']), c['duration'], c['seed'],
+            scenario_mod.run_timeout(c), what))
+
+
+def main(argv=None):
+    args = parse_args(sys.argv[1:] if argv is None else argv)
+    try:
+        sc = scenario_mod.load(args.scenario)
+    except scenario_mod.ScenarioError as e:
+        sys.stderr.write('ERROR [batch] invalid scenario file:\n')
+        for p in e.problems:
+            sys.stderr.write('  %s\n' % p)
+        return 2
+    runs = select_runs(sc, args)
+    if args.dry_run:
+        print_runs(sc, runs)
+        return 0
+
+    out = os.path.abspath(args.out)
+    os.makedirs(os.path.join(out, 'runs'), exist_ok=True)
+    shutil.copy(args.scenario, os.path.join(out, 'scenario.yaml'))
+
+    import ray
+    os.environ.setdefault('RAY_AUTH_MODE', 'disabled')  # a private local Ray; clusters set theirs
+    wall0 = time.time()
+    if args.address:
+        ray.init(address=args.address, logging_level=logging.WARNING, log_to_driver=False)
+    else:
+        ray.init(num_cpus=args.cpus or os.cpu_count(), include_dashboard=False,
+                 logging_level=logging.WARNING, log_to_driver=False)
+    try:
+        cpus = ray.cluster_resources().get('CPU', 1.0)
+        slots = max(1, int(cpus // args.cpus_per_run))
+        note = '%s, %g CPUs, %g per run, up to %d at a time' % (
+            'Ray cluster %s' % args.address if args.address else 'local Ray on %s' % socket.gethostname(),
+            cpus, args.cpus_per_run, slots)
+        print('==> [batch] %s: %d run(s); %s' % (sc.name, len(runs), note), flush=True)
+        task = ray.remote(num_cpus=args.cpus_per_run, max_retries=0)(_remote_run)
+        refs = {task.remote(run.id, run.config, os.path.join(out, 'runs', run.id)): run for run in runs}
+        results = {}
+        failed = 0
+        bar = None
+        if not args.no_progress:
+            from tqdm import tqdm
+            bar = tqdm(total=len(runs), unit='run', dynamic_ncols=True, file=sys.stderr)
+        pending = list(refs)
+        try:
+            while pending:
+                ready, pending = ray.wait(pending, num_returns=1, timeout=1.0)
+                for ref in ready:
+                    run = refs[ref]
+                    try:
+                        res = ray.get(ref)
+                    except Exception as e:  # the task itself died (worker lost, node lost)
+                        res = {'id': run.id, 'status': 'failed', 'reason': 'Ray task failed: %s' % e,
+                               'metrics': None, 'run_dir': os.path.join(out, 'runs', run.id)}
+                    results[run.id] = res
+                    if res['status'] != 'ok' or not (res.get('metrics') or {}).get('success'):
+                        failed += 1
+                    if bar is None:
+                        print('    %s %s: %s (%s)' % (run.id, run.label, res['status'], res['reason']),
+                              flush=True)
+                if bar is not None:
+                    bar.set_postfix_str('running %d, failed %d' % (min(len(pending), slots), failed),
+                                        refresh=False)
+                    bar.update(len(ready))
+        except KeyboardInterrupt:
+            # Cancel without force: each run's own clean-up stops its processes.
+            for ref in pending:
+                ray.cancel(ref, force=False)
+            raise
+        finally:
+            if bar is not None:
+                bar.close()
+    finally:
+        ray.shutdown()
+    wall = time.time() - wall0
+    ordered = [results[run.id] for run in runs]
+    for res in ordered:
+        path = os.path.join(out, 'runs', res['id'])
+        os.makedirs(path, exist_ok=True)
+        with open(os.path.join(path, 'result.json'), 'w') as f:
+            json.dump(res, f, indent=1)
+    from tianracer_bringup import report
+    rows = report.write_all(out, sc, runs, ordered, wall, note)
+    done = sum(1 for r in rows if r['completed'])
+    print('==> [batch] %d of %d run(s) completed in %.1f s wall; wrote %s' % (
+        done, len(rows), wall, ', '.join(sorted(n for n in os.listdir(out) if n.endswith(('.csv', '.md', '.png'))))))
+    for r in rows:
+        if not r['completed']:
+            print('    %s (%s): %s' % (r['id'], r['label'], r['reason']))
+    return 0 if done == len(rows) else 1

@@ -1,0 +1,306 @@
+"""One isolated batch run: its own ROS master on a free port, its own ROS_HOME and logs, the
+simulator paused until the recorder and the user's driver are connected, then unpaused and run to
+the scenario's sim duration; everything stopped afterwards, whatever happened.
+
+The approach is the one of tianracer_bringup/scripts/demo and bench/ros_session.py (a private
+master, roslaunch in its own session, SIGINT then SIGKILL). roslaunch puts every node in a new
+session, so process groups do not reach them all: every process of a run carries the environment
+variable TIANRACER_BATCH_RUN=<token>, and after stopping, the process table is searched for that
+token; survivors are killed and counted.
+"""
+import json
+import os
+import re
+import shlex
+import signal
+import socket
+import subprocess
+import sys
+import time
+import uuid
+import xmlrpc.client
+from xml.sax.saxutils import quoteattr
+
+from tianracer_bringup.scenario import run_timeout
+
+TOKEN_VAR = 'TIANRACER_BATCH_RUN'
+CALLER = '/batch_runner'
+LOG_TAIL_LINES = 25
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(('127.0.0.1', 0))
+        return s.getsockname()[1]
+
+
+def _fmt(v):
+    if isinstance(v, bool):
+        return 'true' if v else 'false'
+    return str(v)
+
+
+def sim_launch_xml(cfg):
+    """The run's launch file: tianracer.launch, paused, with the scenario's settings; then the
+    scenario's parameters, after the include so that they override the launch files' values."""
+    s, sp = cfg['sensors'], cfg['spawn']
+    args = {'world': cfg['world'], 'x': sp['x'], 'y': sp['y'], 'yaw': sp['yaw'],
+            'seed': cfg['seed'], 'real_time_factor': cfg['real_time_factor'], 'paused': True,
+            'lidar': s['lidar'], 'camera': s['camera'], 'depth': s['depth'], 'output': 'log'}
+    if cfg['model']:
+        args['model'] = cfg['model']
+    if cfg['control_config']:
+        args['control_config'] = cfg['control_config']
+    lines = ['<launch>', '  <include file="$(find tianracer_bringup)/launch/tianracer.launch">']
+    lines += ['    <arg name="%s" value=%s />' % (k, quoteattr(_fmt(v))) for k, v in args.items()]
+    lines.append('  </include>')
+    if cfg['model_args']:
+        model = cfg['model'] or '$(find tianracer_description)/urdf/tianracer_description.xacro'
+        cmd = 'xacro %s %s' % (shlex.quote(model), ' '.join(
+            shlex.quote('%s:=%s' % (k, _fmt(v))) for k, v in cfg['model_args'].items()))
+        lines.append('  <param name="robot_description" command=%s />' % quoteattr(cmd))
+    for name, value in cfg['params'].items():
+        lines.append('  <param name=%s value=%s />' % (quoteattr(name), quoteattr(_fmt(value))))
+    lines.append('</launch>')
+    return '\n'.join(lines) + '\n'
+
+
+def driver_cmd(cfg, port):
+    d = cfg['driver']
+    if d['launch']:
+        return ['roslaunch', '-p', str(port), d['launch']] + \
+            ['%s:=%s' % (k, _fmt(v)) for k, v in d['args'].items()]
+    return list(d['command']) + ['_%s:=%s' % (k, _fmt(v)) for k, v in d['args'].items()]
+
+
+_ANSI = re.compile(r'\x1b(\[[0-9;]*[A-Za-z]|\][^\x07]*\x07)')
+
+
+def _tail(path, n=LOG_TAIL_LINES):
+    """The last n lines of a log, without terminal colour and title escapes."""
+    try:
+        with open(path, errors='replace') as f:
+            return ''.join(_ANSI.sub('', line) for line in f.readlines()[-n:])
+    except OSError:
+        return ''
+
+
+def processes_with_token(token):
+    """pids of live processes whose environment carries the run's token."""
+    needle = ('%s=%s' % (TOKEN_VAR, token)).encode()
+    out = []
+    for entry in os.listdir('/proc'):
+        if not entry.isdigit() or int(entry) == os.getpid():
+            continue
+        try:
+            with open('/proc/%s/environ' % entry, 'rb') as f:
+                if needle not in f.read().split(b'\0'):
+                    continue
+            with open('/proc/%s/stat' % entry) as f:
+                if f.read().rsplit(')', 1)[1].split()[0] == 'Z':
+                    continue
+        except OSError:
+            continue
+        out.append(int(entry))
+    return out
+
+
+class RunFailed(Exception):
+    pass
+
+
+class _Run:
+    def __init__(self, cfg, run_dir):
+        self.cfg = cfg
+        self.dir = run_dir
+        self.logs = os.path.join(run_dir, 'logs')
+        os.makedirs(self.logs, exist_ok=True)
+        self.port = free_port()
+        self.token = uuid.uuid4().hex
+        env = dict(os.environ)
+        env['PATH'] = '/usr/bin:' + env.get('PATH', '')
+        env['ROS_MASTER_URI'] = 'http://localhost:%d' % self.port
+        env['ROS_HOSTNAME'] = 'localhost'
+        env.pop('ROS_IP', None)
+        env['ROS_HOME'] = os.path.join(run_dir, 'ros_home')
+        env['ROS_LOG_DIR'] = self.logs
+        env[TOKEN_VAR] = self.token
+        self.env = env
+        self.procs = {}
+        self.files = []
+        self.uri = env['ROS_MASTER_URI']
+
+    def log_path(self, name):
+        return os.path.join(self.logs, name + '.log')
+
+    def spawn(self, name, cmd):
+        f = open(self.log_path(name), 'w')
+        self.files.append(f)
+        f.write('$ %s\n' % ' '.join(shlex.quote(c) for c in cmd))
+        f.flush()
+        try:
+            p = subprocess.Popen(cmd, env=self.env, stdout=f, stderr=subprocess.STDOUT,
+                                 stdin=subprocess.DEVNULL, start_new_session=True, cwd=self.dir,
+                                 preexec_fn=_default_signals)
+        except OSError as e:
+            raise RunFailed('%s: cannot start %r: %s' % (name, cmd[0], e.strerror))
+        self.procs[name] = p
+        return p
+
+    def master(self):
+        return xmlrpc.client.ServerProxy(self.uri)
+
+    def check(self, names):
+        for name in names:
+            p = self.procs.get(name)
+            if p is not None and p.poll() is not None and (p.returncode != 0 or name != 'driver'):
+                raise RunFailed('%s exited with code %s before the run ended' % (
+                    {'sim': 'the simulator launch', 'driver': 'the driver',
+                     'recorder': 'the recorder', 'master': 'rosmaster'}[name], p.returncode))
+
+    def wait(self, what, predicate, deadline, watch):
+        while True:
+            self.check(watch)
+            try:
+                if predicate():
+                    return
+            except (OSError, xmlrpc.client.Error):
+                pass
+            if time.time() > deadline:
+                raise TimeoutError(what)
+            time.sleep(0.05)
+
+    def has_service(self, name):
+        return self.master().lookupService(CALLER, name)[0] == 1
+
+    def publishers(self, topic):
+        code, _, state = self.master().getSystemState(CALLER)
+        return [nodes for t, nodes in state[0] if t == topic] if code == 1 else []
+
+    def stop(self):
+        """SIGINT to every process group, then SIGKILL; then whatever still carries the token."""
+        order = ['driver', 'recorder', 'sim', 'master']
+        for name in order:
+            p = self.procs.get(name)
+            if p is not None and p.poll() is None:
+                _killpg(p, signal.SIGINT)
+            deadline = time.time() + (10.0 if name == 'sim' else 5.0)
+            if p is not None:
+                try:
+                    p.wait(max(0.1, deadline - time.time()))
+                except subprocess.TimeoutExpired:
+                    _killpg(p, signal.SIGKILL)
+                    p.wait()
+        leftovers = processes_with_token(self.token)
+        self.leftover_names = []
+        for pid in leftovers:
+            try:
+                with open('/proc/%d/cmdline' % pid, 'rb') as f:
+                    self.leftover_names.append(f.read().replace(b'\0', b' ').decode(errors='replace')[:200])
+            except OSError:
+                pass
+        for pid in leftovers:
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+        deadline = time.time() + 5.0
+        while processes_with_token(self.token) and time.time() < deadline:
+            time.sleep(0.05)
+        for f in self.files:
+            f.close()
+        return leftovers
+
+
+def _default_signals():
+    # A Ray worker blocks SIGINT and SIGTERM in its task threads, and a blocked (or ignored)
+    # signal stays so across exec: roslaunch would not hear the SIGINT that asks it to stop.
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, [signal.SIGINT, signal.SIGTERM])
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+def _killpg(p, sig):
+    try:
+        os.killpg(p.pid, sig)
+    except (ProcessLookupError, PermissionError):
+        pass
+
+
+def run_one(run_id, cfg, run_dir):
+    """Runs one scenario run; never raises for a failed run. Returns a dict: id, status ('ok' or
+    'failed'), reason, metrics (from the recorder), wall times, leftover processes, log tails."""
+    wall0 = time.time()
+    r = _Run(cfg, run_dir)
+    timeout = run_timeout(cfg)
+    deadline = wall0 + timeout
+    result = {'id': run_id, 'host': socket.gethostname(), 'run_dir': run_dir, 'status': 'failed',
+              'reason': '', 'metrics': None}
+    stage = 'starting rosmaster'
+    with open(os.path.join(run_dir, 'run.json'), 'w') as f:
+        json.dump(cfg, f, indent=1)
+    launch_file = os.path.join(run_dir, 'run.launch')
+    with open(launch_file, 'w') as f:
+        f.write(sim_launch_xml(cfg))
+    metrics_json = os.path.join(run_dir, 'metrics.json')
+    ready = os.path.join(run_dir, 'recorder.ready')
+    go = os.path.join(run_dir, 'recorder.go')
+    for p in (metrics_json, ready, go):
+        if os.path.exists(p):
+            os.remove(p)
+    try:
+        r.spawn('master', ['rosmaster', '--core', '-p', str(r.port), '-w', '3'])
+        r.wait('rosmaster', lambda: r.master().getPid(CALLER)[0] == 1, deadline, ['master'])
+        stage = 'starting the simulator'
+        r.spawn('sim', ['roslaunch', '-p', str(r.port), launch_file])
+        r.wait('the simulator (/gazebo/unpause_physics)',
+               lambda: r.has_service('/gazebo/unpause_physics'), deadline, ['master', 'sim'])
+        stage = 'starting the recorder'
+        r.spawn('recorder', [sys.executable, '-m', 'tianracer_bringup.recorder',
+                             os.path.join(run_dir, 'run.json'), metrics_json, ready, go])
+        r.wait('the recorder to connect', lambda: os.path.exists(ready), deadline,
+               ['master', 'sim', 'recorder'])
+        watch = ['master', 'sim', 'recorder']
+        if cfg['driver']:
+            stage = 'starting the driver'
+            r.spawn('driver', driver_cmd(cfg, r.port))
+            watch.append('driver')
+            topic = cfg['driver']['ready_topic']
+            if topic:
+                r.wait('the driver to publish %s' % topic, lambda: r.publishers(topic), deadline, watch)
+                time.sleep(0.3)  # the subscriber's connection follows the registration
+        stage = 'running'
+        result['startup_wall_time'] = time.time() - wall0
+        t_unpause = time.time()
+        with open(go, 'w') as f:
+            f.write('go\n')  # the recorder unpauses the simulator
+        watch.remove('recorder')  # its exit is the end of the run
+        r.wait('the run to reach %g s of sim time' % cfg['duration'],
+               lambda: r.procs['recorder'].poll() is not None, deadline, watch)
+        result['run_wall_time'] = time.time() - t_unpause
+        if r.procs['recorder'].returncode != 0:
+            raise RunFailed('the recorder exited with code %s' % r.procs['recorder'].returncode)
+        with open(metrics_json) as f:
+            result['metrics'] = json.load(f)
+        result['status'] = 'ok'
+        result['reason'] = result['metrics']['reason']
+    except TimeoutError as e:
+        result['reason'] = 'timed out after %.0f s wall while waiting for %s' % (timeout, e)
+    except RunFailed as e:
+        result['reason'] = '%s (while %s)' % (e, stage)
+    except (OSError, ValueError) as e:
+        result['reason'] = '%s: %s' % (stage, e)
+    finally:
+        t_stop = time.time()
+        leftovers = r.stop()
+        result['stop_wall_time'] = time.time() - t_stop
+    result['wall_time'] = time.time() - wall0
+    result['leftover_processes'] = len(leftovers)
+    result['leftover_commands'] = r.leftover_names
+    if result['status'] != 'ok' or result['metrics'] is None or not result['metrics']['success']:
+        result['log_tails'] = {name: _tail(r.log_path(name)) for name in ('driver', 'recorder', 'sim')
+                               if os.path.exists(r.log_path(name))}
+        import glob
+        for path in sorted(glob.glob(os.path.join(r.logs, '**', 'tianracer_sim-*.log'), recursive=True)):
+            result['log_tails']['tianracer_sim node'] = _tail(path)
+    return result

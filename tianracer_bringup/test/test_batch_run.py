@@ -1,0 +1,133 @@
+"""`rosrun tianracer_bringup batch` end to end on a local Ray with 2 CPUs: a 4-run batch twice
+(same outcomes, distances within 1 %), and a batch with a failing and a hanging driver."""
+import csv
+import os
+import shutil
+import subprocess
+import tempfile
+import unittest
+
+from tianracer_bringup.run import TOKEN_VAR
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+DATA = os.path.join(HERE, 'test_batch_data')
+
+
+def batch(scenario, out, *extra):
+    env = dict(os.environ)
+    env['PATH'] = '/usr/bin:' + env.get('PATH', '')
+    cmd = ['rosrun', 'tianracer_bringup', 'batch', os.path.join(DATA, scenario), '--out', out,
+           '--cpus', '2', '--no-progress'] + list(extra)
+    p = subprocess.run(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=600)
+    return p.returncode, p.stdout.decode(errors='replace')
+
+
+def rows_of(out):
+    with open(os.path.join(out, 'results.csv')) as f:
+        return list(csv.DictReader(f))
+
+
+def batch_processes():
+    """pids of live processes that any batch run started (they carry the run token)."""
+    out = []
+    needle = TOKEN_VAR.encode() + b'='
+    for entry in os.listdir('/proc'):
+        if not entry.isdigit():
+            continue
+        try:
+            with open('/proc/%s/environ' % entry, 'rb') as f:
+                if any(v.startswith(needle) for v in f.read().split(b'\0')):
+                    with open('/proc/%s/cmdline' % entry, 'rb') as g:
+                        out.append((int(entry), g.read().replace(b'\0', b' ').decode(errors='replace')))
+        except OSError:
+            pass
+    return out
+
+
+class TestBatch(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix='test_batch_')
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def test_four_runs_twice(self):
+        outs = [os.path.join(self.tmp, 'a'), os.path.join(self.tmp, 'b')]
+        results = []
+        for out in outs:
+            code, log = batch('four_runs.yaml', out)
+            self.assertEqual(code, 0, log)
+            rows = rows_of(out)
+            self.assertEqual(len(rows), 4, log)
+            for name in ('report.md', 'paths_empty.png', 'metrics_vs_driver_args_speed.png',
+                         'metrics_vs_spawn_x.png'):
+                self.assertTrue(os.path.getsize(os.path.join(out, name)) > 0, name)
+            for r in rows:
+                self.assertEqual(r['status'], 'ok', r)
+                self.assertEqual(r['completed'], 'True', r)
+                self.assertAlmostEqual(float(r['sim_time']), 10.0, delta=0.05)
+                # 10 s at the commanded speed, less the start
+                self.assertGreater(float(r['distance']), 0.7 * 10 * float(r['driver.args.speed']), r)
+                self.assertLess(float(r['distance']), 10 * float(r['driver.args.speed']), r)
+                self.assertEqual(r['leftover_processes'], '0')
+            results.append(rows)
+        self.assertEqual(batch_processes(), [])
+        for a, b in zip(*results):
+            self.assertEqual(a['label'], b['label'])
+            self.assertEqual((a['completed'], a['collisions']), (b['completed'], b['collisions']))
+            self.assertAlmostEqual(float(a['distance']), float(b['distance']),
+                                   delta=0.01 * float(a['distance']))
+        md = open(os.path.join(outs[0], 'report.md')).read()
+        self.assertIn('## By driver.args.speed', md)
+        self.assertIn('## By spawn.x', md)
+
+    def test_failing_and_hanging_runs(self):
+        out = os.path.join(self.tmp, 'failures')
+        code, log = batch('failures.yaml', out)
+        self.assertEqual(code, 1, log)
+        rows = rows_of(out)
+        self.assertEqual(len(rows), 3, log)
+        good, broken, hung = rows
+        self.assertEqual(good['status'], 'ok', good)
+        self.assertEqual(good['completed'], 'True', good)
+        self.assertEqual(broken['status'], 'failed')
+        self.assertIn('the driver exited with code 1', broken['reason'])
+        self.assertEqual(hung['status'], 'failed')
+        self.assertIn('timed out after 30 s wall while waiting for the driver to publish /cmd_vel',
+                      hung['reason'])
+        md = open(os.path.join(out, 'report.md')).read()
+        self.assertIn('### run_001', md)
+        self.assertIn('not_declared', md)  # roslaunch's message in the log tail
+        self.assertIn('### run_002', md)
+        self.assertIn('$ sleep 600', md)  # the hanging driver's log
+        self.assertNotIn('### run_000', md)
+        self.assertEqual(batch_processes(), [])
+
+    def test_scenario_error_starts_nothing(self):
+        out = os.path.join(self.tmp, 'invalid')
+        bad = os.path.join(self.tmp, 'bad.yaml')
+        with open(bad, 'w') as f:
+            f.write('base:\n  world: empty\n  duration: 5\n  speed: 3\n')
+        env = dict(os.environ, PATH='/usr/bin:' + os.environ.get('PATH', ''))
+        p = subprocess.run(['rosrun', 'tianracer_bringup', 'batch', bad, '--out', out], env=env,
+                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=60)
+        self.assertEqual(p.returncode, 2)
+        self.assertIn("bad.yaml:4: unknown key 'speed' in base", p.stdout.decode())
+        self.assertFalse(os.path.exists(out))
+
+    def test_dry_run(self):
+        env = dict(os.environ, PATH='/usr/bin:' + os.environ.get('PATH', ''))
+        p = subprocess.run(['rosrun', 'tianracer_bringup', 'batch', os.path.join(DATA, 'four_runs.yaml'),
+                            '--dry-run', '--limit', '3', '--duration', '2'], env=env,
+                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=60)
+        text = p.stdout.decode()
+        self.assertEqual(p.returncode, 0, text)
+        self.assertIn('four_runs: 3 run(s) of 4', text)
+        self.assertIn('run_002  driver.args.speed=1.0, spawn.x=0.0', text)
+        self.assertIn('2 s', text)
+
+
+if __name__ == '__main__':
+    unittest.main()
