@@ -256,6 +256,10 @@ void validate(const RaySensorConfig& c) {
     throw SensorError(what + ": noise <stddev> must be >= 0 (got " + fmt(c.noise.stddev) + ")");
 }
 
+std::vector<SensorTopic> publishedTopics(const RaySensorConfig& c) {
+  return {{resolveTopic(c.robot_namespace, c.topic_name), "sensor_msgs/LaserScan", c.update_rate}};
+}
+
 void applyRangeModel(const RaySensorConfig& c, std::mt19937_64& rng, float* ranges, int n) {
   const float inf = std::numeric_limits<float>::infinity();
   const bool noisy = c.noise.enabled();

@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "tianracer_sim/model/robot_model.h"  // SensorSpec, WarningSink
+#include "tianracer_sim/model/sensor_topics.h"
 
 namespace tianracer_sim {
 
@@ -69,6 +70,10 @@ RaySensorConfig parseRaySensorConfig(const SensorSpec& spec, const WarningSink& 
 /// samples <= 0, resolution <= 0, min_angle > max_angle, range_min < 0, range_min >= range_max,
 /// range_resolution < 0, update_rate < 0, noise stddev < 0, or the noise type is unknown.
 void validate(const RaySensorConfig& config);
+
+/// What gazebo_ros_laser publishes: sensor_msgs/LaserScan on <robotNamespace>/<topicName> at
+/// the sensor rate.
+std::vector<SensorTopic> publishedTopics(const RaySensorConfig& config);
 
 class RayCaster;
 struct Scene;
