@@ -7,6 +7,7 @@
 
 #include "tianracer_sim/lidar/ray_sensor.h"
 #include "tianracer_sim/render/camera_sensor.h"
+#include "tianracer_sim/sensors/imu_sensor.h"
 
 namespace tianracer_sim {
 namespace {
@@ -55,6 +56,16 @@ std::vector<SensorTopic> depthCameraTopics(const SensorSpec& sensor, const std::
            c.publishRate()}};
 }
 
+std::vector<SensorTopic> imuTopics(const SensorSpec& sensor, const std::string& model_name,
+                                   const WarningSink& warn) {
+  return publishedTopics(parseImuSensorConfig(sensor, model_name, warn));
+}
+
+std::vector<SensorTopic> imuPluginTopics(const SensorSpec& sensor, const std::string& model_name,
+                                         const WarningSink& warn) {
+  return publishedTopics(parseImuPluginConfig(sensor, model_name, warn));
+}
+
 }  // namespace
 
 const std::vector<SensorKind>& sensorKinds() {
@@ -65,6 +76,8 @@ const std::vector<SensorKind>& sensorKinds() {
       {"camera", {"camera"}, {"libgazebo_ros_camera.so"}, &cameraTopics},
       {"depth_camera", {"depth"},
        {"libgazebo_ros_openni_kinect.so", "libgazebo_ros_depth_camera.so"}, &depthCameraTopics},
+      {"imu", {"imu"}, {"libgazebo_ros_imu_sensor.so"}, &imuTopics},
+      {"imu_plugin", {}, {"libgazebo_ros_imu.so"}, &imuPluginTopics},
   };
   return kinds;
 }

@@ -27,6 +27,8 @@ std::unique_ptr<SensorPublisher> makeSensorPublisher(const SensorKind& kind,
       {"lidar", &makeLidarPublisher},
       {"camera", &makeCameraPublisher},
       {"depth_camera", &makeDepthCameraPublisher},
+      {"imu", &makeImuPublisher},
+      {"imu_plugin", &makeImuPluginPublisher},
   };
   const auto it = factories.find(kind.id);
   if (it == factories.end())
