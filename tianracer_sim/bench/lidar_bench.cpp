@@ -89,6 +89,7 @@ struct Trial {
   double build_ms = 0.0;
   double best_s_per_scan = 1e9;
   long finite = 0, total = 0;
+  RayScanBuffers buffers;  // beam directions, reused across rounds
 };
 
 const std::vector<Eigen::Isometry3d>& trackPoses() {
@@ -109,7 +110,7 @@ void runRound(Trial& t, int scans, const std::vector<int>& car, std::mt19937_64&
   for (int i = 0; i < scans; ++i) {
     if (t.with_car)
       for (int b : car) t.scene.bodies[b].X_WB.translation().x() += 1e-6;
-    t.caster->scan(t.scene, poses[i % poses.size()], c, rng, &ranges);
+    scanRays(*t.caster, t.scene, poses[i % poses.size()], c, rng, &t.buffers, &ranges);
     for (float r : ranges) t.finite += std::isfinite(r);
     t.total += ranges.size();
   }

@@ -8,7 +8,6 @@
 
 #include <embree3/rtcore.h>
 
-#include "tianracer_sim/lidar/ray_sensor.h"
 #include "tianracer_sim/mesh/mesh_loader.h"
 
 namespace tianracer_sim {
@@ -363,9 +362,6 @@ struct RayCaster::Impl {
   std::string last_error;
 
   // Scan buffers, reused.
-  std::vector<Eigen::Vector3d> dirs_S;
-  double dirs_min = 0.0, dirs_inc = 0.0;
-  std::vector<Eigen::Vector3f> dirs_W;
   std::vector<RTCRayHit> stream;
 
   Impl() {
@@ -662,41 +658,6 @@ void RayCaster::castRays(const Eigen::Vector3d& origin_W,
       break;
     }
   }
-}
-
-std::vector<float> RayCaster::scan(const Scene& scene, const Eigen::Isometry3d& X_WS,
-                                   const RaySensorConfig& config, std::mt19937_64& rng,
-                                   int ignore_body) {
-  std::vector<float> ranges;
-  scan(scene, X_WS, config, rng, &ranges, ignore_body);
-  return ranges;
-}
-
-void RayCaster::scan(const Scene& scene, const Eigen::Isometry3d& X_WS,
-                     const RaySensorConfig& config, std::mt19937_64& rng,
-                     std::vector<float>* ranges, int ignore_body) {
-  Impl& m = *impl_;
-  update(scene, ignore_body);
-  const int n = std::max(0, config.samples);
-  ranges->resize(n);
-  const double inc = config.angleIncrement();
-  if (static_cast<int>(m.dirs_S.size()) != n || m.dirs_min != config.min_angle ||
-      m.dirs_inc != inc) {
-    m.dirs_S.resize(n);
-    for (int i = 0; i < n; ++i) {
-      const double a = config.angle(i);
-      m.dirs_S[i] = Eigen::Vector3d(std::cos(a), std::sin(a), 0.0);
-    }
-    m.dirs_min = config.min_angle;
-    m.dirs_inc = inc;
-  }
-  m.dirs_W.resize(n);
-  const Eigen::Matrix3d R_WS = X_WS.linear();
-  for (int i = 0; i < n; ++i) m.dirs_W[i] = (R_WS * m.dirs_S[i]).cast<float>();
-  // Look a little past range_max: anything there maps to +inf anyway.
-  const float t_max = static_cast<float>(config.range_max * (1.0 + 1e-6) + 1e-6);
-  castRays(X_WS.translation(), m.dirs_W, t_max, ranges->data());
-  applyRangeModel(config, rng, ranges->data(), n);
 }
 
 std::size_t RayCaster::triangleCount() const { return impl_->n_triangles; }

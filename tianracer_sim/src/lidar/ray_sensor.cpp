@@ -256,6 +256,10 @@ void validate(const RaySensorConfig& c) {
     throw SensorError(what + ": noise <stddev> must be >= 0 (got " + fmt(c.noise.stddev) + ")");
 }
 
+std::vector<SensorTopic> publishedTopics(const RaySensorConfig& c) {
+  return {{resolveTopic(c.robot_namespace, c.topic_name), "sensor_msgs/LaserScan", c.update_rate}};
+}
+
 void applyRangeModel(const RaySensorConfig& c, std::mt19937_64& rng, float* ranges, int n) {
   const float inf = std::numeric_limits<float>::infinity();
   const bool noisy = c.noise.enabled();
@@ -278,9 +282,45 @@ RaySensor::RaySensor(RaySensorConfig config) : config_(std::move(config)), rng_(
   ranges_.reserve(config_.samples);
 }
 
+void scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,
+              const RaySensorConfig& config, std::mt19937_64& rng, RayScanBuffers* buffers,
+              std::vector<float>* ranges, int ignore_body) {
+  RayScanBuffers& b = *buffers;
+  caster.update(scene, ignore_body);
+  const int n = std::max(0, config.samples);
+  ranges->resize(n);
+  const double inc = config.angleIncrement();
+  if (static_cast<int>(b.dirs_S.size()) != n || b.dirs_min != config.min_angle ||
+      b.dirs_inc != inc) {
+    b.dirs_S.resize(n);
+    for (int i = 0; i < n; ++i) {
+      const double a = config.angle(i);
+      b.dirs_S[i] = Eigen::Vector3d(std::cos(a), std::sin(a), 0.0);
+    }
+    b.dirs_min = config.min_angle;
+    b.dirs_inc = inc;
+  }
+  b.dirs_W.resize(n);
+  const Eigen::Matrix3d R_WS = X_WS.linear();
+  for (int i = 0; i < n; ++i) b.dirs_W[i] = (R_WS * b.dirs_S[i]).cast<float>();
+  // Look a little past range_max: anything there maps to +inf anyway.
+  const float t_max = static_cast<float>(config.range_max * (1.0 + 1e-6) + 1e-6);
+  caster.castRays(X_WS.translation(), b.dirs_W, t_max, ranges->data());
+  applyRangeModel(config, rng, ranges->data(), n);
+}
+
+std::vector<float> scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,
+                            const RaySensorConfig& config, std::mt19937_64& rng,
+                            int ignore_body) {
+  RayScanBuffers buffers;
+  std::vector<float> ranges;
+  scanRays(caster, scene, X_WS, config, rng, &buffers, &ranges, ignore_body);
+  return ranges;
+}
+
 const std::vector<float>& RaySensor::scan(RayCaster& caster, const Scene& scene,
                                           const Eigen::Isometry3d& X_WL, int own_body) {
-  caster.scan(scene, X_WL * config_.X_LS, config_, rng_, &ranges_, own_body);
+  scanRays(caster, scene, X_WL * config_.X_LS, config_, rng_, &buffers_, &ranges_, own_body);
   return ranges_;
 }
 

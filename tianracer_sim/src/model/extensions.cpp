@@ -147,6 +147,8 @@ SensorSpec parseSensor(const XMLElement* e, const std::string& link, const std::
   if (s.type.empty()) throw ModelError(mi::at(source, e) + what + " has no type");
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
+    // A bad value of the sensor's own tags leaves this sensor out, not the robot.
+    try {
     if (tag == "pose") {
       bool ok = false;
       const auto v = numbers(text(c), &ok);
@@ -164,6 +166,10 @@ SensorSpec parseSensor(const XMLElement* e, const std::string& link, const std::
       s.always_on = toBool(c, what, source);
     } else if (tag == "plugin") {
       s.plugins.push_back(parsePlugin(c, source));
+    }
+    } catch (const ModelError& err) {
+      if (tag == "plugin") throw;
+      if (s.error.empty()) s.error = err.what();
     }
     // Everything else (ray, camera, noise, visualize, ...) belongs to the sensor loaders, which
     // read it from `xml` and report what they do not support.

@@ -13,11 +13,10 @@
 #include <tianracer_control/frames.h>
 
 #include "tianracer_sim/model/sensor_topics.h"
+#include "tianracer_sim/sensors/sensor_registry.h"
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/TransformStamped.h>
 
-#include "tianracer_sim/ros/camera_msgs.h"
-#include "tianracer_sim/ros/laser_msgs.h"
 #include "tianracer_sim/sim/world_physics.h"
 #include "tianracer_sim/ros/controller_params.h"
 #include "tianracer_sim/ros/state_msgs.h"
@@ -25,20 +24,6 @@
 namespace tianracer_sim {
 
 namespace tc = tianracer_control;
-
-bool Schedule::due(double t) {
-  if (t + 1e-9 < next) return false;
-  if (period <= 0.0) {
-    next = t;
-    return true;
-  }
-  // Keep the nominal grid (a 30 Hz camera on 1 ms steps fires at 34, 67, 100 ms: 30 Hz on
-  // average); only when more than a period behind (a pause, a reset) restart from now, so
-  // that nothing bursts to catch up.
-  next += period;
-  if (next <= t) next = t + period;
-  return true;
-}
 
 namespace {
 
@@ -285,7 +270,6 @@ void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name
 
 void SimNode::setUpSensors(size_t robot_index, const ros::NodeHandle& rp) {
   RobotIo& io = robots_[robot_index];
-  const PhysicsRobot& pr = sim_->physics().robot(io.robot->id);
   bool given = false;
   std::vector<std::string> disabled = getNameList(rp, "disable_sensors", &given);
   if (!given) disabled = getNameList(pnh_, "disable_sensors", &given);
@@ -297,44 +281,71 @@ void SimNode::setUpSensors(size_t robot_index, const ros::NodeHandle& rp) {
                  spec.type.c_str(), link.c_str());
         continue;
       }
-      if (spec.type == "camera" || spec.type == "depth") {
-        setUpCamera(robot_index, link, spec);
-        continue;
-      }
-      if (spec.type != "ray") {
-        warnOnce("robot '" + io.robot->name + "': sensor '" + spec.name + "' of type '" +
-                 spec.type + "' is not supported; left out");
-        continue;
-      }
-      // A bad sensor is reported and left out; the robot and the other sensors run on.
-      try {
-        RaySensorConfig config = parseRaySensorConfig(spec, [](const std::string& w) { warnOnce(w); });
-        config.seed = seed_ + lidars_.size();
-        config.frame_name = tc::resolveFrame(io.tf_prefix, config.frame_name);
-        LidarIo lidar;
-        lidar.robot = robot_index;
-        lidar.sensor = std::make_unique<RaySensor>(config);
-        (void)pr.linkPose(link);  // throws for a sensor on an unknown link
-        for (const auto& [body, body_link] : io.scene_bodies.links) {
-          if (body_link == link) lidar.own_body = body;
-        }
-        ros::NodeHandle root;
-        root.setCallbackQueue(&queue_);
-        const std::string topic = resolveTopic(config.robot_namespace, config.topic_name);
-        claimTopic(topic, "robot '" + io.robot->name + "' sensor '" + spec.name + "'");
-        lidar.pub = root.advertise<sensor_msgs::LaserScan>(topic, 5);
-        lidar.schedule.period = config.update_rate > 0.0 ? 1.0 / config.update_rate : 0.0;
-        ROS_INFO("lidar '%s' on link %s: %d beams, %.4g..%.4g rad, %g Hz on %s (frame %s)",
-                 config.name.c_str(), link.c_str(), config.samples, config.min_angle,
-                 config.max_angle, config.update_rate, topic.c_str(), config.frame_name.c_str());
-        lidars_.push_back(std::move(lidar));
-        lidars_.back().stat = stats_.size();
-        stats_.push_back({topic, config.update_rate, 0, 0});
-      } catch (const std::exception& e) {
-        ROS_ERROR("robot '%s': sensor '%s' on link '%s' left out: %s", io.robot->name.c_str(),
-                  spec.name.c_str(), link.c_str(), e.what());
-      }
+      setUpSensor(robot_index, spec);
     }
+  }
+  // Model plugins that publish like sensors (an IMU plugin, ground truth) go the same way.
+  for (const PluginSpec& plugin : io.robot->model.ext.model_plugins) {
+    const SensorSpec spec = modelPluginSensor(plugin);
+    if (!findSensorKind(spec)) continue;
+    if (std::find(disabled.begin(), disabled.end(), spec.name) != disabled.end()) {
+      ROS_INFO("plugin '%s' (%s) disabled by ~disable_sensors", spec.name.c_str(),
+               plugin.filename.c_str());
+      continue;
+    }
+    setUpSensor(robot_index, spec);
+  }
+}
+
+void SimNode::setUpSensor(size_t robot_index, const SensorSpec& spec) {
+  RobotIo& io = robots_[robot_index];
+  const PhysicsRobot& pr = sim_->physics().robot(io.robot->id);
+  const std::string what = spec.type.empty() ? "plugin" : "sensor";
+  if (!spec.error.empty()) {
+    ROS_ERROR("robot '%s': %s '%s' left out: %s", io.robot->name.c_str(), what.c_str(),
+              spec.name.c_str(), spec.error.c_str());
+    return;
+  }
+  const SensorKind* kind = findSensorKind(spec);
+  if (!kind) {
+    warnOnce("robot '" + io.robot->name + "': sensor '" + spec.name + "' of type '" + spec.type +
+             "' is not supported; left out");
+    return;
+  }
+  ros::NodeHandle root;
+  root.setCallbackQueue(&queue_);
+  SensorSetup setup;
+  setup.spec = &spec;
+  setup.robot = robot_index;
+  setup.robot_name = io.robot->name;
+  setup.tf_prefix = io.tf_prefix;
+  for (const auto& [body, body_link] : io.scene_bodies.links) {
+    if (body_link == spec.link) setup.own_body = body;
+  }
+  setup.seed = seed_;
+  setup.index = sensors_of_kind_[kind->id];
+  setup.gravity = sim_->physics().options().gravity;
+  setup.root = root;
+  setup.static_tf = &static_tf_;
+  setup.warn = [](const std::string& w) { warnOnce(w); };
+  setup.check_link = [&pr](const std::string& l) { (void)pr.linkPose(l); };
+  setup.claim_topic = [this](const std::string& topic, const std::string& owner) {
+    claimTopic(topic, owner);
+  };
+  setup.renderer = [this]() { return ensureRenderer() ? renderer_.get() : nullptr; };
+  setup.add_stat = [this](const std::string& name, double target) {
+    stats_.push_back({name, target, 0, 0});
+    return stats_.size() - 1;
+  };
+  // A bad sensor is reported and left out; the robot and the other sensors run on.
+  try {
+    std::unique_ptr<SensorPublisher> sensor = makeSensorPublisher(*kind, setup);
+    if (!sensor) return;
+    sensors_.push_back(std::move(sensor));
+    ++sensors_of_kind_[kind->id];
+  } catch (const std::exception& e) {
+    ROS_ERROR("robot '%s': %s '%s' on link '%s' left out: %s", io.robot->name.c_str(),
+              what.c_str(), spec.name.c_str(), spec.link.c_str(), e.what());
   }
 }
 
@@ -361,180 +372,35 @@ bool SimNode::ensureRenderer() {
   }
 }
 
-void SimNode::setUpCamera(size_t robot_index, const std::string& link, const SensorSpec& spec) {
-  RobotIo& io = robots_[robot_index];
-  try {
-    (void)sim_->physics().robot(io.robot->id).linkPose(link);  // throws for an unknown link
-    const auto warn = [](const std::string& w) { warnOnce(w); };
-    // Parse first: a bad sensor is reported even when there is no renderer.
-    CameraConfig camera;
-    DepthCameraConfig depth;
-    if (spec.type == "camera") {
-      camera = parseCameraConfig(spec, warn);
-    } else {
-      depth = parseDepthCameraConfig(spec, warn);
-      camera = depth.camera;
-    }
-    if (!camera.has_plugin) {
-      warnOnce("robot '" + io.robot->name + "': camera '" + spec.name +
-               "' has no gazebo_ros plugin: nothing to publish, left out");
-      return;
-    }
-    if (!ensureRenderer()) return;
-    camera.frame_name = tc::resolveFrame(io.tf_prefix, camera.frame_name);
-    depth.camera.frame_name = camera.frame_name;
-    ros::NodeHandle cam_nh(resolveTopic(camera.robot_namespace, camera.camera_name));
-    claimTopic(cam_nh.getNamespace(), "robot '" + io.robot->name + "' camera '" + spec.name + "'");
-    cam_nh.setCallbackQueue(&queue_);
-
-    // The optical frame (z forward, x right, y down) that images are stamped with.
-    geometry_msgs::TransformStamped tf;
-    tf.header.frame_id = tc::resolveFrame(io.tf_prefix, link);
-    tf.child_frame_id = camera.opticalFrame();
-    const Eigen::Isometry3d X_LO = camera.X_LO();
-    const Eigen::Quaterniond q(X_LO.linear());
-    tf.transform.translation.x = X_LO.translation().x();
-    tf.transform.translation.y = X_LO.translation().y();
-    tf.transform.translation.z = X_LO.translation().z();
-    tf.transform.rotation.x = q.x();
-    tf.transform.rotation.y = q.y();
-    tf.transform.rotation.z = q.z();
-    tf.transform.rotation.w = q.w();
-    static_tf_.sendTransform(tf);
-
-    if (spec.type == "camera") {
-      camera.noise_seed = camera.noise_seed ? camera.noise_seed : static_cast<uint32_t>(seed_ + 101 + cameras_.size());
-      CameraIo c;
-      c.robot = robot_index;
-      c.sensor = std::make_unique<CameraSensor>(camera, *renderer_);
-      c.image = cam_nh.advertise<sensor_msgs::Image>(camera.image_topic, 2);
-      c.info = cam_nh.advertise<sensor_msgs::CameraInfo>(camera.camera_info_topic, 2);
-      c.schedule.period = camera.publishRate() > 0.0 ? 1.0 / camera.publishRate() : 0.0;
-      c.stat = stats_.size();
-      stats_.push_back({c.image.getTopic(), camera.publishRate(), 0, 0});
-      ROS_INFO("camera '%s' on link %s: %dx%d, hfov %.4g, %g Hz on %s (frame %s)",
-               camera.name.c_str(), link.c_str(), camera.width, camera.height,
-               camera.horizontal_fov, camera.publishRate(), c.image.getTopic().c_str(),
-               camera.opticalFrame().c_str());
-      cameras_.push_back(std::move(c));
-    } else {
-      depth.camera.noise_seed = depth.camera.noise_seed ? depth.camera.noise_seed : static_cast<uint32_t>(seed_ + 201 + depth_cameras_.size());
-      DepthIo d;
-      d.robot = robot_index;
-      d.sensor = std::make_unique<DepthCameraSensor>(depth, *renderer_);
-      d.image = cam_nh.advertise<sensor_msgs::Image>(camera.image_topic, 2);
-      d.depth = cam_nh.advertise<sensor_msgs::Image>(depth.depth_image_topic, 2);
-      d.cloud = cam_nh.advertise<sensor_msgs::PointCloud2>(depth.point_cloud_topic, 2);
-      d.image_info = cam_nh.advertise<sensor_msgs::CameraInfo>(camera.camera_info_topic, 2);
-      d.depth_info = cam_nh.advertise<sensor_msgs::CameraInfo>(depth.depth_camera_info_topic, 2);
-      // openni_kinect: images at the sensor rate, camera_infos at the plugin's updateRate.
-      d.schedule.period = camera.update_rate > 0.0 ? 1.0 / camera.update_rate : 0.0;
-      d.info_schedule.period = camera.publishRate() > 0.0 ? 1.0 / camera.publishRate() : 0.0;
-      d.stat = stats_.size();
-      stats_.push_back({d.image.getTopic(), camera.update_rate, 0, 0});
-      ROS_INFO("depth camera '%s' on link %s: %dx%d, %g Hz images/cloud, %g Hz camera_info under "
-               "%s (frame %s)",
-               camera.name.c_str(), link.c_str(), camera.width, camera.height, camera.update_rate,
-               camera.publishRate(), cam_nh.getNamespace().c_str(), camera.opticalFrame().c_str());
-      depth_cameras_.push_back(std::move(d));
-    }
-  } catch (const std::exception& e) {
-    ROS_ERROR("robot '%s': sensor '%s' on link '%s' left out: %s", io.robot->name.c_str(),
-              spec.name.c_str(), link.c_str(), e.what());
-  }
-}
-
-void SimNode::publishCameras(double t, const ros::Time& stamp) {
-  // What is due and wanted is decided here, at the step; the frames are rendered and
-  // published on the frame worker from a snapshot of this step's scene (frame_worker.h).
-  due_frames_.cameras.clear();
-  due_frames_.depths.clear();
-  for (size_t k = 0; k < cameras_.size(); ++k) {
-    CameraIo& c = cameras_[k];
-    if (!c.schedule.due(t)) continue;
-    if (c.image.getNumSubscribers() > 0) {
-      due_frames_.cameras.push_back({k, sim_->physics().robot(robots_[c.robot].robot->id)
-                                            .linkPose(c.sensor->config().link), {}});
-      ++stats_[c.stat].count;
-      ++stats_[c.stat].renders;
-    } else {
-      ++stats_[c.stat].skipped;
-    }
-    if (c.info.getNumSubscribers() > 0) {
-      toCameraInfo(c.sensor->info(), stamp, &c.info_msg);
-      c.info.publish(c.info_msg);
-    }
-  }
-  for (size_t k = 0; k < depth_cameras_.size(); ++k) {
-    DepthIo& d = depth_cameras_[k];
-    if (d.schedule.due(t)) {
-      DepthOutputs want;
-      want.image = d.image.getNumSubscribers() > 0;
-      want.depth = d.depth.getNumSubscribers() > 0;
-      want.cloud = d.cloud.getNumSubscribers() > 0;
-      if (want.image || want.depth || want.cloud) {
-        due_frames_.depths.push_back({k, sim_->physics().robot(robots_[d.robot].robot->id)
-                                             .linkPose(d.sensor->config().camera.link), want});
-        ++stats_[d.stat].count;
-        ++stats_[d.stat].renders;
-      } else {
-        ++stats_[d.stat].skipped;
-      }
-    }
-    if (d.info_schedule.due(t) &&
-        (d.image_info.getNumSubscribers() > 0 || d.depth_info.getNumSubscribers() > 0)) {
-      toCameraInfo(d.sensor->info(), stamp, &d.info_msg);
-      d.image_info.publish(d.info_msg);
-      d.depth_info.publish(d.info_msg);
-    }
-  }
-  if (due_frames_.cameras.empty() && due_frames_.depths.empty()) return;
+void SimNode::submitFrames(const ros::Time& stamp) {
+  // What is due and wanted was decided at the step; the frames are rendered and published on
+  // the frame worker from a snapshot of this step's scene (frame_worker.h).
+  if (due_frames_.frames.empty()) return;
   updateScene();
   if (!camera_worker_) {
-    camera_worker_ = std::make_unique<FrameWorker<CameraJob>>([this](CameraJob& job) {
+    camera_worker_ = std::make_unique<FrameWorker<FrameJob>>([this](FrameJob& job) {
       try {
-        renderCameras(job);
+        for (const FrameRequest& f : job.frames) f.sensor->renderFrame(render_scene_, f, job.stamp);
       } catch (const std::exception& e) {
         ROS_ERROR_STREAM_THROTTLE(10.0, "camera frame not published: " << e.what());
       }
     });
   }
-  camera_worker_->submit([&](CameraJob& job) {
+  camera_worker_->submit([&](FrameJob& job) {
     job.stamp = stamp;
-    std::swap(job.cameras, due_frames_.cameras);
-    std::swap(job.depths, due_frames_.depths);
+    job.frames.clear();
+    std::swap(job.frames, due_frames_.frames);
     snapshotScene(scene_, &render_scene_);
   });
 }
 
-void SimNode::renderCameras(CameraJob& job) {
-  for (const CameraJob::Camera& f : job.cameras) {
-    CameraIo& c = cameras_[f.index];
-    c.sensor->render(render_scene_, f.X_WL);
-    toImage(*c.sensor, job.stamp, &c.image_msg);
-    c.image.publish(c.image_msg);
-  }
-  for (const CameraJob::Camera& f : job.depths) {
-    DepthIo& d = depth_cameras_[f.index];
-    // The cloud is not built by the sensor but written by it into the serialisation buffer.
-    DepthOutputs render = f.want;
-    render.image = f.want.image || f.want.cloud;
-    render.depth = f.want.depth || f.want.cloud;
-    render.cloud = false;
-    d.sensor->render(render_scene_, f.X_WL, render);
-    if (f.want.image) {
-      toImage(*d.sensor, job.stamp, &d.image_msg);
-      d.image.publish(d.image_msg);
-    }
-    if (f.want.depth) {
-      toDepthImage(*d.sensor, job.stamp, &d.depth_msg);
-      d.depth.publish(d.depth_msg);
-    }
-    if (f.want.cloud) {
-      toPointCloud2Deferred(*d.sensor, job.stamp, &d.cloud_msg);
-      d.cloud.publish(d.cloud_msg);
-    }
-  }
+const Scene& SimNode::scene() {
+  updateScene();
+  return scene_;
+}
+
+Eigen::Isometry3d SimNode::linkPose(std::size_t robot, const std::string& link) const {
+  return sim_->physics().robot(robots_[robot].robot->id).linkPose(link);
 }
 
 void SimNode::publishStatus() {
@@ -705,36 +571,14 @@ void SimNode::publishDue() {
           toGroundTruth(pr.basePose(), pr.baseTwist(), stamp, "world", io.base_frame));
     }
   }
-  for (LidarIo& lidar : lidars_) {
-    // The schedule runs whether or not anyone listens, so a new subscriber gets the rate.
-    if (!lidar.schedule.due(t)) continue;
-    if (lidar.pub.getNumSubscribers() == 0) {
-      ++stats_[lidar.stat].skipped;
-      continue;
-    }
-    updateScene();
-    const RobotIo& io = robots_[lidar.robot];
-    const auto& config = lidar.sensor->config();
-    const std::vector<float>& ranges = lidar.sensor->scan(
-        caster_, scene_, sim_->physics().robot(io.robot->id).linkPose(config.link),
-        lidar.own_body);
-    toLaserScan(config, ranges, stamp, &lidar.msg);
-    lidar.pub.publish(lidar.msg);
-    ++stats_[lidar.stat].count;
-    ++stats_[lidar.stat].renders;
-  }
-  publishCameras(t, stamp);
+  for (const auto& sensor : sensors_) sensor->step(t, stamp, *this);
+  submitFrames(stamp);
 }
 
 void SimNode::restartSchedules() {
   const double t = sim_->time();
   clock_schedule_.restart(t);
-  for (LidarIo& lidar : lidars_) lidar.schedule.restart(t);
-  for (CameraIo& c : cameras_) c.schedule.restart(t);
-  for (DepthIo& d : depth_cameras_) {
-    d.schedule.restart(t);
-    d.info_schedule.restart(t);
-  }
+  for (const auto& sensor : sensors_) sensor->restart(t);
   for (RobotIo& io : robots_) {
     for (JointStateStream& s : io.joint_states) s.schedule.restart(t);
     io.ground_truth_schedule.restart(t);

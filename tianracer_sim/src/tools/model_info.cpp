@@ -8,7 +8,7 @@
 #include <ros/package.h>
 
 #include "tianracer_sim/model/robot_model.h"
-#include "tianracer_sim/model/sensor_topics.h"
+#include "tianracer_sim/sensors/sensor_registry.h"
 
 int main(int argc, char** argv) {
   std::string path;

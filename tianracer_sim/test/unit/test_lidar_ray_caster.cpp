@@ -194,7 +194,7 @@ TEST_P(RayCasterModes, SquareRoomEveryBeamIncludingCorners) {
   RayCaster caster(options());
   const RaySensorConfig c = seedConfig();
   std::mt19937_64 rng(1);
-  const std::vector<float> r = caster.scan(scene, pose(0, 0, 0.3), c, rng);
+  const std::vector<float> r = scanRays(caster, scene, pose(0, 0, 0.3), c, rng);
   ASSERT_EQ(r.size(), 1081u);
   for (int i = 0; i < c.samples; ++i) {
     const double a = c.angle(i);
@@ -231,7 +231,7 @@ TEST_P(RayCasterModes, ClutteredRoomMatchesExactGeometry) {
   std::mt19937_64 rng(1);
   for (const Eigen::Isometry3d& X_WS :
        {pose(0.13, -0.07, 0.3, 0.37), pose(-1.4, 1.5, 0.6, -2.2), pose(1.8, -1.2, 0.2, 2.9)}) {
-    const std::vector<float> r = caster.scan(scene, X_WS, c, rng);
+    const std::vector<float> r = scanRays(caster, scene, X_WS, c, rng);
     expectScanMatchesReference(scene, X_WS, c, r, tolerance());
   }
 }
@@ -249,7 +249,7 @@ TEST_P(RayCasterModes, GrazingConvexCorners) {
   const RaySensorConfig c = seedConfig();
   std::mt19937_64 rng(1);
   const Eigen::Isometry3d X_WS = pose(0, 0, 0.5);
-  const std::vector<float> r = caster.scan(scene, X_WS, c, rng);
+  const std::vector<float> r = scanRays(caster, scene, X_WS, c, rng);
   EXPECT_NEAR(r[540], 3.0, 1e-5);
   EXPECT_NEAR(r[541], 1.0 / std::cos(c.angle(541)), 1e-5);
   EXPECT_NEAR(r[539], 1.0 / std::cos(c.angle(539)), 1e-5);
@@ -279,22 +279,22 @@ TEST(RayCaster, RangeLimitsMapToInfinity) {
   RaySensorConfig c = seedConfig();
   std::mt19937_64 rng(1);
   // 5 cm from the east wall: beam 540 (0 deg) reads below range_min.
-  std::vector<float> r = caster.scan(scene, pose(1.95, 0, 0.5), c, rng);
+  std::vector<float> r = scanRays(caster, scene, pose(1.95, 0, 0.5), c, rng);
   EXPECT_EQ(r[540], -std::numeric_limits<float>::infinity());
   EXPECT_NEAR(r[1080], 2.0 * std::sqrt(2.0), 1.0);  // other beams are finite
   EXPECT_TRUE(std::isfinite(r[1080]));
   // range_max 1.5 in a 4 m room: every beam from the centre is out of range.
   c.range_max = 1.5;
-  r = caster.scan(scene, pose(0, 0, 0.5), c, rng);
+  r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
   for (float v : r) EXPECT_EQ(v, std::numeric_limits<float>::infinity());
   // Just inside range_max is kept.
   c.range_max = 2.001;
-  r = caster.scan(scene, pose(0, 0, 0.5), c, rng);
+  r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
   EXPECT_NEAR(r[540], 2.0, 1e-5);
   // An empty scene: nothing to hit.
   Scene empty;
   RayCaster empty_caster;
-  r = empty_caster.scan(empty, pose(0, 0, 0.5), seedConfig(), rng);
+  r = scanRays(empty_caster, empty, pose(0, 0, 0.5), seedConfig(), rng);
   for (float v : r) EXPECT_EQ(v, std::numeric_limits<float>::infinity());
 }
 
@@ -307,10 +307,10 @@ TEST(RayCaster, SensorFarOutsideTheWorldSeesNothing) {
   const RaySensorConfig c = seedConfig();
   std::mt19937_64 rng(1);
   for (double x : {1e30, -1e30, 1e19, std::numeric_limits<double>::quiet_NaN(), kInf}) {
-    const std::vector<float> r = caster.scan(scene, pose(x, 0, 0.5), c, rng);
+    const std::vector<float> r = scanRays(caster, scene, pose(x, 0, 0.5), c, rng);
     for (float v : r) EXPECT_EQ(v, std::numeric_limits<float>::infinity()) << x;
   }
-  EXPECT_NEAR(caster.scan(scene, pose(0, 0, 0.5), c, rng)[540], 2.0, 0.05);  // still works
+  EXPECT_NEAR(scanRays(caster, scene, pose(0, 0, 0.5), c, rng)[540], 2.0, 0.05);  // still works
 }
 
 TEST(RayCaster, RangeModelClampsNoise) {
@@ -395,17 +395,17 @@ TEST(RayCaster, MovingBodyIsSeenByTheNextScan) {
   RayCaster caster;
   const RaySensorConfig c = seedConfig();
   std::mt19937_64 rng(1);
-  std::vector<float> r = caster.scan(scene, pose(0, 0, 0.5), c, rng);
+  std::vector<float> r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
   EXPECT_EQ(caster.movingBodyCount(), 1u);
   EXPECT_NEAR(r[540], 0.9, 1e-5);
   scene.bodies[b].X_WB = pose(2.0, 0, 0.5);
-  r = caster.scan(scene, pose(0, 0, 0.5), c, rng);
+  r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
   EXPECT_NEAR(r[540], 1.9, 1e-5);
   scene.bodies[b].X_WB = pose(1.0, 0, 0.5, M_PI / 2);  // turned: 0.5 deep, centre (1.0, 0.1)
-  r = caster.scan(scene, pose(0, 0, 0.5), c, rng);
+  r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
   EXPECT_NEAR(r[540], 0.75, 1e-5);
   scene.bodies[b].X_WB = pose(1.0, 2.0, 0.5);  // out of the beam: the wall again
-  r = caster.scan(scene, pose(0, 0, 0.5), c, rng);
+  r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
   EXPECT_NEAR(r[540], 3.0, 1e-5);
   expectScanMatchesReference(scene, pose(0, 0, 0.5), c, r, 1e-3);
 }
@@ -428,16 +428,16 @@ TEST(RayCaster, SensorSeesThroughItsOwnHousingButNotAnotherOne) {
   RayCaster caster;
   const RaySensorConfig c = seedConfig();  // beam 540 along +x, 1080 at +135 deg
   std::mt19937_64 rng(1);
-  std::vector<float> r = caster.scan(scene, pose(0, 0, 0.5), c, rng, housing[0]);
+  std::vector<float> r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng, housing[0]);
   EXPECT_NEAR(r[540], expected(c, 0.95), 1e-5);  // the other housing's near face
   EXPECT_NEAR(r[180], expected(c, 3.0), 1e-5);     // -90 deg: the room's wall
-  r = caster.scan(scene, pose(1, 0, 0.5, M_PI), c, rng, housing[1]);
+  r = scanRays(caster, scene, pose(1, 0, 0.5, M_PI), c, rng, housing[1]);
   EXPECT_NEAR(r[540], expected(c, 0.95), 1e-5);
   // Ignoring nothing, a sensor inside a housing sees its inside: closer than range_min.
-  r = caster.scan(scene, pose(0, 0, 0.5), c, rng);
+  r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
   EXPECT_EQ(r[540], -std::numeric_limits<float>::infinity());
   // And back to ignoring it (the masks are restored per scan).
-  r = caster.scan(scene, pose(0, 0, 0.5), c, rng, housing[0]);
+  r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng, housing[0]);
   EXPECT_NEAR(r[540], expected(c, 0.95), 1e-5);
 }
 
@@ -447,12 +447,12 @@ TEST(RayCaster, SceneChangesAreRebuiltAndStaticBodiesRead) {
   RayCaster caster;
   const RaySensorConfig c = seedConfig();
   std::mt19937_64 rng(1);
-  EXPECT_NEAR(caster.scan(scene, pose(0, 0, 0.5), c, rng)[540], 3.0, 1e-5);
+  EXPECT_NEAR(scanRays(caster, scene, pose(0, 0, 0.5), c, rng)[540], 3.0, 1e-5);
   const int b = addStatic(scene, "late");
   scene.items.push_back(boxItem(b, pose(1.5, 0, 0.5), {1.0, 1.0, 1.0}));
-  EXPECT_NEAR(caster.scan(scene, pose(0, 0, 0.5), c, rng)[540], 1.0, 1e-5);
+  EXPECT_NEAR(scanRays(caster, scene, pose(0, 0, 0.5), c, rng)[540], 1.0, 1e-5);
   scene.bodies[b].X_WB = pose(0.5, 0, 0);  // a static body moved (e.g. set_model_state)
-  EXPECT_NEAR(caster.scan(scene, pose(0, 0, 0.5), c, rng)[540], 1.5, 1e-5);
+  EXPECT_NEAR(scanRays(caster, scene, pose(0, 0, 0.5), c, rng)[540], 1.5, 1e-5);
 }
 
 TEST(RayCaster, GroundPlaneSphereAndTiltedSensor) {
@@ -476,7 +476,7 @@ TEST(RayCaster, GroundPlaneSphereAndTiltedSensor) {
     const RaySensorConfig c = seedConfig();
     std::mt19937_64 rng(1);
     // Pitched down 0.2 rad at 0.5 m: beam 540 meets the ground at 0.5 / sin(0.2).
-    std::vector<float> r = caster.scan(scene, pose(0, 0, 0.5, 0.0, 0.2), c, rng);
+    std::vector<float> r = scanRays(caster, scene, pose(0, 0, 0.5, 0.0, 0.2), c, rng);
     EXPECT_NEAR(r[540], 0.5 / std::sin(0.2), 1e-4);
     // A tilted plane (a ramp through x = 4, rising towards +x at 45 deg): the level beam at
     // 0 deg meets it at x = 4 + 0.5 -> 4.5 m. (Triangles at 1e4 m would be off here; kHybrid
@@ -490,11 +490,11 @@ TEST(RayCaster, GroundPlaneSphereAndTiltedSensor) {
       ramp.shape.normal = Eigen::Vector3d(-1, 0, 1).normalized();
       ramp_scene.items.push_back(ramp);
       RayCaster ramp_caster(o);
-      const std::vector<float> rr = ramp_caster.scan(ramp_scene, pose(0, 0, 0.5), c, rng);
+      const std::vector<float> rr = scanRays(ramp_caster, ramp_scene, pose(0, 0, 0.5), c, rng);
       EXPECT_NEAR(rr[540], 4.5, mode == PrimitiveMode::kTessellated ? 2e-3 : 1e-5);
     }
     // Level at the ball's centre height: beam at +90 deg (index 900) hits it at 1.5 m.
-    r = caster.scan(scene, pose(0, 0, 0.5), c, rng);
+    r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
     EXPECT_NEAR(r[900], 1.5, mode == PrimitiveMode::kTessellated ? 1e-3 : 1e-5);
     EXPECT_EQ(r[540], std::numeric_limits<float>::infinity());
   }

@@ -140,12 +140,18 @@ TEST(Extensions, SensorFields) {
               HasSubstr("sensor on link 'wheel' has no name"));
   EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><sensor name='x'/></gazebo>")),
               HasSubstr("sensor 'x' on link 'wheel' has no type"));
-  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><sensor name='x' type='ray'>"
-                            "<pose>0 0 0</pose></sensor></gazebo>")),
+  // A sensor's own bad values leave the sensor out (its error set), not the robot.
+  const auto sensorError = [&](const std::string& body) {
+    const auto e = p.parse(robot("<gazebo reference='wheel'><sensor name='x' type='ray'>" + body +
+                                 "</sensor></gazebo>"));
+    return e.links.at("wheel").sensors.at(0).error;
+  };
+  EXPECT_THAT(sensorError("<pose>0 0 0</pose>"),
               HasSubstr("sensor 'x' on link 'wheel': <pose> '0 0 0' is not 6 finite numbers"));
-  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><sensor name='x' type='ray'>"
-                            "<update_rate>-5</update_rate></sensor></gazebo>")),
+  EXPECT_THAT(sensorError("<update_rate>-5</update_rate>"),
               HasSubstr("<update_rate> value '-5' must be finite and >= 0"));
+  EXPECT_THAT(sensorError("<update_rate>nan</update_rate>"), HasSubstr("<update_rate> value 'nan'"));
+  EXPECT_EQ(sensorError("<update_rate>5</update_rate>"), "");
   EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><sensor name='x' type='ray'>"
                             "<plugin name='p'/></sensor></gazebo>")),
               HasSubstr("plugin 'p' has no filename"));

@@ -22,7 +22,6 @@
 
 #include <cstddef>
 #include <memory>
-#include <random>
 #include <stdexcept>
 #include <vector>
 
@@ -31,8 +30,6 @@
 #include "tianracer_sim/scene/scene.h"
 
 namespace tianracer_sim {
-
-struct RaySensorConfig;
 
 /// Embree failures and collision items that cannot be built (a mesh that does not load...).
 class RayCasterError : public std::runtime_error {
@@ -52,8 +49,9 @@ struct RayCasterOptions {
   double max_sagitta = 1e-4;  // m, tessellation error bound for cylinders and spheres
 };
 
-/// Not thread-safe: one caster per thread (each owns its Embree device and scenes). Rays start
-/// at the sensor origin (t = 0), so a surface closer than range_min reads -inf.
+/// Casts rays and nothing else: beam layout, range limits and noise belong to the sensor
+/// (RaySensor). Not thread-safe: one caster per thread (each owns its Embree device and
+/// scenes). Rays start at their origin (t = 0).
 class RayCaster {
  public:
   explicit RayCaster(RayCasterOptions options = {});
@@ -75,20 +73,9 @@ class RayCaster {
 
   /// Distance along each ray to the first collision surface in [0, t_max), or +inf.
   /// `directions` are unit vectors in the world frame, one result per direction. Call
-  /// update() (or scan()) first so that moving bodies are where the scene says.
+  /// update() first so that moving bodies are where the scene says.
   void castRays(const Eigen::Vector3d& origin_W, const std::vector<Eigen::Vector3f>& directions,
                 float t_max, float* distances);
-
-  /// A full scan per SPEC §5.1 from the sensor pose X_WS: beam i along
-  /// (cos a_i, sin a_i, 0) in the sensor frame, a_i = min_angle + i * increment, ranges from
-  /// the sensor origin, then applyRangeModel() (noise from `rng`). Updates the scene first.
-  /// `ignore_body` as for update().
-  std::vector<float> scan(const Scene& scene, const Eigen::Isometry3d& X_WS,
-                          const RaySensorConfig& config, std::mt19937_64& rng,
-                          int ignore_body = -1);
-  /// As above into `ranges` (resized to samples; no allocation once warm).
-  void scan(const Scene& scene, const Eigen::Isometry3d& X_WS, const RaySensorConfig& config,
-            std::mt19937_64& rng, std::vector<float>* ranges, int ignore_body = -1);
 
   /// Statistics of the last build.
   std::size_t triangleCount() const;

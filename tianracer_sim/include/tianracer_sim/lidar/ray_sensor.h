@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "tianracer_sim/model/robot_model.h"  // SensorSpec, WarningSink
+#include "tianracer_sim/model/sensor_topics.h"
 
 namespace tianracer_sim {
 
@@ -70,6 +71,10 @@ RaySensorConfig parseRaySensorConfig(const SensorSpec& spec, const WarningSink& 
 /// range_resolution < 0, update_rate < 0, noise stddev < 0, or the noise type is unknown.
 void validate(const RaySensorConfig& config);
 
+/// What gazebo_ros_laser publishes: sensor_msgs/LaserScan on <robotNamespace>/<topicName> at
+/// the sensor rate.
+std::vector<SensorTopic> publishedTopics(const RaySensorConfig& config);
+
 class RayCaster;
 struct Scene;
 
@@ -78,6 +83,26 @@ struct Scene;
 ///   else r + N(mean, stddev) clamped to [range_min, range_max] (noise enabled), r otherwise.
 /// Noise is drawn only for in-range beams, in beam order, from `rng`.
 void applyRangeModel(const RaySensorConfig& config, std::mt19937_64& rng, float* ranges, int n);
+
+/// Reused buffers of a scan: beam directions in the sensor frame (recomputed only when the
+/// beam layout changes) and in the world frame.
+struct RayScanBuffers {
+  std::vector<Eigen::Vector3d> dirs_S;
+  double dirs_min = 0.0, dirs_inc = 0.0;
+  std::vector<Eigen::Vector3f> dirs_W;
+};
+
+/// One planar scan from the sensor pose X_WS: beam i along (cos a_i, sin a_i, 0) in the sensor
+/// frame, a_i = config.angle(i), true ranges from the caster (moving bodies updated first, the
+/// scene body `ignore_body` seen through), then applyRangeModel() with noise from `rng`.
+/// `ranges` is resized to samples; no allocation once warm.
+void scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,
+              const RaySensorConfig& config, std::mt19937_64& rng, RayScanBuffers* buffers,
+              std::vector<float>* ranges, int ignore_body = -1);
+/// As above with buffers of its own (allocates; for tests and tools).
+std::vector<float> scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,
+                            const RaySensorConfig& config, std::mt19937_64& rng,
+                            int ignore_body = -1);
 
 /// A configured ray sensor with its own noise generator (std::mt19937_64 seeded with
 /// config.seed): the same seed and the same scenes give identical scans.
@@ -98,6 +123,7 @@ class RaySensor {
  private:
   RaySensorConfig config_;
   std::mt19937_64 rng_;
+  RayScanBuffers buffers_;
   std::vector<float> ranges_;
 };
 

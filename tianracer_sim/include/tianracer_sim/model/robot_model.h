@@ -45,6 +45,9 @@ struct SensorSpec {
   std::string xml;  // the <sensor> element, printed back
   std::vector<PluginSpec> plugins;
   int line = 0;
+  /// Set when the sensor's own tags (<update_rate>, <pose>, <always_on>) are invalid: the
+  /// message names the file, line, sensor and value. The robot loads; the sensor is left out.
+  std::string error;
 };
 
 /// <gazebo reference="link"> surface, material and sensors. Unset optionals mean "Gazebo's default".

@@ -43,21 +43,16 @@
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
-#include <sensor_msgs/CameraInfo.h>
-#include <sensor_msgs/Image.h>
-#include <sensor_msgs/LaserScan.h>
-#include <sensor_msgs/PointCloud2.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <std_srvs/Empty.h>
 
 #include <tianracer_control/ros/controller_adapter.h>
 
 #include "tianracer_sim/lidar/ray_caster.h"
-#include "tianracer_sim/lidar/ray_sensor.h"
-#include "tianracer_sim/render/camera_sensor.h"
 #include "tianracer_sim/render/renderer.h"
-#include "tianracer_sim/ros/gazebo_interface.h"
 #include "tianracer_sim/ros/borrowed_msgs.h"
+#include "tianracer_sim/ros/gazebo_interface.h"
+#include "tianracer_sim/ros/sensors/sensor_publisher.h"
 #include "tianracer_sim/scene/scene.h"
 #include "tianracer_sim/sim/frame_worker.h"
 #include "tianracer_sim/sim/robot_scene.h"
@@ -66,16 +61,7 @@
 
 namespace tianracer_sim {
 
-/// Something published on a sim-time schedule: due when time >= next; next advances by
-/// period (a reset restarts it; a long pause does not cause a burst).
-struct Schedule {
-  double period = 0.0;  // s; 0 = every step
-  double next = 0.0;
-  bool due(double t);
-  void restart(double t) { next = t; }
-};
-
-class SimNode {
+class SimNode : private SensorHost {
  public:
   /// Reads parameters, loads the robot and starts its controllers. Throws std::exception with
   /// a message naming the parameter, file or controller on a configuration error.
@@ -104,58 +90,11 @@ class SimNode {
     std::string base_frame;  // tf_prefix + root link
   };
 
-  /// A lidar of a robot: published at its rate while someone subscribes.
-  struct LidarIo {
-    size_t robot = 0;  // index into robots_
-    std::unique_ptr<RaySensor> sensor;
-    int own_body = -1;  // scene body of the sensor's link: rays pass through its housing
-    ros::Publisher pub;
-    Schedule schedule;
-    sensor_msgs::LaserScan msg;
-    size_t stat = 0;  // index into stats_
-  };
-
-  /// A camera (libgazebo_ros_camera): image + camera_info.
-  struct CameraIo {
-    size_t robot = 0;
-    std::unique_ptr<CameraSensor> sensor;
-    ros::Publisher image, info;
-    Schedule schedule;
-    BorrowedImage image_msg;  // the sensor's buffer, serialised by publish() without a copy
-    sensor_msgs::CameraInfo info_msg;
-    size_t stat = 0;
-  };
-  /// A depth camera (libgazebo_ros_openni_kinect): rgb, depth, cloud at the sensor rate; both
-  /// camera_infos at the plugin's updateRate.
-  struct DepthIo {
-    size_t robot = 0;
-    std::unique_ptr<DepthCameraSensor> sensor;
-    ros::Publisher image, depth, cloud, image_info, depth_info;
-    Schedule schedule, info_schedule;
-    BorrowedImage image_msg, depth_msg;  // borrowed from the sensor, as CameraIo's
-    BorrowedPointCloud2 cloud_msg;
-    sensor_msgs::CameraInfo info_msg;
-    size_t stat = 0;
-  };
-  /// Published messages per sensor since the last status report, against the target rate.
-  struct SensorStat {
-    std::string name;  // e.g. "/scan"
-    double target = 0.0;
-    std::uint64_t count = 0;
-    std::uint64_t skipped = 0;  // due while nobody subscribed (nothing rendered)
-    std::uint64_t renders = 0;  // frames rendered / scans cast in total
-  };
-
-  /// The camera frames due at one step: rendered and published on camera_worker_'s thread
-  /// from render_scene_, a snapshot of scene_ at that step.
-  struct CameraJob {
+  /// The frames due at one step: rendered and published on camera_worker_'s thread from
+  /// render_scene_, a snapshot of scene_ at that step.
+  struct FrameJob {
     ros::Time stamp;
-    struct Camera {
-      size_t index;  // into cameras_ or depth_cameras_
-      Eigen::Isometry3d X_WL;
-      DepthOutputs want;  // depth cameras only
-    };
-    std::vector<Camera> cameras, depths;
+    std::vector<FrameRequest> frames;
   };
 
   /// Loads one robot from the parameters in `rp`; `name` fixes its name (else ~robot_name).
@@ -163,11 +102,12 @@ class SimNode {
   /// Advertises `topic` for a robot's sensor; throws when another sensor publishes there.
   void claimTopic(const std::string& topic, const std::string& owner);
   bool ensureRenderer();
-  void setUpCamera(size_t robot_index, const std::string& link, const SensorSpec& spec);
-  void publishCameras(double t, const ros::Time& stamp);
-  void renderCameras(CameraJob& job);  // on the frame worker's thread
+  /// Hands the frames requested at this step to the frame worker.
+  void submitFrames(const ros::Time& stamp);
   void publishStatus();
   void setUpSensors(size_t robot_index, const ros::NodeHandle& rp);
+  /// One sensor (or sensor-like model plugin) through the registry; a bad one is left out.
+  void setUpSensor(size_t robot_index, const SensorSpec& spec);
   /// Brings the scene's robot bodies to the current physics poses, once per step.
   void updateScene();
   void setUpJointStates(RobotIo& io);
@@ -175,6 +115,13 @@ class SimNode {
   void publishDue();
   void publishClock();
   void restartSchedules();
+
+  // SensorHost: what sensor publishers use at a step.
+  const Scene& scene() override;
+  RayCaster& caster() override { return caster_; }
+  Eigen::Isometry3d linkPose(std::size_t robot, const std::string& link) const override;
+  void requestFrame(const FrameRequest& request) override { due_frames_.frames.push_back(request); }
+  SensorStat& stat(std::size_t index) override { return stats_[index]; }
 
   bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
@@ -188,13 +135,13 @@ class SimNode {
   Scene scene_;  // what sensors see: the world's models and every robot's links
   std::uint64_t scene_step_ = ~0ull;  // step count the scene's poses belong to
   RayCaster caster_;
-  std::vector<LidarIo> lidars_;
   std::unique_ptr<Renderer> renderer_;
   bool renderer_failed_ = false;
-  std::vector<CameraIo> cameras_;
-  std::vector<DepthIo> depth_cameras_;
+  // After renderer_: camera sensors render through it and go first.
+  std::vector<std::unique_ptr<SensorPublisher>> sensors_;
+  std::map<std::string, int> sensors_of_kind_;  // SensorKind id -> sensors set up
   tf2_ros::StaticTransformBroadcaster static_tf_;
-  std::vector<SensorStat> stats_;  // lidars, then cameras, then depth cameras (image topics)
+  std::vector<SensorStat> stats_;  // one per sensor, in set-up order
   ros::Publisher diagnostics_pub_;
   double status_period_ = 5.0;  // wall seconds between status reports
   ros::WallTime status_wall_;
@@ -212,10 +159,10 @@ class SimNode {
   std::vector<ros::ServiceServer> services_;
   std::unique_ptr<GazeboInterface> gazebo_;  // gazebo_msgs topics and services
 
-  CameraJob due_frames_;  // filled each step, handed to the worker (capacity kept)
+  FrameJob due_frames_;  // filled each step, handed to the worker (capacity kept)
   Scene render_scene_;    // the worker's snapshot of scene_
   // Started with the first frame; reset first in ~SimNode (it uses the sensors above).
-  std::unique_ptr<FrameWorker<CameraJob>> camera_worker_;
+  std::unique_ptr<FrameWorker<FrameJob>> camera_worker_;
 };
 
 }  // namespace tianracer_sim

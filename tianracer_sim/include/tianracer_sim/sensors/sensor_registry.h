@@ -1,0 +1,55 @@
+// The sensor types the simulator knows, registered once each by Gazebo sensor type and
+// gazebo_ros plugin filename. ROS-free: the node pairs each kind with its ROS publisher
+// (ros/sensors/sensor_publishers.cpp), model_info asks the same table which topics a model's
+// sensors publish, so the two cannot disagree.
+#ifndef TIANRACER_SIM_SENSORS_SENSOR_REGISTRY_H
+#define TIANRACER_SIM_SENSORS_SENSOR_REGISTRY_H
+
+#include <string>
+#include <vector>
+
+#include "tianracer_sim/model/robot_model.h"
+#include "tianracer_sim/model/sensor_topics.h"
+
+namespace tianracer_sim {
+
+/// One sensor type.
+/// A model plugin that publishes like a sensor (libgazebo_ros_imu, libgazebo_ros_p3d) is a
+/// kind with no sensor types, matched by its plugin filename on a SensorSpec of type ""
+/// (modelPluginSensor()).
+struct SensorKind {
+  std::string id;                         // e.g. "lidar"; names its publisher in the node
+  std::vector<std::string> sensor_types;  // <sensor type="..."> values; empty: a model plugin
+  std::vector<std::string> plugins;       // plugin filenames (without directory)
+  /// Parses the sensor as the simulator does (throws the type's error on bad input; warnings
+  /// to `warn`) and lists the topics it publishes, with their rates. `model_name` is the
+  /// robot's name (Gazebo's default namespace of some plugins).
+  std::vector<SensorTopic> (*topics)(const SensorSpec& sensor, const std::string& model_name,
+                                     const WarningSink& warn);
+};
+
+/// Every registered kind, in registration order.
+const std::vector<SensorKind>& sensorKinds();
+
+/// The kind that simulates `sensor`: the first whose types hold its type and whose plugins
+/// hold one of its plugins, else the first whose types hold its type; for a model plugin
+/// (type ""), the model-plugin kind of its filename. nullptr when none.
+const SensorKind* findSensorKind(const SensorSpec& sensor);
+
+/// The topics the simulator publishes for `sensor` (empty for an unknown type). Throws as
+/// the kind's parser does.
+std::vector<SensorTopic> sensorTopics(const SensorSpec& sensor, const std::string& model_name,
+                                      const WarningSink& warn = {});
+
+/// A model plugin <gazebo><plugin> seen as a sensor (type "", its link the plugin's bodyName),
+/// so that plugins that publish like sensors go through the registry.
+SensorSpec modelPluginSensor(const PluginSpec& plugin);
+
+/// A human-readable summary: the link/joint tree with masses, joint types and limits, the
+/// transmissions with their interfaces, the plugins, and the sensors with topics and rates
+/// (or why a sensor is left out).
+std::string describeRobotModel(const RobotModel& model);
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_SENSORS_SENSOR_REGISTRY_H

@@ -1,0 +1,164 @@
+#!/usr/bin/env python3
+"""rostest: the IMUs of tianracer_imu.xacro in a steady turn (0.5 m/s, 0.5 rad/s through
+/cmd_vel and the cmd_vel node) against the sim's ground truth, and the bad IMUs left out.
+
+The sensor's plugin has no robotNamespace, so it publishes under the model's name
+(/tianracer/imu), as Gazebo does. Ground truth is base_link's pose in the world and its twist in base_link; both IMUs sit on
+base_link with no offset, so in a steady turn the yaw rate is the truth's, the lateral specific
+force is v_x * w (centripetal), and the orientation's yaw is the truth's. Everything is sim time.
+"""
+import math
+import os
+import signal
+import socket
+import subprocess
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
+from sensor_msgs.msg import Imu
+from std_srvs.srv import Empty
+
+from sim_node_binary import node_binary
+
+V, W = 0.5, 0.5
+
+
+def yaw_of(q):
+    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+
+
+def mean(xs):
+    return sum(xs) / len(xs)
+
+
+class ImuTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('test_imu')
+        cls.lock = threading.Lock()
+        cls.truth, cls.imu, cls.imu_model = [], [], []
+        rospy.Subscriber('/tianracer/ground_truth/odom', Odometry,
+                         lambda m: cls._add(cls.truth, m), queue_size=500)
+        rospy.Subscriber('/tianracer/imu', Imu, lambda m: cls._add(cls.imu, m), queue_size=500)
+        rospy.Subscriber('/tianracer/imu_model', Imu, lambda m: cls._add(cls.imu_model, m),
+                         queue_size=500)
+        cls.cmd = rospy.Publisher('/cmd_vel', Twist, queue_size=10)
+
+    @classmethod
+    def _add(cls, store, msg):
+        with cls.lock:
+            store.append(msg)
+
+    def wait_sim(self, seconds, wall_timeout=120.0):
+        """Publishes the turn command while waiting `seconds` of sim time."""
+        t_end = rospy.get_time() + seconds
+        wall_end = time.time() + wall_timeout
+        msg = Twist()
+        msg.linear.x, msg.angular.z = V, W
+        while rospy.get_time() < t_end and time.time() < wall_end:
+            self.cmd.publish(msg)
+            time.sleep(0.02)
+        self.assertLess(time.time(), wall_end, 'sim time did not advance')
+
+    def wait_for(self, store, wall_timeout=60.0):
+        end = time.time() + wall_timeout
+        while time.time() < end:
+            with self.lock:
+                if store:
+                    return
+            time.sleep(0.05)
+        self.fail('no message received')
+
+    def test_a_steady_turn(self):
+        self.wait_for(self.truth)
+        self.wait_for(self.imu)
+        self.wait_for(self.imu_model)
+        self.wait_sim(4.0)  # into the steady turn
+        with self.lock:
+            t0 = rospy.get_time()
+        self.wait_sim(4.0)
+        with self.lock:
+            truth = [m for m in self.truth if m.header.stamp.to_sec() >= t0]
+            imus = {'/tianracer/imu': [m for m in self.imu if m.header.stamp.to_sec() >= t0],
+                    '/tianracer/imu_model': [m for m in self.imu_model
+                                             if m.header.stamp.to_sec() >= t0]}
+        self.assertGreater(len(truth), 100)
+        by_stamp = {round(m.header.stamp.to_sec(), 6): m for m in truth}
+        wz_true = mean([m.twist.twist.angular.z for m in truth])
+        vx_true = mean([m.twist.twist.linear.x for m in truth])
+        rospy.loginfo('truth: v_x %.4f m/s, w %.4f rad/s', vx_true, wz_true)
+        self.assertGreater(wz_true, 0.4, 'the car is not turning')
+        for topic, samples in imus.items():
+            self.assertGreater(len(samples), 100, topic)
+            self.assertEqual(samples[0].header.frame_id, 'base_link', topic)
+            wz = mean([m.angular_velocity.z for m in samples])
+            ay = mean([m.linear_acceleration.y for m in samples])
+            az = mean([m.linear_acceleration.z for m in samples])
+            rospy.loginfo('%s: w %.5f (truth %.5f), a_y %.5f (v w %.5f), a_z %.4f', topic, wz,
+                          wz_true, ay, vx_true * wz_true, az)
+            self.assertAlmostEqual(wz, wz_true, delta=0.01 * abs(wz_true), msg=topic)
+            self.assertAlmostEqual(ay, vx_true * wz_true, delta=0.03 * vx_true * wz_true,
+                                   msg=topic)
+            self.assertAlmostEqual(az, 9.8, delta=0.05, msg=topic)
+            matched = 0
+            for m in samples:
+                t = by_stamp.get(round(m.header.stamp.to_sec(), 6))
+                if t is None:
+                    continue
+                matched += 1
+                err = math.atan2(math.sin(yaw_of(m.orientation) - yaw_of(t.pose.pose.orientation)),
+                                 math.cos(yaw_of(m.orientation) - yaw_of(t.pose.pose.orientation)))
+                self.assertLess(abs(math.degrees(err)), 0.1, '%s at %.3f' % (topic, t.header.stamp.to_sec()))
+            self.assertGreater(matched, 50, topic)
+            cov = samples[-1].angular_velocity_covariance
+            self.assertEqual(list(cov), [0.0] * 9, topic)  # noise off
+
+    def test_b_bad_imus_left_out(self):
+        """The bad IMUs are left out and the others publish (this sim)."""
+        self.wait_for(self.imu)
+        published = dict(rospy.get_published_topics())
+        for topic in ('/tianracer/imu_bad_noise', '/tianracer/imu_bad_rate', '/imu_nowhere'):
+            self.assertNotIn(topic, published)
+        rospy.wait_for_service('/tianracer/imu_model/calibrate', timeout=10.0)
+        rospy.ServiceProxy('/tianracer/imu_model/calibrate', Empty)()
+
+    def test_c_bad_imu_messages(self):
+        """What the node says about them: the same model in a sim of its own (own master), so
+        that its start-up output can be read."""
+        with socket.socket() as s:
+            s.bind(('localhost', 0))
+            port = s.getsockname()[1]
+        env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
+        master = subprocess.Popen(['rosmaster', '--core', '-p', str(port)], env=env,
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        try:
+            model = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data', 'urdf',
+                                 'tianracer_imu.xacro')
+            node = subprocess.Popen([node_binary(), '__name:=imu_bad_input', '_model:=' + model,
+                                     '_paused:=true', '_disable_sensors:=camera depth ray'],
+                                    env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                    universal_newlines=True)
+            try:  # paused, it runs until interrupted
+                out, _ = node.communicate(timeout=15)
+            except subprocess.TimeoutExpired:
+                node.send_signal(signal.SIGINT)
+                out, _ = node.communicate(timeout=10)
+        finally:
+            master.terminate()
+            master.wait(timeout=10)
+        expected = [('imu_bad_noise', "'laplace'"), ('imu_bad_rate', "'-5'"),
+                    ('imu_nowhere', 'no_such_link')]
+        for name, value in expected:
+            lines = [l for l in out.splitlines() if name in l and value in l and
+                     "robot 'tianracer'" in l and 'left out' in l]
+            self.assertTrue(lines, 'no message naming %s and %s in:\n%s' % (name, value, out))
+        self.assertIn("IMU 'imu_sensor'", out)  # the good one is set up in the same run
+
+
+if __name__ == '__main__':
+    rostest.rosrun('tianracer_sim', 'imu', ImuTest)

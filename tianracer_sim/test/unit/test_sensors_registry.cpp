@@ -1,0 +1,121 @@
+// The sensor registry: which kind simulates a <sensor>, and the topics it publishes are the
+// ones the node advertises (model_info prints these).
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "tianracer_sim/sensors/sensor_registry.h"
+
+namespace tianracer_sim {
+namespace {
+
+/// One link with the given <gazebo reference> body, parsed as the model loader does.
+SensorSpec sensorFrom(const std::string& gazebo_body) {
+  const std::string urdf =
+      "<robot name='r'><link name='base'/>"
+      "<gazebo reference='base'>" + gazebo_body + "</gazebo></robot>";
+  const RobotExtensions ext = parseExtensions(urdf, "test.urdf", {});
+  EXPECT_EQ(ext.links.count("base"), 1u);
+  EXPECT_EQ(ext.links.at("base").sensors.size(), 1u);
+  return ext.links.at("base").sensors.front();
+}
+
+const char* kCameraBody =
+    "<camera><horizontal_fov>1.0</horizontal_fov><image><width>64</width><height>48</height>"
+    "<format>R8G8B8</format></image><clip><near>0.1</near><far>10</far></clip></camera>";
+
+std::string depthSensor(const std::string& plugin_file, const std::string& params) {
+  return std::string("<sensor type='depth' name='rs'><update_rate>20</update_rate>") + kCameraBody +
+         "<plugin name='p' filename='" + plugin_file + "'><cameraName>rs</cameraName>"
+         "<updateRate>10</updateRate>" + params + "</plugin></sensor>";
+}
+
+TEST(SensorsRegistry, KindsByTypeAndPlugin) {
+  const std::string ray_body =
+      "<ray><scan><horizontal><samples>10</samples><min_angle>-1</min_angle>"
+      "<max_angle>1</max_angle></horizontal></scan><range><min>0.1</min><max>5</max></range></ray>";
+  const SensorSpec ray = sensorFrom("<sensor type='ray' name='l'><update_rate>10</update_rate>" +
+                                    ray_body +
+                                    "<plugin name='p' filename='libgazebo_ros_laser.so'>"
+                                    "<topicName>/scan</topicName></plugin></sensor>");
+  ASSERT_NE(findSensorKind(ray), nullptr);
+  EXPECT_EQ(findSensorKind(ray)->id, "lidar");
+  // gpu_ray with gazebo_ros_gpu_laser is simulated as ray.
+  const SensorSpec gpu = sensorFrom("<sensor type='gpu_ray' name='l'>" + ray_body +
+                                    "<plugin name='p' filename='libgazebo_ros_gpu_laser.so'>"
+                                    "<topicName>scan</topicName><robotNamespace>car</robotNamespace>"
+                                    "</plugin></sensor>");
+  ASSERT_NE(findSensorKind(gpu), nullptr);
+  EXPECT_EQ(findSensorKind(gpu)->id, "lidar");
+  const std::vector<SensorTopic> t = sensorTopics(gpu, "r");
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_EQ(t[0].topic, "/car/scan");
+  EXPECT_EQ(t[0].msg_type, "sensor_msgs/LaserScan");
+
+  const SensorSpec unknown = sensorFrom("<sensor type='sonar' name='s'/>");
+  EXPECT_EQ(findSensorKind(unknown), nullptr);
+  EXPECT_TRUE(sensorTopics(unknown, "r").empty());
+}
+
+TEST(SensorsRegistry, OpenniDefaultsAreTheSimulatorsTopics) {
+  // Without imageTopicName openni_kinect publishes <cameraName>/ir/image_raw.
+  const SensorSpec s = sensorFrom(depthSensor("libgazebo_ros_openni_kinect.so", ""));
+  ASSERT_NE(findSensorKind(s), nullptr);
+  EXPECT_EQ(findSensorKind(s)->id, "depth_camera");
+  const std::vector<SensorTopic> t = sensorTopics(s, "r");
+  ASSERT_EQ(t.size(), 5u);
+  EXPECT_EQ(t[0].topic, "/rs/ir/image_raw");
+  EXPECT_DOUBLE_EQ(t[0].rate, 20.0);
+  EXPECT_EQ(t[1].topic, "/rs/depth/image_raw");
+  EXPECT_EQ(t[2].topic, "/rs/points");
+  EXPECT_EQ(t[2].msg_type, "sensor_msgs/PointCloud2");
+  EXPECT_EQ(t[3].topic, "/rs/ir/camera_info");
+  EXPECT_DOUBLE_EQ(t[3].rate, 10.0);
+  EXPECT_EQ(t[4].topic, "/rs/depth/camera_info");
+}
+
+TEST(SensorsRegistry, DepthCameraPluginAsOpenni) {
+  const SensorSpec s = sensorFrom(depthSensor("/opt/x/libgazebo_ros_depth_camera.so",
+                                              "<imageTopicName>rgb/image_raw</imageTopicName>"));
+  ASSERT_NE(findSensorKind(s), nullptr);
+  EXPECT_EQ(findSensorKind(s)->id, "depth_camera");
+  const std::vector<SensorTopic> t = sensorTopics(s, "r");
+  ASSERT_EQ(t.size(), 5u);
+  EXPECT_EQ(t[0].topic, "/rs/rgb/image_raw");
+}
+
+TEST(SensorsRegistry, CameraTopicsAndNoPlugin) {
+  const SensorSpec cam = sensorFrom(std::string("<sensor type='camera' name='c'>") +
+                                    "<update_rate>30</update_rate>" + kCameraBody +
+                                    "<plugin name='p' filename='libgazebo_ros_camera.so'>"
+                                    "<cameraName>cam</cameraName><robotNamespace>/r</robotNamespace>"
+                                    "</plugin></sensor>");
+  ASSERT_NE(findSensorKind(cam), nullptr);
+  EXPECT_EQ(findSensorKind(cam)->id, "camera");
+  const std::vector<SensorTopic> t = sensorTopics(cam, "r");
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(t[0].topic, "/r/cam/image_raw");
+  EXPECT_EQ(t[1].topic, "/r/cam/camera_info");
+  EXPECT_DOUBLE_EQ(t[1].rate, 30.0);
+  // Gazebo renders a camera without a gazebo_ros plugin but publishes nothing.
+  const SensorSpec bare =
+      sensorFrom(std::string("<sensor type='camera' name='c'>") + kCameraBody + "</sensor>");
+  EXPECT_TRUE(sensorTopics(bare, "r").empty());
+}
+
+TEST(SensorsRegistry, BadSensorThrowsNamingIt) {
+  const SensorSpec bad = sensorFrom(
+      "<sensor type='ray' name='broken'><ray><scan><horizontal><samples>0</samples>"
+      "</horizontal></scan><range><min>0.1</min><max>5</max></range></ray></sensor>");
+  try {
+    sensorTopics(bad, "r");
+    FAIL() << "expected an error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("broken"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("samples"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace tianracer_sim
