@@ -95,12 +95,12 @@ if ! catkin_make -C "$WS" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 
       -DCMAKE_BUILD_TYPE=RelWithDebInfo -j"$(nproc)" >"$LOG_DIR/build.log" 2>&1; then
   # Name the failing package and step: a CMake error follows the package's add_subdirectory
   # line; a compile error shows as 'make[N]: *** [<package>/CMakeFiles/...'.
-  pkg="$(grep -oE 'make\[[0-9]+\]: \*\*\* \[[^/]+' "$LOG_DIR/build.log" | head -1 | sed 's/.*\[//')"
+  pkg="$(grep -oE 'make\[[0-9]+\]: \*\*\* \[[^/]+' "$LOG_DIR/build.log" | head -1 | sed 's/.*\[//' || true)"
   step="compile/link"
   if [[ -z "$pkg" ]] && grep -q "CMake Error" "$LOG_DIR/build.log"; then
     step="configure (cmake)"
     pkg="$(sed -n '1,/CMake Error/p' "$LOG_DIR/build.log" | grep -oE 'add_subdirectory\([^)]+\)' \
-           | tail -1 | sed 's/add_subdirectory(//; s/)//')"
+           | tail -1 | sed 's/add_subdirectory(//; s/)//' || true)"
   fi
   tail -40 "$LOG_DIR/build.log" >&2
   fail "step 'build' ($step) failed in package '${pkg:-unknown}'; full log: $LOG_DIR/build.log"
