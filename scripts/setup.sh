@@ -18,7 +18,7 @@ APT_PACKAGES=(
   catkin ros-core-dev python3-rostest librostest-dev rosbash python3-rostopic
   libsensor-msgs-dev python3-sensor-msgs libgeometry-msgs-dev libnav-msgs-dev python3-nav-msgs
   libtf2-ros-dev python3-tf2-ros liburdf-dev liburdfdom-dev libbullet-dev libbullet-extras-dev
-  libeigen3-dev libassimp-dev libosmesa6-dev libembree-dev libpng-dev ros-robot-state-publisher python3-pip g++ cmake make
+  libeigen3-dev libassimp-dev libosmesa6-dev libembree-dev libpng-dev libstb-dev ros-robot-state-publisher python3-pip g++ cmake make
   git pkg-config libtinyxml2-dev libyaml-cpp-dev libgtest-dev libgmock-dev liburdfdom-tools
   libstd-srvs-dev python3-std-srvs libtopic-tools-dev libdiagnostic-msgs-dev python3-diagnostic-msgs
   libros-rosgraph-msgs-dev python3-rosgraph-msgs python3-numpy python3-pil python3-yaml python3-catkin-pkg python3-nose

@@ -1,6 +1,8 @@
 // Render benchmark: ms per frame of the seed's 800x800 camera (colour + noise) and of its
 // 640x480 depth camera (colour + depth + organized cloud), the tianracer on the racetrack
-// world. Also writes PNGs for people: a chase view, the camera's and the depth camera's frames.
+// world; then the same cameras on the textured lane track, with its floor texture and with
+// the texture taken off (same geometry). Also writes PNGs for people: a chase view, the
+// camera's and the depth camera's frames, and the camera's view of the lane track.
 //
 //   render_bench [--frames N] [--world PATH] [--png-dir DIR]
 //   LP_NUM_THREADS=1 render_bench   # Mesa llvmpipe's rasteriser threads (default: the cores)
@@ -197,7 +199,31 @@ int main(int argc, char** argv) {
   std::printf("seed cameras at rated rates (30 + 20 Hz): %.0f ms wall, %.0f ms cpu per simulated second\n",
               30 * cam.wall_ms + 20 * rs.wall_ms, 30 * cam.cpu_ms + 20 * rs.cpu_ms);
 
+  // The textured lane track: the same robot and cameras, with and without the floor texture.
+  ts::Scene track;
+  ts::addToScene(ts::loadWorldFile(std::string(TIANRACER_SIM_WORLDS_DIR) + "/lane_track.world", wopt), track);
+  std::map<std::string, int> track_bodies;
+  addRobot(robot, X_WM, &track, &track_bodies);
+  ts::Scene untextured = track;
+  std::size_t textured_items = 0;
+  for (auto& item : untextured.items) {
+    textured_items += !item.material.texture.empty();
+    item.material.texture.clear();
+  }
+  const Timing cam_tex = msPerFrame(frames, [&] { camera.render(track, X_W_cam); });
+  const Timing cam_plain = msPerFrame(frames, [&] { camera.render(untextured, X_W_cam); });
+  const Timing rs_tex = msPerFrame(frames, [&] { depth.render(track, X_W_rs); });
+  const Timing rs_plain = msPerFrame(frames, [&] { depth.render(untextured, X_W_rs); });
+  std::printf("lane_track (%zu textured item(s)), with / without texture:\n", textured_items);
+  std::printf("camera 800x800 colour+noise            %8.2f / %5.2f  %8.2f / %5.2f\n", cam_tex.wall_ms,
+              cam_plain.wall_ms, cam_tex.cpu_ms, cam_plain.cpu_ms);
+  std::printf("depth 640x480 colour+depth+cloud       %8.2f / %5.2f  %8.2f / %5.2f\n", rs_tex.wall_ms,
+              rs_plain.wall_ms, rs_tex.cpu_ms, rs_plain.cpu_ms);
+
   // Pictures.
+  camera.render(track, X_W_cam);
+  ts::writePng(png_dir + "/render_lane_track_camera.png", camera.image().data(), camera.config().width,
+               camera.config().height, camera.channels());
   ts::CameraIntrinsics chase = ts::CameraIntrinsics::fromHorizontalFov(960, 640, 1.0, 0.02, 100.0);
   Eigen::Isometry3d X_WChase = Eigen::Translation3d(-0.55, -0.35, 0.35) *
                                Eigen::AngleAxisd(0.55, Eigen::Vector3d::UnitZ()) *
@@ -213,6 +239,7 @@ int main(int argc, char** argv) {
   ts::writePng(png_dir + "/render_real_sense_rgb.png", depth.image().data(), dc.width, dc.height, depth.channels());
   ts::writeDepthPng(png_dir + "/render_real_sense_depth.png", depth.depth().data(), dc.width, dc.height,
                     depth.config().point_cloud_cutoff, depth.config().point_cloud_cutoff_max);
-  std::printf("wrote %s/render_{chase,camera,real_sense_rgb,real_sense_depth}.png\n", png_dir.c_str());
+  std::printf("wrote %s/render_{chase,camera,real_sense_rgb,real_sense_depth,lane_track_camera}.png\n",
+              png_dir.c_str());
   return 0;
 }

@@ -1,5 +1,6 @@
 #include "geometry.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -8,16 +9,22 @@ namespace tianracer_sim {
 namespace render_internal {
 namespace {
 
-void push(Soup* s, const Eigen::Vector3f& p, const Eigen::Vector3f& n) {
-  s->push_back(Vertex{{p.x(), p.y(), p.z()}, {n.x(), n.y(), n.z()}});
+void push(Soup* s, const Eigen::Vector3f& p, const Eigen::Vector3f& n,
+          const Eigen::Vector2f& t = Eigen::Vector2f::Zero()) {
+  s->push_back(Vertex{{p.x(), p.y(), p.z()}, {n.x(), n.y(), n.z()}, {t.x(), t.y()}});
 }
 
 void tri(Soup* s, const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c,
-         const Eigen::Vector3f& n) {
-  push(s, a, n);
-  push(s, b, n);
-  push(s, c, n);
+         const Eigen::Vector3f& n, const Eigen::Vector2f& ta = Eigen::Vector2f::Zero(),
+         const Eigen::Vector2f& tb = Eigen::Vector2f::Zero(),
+         const Eigen::Vector2f& tc = Eigen::Vector2f::Zero()) {
+  push(s, a, n, ta);
+  push(s, b, n, tb);
+  push(s, c, n, tc);
 }
+
+// Planar texture coordinates of a point of a unit cap: (x, y) in [-1, 1] -> [0, 1].
+Eigen::Vector2f capUv(const Eigen::Vector3f& p) { return {0.5f * p.x() + 0.5f, 0.5f * p.y() + 0.5f}; }
 
 }  // namespace
 
@@ -35,8 +42,9 @@ Soup unitBox() {
       const Eigen::Vector3f c = 0.5f * n;
       const Eigen::Vector3f p00 = c - 0.5f * u - 0.5f * v, p10 = c + 0.5f * u - 0.5f * v;
       const Eigen::Vector3f p11 = c + 0.5f * u + 0.5f * v, p01 = c - 0.5f * u + 0.5f * v;
-      tri(&s, p00, p10, p11, n);
-      tri(&s, p00, p11, p01, n);
+      const Eigen::Vector2f t00(0, 0), t10(1, 0), t11(1, 1), t01(0, 1);
+      tri(&s, p00, p10, p11, n, t00, t10, t11);
+      tri(&s, p00, p11, p01, n, t00, t11, t01);
     }
   }
   return s;
@@ -49,16 +57,17 @@ Soup unitCylinder(int segments) {
     const double a0 = 2.0 * M_PI * i / segments, a1 = 2.0 * M_PI * (i + 1) / segments;
     const Eigen::Vector3f r0(std::cos(a0), std::sin(a0), 0.0f), r1(std::cos(a1), std::sin(a1), 0.0f);
     const Eigen::Vector3f up(0, 0, h);
+    const float u0 = static_cast<float>(i) / segments, u1 = static_cast<float>(i + 1) / segments;
     // Side: smooth normals.
-    push(&s, r0 - up, r0);
-    push(&s, r1 - up, r1);
-    push(&s, r1 + up, r1);
-    push(&s, r0 - up, r0);
-    push(&s, r1 + up, r1);
-    push(&s, r0 + up, r0);
+    push(&s, r0 - up, r0, {u0, 0});
+    push(&s, r1 - up, r1, {u1, 0});
+    push(&s, r1 + up, r1, {u1, 1});
+    push(&s, r0 - up, r0, {u0, 0});
+    push(&s, r1 + up, r1, {u1, 1});
+    push(&s, r0 + up, r0, {u0, 1});
     // Caps.
-    tri(&s, up, r0 + up, r1 + up, Eigen::Vector3f::UnitZ());
-    tri(&s, -up, r1 - up, r0 - up, -Eigen::Vector3f::UnitZ());
+    tri(&s, up, r0 + up, r1 + up, Eigen::Vector3f::UnitZ(), capUv(up), capUv(r0), capUv(r1));
+    tri(&s, -up, r1 - up, r0 - up, -Eigen::Vector3f::UnitZ(), capUv(-up), capUv(r1), capUv(r0));
   }
   return s;
 }
@@ -71,18 +80,21 @@ Soup unitSphere(int slices, int stacks) {
     return Eigen::Vector3f(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
                            std::cos(theta));
   };
+  auto uv = [&](int i, int j) {
+    return Eigen::Vector2f(static_cast<float>(i) / slices, 1.0f - static_cast<float>(j) / stacks);
+  };
   for (int j = 0; j < stacks; ++j) {
     for (int i = 0; i < slices; ++i) {
       const Eigen::Vector3f a = at(i, j), b = at(i, j + 1), c = at(i + 1, j + 1), d = at(i + 1, j);
       if (j != 0) {  // the top stack's first triangle is degenerate
-        push(&s, a, a);
-        push(&s, b, b);
-        push(&s, d, d);
+        push(&s, a, a, uv(i, j));
+        push(&s, b, b, uv(i, j + 1));
+        push(&s, d, d, uv(i + 1, j));
       }
       if (j != stacks - 1) {
-        push(&s, b, b);
-        push(&s, c, c);
-        push(&s, d, d);
+        push(&s, b, b, uv(i, j + 1));
+        push(&s, c, c, uv(i + 1, j + 1));
+        push(&s, d, d, uv(i + 1, j));
       }
     }
   }
@@ -93,12 +105,13 @@ Soup unitQuad() {
   Soup s;
   const Eigen::Vector3f n = Eigen::Vector3f::UnitZ();
   const Eigen::Vector3f p00(-.5f, -.5f, 0), p10(.5f, -.5f, 0), p11(.5f, .5f, 0), p01(-.5f, .5f, 0);
-  tri(&s, p00, p10, p11, n);
-  tri(&s, p00, p11, p01, n);
+  const Eigen::Vector2f t00(0, 0), t10(1, 0), t11(1, 1), t01(0, 1);
+  tri(&s, p00, p10, p11, n, t00, t10, t11);
+  tri(&s, p00, p11, p01, n, t00, t11, t01);
   return s;
 }
 
-Soup meshSoup(const TriangleMesh& mesh, double crease_deg) {
+Soup meshSoup(const TriangleMesh& mesh, double crease_deg, std::vector<MeshPart>* parts) {
   const std::size_t nt = mesh.triangleCount();
   std::vector<Eigen::Vector3f> face_n(nt);      // area-weighted (|n| = 2 area)
   std::vector<Eigen::Vector3f> face_unit(nt);
@@ -126,10 +139,26 @@ Soup meshSoup(const TriangleMesh& mesh, double crease_deg) {
     for (int k = 0; k < 3; ++k) around[fill[mesh.indices[3 * t + k]]++] = static_cast<uint32_t>(t);
   }
   const float cos_crease = static_cast<float>(std::cos(crease_deg * M_PI / 180.0));
-  Soup s;
-  s.reserve(3 * nt);
+  // Triangle order: as in the file, or grouped by material (stable) for `parts`.
+  std::vector<std::size_t> order;
+  order.reserve(nt);
   for (std::size_t t = 0; t < nt; ++t) {
-    if (!keep[t]) continue;
+    if (keep[t]) order.push_back(t);
+  }
+  const bool by_material = parts != nullptr && mesh.triangle_material.size() == nt;
+  auto material = [&](std::size_t t) { return by_material ? mesh.triangle_material[t] : -1; };
+  if (by_material) {
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return material(a) < material(b); });
+  }
+  const bool uvs = mesh.corner_uvs.size() == mesh.indices.size();
+  Soup s;
+  s.reserve(3 * order.size());
+  if (parts) parts->clear();
+  for (std::size_t t : order) {
+    if (parts && (parts->empty() || parts->back().material != material(t))) {
+      parts->push_back(MeshPart{s.size(), 0, material(t)});
+    }
     for (int k = 0; k < 3; ++k) {
       const uint32_t v = mesh.indices[3 * t + k];
       Eigen::Vector3f n = Eigen::Vector3f::Zero();
@@ -139,8 +168,9 @@ Soup meshSoup(const TriangleMesh& mesh, double crease_deg) {
       }
       const float len = n.norm();
       n = len > 0.0f ? Eigen::Vector3f(n / len) : face_unit[t];
-      push(&s, mesh.vertices[v], n);
+      push(&s, mesh.vertices[v], n, uvs ? mesh.corner_uvs[3 * t + k] : Eigen::Vector2f::Zero());
     }
+    if (parts) parts->back().count += 3;
   }
   return s;
 }

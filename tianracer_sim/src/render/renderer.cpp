@@ -5,6 +5,7 @@
 #include <GL/gl.h>
 #include <GL/glext.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -18,6 +19,7 @@
 #include "gl_context.h"
 #include "shaders.h"
 #include "tianracer_sim/mesh/mesh_loader.h"
+#include "tianracer_sim/render/image_file.h"
 #include "tianracer_sim/scene/materials.h"
 
 namespace tianracer_sim {
@@ -28,6 +30,15 @@ using render_internal::GlContext;
 namespace {
 
 Eigen::Matrix4f toFloat(const Eigen::Matrix4d& m) { return m.cast<float>(); }
+
+// STL files carry no materials or texture coordinates: they keep the positions-only load that
+// physics shares (and exactly the geometry they had before materials were read).
+bool mayHaveMaterials(const std::string& path) {
+  if (path.size() < 4) return true;
+  std::string ext = path.substr(path.size() - 4);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext != ".stl";
+}
 
 std::string shapeKey(const Shape& shape) {
   switch (shape.type) {
@@ -58,14 +69,14 @@ struct Renderer::Impl {
 
   struct Uniforms {
     GLint model_view, projection, normal_matrix, model, to_light, ambient, diffuse, specular,
-        shininess;
+        shininess, uv_scale, texture;
   };
   struct Program {
     GLuint id = 0;
     Uniforms u{};
   };
   static constexpr int kMaxLights = 4;
-  Program programs[kMaxLights + 1][2];  // by light count and grid, built on first use
+  Program programs[kMaxLights + 1][2][2];  // by light count, grid, texture; built on first use
 
   GLuint vao = 0;
   GLuint vbo = 0;
@@ -75,8 +86,49 @@ struct Renderer::Impl {
     GLint first = 0;
     GLsizei count = 0;
   };
-  std::map<std::string, Range> geometry;  // shapeKey -> range in the VBO
-  std::set<std::string> failed;          // shape keys that did not load (warned once)
+  // A shape's triangles in the VBO: one part per mesh material (primitives: one, material -1).
+  struct Part {
+    Range range;
+    int material = -1;  // index into the mesh's materials
+  };
+  struct Geometry {
+    std::vector<Part> parts;
+    std::shared_ptr<const TriangleMesh> mesh;  // for its materials (null for primitives, STL)
+  };
+  std::map<std::string, Geometry> geometry;  // shapeKey -> its parts in the VBO
+  std::set<std::string> failed;              // shape keys that did not load (warned once)
+
+  // Textures by file, uploaded once with mipmaps; 0 = the file could not be read (warned once).
+  std::map<std::string, GLuint> textures;
+
+  GLuint textureFor(const std::string& path, const std::string& who) {
+    const auto it = textures.find(path);
+    if (it != textures.end()) return it->second;
+    GLuint id = 0;
+    try {
+      const RgbaImage image = readImageFile(path);
+      glGenTextures(1, &id);
+      glBindTexture(GL_TEXTURE_2D, id);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+      // Rows bottom-up, so that v = 0 is the bottom of the image (OpenGL's and the mesh
+      // files' convention).
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, image.width, image.height, 0, GL_RGBA,
+                   GL_UNSIGNED_BYTE, image.bottomUp().data());
+      glGenerateMipmap(GL_TEXTURE_2D);
+      // Trilinear, no anisotropy: llvmpipe's anisotropic path more than doubles the time of
+      // a textured 800x800 frame (measured 8 -> 19 ms CPU for the lane track at 2x or 8x).
+      // Markings far ahead on a floor blur along the view as a result.
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    } catch (const std::exception& e) {
+      id = 0;
+      if (warn) warn("renderer: " + who + ": " + e.what() + "; drawing its diffuse colour instead");
+    }
+    textures[path] = id;
+    return id;
+  }
 
   // What each scene item resolved to, by item index. Checked against the item's shape every
   // frame (cheap comparisons, no allocation) so that any change of the scene is picked up;
@@ -87,9 +139,13 @@ struct Renderer::Impl {
     ShapeType type = ShapeType::kBox;
     std::string mesh_path;
     Eigen::Vector3d mesh_scale = Eigen::Vector3d::Ones();
-    Range range;
+    const Geometry* geometry = nullptr;  // into `geometry` (std::map: stable addresses)
     std::string material_name;
+    float material_shininess = -2.0f;
     float shininess = kDefaultShininess;
+    std::string texture_path;
+    GLuint texture = 0;                 // the item material's texture (0: none)
+    std::vector<GLuint> mesh_textures;  // per mesh material (0: none)
     bool size_warned = false;
   };
   std::vector<Slot> slots;
@@ -108,13 +164,37 @@ struct Renderer::Impl {
       slot.type = item.shape.type;
       slot.mesh_path = item.shape.mesh_path;
       slot.mesh_scale = item.shape.scale;
-      slot.drawable = geometryFor(item.shape, &slot.range);
+      slot.geometry = geometryFor(item.shape);
+      slot.drawable = slot.geometry != nullptr;
       slot.size_warned = false;
+      slot.mesh_textures.clear();
+      if (slot.geometry && slot.geometry->mesh) {
+        for (const MeshMaterial& mm : slot.geometry->mesh->materials) {
+          GLuint id = 0;
+          if (!mm.texture.empty()) {
+            id = textureFor(mm.texture, "mesh '" + item.shape.mesh_path + "' material '" + mm.name +
+                                            "' texture '" + mm.texture_uri + "'");
+          } else if (!mm.texture_error.empty() && warn) {
+            warn("renderer: mesh '" + item.shape.mesh_path + "' material '" + mm.name + "': " +
+                 mm.texture_error + "; drawing its diffuse colour instead");
+          }
+          slot.mesh_textures.push_back(id);
+        }
+      }
     }
-    if (slot.material_name != item.material.name) {
+    if (slot.material_name != item.material.name || slot.material_shininess != item.material.shininess) {
       slot.material_name = item.material.name;
+      slot.material_shininess = item.material.shininess;
       const auto gz = item.material.name.empty() ? std::nullopt : findGazeboMaterial(item.material.name);
-      slot.shininess = gz ? gz->shininess : kDefaultShininess;
+      slot.shininess = item.material.shininess >= 0.0f ? item.material.shininess
+                       : gz                            ? gz->shininess
+                                                       : kDefaultShininess;
+    }
+    if (slot.texture_path != item.material.texture) {
+      slot.texture_path = item.material.texture;
+      slot.texture = slot.texture_path.empty()
+                         ? 0
+                         : textureFor(slot.texture_path, "texture '" + slot.texture_path + "'");
     }
     return slot;
   }
@@ -124,11 +204,12 @@ struct Renderer::Impl {
   };
   std::map<std::pair<int, int>, Target> targets;
 
-  Program& program(int num_lights, bool grid) {
-    Program& p = programs[num_lights][grid ? 1 : 0];
+  Program& program(int num_lights, bool grid, bool texture) {
+    Program& p = programs[num_lights][grid ? 1 : 0][texture ? 1 : 0];
     if (p.id != 0) return p;
     const std::string defines = "#version 330 core\n#define NUM_LIGHTS " + std::to_string(num_lights) +
-                                "\n#define GRID " + (grid ? "1" : "0") + "\n";
+                                "\n#define GRID " + (grid ? "1" : "0") + "\n#define TEXTURE " +
+                                (texture ? "1" : "0") + "\n";
     const GLuint vs = ri::compile(GL_VERTEX_SHADER, defines + ri::kVertexShader);
     GLuint fs = 0;
     try {
@@ -161,18 +242,33 @@ struct Renderer::Impl {
     p.u.diffuse = loc("u_diffuse");
     p.u.specular = loc("u_specular");
     p.u.shininess = loc("u_shininess");
+    p.u.uv_scale = loc("u_uv_scale");
+    p.u.texture = loc("u_texture");
+    if (texture) {
+      glUseProgram(id);
+      glUniform1i(p.u.texture, 0);  // texture unit 0
+    }
     p.id = id;
     return p;
   }
 
-  Range addGeometry(const std::string& key, const ri::Soup& soup) {
-    Range r;
-    r.first = static_cast<GLint>(vertices.size());
-    r.count = static_cast<GLsizei>(soup.size());
+  const Geometry* addGeometry(const std::string& key, const ri::Soup& soup,
+                              const std::vector<ri::MeshPart>& mesh_parts = {},
+                              std::shared_ptr<const TriangleMesh> mesh = nullptr) {
+    const GLint base = static_cast<GLint>(vertices.size());
+    Geometry g;
+    if (mesh_parts.empty()) {
+      g.parts.push_back(Part{Range{base, static_cast<GLsizei>(soup.size())}, -1});
+    } else {
+      for (const ri::MeshPart& mp : mesh_parts) {
+        g.parts.push_back(Part{Range{base + static_cast<GLint>(mp.first), static_cast<GLsizei>(mp.count)},
+                               mp.material});
+      }
+    }
+    g.mesh = std::move(mesh);
     vertices.insert(vertices.end(), soup.begin(), soup.end());
     vbo_dirty = true;
-    geometry[key] = r;
-    return r;
+    return &(geometry[key] = std::move(g));
   }
 
   void uploadIfDirty() {
@@ -183,24 +279,26 @@ struct Renderer::Impl {
     vbo_dirty = false;
   }
 
-  // Returns false when the shape cannot be drawn (warned once per mesh).
-  bool geometryFor(const Shape& shape, Range* out) {
+  // Returns null when the shape cannot be drawn (warned once per mesh).
+  const Geometry* geometryFor(const Shape& shape) {
     const std::string key = shapeKey(shape);
     const auto it = geometry.find(key);
-    if (it != geometry.end()) {
-      *out = it->second;
-      return true;
-    }
-    if (failed.count(key)) return false;
-    if (shape.type != ShapeType::kMesh) return false;  // primitives are made up front
+    if (it != geometry.end()) return &it->second;
+    if (failed.count(key)) return nullptr;
+    if (shape.type != ShapeType::kMesh) return nullptr;  // primitives are made up front
     try {
-      const auto mesh = MeshCache::global().get(shape.mesh_path, shape.scale);
-      *out = addGeometry(key, ri::meshSoup(*mesh));
-      return true;
+      if (!mayHaveMaterials(shape.mesh_path)) {
+        const auto mesh = MeshCache::global().get(shape.mesh_path, shape.scale);
+        return addGeometry(key, ri::meshSoup(*mesh));
+      }
+      const auto mesh = MeshCache::global().getWithMaterials(shape.mesh_path, shape.scale);
+      std::vector<ri::MeshPart> parts;
+      const ri::Soup soup = ri::meshSoup(*mesh, 40.0, &parts);
+      return addGeometry(key, soup, parts, mesh);
     } catch (const std::exception& e) {
       failed.insert(key);
       if (warn) warn(std::string("renderer: skipping a visual: ") + e.what());
-      return false;
+      return nullptr;
     }
   }
 
@@ -247,8 +345,8 @@ Renderer::Renderer(WarningSink warn) : impl_(new Impl) {
   auto lock = impl_->context->lock();
   Impl& m = *impl_;
 
-  m.program(1, false);  // the common case, and a check that the shaders build here
-  m.program(1, true);
+  m.program(1, false, false);  // the common case, and a check that the shaders build here
+  m.program(1, true, false);
 
   glGenVertexArrays(1, &m.vao);
   glGenBuffers(1, &m.vbo);
@@ -260,6 +358,9 @@ Renderer::Renderer(WarningSink warn) : impl_(new Impl) {
   glEnableVertexAttribArray(1);
   glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(ri::Vertex),
                         reinterpret_cast<void*>(offsetof(ri::Vertex, n)));
+  glEnableVertexAttribArray(2);
+  glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, sizeof(ri::Vertex),
+                        reinterpret_cast<void*>(offsetof(ri::Vertex, t)));
 
   m.addGeometry("box", ri::unitBox());
   m.addGeometry("cylinder", ri::unitCylinder());
@@ -280,9 +381,14 @@ Renderer::~Renderer() {
     }
     glDeleteBuffers(1, &impl_->vbo);
     glDeleteVertexArrays(1, &impl_->vao);
+    for (const auto& kv : impl_->textures) {
+      if (kv.second != 0) glDeleteTextures(1, &kv.second);
+    }
     for (const auto& by_grid : impl_->programs) {
-      for (const auto& p : by_grid) {
-        if (p.id != 0) glDeleteProgram(p.id);
+      for (const auto& by_texture : by_grid) {
+        for (const auto& p : by_texture) {
+          if (p.id != 0) glDeleteProgram(p.id);
+        }
       }
     }
   } catch (...) {
@@ -368,17 +474,26 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
     d = X_EW.linear() * d;
     for (int k = 0; k < 3; ++k) to_light[3 * i + k] = -static_cast<float>(d[k]);
   }
-  // The items' program, then the ground's (with the grid); the per-frame uniforms go to each.
+  // The items' programs (untextured, textured), then the ground's (with the grid); the
+  // per-frame uniforms go to each when it is first used in this frame.
   const Impl::Uniforms* current = nullptr;
-  auto use = [&](bool grid) {
-    const Impl::Program& prog = m.program(num_lights, grid);
+  int current_kind = -1;       // 0 plain, 1 textured, 2 grid
+  bool frame_uniforms[3] = {false, false, false};
+  auto use = [&](bool grid, bool texture) {
+    const int kind = grid ? 2 : (texture ? 1 : 0);
+    if (kind == current_kind) return;
+    const Impl::Program& prog = m.program(num_lights, grid, texture);
     const Impl::Uniforms& u = prog.u;
     glUseProgram(prog.id);
-    glUniformMatrix4fv(u.projection, 1, GL_FALSE, Pf.data());
-    if (num_lights > 0) glUniform3fv(u.to_light, num_lights, to_light);
+    if (!frame_uniforms[kind]) {
+      glUniformMatrix4fv(u.projection, 1, GL_FALSE, Pf.data());
+      if (num_lights > 0) glUniform3fv(u.to_light, num_lights, to_light);
+      frame_uniforms[kind] = true;
+    }
     current = &u;
+    current_kind = kind;
   };
-  use(false);
+  use(false, false);
 
   auto draw = [&](const Eigen::Isometry3d& X_WS, const Eigen::Vector3d& scale,
                   const Impl::Range& range, const Eigen::Vector3f& amb, const Eigen::Vector3f& dif,
@@ -459,8 +574,45 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
       continue;
     }
     const Material& mat = item.material;
-    draw(scene.bodies[item.body].X_WB * X_BS, scale, slot.range, mat.ambient.head<3>(),
-         mat.diffuse.head<3>(), mat.specular.head<3>(), slot.shininess);
+    const Impl::Geometry& g = *slot.geometry;
+    const Eigen::Isometry3d X_WS = scene.bodies[item.body].X_WB * X_BS;
+    if (g.parts.size() == 1 && g.parts[0].material < 0 && slot.texture == 0) {
+      // The common untextured case: one draw, as before materials and textures.
+      use(false, false);
+      draw(X_WS, scale, g.parts[0].range, mat.ambient.head<3>(), mat.diffuse.head<3>(),
+           mat.specular.head<3>(), slot.shininess);
+      continue;
+    }
+    // A material the user wrote (or a URDF colour) replaces the mesh file's colours; the
+    // mesh's own textures stay unless the material brings one.
+    const bool explicit_material = mat.specified || !mat.name.empty();
+    for (const Impl::Part& part : g.parts) {
+      const MeshMaterial* mm =
+          g.mesh && part.material >= 0 && part.material < static_cast<int>(g.mesh->materials.size())
+              ? &g.mesh->materials[part.material]
+              : nullptr;
+      Eigen::Vector3f amb = mat.ambient.head<3>(), dif = mat.diffuse.head<3>();
+      if (mm && !explicit_material) {
+        if (mm->has_diffuse) dif = mm->diffuse.head<3>();
+        // COLLADA exporters often write a black ambient: Gazebo then shows the diffuse colour
+        // under the scene's ambient light, which is what a black ambient would hide here.
+        amb = mm->has_ambient && mm->ambient.head<3>().maxCoeff() > 0.0f ? mm->ambient.head<3>() : dif;
+      }
+      GLuint tex = slot.texture;
+      Eigen::Vector2f uv_scale = mat.texture_scale;
+      if (tex == 0 && mm && part.material < static_cast<int>(slot.mesh_textures.size())) {
+        tex = slot.mesh_textures[part.material];
+        uv_scale = Eigen::Vector2f(1.0f, 1.0f);
+      }
+      use(false, tex != 0);
+      if (tex != 0) {
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, tex);
+        const float inv[2] = {1.0f / uv_scale.x(), 1.0f / uv_scale.y()};
+        glUniform2fv(current->uv_scale, 1, inv);
+      }
+      draw(X_WS, scale, part.range, amb, dif, mat.specular.head<3>(), slot.shininess);
+    }
   }
 
   // The ground plane last, so that the depth test skips shading what the items hide: a square
@@ -471,8 +623,8 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
                                          std::round(X_WC.translation().y()), 0.0);
     const double size = 2.0 * f + 2.0;
     const auto grey = findGazeboMaterial("Gazebo/Grey");
-    use(true);
-    draw(X_WG, Eigen::Vector3d(size, size, 1.0), m.geometry.at("quad"),
+    use(true, false);
+    draw(X_WG, Eigen::Vector3d(size, size, 1.0), m.geometry.at("quad").parts[0].range,
          Eigen::Vector3f(0.8f, 0.8f, 0.8f), Eigen::Vector3f(0.8f, 0.8f, 0.8f),
          grey->material.specular.head<3>(), grey->shininess);
   }

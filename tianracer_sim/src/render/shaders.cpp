@@ -13,11 +13,13 @@ namespace render_internal {
 // clamped to [0, 1]; L = -light direction, H = normalize(L + V), V towards the eye.
 // Output 1 is the depth along the optical axis (-z of the GL eye frame), interpolated
 // perspective-correctly from the vertices in float: exact to float rounding at any range.
-// Both shaders are compiled once per (light count, GRID) with those #defined in front: only the
-// ground plane runs the grid code (llvmpipe evaluates both sides of a branch on a uniform).
+// Both shaders are compiled once per (light count, GRID, TEXTURE) with those #defined in front:
+// only the ground plane runs the grid code and only textured surfaces sample (llvmpipe
+// evaluates both sides of a branch on a uniform).
 const char* const kVertexShader = R"(
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec2 a_uv;
 uniform mat4 u_model_view;
 uniform mat4 u_projection;
 uniform mat3 u_normal_matrix;
@@ -27,12 +29,19 @@ out vec3 v_eye_normal;
 uniform mat4 u_model;   // for the ground grid (world x, y)
 out vec2 v_world_xy;
 #endif
+#if TEXTURE
+uniform vec2 u_uv_scale;  // 1 / the texture_unit's scale
+out vec2 v_uv;
+#endif
 void main() {
   vec4 eye = u_model_view * vec4(a_position, 1.0);
   v_eye_position = eye.xyz;
   v_eye_normal = u_normal_matrix * a_normal;
 #if GRID
   v_world_xy = (u_model * vec4(a_position, 1.0)).xy;
+#endif
+#if TEXTURE
+  v_uv = (a_uv - 0.5) * u_uv_scale + 0.5;
 #endif
   gl_Position = u_projection * eye;
 }
@@ -45,6 +54,10 @@ in vec3 v_eye_position;
 in vec3 v_eye_normal;
 #if GRID
 in vec2 v_world_xy;
+#endif
+#if TEXTURE
+in vec2 v_uv;
+uniform sampler2D u_texture;
 #endif
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out float o_depth;
@@ -76,6 +89,7 @@ void main() {
 #endif
   vec3 v = normalize(-v_eye_position);
   vec3 c = k * u_ambient;
+  vec3 spec = vec3(0.0);
 #if NUM_LIGHTS > 0
   for (int i = 0; i < NUM_LIGHTS; ++i) {
     vec3 l = u_to_light[i];
@@ -83,10 +97,15 @@ void main() {
     if (ndl > 0.0) {
       c += (k * ndl) * u_diffuse[i];
       vec3 h = normalize(l + v);
-      c += u_specular[i] * pow(max(dot(n, h), 0.0), u_shininess);
+      spec += u_specular[i] * pow(max(dot(n, h), 0.0), u_shininess);
     }
   }
 #endif
+#if TEXTURE
+  // Ogre's default colour_op (modulate): the texture scales the ambient and diffuse light.
+  c *= texture(u_texture, v_uv).rgb;
+#endif
+  c += spec;
   // No clamp(): GL clamps what is written to a normalized fixed-point (RGBA8) buffer to [0, 1].
   o_color = vec4(c, 1.0);
   o_depth = -v_eye_position.z;

@@ -2,6 +2,7 @@
 // checked, every failure is a WorldError naming file and line, every element we do not use is
 // reported once through the WarningSink.
 #include "tianracer_sim/world/world.h"
+#include "tianracer_sim/world/sdf_material.h"
 
 #include "tianracer_sim/scene/materials.h"
 
@@ -141,7 +142,6 @@ class Parser {
   LinkDescription parseLink(const XMLElement* e, const std::string& model);
   InertialDescription parseInertial(const XMLElement* e, const std::string& what);
   Shape parseGeometry(const XMLElement* e, const std::string& what);
-  Material parseMaterial(const XMLElement* e, const std::string& what);
   Friction parseSurface(const XMLElement* e, const std::string& what, ContactDescription* contact);
   JointDescription parseJoint(const XMLElement* e, const std::string& model);
   std::string resolveMesh(const XMLElement* e, const std::string& uri, const std::string& what);
@@ -421,7 +421,7 @@ LinkDescription Parser::parseLink(const XMLElement* e, const std::string& model)
         } else if (gtag == "surface" && tag == "collision") {
           friction = parseSurface(g, cwhat, &contact);
         } else if (gtag == "material" && tag == "visual") {
-          material = parseMaterial(g, cwhat);
+          material = parseSdfMaterial(g, {source_, base_dir_, options_.model_paths, cwhat, options_.warn});
         } else {
           unsupported(g);
         }
@@ -593,37 +593,6 @@ std::string Parser::resolveMesh(const XMLElement* e, const std::string& uri,
     fail(e, msg + ")");
   }
   return path;
-}
-
-Material Parser::parseMaterial(const XMLElement* e, const std::string& what) {
-  Material m;
-  // A script name sets the base colours; explicit colours override them, as in Gazebo.
-  for (const XMLElement* c = e->FirstChildElement("script"); c;
-       c = c->NextSiblingElement("script")) {
-    for (const XMLElement* s = c->FirstChildElement(); s; s = s->NextSiblingElement()) {
-      const std::string tag = s->Name();
-      if (tag == "name") {
-        const std::string name = text(s);
-        if (auto g = findGazeboMaterial(name)) {
-          m = g->material;
-        } else {
-          warn(s, what + ": unknown material '" + name + "', using the default grey");
-          m.name = name;
-        }
-      } else if (tag != "uri") {
-        unsupported(s);
-      }
-    }
-  }
-  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
-    const std::string tag = c->Name();
-    if (tag == "script") continue;
-    if (tag == "ambient") m.ambient = color(c, what);
-    else if (tag == "diffuse") m.diffuse = color(c, what);
-    else if (tag == "specular") m.specular = color(c, what);
-    else unsupported(c);
-  }
-  return m;
 }
 
 Friction Parser::parseSurface(const XMLElement* e, const std::string& what,

@@ -30,12 +30,24 @@ struct Shape {
   Eigen::Vector3d scale = Eigen::Vector3d::Ones();
 };
 
-/// Surface colour: Phong-style ambient/diffuse/specular in linear [0, 1] RGBA.
+/// Surface colour: Phong-style ambient/diffuse/specular in linear [0, 1] RGBA, and an optional
+/// diffuse texture that modulates the lit colour (Ogre's default colour_op modulate).
 struct Material {
   Eigen::Vector4f ambient{0.5f, 0.5f, 0.5f, 1.0f};
   Eigen::Vector4f diffuse{0.7f, 0.7f, 0.7f, 1.0f};
   Eigen::Vector4f specular{0.01f, 0.01f, 0.01f, 1.0f};
   std::string name;  // e.g. "Gazebo/Red" when it came from a Gazebo material name
+  /// Diffuse texture file (absolute path; PNG or JPEG), "" for none. A file that cannot be
+  /// read is drawn with the colours above (the renderer warns once, naming the file).
+  std::string texture;
+  /// OGRE texture_unit `scale`: the texture's size on the surface, about its centre
+  /// (uv' = (uv - 0.5) / scale + 0.5); 1 1 maps the image once onto the shape's UVs.
+  Eigen::Vector2f texture_scale{1.0f, 1.0f};
+  /// Specular exponent; < 0: Gazebo's stock value for `name`, else the renderer's default.
+  float shininess = -1.0f;
+  /// Written by the user (SDF <material>, URDF colour): replaces a mesh file's own colours.
+  /// Without it a mesh is drawn with its file's materials (COLLADA/OBJ colours, textures).
+  bool specified = false;
 };
 
 /// A rigid body: the world's static models, each link (or merged link group) of a robot.

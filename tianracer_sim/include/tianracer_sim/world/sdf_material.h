@@ -1,0 +1,45 @@
+// SDF <material> of a visual: colours, Gazebo's stock script names, a model's own OGRE
+// material script, and PBR albedo maps, into the scene's Material (texture paths resolved).
+// ROS-free.
+#ifndef TIANRACER_SIM_WORLD_SDF_MATERIAL_H
+#define TIANRACER_SIM_WORLD_SDF_MATERIAL_H
+
+#include <string>
+#include <vector>
+
+#include <tinyxml2.h>
+
+#include "tianracer_sim/common/warning.h"
+#include "tianracer_sim/scene/scene.h"
+
+namespace tianracer_sim {
+
+/// Where a <material> is read: for messages ("<source>:<line>: <what>: ...") and for URIs.
+struct SdfMaterialContext {
+  std::string source;    // the world file
+  std::string base_dir;  // its folder: relative and file:// URIs, and model:// after the paths
+  std::vector<std::string> model_paths;  // searched for model:// after $GAZEBO_MODEL_PATH
+  std::string what;      // "model 'm' link 'l' visual 'v'"
+  WarningSink warn;
+};
+
+/// Reads <material>:
+///  - <script><name> a Gazebo stock name (scene/materials.h) or a material defined in an OGRE
+///    script found in the <script><uri> folders (model://x/materials/scripts; its texture is
+///    looked for in the <uri> folders, the script's folder and its ../textures);
+///  - <ambient>, <diffuse>, <specular> (override the script's colours, as in Gazebo);
+///  - <pbr><metal><albedo_map> (a texture URI).
+/// model:// URIs are searched in $GAZEBO_MODEL_PATH, `model_paths`, the world's folder and
+/// its models/ subfolder. A script, material or texture that is not found is warned (naming
+/// the file, line and value) and the colours are used; a colour that is not 3-4 numbers
+/// throws WorldError.
+Material parseSdfMaterial(const tinyxml2::XMLElement* e, const SdfMaterialContext& ctx);
+
+/// The file a material URI names (model://, file://, absolute, or relative to base_dir);
+/// "" when none exists. `tried` (may be null) receives every path looked at.
+std::string resolveMaterialUri(const std::string& uri, const SdfMaterialContext& ctx,
+                               std::vector<std::string>* tried = nullptr);
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_WORLD_SDF_MATERIAL_H

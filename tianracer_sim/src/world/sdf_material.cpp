@@ -1,0 +1,233 @@
+#include "tianracer_sim/world/sdf_material.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+#include "tianracer_sim/scene/materials.h"
+#include "tianracer_sim/scene/ogre_material.h"
+#include "tianracer_sim/world/world.h"  // WorldError
+
+namespace tianracer_sim {
+namespace {
+
+namespace fs = std::filesystem;
+using tinyxml2::XMLElement;
+
+std::string trimmed(const XMLElement* e) {
+  const char* t = e->GetText();
+  if (!t) return "";
+  std::string s = t;
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
+}
+
+bool exists(const std::string& p) {
+  std::error_code ec;
+  return !p.empty() && fs::exists(p, ec);
+}
+
+std::string joinPath(const std::string& a, const std::string& b) {
+  if (a.empty()) return b;
+  return (fs::path(a) / b).lexically_normal().string();
+}
+
+class Reader {
+ public:
+  explicit Reader(const SdfMaterialContext& ctx) : ctx_(ctx) {}
+
+  std::string at(const XMLElement* e) const {
+    return ctx_.source + ":" + std::to_string(e ? e->GetLineNum() : 0) + ": " + ctx_.what + ": ";
+  }
+  void warn(const XMLElement* e, const std::string& msg) const {
+    if (ctx_.warn) ctx_.warn(at(e) + msg);
+  }
+  void unsupported(const XMLElement* e) const {
+    const XMLElement* parent = e->Parent() ? e->Parent()->ToElement() : nullptr;
+    warn(e, "<" + std::string(e->Name()) + ">" +
+                (parent ? " in <" + std::string(parent->Name()) + ">" : std::string()) +
+                " is not supported, ignored");
+  }
+
+  Eigen::Vector4f color(const XMLElement* e) const {
+    std::istringstream in(trimmed(e));
+    std::vector<double> v;
+    std::string tok;
+    while (in >> tok) {
+      char* end = nullptr;
+      const double x = std::strtod(tok.c_str(), &end);
+      if (end != tok.c_str() + tok.size() || !std::isfinite(x)) {
+        v.clear();
+        v.resize(99);
+        break;
+      }
+      v.push_back(x);
+    }
+    if (v.size() != 3 && v.size() != 4) {
+      throw WorldError(at(e) + "<" + e->Name() + "> '" + trimmed(e) +
+                       "' is not a colour \"r g b [a]\"");
+    }
+    return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]),
+            v.size() == 4 ? static_cast<float>(v[3]) : 1.0f};
+  }
+
+  // Resolves a texture URI (albedo_map) or warns and returns "".
+  std::string texture(const XMLElement* e, const std::string& uri) const {
+    std::vector<std::string> tried;
+    const std::string path = resolveMaterialUri(uri, ctx_, &tried);
+    if (path.empty()) {
+      std::string msg = "texture '" + uri + "' not found (tried";
+      for (const auto& t : tried) msg += " " + t;
+      warn(e, msg + "); the diffuse colour is drawn instead");
+    }
+    return path;
+  }
+
+  void script(const XMLElement* e, Material* m) const {
+    std::vector<std::string> folders;
+    std::string name;
+    const XMLElement* name_e = e;
+    for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+      const std::string tag = c->Name();
+      if (tag == "uri") {
+        const std::string uri = trimmed(c);
+        std::vector<std::string> tried;
+        const std::string p = resolveMaterialUri(uri, ctx_, &tried);
+        // Gazebo's own media folders are not shipped: only a model's URIs are worth a warning.
+        if (!p.empty()) folders.push_back(p);
+        else if (uri.rfind("file://media/", 0) != 0) warn(c, "<script><uri> '" + uri + "' not found");
+      } else if (tag == "name") {
+        name = trimmed(c);
+        name_e = c;
+      } else {
+        unsupported(c);
+      }
+    }
+    if (name.empty()) return;
+    if (auto g = findGazeboMaterial(name)) {
+      *m = g->material;
+      m->specified = true;
+      return;
+    }
+    const auto ogre = findOgreMaterial(name, folders, ctx_.warn);
+    if (!ogre) {
+      std::string msg = "unknown material '" + name + "' (not a Gazebo stock name";
+      msg += folders.empty() ? ", and no <uri> folder was found" : ", and not in the scripts of";
+      for (const auto& f : folders) msg += " " + f;
+      warn(name_e, msg + "), using the default grey");
+      m->name = name;
+      m->specified = true;
+      return;
+    }
+    m->name = name;
+    m->specified = true;
+    // Ogre's defaults for what the script leaves out: ambient and diffuse white, no specular.
+    m->ambient = ogre->ambient.value_or(Eigen::Vector4f(1, 1, 1, 1));
+    m->diffuse = ogre->diffuse.value_or(Eigen::Vector4f(1, 1, 1, 1));
+    m->specular = ogre->specular.value_or(Eigen::Vector4f(0, 0, 0, 1));
+    m->shininess = ogre->shininess;
+    if (ogre->texture.empty()) return;
+    m->texture_scale = ogre->texture_scale;
+    std::vector<std::string> dirs = folders;
+    const std::string script_dir = fs::path(ogre->file).parent_path().string();
+    dirs.push_back(script_dir);
+    dirs.push_back(joinPath(script_dir, "../textures"));
+    std::string msg;
+    for (const auto& d : dirs) {
+      const std::string p = fs::is_directory(d) ? joinPath(d, ogre->texture) : std::string();
+      if (!p.empty() && exists(p)) {
+        m->texture = p;
+        return;
+      }
+      if (!p.empty()) msg += " " + p;
+    }
+    if (ctx_.warn) {
+      ctx_.warn(ogre->file + ":" + std::to_string(ogre->line) + ": material " + name +
+                ": texture '" + ogre->texture + "' not found (tried" + msg + ") for " +
+                ctx_.what + " (" + ctx_.source + ":" + std::to_string(name_e->GetLineNum()) +
+                "); the diffuse colour is drawn instead");
+    }
+  }
+
+  void pbr(const XMLElement* e, Material* m) const {
+    for (const XMLElement* w = e->FirstChildElement(); w; w = w->NextSiblingElement()) {
+      const std::string workflow = w->Name();
+      if (workflow != "metal" && workflow != "specular") {
+        unsupported(w);
+        continue;
+      }
+      for (const XMLElement* c = w->FirstChildElement(); c; c = c->NextSiblingElement()) {
+        if (std::string(c->Name()) == "albedo_map") {
+          const std::string uri = trimmed(c);
+          const std::string p = uri.empty() ? std::string() : texture(c, uri);
+          if (!p.empty()) {
+            m->texture = p;
+            m->texture_scale = Eigen::Vector2f(1.0f, 1.0f);
+            m->specified = true;
+          }
+        } else {
+          unsupported(c);
+        }
+      }
+    }
+  }
+
+ private:
+  const SdfMaterialContext& ctx_;
+};
+
+}  // namespace
+
+std::string resolveMaterialUri(const std::string& uri, const SdfMaterialContext& ctx,
+                               std::vector<std::string>* tried) {
+  std::vector<std::string> candidates;
+  if (uri.rfind("model://", 0) == 0) {
+    const std::string rest = uri.substr(8);
+    std::vector<std::string> dirs;
+    if (const char* env = std::getenv("GAZEBO_MODEL_PATH")) {
+      std::stringstream ss(env);
+      std::string d;
+      while (std::getline(ss, d, ':'))
+        if (!d.empty()) dirs.push_back(d);
+    }
+    dirs.insert(dirs.end(), ctx.model_paths.begin(), ctx.model_paths.end());
+    dirs.push_back(ctx.base_dir);
+    dirs.push_back(joinPath(ctx.base_dir, "models"));
+    for (const auto& d : dirs) candidates.push_back(joinPath(d, rest));
+  } else {
+    std::string p = uri.rfind("file://", 0) == 0 ? uri.substr(7) : uri;
+    candidates.push_back(!p.empty() && p[0] == '/' ? p : joinPath(ctx.base_dir, p));
+  }
+  for (const auto& c : candidates) {
+    if (tried) tried->push_back(c);
+    if (exists(c)) return c;
+  }
+  return "";
+}
+
+Material parseSdfMaterial(const XMLElement* e, const SdfMaterialContext& ctx) {
+  Reader r(ctx);
+  Material m;
+  // A script sets the base colours (and texture); explicit colours override them, as in Gazebo.
+  for (const XMLElement* c = e->FirstChildElement("script"); c; c = c->NextSiblingElement("script")) {
+    r.script(c, &m);
+  }
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "script") continue;
+    if (tag == "ambient") m.ambient = r.color(c);
+    else if (tag == "diffuse") m.diffuse = r.color(c);
+    else if (tag == "specular") m.specular = r.color(c);
+    else if (tag == "pbr") r.pbr(c, &m);
+    else {
+      r.unsupported(c);
+      continue;
+    }
+    m.specified = true;
+  }
+  return m;
+}
+
+}  // namespace tianracer_sim
