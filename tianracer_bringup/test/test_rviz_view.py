@@ -26,9 +26,9 @@ import yaml
 from geometry_msgs.msg import Twist
 from PIL import Image
 
-CONFIG = os.path.join(rospkg.RosPack().get_path("tianracer_bringup"), "rviz", "tianracer.rviz")
+RVIZ_DIR = os.path.join(rospkg.RosPack().get_path("tianracer_bringup"), "rviz")
 SCREEN = (1400, 900)
-SHOT = os.path.join(os.environ.get("ROS_LOG_DIR", tempfile.gettempdir()), "rviz_view.png")
+SHOT_DIR = os.environ.get("ROS_LOG_DIR", tempfile.gettempdir())
 TROUBLE = re.compile(r"^(WARN|ERROR|FATAL) |Error transforming|No transform|does not exist|Fixed Frame|"
                      r"Discarding message")
 READY = re.compile(r"Message ready in frame (\S+)")
@@ -110,6 +110,11 @@ class RvizViewTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node("test_rviz_view")
+        # ~config: which shipped config (tianracer.rviz with tianracer.launch, two_cars.rviz
+        # with two_cars.launch); ~negative: also run the misspelt-fixed-frame check.
+        cls.config = os.path.join(RVIZ_DIR, rospy.get_param("~config", "tianracer.rviz"))
+        cls.negative = rospy.get_param("~negative", True)
+        cls.shot = os.path.join(SHOT_DIR, os.path.basename(cls.config).replace(".rviz", "_view.png"))
         cls.missing = [t for t in ("xvfb-run", "rviz", "import") if not shutil.which(t)]
         cls.master = rosgraph.Master("/test_rviz_view")
         cls.cmd = rospy.Publisher("/cmd_vel", Twist, queue_size=1)
@@ -159,26 +164,28 @@ class RvizViewTest(unittest.TestCase):
             viewer.close()
 
     def test_shipped_config_clean_and_drawn(self):
-        console, shot = self.view(CONFIG, 4.0)
-        shutil.copy(shot, SHOT)
-        self.assertEqual(trouble(console), [], "rviz reported problems (screenshot %s)" % SHOT)
+        console, shot = self.view(self.config, 4.0)
+        shutil.copy(shot, self.shot)
+        self.assertEqual(trouble(console), [], "rviz reported problems (screenshot %s)" % self.shot)
         img = Image.open(shot).convert("RGB")
         self.assertEqual(img.size, SCREEN)
         # Not blank: many colours, and the scan's colour in the 3D view (right of the panels).
         colours = img.getcolors(maxcolors=1 << 20)
-        self.assertGreater(len(colours), 200, "screenshot %s has %d colours" % (SHOT, len(colours)))
+        self.assertGreater(len(colours), 200, "screenshot %s has %d colours" % (self.shot, len(colours)))
         view = img.crop((360, 70, SCREEN[0], SCREEN[1] - 40))
         scan = sum(n for n, c in view.getcolors(maxcolors=1 << 20)
                    if all(abs(a - b) <= 30 for a, b in zip(c, SCAN_RGB)))
-        self.assertGreater(scan, 200, "the scan is not drawn in %s (%d pixels of its colour)" % (SHOT, scan))
+        self.assertGreater(scan, 200, "the scan is not drawn in %s (%d pixels of its colour)" % (self.shot, scan))
         # The camera panel (top left) shows the camera image, not an empty panel.
         panel = img.crop((30, 90, 300, 350)).getcolors(maxcolors=1 << 20)
-        self.assertGreater(len(panel), 20, "the camera panel of %s looks empty" % SHOT)
+        self.assertGreater(len(panel), 20, "the camera panel of %s looks empty" % self.shot)
 
     def test_the_check_catches_a_wrong_fixed_frame(self):
+        if not self.negative:
+            self.skipTest("~negative is false: checked with tianracer.rviz")
         bad = os.path.join(self.tmp, "bad.rviz")
         with open(bad, "w") as f:
-            f.write(open(CONFIG).read().replace("Fixed Frame: world", "Fixed Frame: no_such_frame"))
+            f.write(open(self.config).read().replace("Fixed Frame: world", "Fixed Frame: no_such_frame"))
         console, _ = self.view(bad, 1.0)
         found = trouble(console)
         self.assertTrue(any("no_such_frame" in l for l in found), "not caught; console:\n%s" % console[-3000:])
