@@ -22,6 +22,7 @@ APT_PACKAGES=(
   git pkg-config libtinyxml2-dev libyaml-cpp-dev libgtest-dev libgmock-dev liburdfdom-tools
   libstd-srvs-dev python3-std-srvs libdiagnostic-msgs-dev python3-diagnostic-msgs
   libros-rosgraph-msgs-dev python3-rosgraph-msgs python3-numpy python3-pil python3-yaml python3-catkin-pkg python3-nose
+  libstb-dev
 )
 PIP_PACKAGES=(xacro==1.13.3)   # ROS 1 xacro; 2.x is the ROS 2 one (TOOLCHAIN.md)
 

@@ -2,6 +2,7 @@
 // checked, every failure is a WorldError naming file and line, every element we do not use is
 // reported once through the WarningSink.
 #include "tianracer_sim/world/world.h"
+#include "tianracer_sim/world/map_world.h"
 
 #include "tianracer_sim/scene/materials.h"
 
@@ -1012,12 +1013,15 @@ WorldDescription loadWorldFile(const std::string& path, const WorldLoadOptions& 
   if (isDir(path)) throw WorldError("world file '" + path + "' is a directory");
   std::ifstream in(path, std::ios::binary);
   if (!isFile(path) || !in) throw WorldError("world file '" + path + "' does not exist");
+  const auto dot = path.find_last_of('.');
+  if (dot != std::string::npos && (path.substr(dot) == ".yaml" || path.substr(dot) == ".yml"))
+    return loadMapWorld(path, options);
   std::stringstream ss;
   ss << in.rdbuf();
   return loadWorldString(ss.str(), path, dirName(path), options);
 }
 
-std::vector<std::string> shippedWorldNames() { return {"empty", "walled_room", "racetrack"}; }
+std::vector<std::string> shippedWorldNames() { return {"empty", "walled_room", "racetrack", "obstacles"}; }
 
 std::string resolveWorld(const std::string& arg, const std::string& worlds_dir) {
   if (arg.empty()) throw WorldError("world: empty name");

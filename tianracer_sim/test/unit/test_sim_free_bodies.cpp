@@ -270,5 +270,25 @@ TEST(FreeBodies, BadMassOrInertiaNamesFileLineAndValue) {
             "");
 }
 
+// The shipped obstacle world: its cones and boxes are free bodies that start at rest where the
+// file puts them (no overlap to push apart) and stay upright until something hits them.
+TEST(FreeBodies, ShippedObstacleWorldSettlesInPlace) {
+  const WorldDescription desc =
+      loadWorldFile(resolveWorld("obstacles", std::string(TEST_DATA_DIR) + "/../../worlds"));
+  PhysicsWorld physics(physicsOptionsFor(desc));
+  std::vector<std::string> warnings;
+  addWorldToPhysics(desc, &physics, [&](const std::string& w) { warnings.push_back(w); });
+  EXPECT_TRUE(warnings.empty());
+  EXPECT_EQ(physics.freeBodyCount(), 10);  // 6 cones, 4 boxes
+  for (int k = 0; k < 2000; ++k) physics.step();
+  for (int i = 0; i < physics.freeBodyCount(); ++i) {
+    const PhysicsRobot& b = physics.freeBody(i);
+    const Eigen::Isometry3d X0 = b.spawnPose(), X = b.basePose();
+    EXPECT_LT((X.translation() - X0.translation()).norm(), 2e-3) << b.name();
+    EXPECT_GT(X.linear()(2, 2), 0.9999) << b.name();
+    EXPECT_LT(b.baseTwist().linear.norm(), 1e-3) << b.name();
+  }
+}
+
 }  // namespace
 }  // namespace tianracer_sim

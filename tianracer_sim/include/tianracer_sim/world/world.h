@@ -135,9 +135,12 @@ struct WorldLoadOptions {
   /// package:// lookup for mesh URIs ("" when unknown); may be empty.
   std::function<std::string(const std::string& package)> find_package;
   bool require_meshes = true;  // a mesh file that does not exist is an error
+  /// A map world's wall height (m) where its YAML sets no wall_height (map_world.h).
+  double map_wall_height = 0.5;
 };
 
-/// Reads a world file. Throws WorldError (a missing file names the path).
+/// Reads a world file; a .yaml file is a ROS map (map_world.h). Throws WorldError (a missing
+/// file names the path).
 WorldDescription loadWorldFile(const std::string& path, const WorldLoadOptions& options = {});
 
 /// Parses world XML; `source` names it in messages and relative URIs resolve against
