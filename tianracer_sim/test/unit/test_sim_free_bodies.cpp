@@ -182,6 +182,14 @@ TEST(FreeBodies, OtherJointsAndUnjoinedLinksAreWarnedAndHeldFixed) {
   EXPECT_NE(w.warnings[0].find("test.world:"), std::string::npos);
 }
 
+TEST(FreeBodies, WithoutCollisionItIsWarnedAbout) {
+  FreeWorld w("<model name='ghost'><pose>0 0 1 0 0 0</pose><link name='l'><visual name='v'><geometry>"
+              "<sphere><radius>0.1</radius></sphere></geometry></visual></link></model>");
+  ASSERT_EQ(w.warnings.size(), 1u);
+  EXPECT_NE(w.warnings[0].find("model 'ghost': is dynamic but has no collision"), std::string::npos)
+      << w.warnings[0];
+}
+
 TEST(FreeBodies, ResetWorldPutsThemBackAndGetModelStateFindsThem) {
   const WorldDescription desc = world(boxModel("crate", Eigen::Vector3d(0.2, 0.2, 0.2), 1.0,
                                                "0.5 0 0.3 0 0 0.2"));
