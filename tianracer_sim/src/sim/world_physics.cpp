@@ -119,6 +119,10 @@ RigidTree freeBodyTree(const WorldDescription& world, const ModelDescription& mo
       surfaces->push_back(surfaceOf(c));
     }
   }
+  if (body.collisions.empty()) {
+    warnAt(model.line, "is dynamic but has no collision: nothing holds it up, it falls through "
+                       "the ground (as in Gazebo)");
+  }
   tree.bodies.push_back(std::move(body));
   return tree;
 }

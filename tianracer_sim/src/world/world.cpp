@@ -3,6 +3,7 @@
 // reported once through the WarningSink.
 #include "tianracer_sim/world/world.h"
 #include "tianracer_sim/world/sdf_material.h"
+#include "tianracer_sim/world/map_world.h"
 
 #include "tianracer_sim/scene/materials.h"
 
@@ -12,6 +13,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <algorithm>
+#include <filesystem>
+#include <mutex>
 #include <set>
 #include <sstream>
 
@@ -62,6 +66,69 @@ std::string trim(const std::string& s) {
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
+std::vector<std::string> splitPath(const char* env) {
+  std::vector<std::string> dirs;
+  if (!env) return dirs;
+  std::stringstream ss(env);
+  std::string d;
+  while (std::getline(ss, d, ':'))
+    if (!d.empty()) dirs.push_back(d);
+  return dirs;
+}
+
+/// The gazebo_model_path exports of the ROS packages under ROS_PACKAGE_PATH
+/// (<export><gazebo_ros gazebo_model_path="${prefix}/models"/></export>), crawled as rospack
+/// does (a folder with package.xml is a package; CATKIN_IGNORE and hidden folders are skipped).
+/// Computed once per ROS_PACKAGE_PATH value.
+std::vector<std::string> rosExportedModelPaths() {
+  static std::mutex mutex;
+  static std::map<std::string, std::vector<std::string>> cache;
+  const char* env = std::getenv("ROS_PACKAGE_PATH");
+  const std::string key = env ? env : "";
+  std::lock_guard<std::mutex> lock(mutex);
+  auto it = cache.find(key);
+  if (it != cache.end()) return it->second;
+  std::vector<std::string> out;
+  namespace fs = std::filesystem;
+  std::function<void(const fs::path&, int)> crawl = [&](const fs::path& dir, int depth) {
+    std::error_code ec;
+    if (fs::exists(dir / "package.xml", ec)) {
+      tinyxml2::XMLDocument doc;
+      if (doc.LoadFile((dir / "package.xml").c_str()) != tinyxml2::XML_SUCCESS) return;
+      const XMLElement* pkg = doc.RootElement();
+      const XMLElement* exp = pkg ? pkg->FirstChildElement("export") : nullptr;
+      for (const XMLElement* g = exp ? exp->FirstChildElement("gazebo_ros") : nullptr; g;
+           g = g->NextSiblingElement("gazebo_ros")) {
+        const char* attr = g->Attribute("gazebo_model_path");
+        if (!attr) continue;
+        std::string path = attr;
+        const auto p = path.find("${prefix}");
+        if (p != std::string::npos) path.replace(p, 9, dir.string());
+        out.push_back(path);
+      }
+      return;
+    }
+    if (depth > 8 || fs::exists(dir / "CATKIN_IGNORE", ec)) return;
+    std::vector<fs::path> subs;
+    for (fs::directory_iterator d(dir, ec), end; !ec && d != end; d.increment(ec)) {
+      if (d->is_directory(ec) && d->path().filename().string()[0] != '.') subs.push_back(d->path());
+    }
+    std::sort(subs.begin(), subs.end());  // same order on every run
+    for (const fs::path& sub : subs) crawl(sub, depth + 1);
+  };
+  for (const std::string& root : splitPath(env)) crawl(root, 0);
+  cache[key] = out;
+  return out;
+}
+
+/// SDF version "1.6" -> 1.6; unparsable -> 0.
+double sdfVersion(const char* v) {
+  if (!v) return 0.0;
+  char* end = nullptr;
+  const double d = std::strtod(v, &end);
+  return end == v ? 0.0 : d;
+}
+
 /// State shared by the parse functions of one file.
 class Parser {
  public:
@@ -69,6 +136,13 @@ class Parser {
       : source_(std::move(source)), base_dir_(std::move(base_dir)), options_(options) {}
 
   WorldDescription parse(const std::string& xml);
+  /// A model file (<sdf><model>) of an <include>.
+  ModelDescription parseModelFile(const std::string& xml);
+
+  /// Model files being included, outermost first (an <include> loop is an error).
+  std::vector<std::string> include_stack_;
+  /// Folders an enclosing <include> found its model in (searched for model:// URIs too).
+  std::vector<std::string> model_roots_;
 
  private:
   // "<file>:<line>: "
@@ -143,6 +217,22 @@ class Parser {
   InertialDescription parseInertial(const XMLElement* e, const std::string& what);
   Shape parseGeometry(const XMLElement* e, const std::string& what);
   Friction parseSurface(const XMLElement* e, const std::string& what, ContactDescription* contact);
+  struct IncludeSpec {
+    std::string uri, name;
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    bool has_pose = false;
+    std::optional<bool> is_static;
+  };
+  IncludeSpec parseIncludeSpec(const XMLElement* e);
+  /// Resolves and parses the model an <include> names, with its <name>/<pose>/<static>.
+  ModelDescription includeModel(const XMLElement* e, const IncludeSpec& spec);
+  /// Folders searched for model://NAME: GAZEBO_MODEL_PATH, the load options' model_paths, the
+  /// folders of enclosing includes, ~/.gazebo/models, ROS packages' exported
+  /// gazebo_model_path, the world file's folder and its models/ subfolder.
+  std::vector<std::string> modelDirs() const;
+  void applyState(const XMLElement* e, WorldDescription& world, std::set<std::string>& names);
+  static void mergeSubModel(ModelDescription* m, const ModelDescription& sub,
+                            const Eigen::Isometry3d& X_MS);
   JointDescription parseJoint(const XMLElement* e, const std::string& model);
   std::string resolveMesh(const XMLElement* e, const std::string& uri, const std::string& what);
 
@@ -215,6 +305,7 @@ WorldDescription Parser::parse(const std::string& xml) {
   world.source = source_;
   world.name = w->Attribute("name") ? w->Attribute("name") : "default";
   std::set<std::string> model_names;
+  std::vector<const XMLElement*> states;  // applied once every model is known
   bool have_physics = false;
   for (const XMLElement* c = w->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
@@ -230,7 +321,14 @@ WorldDescription Parser::parse(const std::string& xml) {
     } else if (tag == "scene") {
       parseScene(c, world);
     } else if (tag == "include") {
+      const std::size_t before = world.models.size();
       parseInclude(c, world);
+      for (std::size_t i = before; i < world.models.size(); ++i) {
+        if (!model_names.insert(world.models[i].name).second)
+          fail(c, "duplicate model name '" + world.models[i].name + "'");
+      }
+    } else if (tag == "state") {
+      states.push_back(c);
     } else if (tag == "light") {
       parseLight(c, world);
     } else if (tag == "model") {
@@ -241,7 +339,90 @@ WorldDescription Parser::parse(const std::string& xml) {
       unsupported(c);
     }
   }
+  // Gazebo applies a saved <state> on load: its poses override the models' <pose>.
+  for (const XMLElement* st : states) applyState(st, world, model_names);
   return world;
+}
+
+ModelDescription Parser::parseModelFile(const std::string& xml) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS)
+    throw WorldError(source_ + ":" + std::to_string(doc.ErrorLineNum()) + ": malformed XML: " +
+                     doc.ErrorName());
+  const XMLElement* root = doc.RootElement();
+  if (!root) throw WorldError(source_ + ":1: malformed XML: no root element");
+  if (std::string(root->Name()) == "model") return parseModel(root);  // a bare <model>
+  if (std::string(root->Name()) != "sdf")
+    fail(root, "root element is <" + std::string(root->Name()) + ">, expected <sdf>");
+  const XMLElement* m = root->FirstChildElement("model");
+  if (!m) fail(root, "no <model> in this model file");
+  for (const XMLElement* c = root->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    if (c != m) unsupported(c, "a model file holds one <model>");
+  }
+  return parseModel(m);
+}
+
+void Parser::applyState(const XMLElement* e, WorldDescription& world,
+                        std::set<std::string>& names) {
+  auto findModel = [&](const std::string& name) -> ModelDescription* {
+    for (ModelDescription& m : world.models)
+      if (m.name == name) return &m;
+    return nullptr;
+  };
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "sim_time" || tag == "wall_time" || tag == "real_time" || tag == "iterations" ||
+        tag == "light") {
+      continue;  // times and light states do not change what is simulated
+    } else if (tag == "insertions") {
+      for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
+        if (std::string(k->Name()) != "model") {
+          unsupported(k);
+          continue;
+        }
+        ModelDescription m = parseModel(k);
+        if (!names.insert(m.name).second) fail(k, "duplicate model name '" + m.name + "'");
+        world.models.push_back(std::move(m));
+      }
+    } else if (tag == "deletions") {
+      for (const XMLElement* k = c->FirstChildElement("name"); k; k = k->NextSiblingElement("name")) {
+        const std::string name = text(k);
+        auto it = std::find_if(world.models.begin(), world.models.end(),
+                               [&](const ModelDescription& m) { return m.name == name; });
+        if (it == world.models.end())
+          fail(k, "<state> <deletions> names model '" + name + "', which the world does not have");
+        world.models.erase(it);
+        names.erase(name);
+      }
+    } else if (tag == "model") {
+      const std::string name = c->Attribute("name") ? trim(c->Attribute("name")) : "";
+      ModelDescription* m = findModel(name);
+      if (!m) fail(c, "<state> names model '" + name + "', which the world does not have");
+      const std::string what = "<state> of model '" + name + "'";
+      if (const XMLElement* p = c->FirstChildElement("pose")) m->X_WM = pose(p, what);
+      for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
+        const std::string ktag = k->Name();
+        if (ktag == "pose") continue;
+        if (ktag == "scale") {
+          const Eigen::Vector3d scale = vector3(k, what);
+          if (!scale.isApprox(Eigen::Vector3d::Ones())) warn(k, what + ": <scale> is not applied");
+        } else if (ktag == "link") {
+          const std::string lname = k->Attribute("name") ? trim(k->Attribute("name")) : "";
+          auto l = std::find_if(m->links.begin(), m->links.end(),
+                                [&](const LinkDescription& d) { return d.name == lname; });
+          if (l == m->links.end())
+            fail(k, what + " names link '" + lname + "', which the model does not have");
+          // A link's state pose is its world pose.
+          if (const XMLElement* p = k->FirstChildElement("pose"))
+            l->X_ML = m->X_WM.inverse() * pose(p, what + " link '" + lname + "'");
+        } else if (ktag != "joint") {
+          unsupported(k);
+        }
+      }
+    } else {
+      unsupported(c);
+    }
+  }
 }
 
 void Parser::parsePhysics(const XMLElement* e, PhysicsSettings& physics) {
@@ -274,53 +455,158 @@ void Parser::parseScene(const XMLElement* e, WorldDescription& world) {
   }
 }
 
-void Parser::parseInclude(const XMLElement* e, WorldDescription& world) {
-  std::string uri, name;
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  bool has_pose = false;
+Parser::IncludeSpec Parser::parseIncludeSpec(const XMLElement* e) {
+  IncludeSpec spec;
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
     if (tag == "uri") {
-      uri = text(c);
+      spec.uri = text(c);
     } else if (tag == "pose") {
-      X = pose(c, "<include>");
-      has_pose = true;
+      spec.X = pose(c, "<include>");
+      spec.has_pose = true;
     } else if (tag == "name") {
-      name = text(c);
+      spec.name = text(c);
+    } else if (tag == "static") {
+      spec.is_static = boolean(c, "<include>");
     } else {
       unsupported(c);
     }
   }
-  while (!uri.empty() && uri.back() == '/') uri.pop_back();
-  if (uri.empty()) fail(e, "<include> has no <uri>");
-  if (uri == "model://ground_plane") {
+  while (!spec.uri.empty() && spec.uri.back() == '/') spec.uri.pop_back();
+  if (spec.uri.empty()) fail(e, "<include> has no <uri>");
+  return spec;
+}
+
+void Parser::parseInclude(const XMLElement* e, WorldDescription& world) {
+  const IncludeSpec spec = parseIncludeSpec(e);
+  if (spec.uri == "model://ground_plane") {
     if (world.ground_plane) warn(e, "model://ground_plane included twice; using the last pose");
     world.ground_plane = true;
-    world.X_WG = X;
-  } else if (uri == "model://sun") {
+    world.X_WG = spec.X;
+  } else if (spec.uri == "model://sun") {
     DirectionalLight sun;  // Gazebo's sun model: the defaults of DirectionalLight
-    if (has_pose) sun.direction = X.linear() * sun.direction;
+    if (spec.has_pose) sun.direction = spec.X.linear() * sun.direction;
     world.sun = sun;
   } else {
-    // Gazebo's model database is not available: say so, loudly, rather than drop it.
-    warn(e, "<include> of '" + uri + "'" + (name.empty() ? "" : " (" + name + ")") +
-                " is not supported (only model://ground_plane and model://sun are built in), "
-                "ignored");
+    world.models.push_back(includeModel(e, spec));
+  }
+}
+
+std::vector<std::string> Parser::modelDirs() const {
+  std::vector<std::string> dirs = splitPath(std::getenv("GAZEBO_MODEL_PATH"));
+  dirs.insert(dirs.end(), options_.model_paths.begin(), options_.model_paths.end());
+  dirs.insert(dirs.end(), model_roots_.begin(), model_roots_.end());
+  if (const char* home = std::getenv("HOME")) dirs.push_back(join(home, ".gazebo/models"));
+  for (const std::string& d : rosExportedModelPaths()) dirs.push_back(d);
+  dirs.push_back(base_dir_);
+  dirs.push_back(join(base_dir_, "models"));
+  return dirs;
+}
+
+ModelDescription Parser::includeModel(const XMLElement* e, const IncludeSpec& spec) {
+  // The model's folder: model://NAME in the model folders, or a file:// / plain path.
+  std::string dir;
+  std::vector<std::string> tried;
+  if (startsWith(spec.uri, "model://")) {
+    const std::string rest = spec.uri.substr(8);
+    for (const std::string& d : modelDirs()) {
+      const std::string p = join(d, rest);
+      tried.push_back(d);
+      if (isDir(p)) {
+        dir = p;
+        break;
+      }
+    }
+  } else {
+    std::string p = startsWith(spec.uri, "file://") ? spec.uri.substr(7) : spec.uri;
+    if (!p.empty() && p[0] != '/') p = join(base_dir_, p);
+    tried.push_back(p);
+    if (isDir(p)) dir = p;
+  }
+  if (dir.empty()) {
+    std::string msg = "<include> of '" + spec.uri + "': model not found; searched:";
+    for (const std::string& t : tried) msg += " " + t;
+    if (startsWith(spec.uri, "model://"))
+      msg += " (set GAZEBO_MODEL_PATH, or export gazebo_model_path from a ROS package)";
+    fail(e, msg);
+  }
+  // model.config names the model file(s): the highest SDF version we read (<= 1.7) wins.
+  std::string file;
+  const std::string config = join(dir, "model.config");
+  if (isFile(config)) {
+    tinyxml2::XMLDocument doc;
+    if (doc.LoadFile(config.c_str()) != tinyxml2::XML_SUCCESS)
+      fail(e, "<include> of '" + spec.uri + "': " + config + " is not valid XML");
+    const XMLElement* root = doc.RootElement();
+    double best = -1.0;
+    for (const XMLElement* s = root ? root->FirstChildElement("sdf") : nullptr; s;
+         s = s->NextSiblingElement("sdf")) {
+      const double v = sdfVersion(s->Attribute("version"));
+      if (v <= 1.7 + 1e-9 && v > best && s->GetText()) {
+        best = v;
+        file = join(dir, trim(s->GetText()));
+      }
+    }
+    if (file.empty())
+      fail(e, "<include> of '" + spec.uri + "': " + config + " names no <sdf> file of version <= 1.7");
+  } else if (isFile(join(dir, "model.sdf"))) {
+    file = join(dir, "model.sdf");
+  } else {
+    fail(e, "<include> of '" + spec.uri + "': " + dir + " has neither model.config nor model.sdf");
+  }
+  std::string canonical = file;
+  std::error_code ec;
+  const auto c = std::filesystem::weakly_canonical(file, ec);
+  if (!ec) canonical = c.string();
+  if (std::find(include_stack_.begin(), include_stack_.end(), canonical) != include_stack_.end()) {
+    std::string chain;
+    for (const std::string& f : include_stack_) chain += f + " -> ";
+    fail(e, "<include> loop: " + chain + canonical);
+  }
+  std::ifstream in(file);
+  if (!in) fail(e, "<include> of '" + spec.uri + "': cannot read " + file);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  Parser sub(file, dir, options_);
+  sub.include_stack_ = include_stack_;
+  sub.include_stack_.push_back(canonical);
+  sub.model_roots_ = model_roots_;
+  // Its siblings, and what the including file could reach, resolve its model:// URIs too.
+  sub.model_roots_.push_back(dirName(dir));
+  sub.model_roots_.push_back(base_dir_);
+  sub.model_roots_.push_back(join(base_dir_, "models"));
+  ModelDescription m = sub.parseModelFile(ss.str());
+  if (!spec.name.empty()) m.name = spec.name;
+  if (spec.has_pose) m.X_WM = spec.X;
+  if (spec.is_static) m.is_static = *spec.is_static;
+  return m;
+}
+
+void Parser::mergeSubModel(ModelDescription* m, const ModelDescription& sub,
+                           const Eigen::Isometry3d& X_MS) {
+  for (LinkDescription l : sub.links) {
+    l.name = sub.name + "::" + l.name;
+    l.X_ML = X_MS * l.X_ML;
+    m->links.push_back(std::move(l));
+  }
+  for (JointDescription j : sub.joints) {
+    j.name = sub.name + "::" + j.name;
+    if (j.parent != "world") j.parent = sub.name + "::" + j.parent;
+    if (j.child != "world") j.child = sub.name + "::" + j.child;
+    m->joints.push_back(std::move(j));
   }
 }
 
 void Parser::parseLight(const XMLElement* e, WorldDescription& world) {
   const std::string type = e->Attribute("type") ? e->Attribute("type") : "point";
   const std::string name = e->Attribute("name") ? e->Attribute("name") : "";
-  if (type != "directional") {
-    warn(e, "<light name='" + name + "' type='" + type +
-                "'> is not supported (only directional lights), ignored");
-    return;
-  }
+  const std::string what = "<light name='" + name + "'>";
+  if (type != "directional" && type != "point" && type != "spot")
+    fail(e, what + ": unknown light type '" + type + "' (directional, point, spot)");
   DirectionalLight light;
   light.direction = Eigen::Vector3d(0, 0, -1);  // SDF default
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  const std::string what = "<light name='" + name + "'>";
+  double constant = 1.0, linear = 0.0, quadratic = 0.0;
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
     if (tag == "direction") {
@@ -331,12 +617,35 @@ void Parser::parseLight(const XMLElement* e, WorldDescription& world) {
       light.specular = color(c, what);
     } else if (tag == "pose") {
       X = pose(c, what);
+    } else if (tag == "attenuation" && type != "directional") {
+      for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
+        const std::string ktag = k->Name();
+        if (ktag == "constant") constant = nonNegative(k, what);
+        else if (ktag == "linear") linear = nonNegative(k, what);
+        else if (ktag == "quadratic") quadratic = nonNegative(k, what);
+        else if (ktag != "range") unsupported(k);
+      }
     } else {
       unsupported(c);
     }
   }
+  if (type == "point") light.direction = Eigen::Vector3d(0, 0, -1);
   if (light.direction.norm() == 0.0) fail(e, what + ": <direction> must not be zero");
   light.direction = (X.linear() * light.direction).normalized();
+  if (type != "directional") {
+    // The renderer has directional lights only. A point light becomes one shining straight
+    // down, a spot light one along its direction; both dimmed by their attenuation at the
+    // light's height above the ground, 1 / (constant + linear h + quadratic h^2) (at most 1).
+    const double h = std::max(0.0, X.translation().z());
+    const double k = std::min(1.0, 1.0 / std::max(1e-9, constant + linear * h + quadratic * h * h));
+    light.diffuse.head<3>() *= static_cast<float>(k);
+    light.specular.head<3>() *= static_cast<float>(k);
+    std::ostringstream os;
+    os << what << " (" << type << ") is approximated by a directional light along ("
+       << light.direction.transpose() << "), its colour scaled by its attenuation at height " << h
+       << " m (x" << k << ")";
+    warn(e, os.str());
+  }
   world.lights.push_back(light);
 }
 
@@ -359,6 +668,23 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
       m.links.push_back(std::move(l));
     } else if (tag == "joint") {
       m.joints.push_back(parseJoint(c, m.name));
+    } else if (tag == "include" || tag == "model") {
+      // A nested model: its links (and joints) join this model as "<sub>::<link>".
+      ModelDescription sub;
+      Eigen::Isometry3d X_MS;
+      if (tag == "include") {
+        const IncludeSpec spec = parseIncludeSpec(c);
+        sub = includeModel(c, spec);
+        X_MS = sub.X_WM;
+      } else {
+        sub = parseModel(c);
+        X_MS = sub.X_WM;
+      }
+      mergeSubModel(&m, sub, X_MS);
+      for (const LinkDescription& l : sub.links) {
+        if (!link_names.insert(sub.name + "::" + l.name).second)
+          fail(c, what + ": duplicate link name '" + sub.name + "::" + l.name + "'");
+      }
     } else {
       unsupported(c);
     }
@@ -557,17 +883,7 @@ std::string Parser::resolveMesh(const XMLElement* e, const std::string& uri,
   std::vector<std::string> tried;
   if (startsWith(uri, "model://")) {
     const std::string rest = uri.substr(8);
-    std::vector<std::string> dirs;
-    if (const char* env = std::getenv("GAZEBO_MODEL_PATH")) {
-      std::stringstream ss(env);
-      std::string d;
-      while (std::getline(ss, d, ':'))
-        if (!d.empty()) dirs.push_back(d);
-    }
-    dirs.insert(dirs.end(), options_.model_paths.begin(), options_.model_paths.end());
-    dirs.push_back(base_dir_);
-    dirs.push_back(join(base_dir_, "models"));
-    for (const std::string& d : dirs) {
+    for (const std::string& d : modelDirs()) {
       const std::string p = join(d, rest);
       tried.push_back(p);
       if (isFile(p)) {
@@ -666,12 +982,15 @@ WorldDescription loadWorldFile(const std::string& path, const WorldLoadOptions& 
   if (isDir(path)) throw WorldError("world file '" + path + "' is a directory");
   std::ifstream in(path, std::ios::binary);
   if (!isFile(path) || !in) throw WorldError("world file '" + path + "' does not exist");
+  const auto dot = path.find_last_of('.');
+  if (dot != std::string::npos && (path.substr(dot) == ".yaml" || path.substr(dot) == ".yml"))
+    return loadMapWorld(path, options);
   std::stringstream ss;
   ss << in.rdbuf();
   return loadWorldString(ss.str(), path, dirName(path), options);
 }
 
-std::vector<std::string> shippedWorldNames() { return {"empty", "walled_room", "racetrack"}; }
+std::vector<std::string> shippedWorldNames() { return {"empty", "walled_room", "racetrack", "lane_track", "obstacles"}; }
 
 std::string resolveWorld(const std::string& arg, const std::string& worlds_dir) {
   if (arg.empty()) throw WorldError("world: empty name");

@@ -182,6 +182,14 @@ TEST(FreeBodies, OtherJointsAndUnjoinedLinksAreWarnedAndHeldFixed) {
   EXPECT_NE(w.warnings[0].find("test.world:"), std::string::npos);
 }
 
+TEST(FreeBodies, WithoutCollisionItIsWarnedAbout) {
+  FreeWorld w("<model name='ghost'><pose>0 0 1 0 0 0</pose><link name='l'><visual name='v'><geometry>"
+              "<sphere><radius>0.1</radius></sphere></geometry></visual></link></model>");
+  ASSERT_EQ(w.warnings.size(), 1u);
+  EXPECT_NE(w.warnings[0].find("model 'ghost': is dynamic but has no collision"), std::string::npos)
+      << w.warnings[0];
+}
+
 TEST(FreeBodies, ResetWorldPutsThemBackAndGetModelStateFindsThem) {
   const WorldDescription desc = world(boxModel("crate", Eigen::Vector3d(0.2, 0.2, 0.2), 1.0,
                                                "0.5 0 0.3 0 0 0.2"));
@@ -268,6 +276,26 @@ TEST(FreeBodies, BadMassOrInertiaNamesFileLineAndValue) {
   EXPECT_EQ(error("<static>true</static><link name='l'><inertial><mass>1</mass><inertia><ixx>0"
                   "</ixx></inertia></inertial></link>"),
             "");
+}
+
+// The shipped obstacle world: its cones and boxes are free bodies that start at rest where the
+// file puts them (no overlap to push apart) and stay upright until something hits them.
+TEST(FreeBodies, ShippedObstacleWorldSettlesInPlace) {
+  const WorldDescription desc =
+      loadWorldFile(resolveWorld("obstacles", std::string(TEST_DATA_DIR) + "/../../worlds"));
+  PhysicsWorld physics(physicsOptionsFor(desc));
+  std::vector<std::string> warnings;
+  addWorldToPhysics(desc, &physics, [&](const std::string& w) { warnings.push_back(w); });
+  EXPECT_TRUE(warnings.empty());
+  EXPECT_EQ(physics.freeBodyCount(), 10);  // 6 cones, 4 boxes
+  for (int k = 0; k < 2000; ++k) physics.step();
+  for (int i = 0; i < physics.freeBodyCount(); ++i) {
+    const PhysicsRobot& b = physics.freeBody(i);
+    const Eigen::Isometry3d X0 = b.spawnPose(), X = b.basePose();
+    EXPECT_LT((X.translation() - X0.translation()).norm(), 2e-3) << b.name();
+    EXPECT_GT(X.linear()(2, 2), 0.9999) << b.name();
+    EXPECT_LT(b.baseTwist().linear.norm(), 1e-3) << b.name();
+  }
 }
 
 }  // namespace

@@ -2,12 +2,18 @@
 // that sensors and the renderer see. ROS-free.
 //
 // Supported: <sdf><world> with <physics> (max_step_size, real_time_factor, real_time_update_rate,
-// gravity, also <world><gravity> as in SDF 1.6), <scene> (ambient, background), <include> of
-// model://ground_plane and model://sun (with <pose>, <name>), <light type="directional">, and
-// static or dynamic <model>s with <pose>, <joint>s and <link>s (<pose>, <inertial>, <collision>,
-// <visual>; geometry box, cylinder, sphere, plane, mesh; <material> colours or Gazebo script
-// names; <surface><friction><ode> mu/mu2, <surface><contact><ode> kp/kd/max_vel/min_depth). Everything else is reported once per element name through
-// the WarningSink, with file and line; nothing is dropped silently.
+// gravity, also <world><gravity> as in SDF 1.6), <scene> (ambient, background), <include>
+// (model://ground_plane and model://sun built in; any other model folder found through
+// GAZEBO_MODEL_PATH, the load options' model_paths, ~/.gazebo/models, ROS packages exporting
+// gazebo_model_path and the world's folder: model.config picks the model file, highest SDF
+// version <= 1.7; <name>, <pose>, <static> applied; nested <include>/<model> in a model merged
+// as "<sub>::<link>"), <light> (directional; point and spot approximated by a directional light,
+// see parseLight), static or dynamic <model>s with <pose>, <joint>s and <link>s (<pose>,
+// <inertial>, <collision>, <visual>; geometry box, cylinder, sphere, plane, mesh; <material>
+// colours or Gazebo script names; <surface><friction><ode> mu/mu2, <surface><contact><ode>
+// kp/kd/max_vel/min_depth), and a saved <state> (model and link poses override <pose>, as
+// Gazebo does on load; <insertions>, <deletions>). Everything else is reported once per element
+// name through the WarningSink, with file and line; nothing is dropped silently.
 #ifndef TIANRACER_SIM_WORLD_WORLD_H
 #define TIANRACER_SIM_WORLD_WORLD_H
 
@@ -129,9 +135,12 @@ struct WorldLoadOptions {
   /// package:// lookup for mesh URIs ("" when unknown); may be empty.
   std::function<std::string(const std::string& package)> find_package;
   bool require_meshes = true;  // a mesh file that does not exist is an error
+  /// A map world's wall height (m) where its YAML sets no wall_height (map_world.h).
+  double map_wall_height = 0.5;
 };
 
-/// Reads a world file. Throws WorldError (a missing file names the path).
+/// Reads a world file; a .yaml file is a ROS map (map_world.h). Throws WorldError (a missing
+/// file names the path).
 WorldDescription loadWorldFile(const std::string& path, const WorldLoadOptions& options = {});
 
 /// Parses world XML; `source` names it in messages and relative URIs resolve against
