@@ -21,7 +21,7 @@ from sensor_msgs.msg import LaserScan
 from std_msgs.msg import Float64
 from std_srvs.srv import Empty
 
-from tianracer_sim.srv import GetModelState
+from gazebo_msgs.srv import GetModelState
 
 LIDAR_IN_BASE = np.array([0.093603, -8.284e-05, 0.12377])  # the seed's lidar_joint
 BOX_HALF = 0.15
