@@ -402,6 +402,18 @@ Eigen::Isometry3d SimNode::linkPose(std::size_t robot, const std::string& link) 
   return sim_->physics().robot(robots_[robot].robot->id).linkPose(link);
 }
 
+bool SimNode::linkState(std::size_t robot, const std::string& link, LinkState* state) const {
+  const PhysicsRobot& pr = sim_->physics().robot(robots_[robot].robot->id);
+  const auto it = pr.tree().links.find(link);
+  if (it == pr.tree().links.end() || it->second.first != 0) return false;
+  const Twist base = pr.baseTwist();
+  state->X_WL = pr.linkPose(link);
+  state->w_W = base.angular;
+  state->v_W = base.linear + base.angular.cross(state->X_WL.translation() -
+                                                pr.basePose().translation());
+  return true;
+}
+
 void SimNode::publishStatus() {
   const ros::WallTime now = ros::WallTime::now();
   const double wall = (now - status_wall_).toSec();

@@ -8,6 +8,7 @@
 #include "tianracer_sim/lidar/ray_sensor.h"
 #include "tianracer_sim/render/camera_sensor.h"
 #include "tianracer_sim/sensors/imu_sensor.h"
+#include "tianracer_sim/sensors/p3d.h"
 
 namespace tianracer_sim {
 namespace {
@@ -66,6 +67,11 @@ std::vector<SensorTopic> imuPluginTopics(const SensorSpec& sensor, const std::st
   return publishedTopics(parseImuPluginConfig(sensor, model_name, warn));
 }
 
+std::vector<SensorTopic> p3dTopics(const SensorSpec& sensor, const std::string& model_name,
+                                   const WarningSink& warn) {
+  return publishedTopics(parseP3dConfig(sensor, model_name, warn));
+}
+
 }  // namespace
 
 const std::vector<SensorKind>& sensorKinds() {
@@ -78,6 +84,7 @@ const std::vector<SensorKind>& sensorKinds() {
        {"libgazebo_ros_openni_kinect.so", "libgazebo_ros_depth_camera.so"}, &depthCameraTopics},
       {"imu", {"imu"}, {"libgazebo_ros_imu_sensor.so"}, &imuTopics},
       {"imu_plugin", {}, {"libgazebo_ros_imu.so"}, &imuPluginTopics},
+      {"p3d", {}, {"libgazebo_ros_p3d.so"}, &p3dTopics},
   };
   return kinds;
 }

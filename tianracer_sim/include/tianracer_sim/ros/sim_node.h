@@ -119,6 +119,7 @@ class SimNode : private SensorHost {
   const Scene& scene() override;
   RayCaster& caster() override { return caster_; }
   Eigen::Isometry3d linkPose(std::size_t robot, const std::string& link) const override;
+  bool linkState(std::size_t robot, const std::string& link, LinkState* state) const override;
   void requestFrame(const FrameRequest& request) override { due_frames_.frames.push_back(request); }
   SensorStat& stat(std::size_t index) override { return stats_[index]; }
 
