@@ -77,7 +77,9 @@ std::vector<SensorTopic> p3dTopics(const SensorSpec& sensor, const std::string& 
 const std::vector<SensorKind>& sensorKinds() {
   // To add a sensor type: one line here, its publisher in ros/sensors/sensor_publishers.cpp.
   static const std::vector<SensorKind> kinds = {
-      {"lidar", {"ray", "gpu_ray"}, {"libgazebo_ros_laser.so", "libgazebo_ros_gpu_laser.so"},
+      {"lidar", {"ray", "gpu_ray"},
+       {"libgazebo_ros_laser.so", "libgazebo_ros_gpu_laser.so", "libgazebo_ros_velodyne_laser.so",
+        "libgazebo_ros_velodyne_gpu_laser.so"},
        &lidarTopics},
       {"camera", {"camera"}, {"libgazebo_ros_camera.so"}, &cameraTopics},
       {"depth_camera", {"depth"},
