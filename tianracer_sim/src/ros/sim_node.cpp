@@ -156,6 +156,8 @@ void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name
 
   std::string model_file;
   rp.param<std::string>("model", model_file, "");
+  // Relative mesh URIs of a robot_description filled from a file resolve against its folder.
+  rp.param<std::string>("model_dir", options.resolver.base_dir, "");
   RobotModel model;
   if (!model_file.empty()) {
     model = loadRobotModelFile(model_file, options);
