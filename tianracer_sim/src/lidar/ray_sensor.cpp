@@ -7,7 +7,11 @@
 //  - <horizontal><resolution> other than 1 is accepted but rays = samples (Gazebo casts
 //    samples*resolution rays and interpolates);
 //  - <range><resolution> is not applied to ranges (neither does Gazebo's RaySensor);
-//  - only the horizontal plane is cast (<vertical> samples > 1 is warned);
+//  - with <vertical><samples> > 1 the rays fan out in elevation too; that is a 3D lidar, whose
+//    velodyne plugin keeps points strictly inside max(min_range, <range><min>) and
+//    min(max_range, <range><max>) (the plugin subtracts <range><min> and 1 cm from the upper
+//    limit, because Gazebo's rays start at <range><min>; ours start at the sensor);
+//  - points carry intensity 0 (Gazebo: the surface's laser_retro, 0 by default);
 //  - frameName defaults to the link name, not gazebo_ros_laser's "/world"; a leading '/' is
 //    dropped (tf2 frame ids have none).
 #include "tianracer_sim/lidar/ray_sensor.h"
@@ -128,8 +132,38 @@ RaySensorConfig ConfigReader::read() {
   if (!have_ray) throw SensorError(what_ + ": no <ray> element");
 
   for (const PluginSpec& p : spec_.plugins) {
+    const bool velodyne = p.filename.find("gazebo_ros_velodyne_laser") != std::string::npos ||
+                          p.filename.find("gazebo_ros_velodyne_gpu_laser") != std::string::npos;
     const bool laser = p.filename.find("gazebo_ros_laser") != std::string::npos ||
                        p.filename.find("gazebo_ros_gpu_laser") != std::string::npos;
+    if (velodyne) {
+      c.has_ros_plugin = true;
+      c.velodyne = true;
+      c.topic_name = "/world";  // the plugin's defaults
+      for (const auto& kv : p.params) {
+        const std::string v = trim(kv.second);
+        auto num = [&] {
+          char* end = nullptr;
+          const double d = std::strtod(v.c_str(), &end);
+          if (v.empty() || *end != '\0')
+            throw SensorError(what_ + ": <" + kv.first + "> '" + v + "' of plugin '" + p.filename +
+                              "' is not a number");
+          return d;
+        };
+        if (kv.first == "topicName") c.topic_name = v;
+        else if (kv.first == "frameName") {
+          std::string f = v;
+          while (!f.empty() && f.front() == '/') f.erase(f.begin());
+          c.frame_name = f;
+        } else if (kv.first == "robotNamespace") c.robot_namespace = v;
+        else if (kv.first == "min_range") c.cloud_min_range = num();
+        else if (kv.first == "max_range") c.cloud_max_range = num();
+        else if (kv.first == "gaussianNoise") c.cloud_noise = num();
+        else if (warn_)
+          warn_(what_ + ": <" + kv.first + "> of plugin '" + p.filename + "' is not supported, ignored");
+      }
+      continue;
+    }
     if (!laser) {
       if (warn_)
         warn_(what_ + ": plugin '" + p.filename + "' is not supported on a ray sensor, ignored");
@@ -151,6 +185,9 @@ RaySensorConfig ConfigReader::read() {
       }
     }
   }
+  if (c.vertical_samples == 1 && (c.vertical_min_angle != 0.0 || c.vertical_max_angle != 0.0) &&
+      warn_)
+    warn_(what_ + ": <vertical> angles ignored with one vertical sample (planar scan)");
   validate(c);
   return c;
 }
@@ -175,13 +212,14 @@ void ConfigReader::readRay(const XMLElement* ray, RaySensorConfig& c) {
             else if (key == "max_angle") c.max_angle = number(k);
             else unsupported(k);
           } else if (key == "samples") {
-            if (integer(k) > 1 && warn_)
-              warn_(what_ + ": <vertical><samples> " + text(k) +
-                    " is not supported: only the horizontal plane is cast");
-          } else if (key == "min_angle" || key == "max_angle") {
-            if (number(k) != 0.0 && warn_)
-              warn_(what_ + ": <vertical><" + key + "> " + text(k) + " ignored (planar scan)");
-          } else if (key != "resolution") {
+            c.vertical_samples = integer(k);
+          } else if (key == "min_angle") {
+            c.vertical_min_angle = number(k);
+          } else if (key == "max_angle") {
+            c.vertical_max_angle = number(k);
+          } else if (key == "resolution") {
+            c.vertical_resolution = number(k);
+          } else {
             unsupported(k);
           }
         }
@@ -233,6 +271,17 @@ void validate(const RaySensorConfig& c) {
   if (!c.X_LS.matrix().allFinite()) throw SensorError(what + ": <pose> is not finite");
   if (c.samples <= 0)
     throw SensorError(what + ": <samples> must be > 0 (got " + std::to_string(c.samples) + ")");
+  if (c.vertical_samples < 1 || c.vertical_samples > kMaxVerticalSamples)
+    throw SensorError(what + ": <vertical><samples> " + std::to_string(c.vertical_samples) +
+                      " out of range 1.." + std::to_string(kMaxVerticalSamples));
+  finite(c.vertical_min_angle, "<vertical><min_angle>");
+  finite(c.vertical_max_angle, "<vertical><max_angle>");
+  if (c.vertical_min_angle > c.vertical_max_angle)
+    throw SensorError(what + ": <vertical><min_angle> " + fmt(c.vertical_min_angle) +
+                      " > <vertical><max_angle> " + fmt(c.vertical_max_angle));
+  if (std::isnan(c.cloud_min_range) || std::isnan(c.cloud_max_range) ||
+      !std::isfinite(c.cloud_noise) || c.cloud_noise < 0.0)
+    throw SensorError(what + ": velodyne min_range, max_range or gaussianNoise is invalid");
   if (c.resolution <= 0.0)
     throw SensorError(what + ": <horizontal><resolution> must be > 0 (got " +
                       fmt(c.resolution) + ")");
@@ -257,7 +306,27 @@ void validate(const RaySensorConfig& c) {
 }
 
 std::vector<SensorTopic> publishedTopics(const RaySensorConfig& c) {
-  return {{resolveTopic(c.robot_namespace, c.topic_name), "sensor_msgs/LaserScan", c.update_rate}};
+  return {{resolveTopic(c.robot_namespace, c.topic_name),
+           c.velodyne ? "sensor_msgs/PointCloud2" : "sensor_msgs/LaserScan", c.update_rate}};
+}
+
+void applyCloudRangeModel(const RaySensorConfig& c, std::mt19937_64& rng, float* ranges, int n) {
+  const double lo = std::max(c.cloud_min_range, c.range_min);
+  const double hi = std::min(c.cloud_max_range, c.range_max);
+  const bool sdf_noise = c.noise.enabled();
+  std::normal_distribution<double> gauss(c.noise.mean, c.noise.stddev > 0.0 ? c.noise.stddev : 1.0);
+  std::normal_distribution<double> plugin(0.0, c.cloud_noise > 0.0 ? c.cloud_noise : 1.0);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (int i = 0; i < n; ++i) {
+    double r = ranges[i];
+    if (!std::isfinite(r)) {
+      ranges[i] = nan;
+      continue;
+    }
+    if (sdf_noise) r += c.noise.stddev > 0.0 ? gauss(rng) : c.noise.mean;
+    if (c.cloud_noise > 0.0) r += plugin(rng);
+    ranges[i] = (lo < r && r < hi) ? static_cast<float>(r) : nan;
+  }
 }
 
 void applyRangeModel(const RaySensorConfig& c, std::mt19937_64& rng, float* ranges, int n) {
@@ -287,18 +356,28 @@ void scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_
               std::vector<float>* ranges, int ignore_body) {
   RayScanBuffers& b = *buffers;
   caster.update(scene, ignore_body);
-  const int n = std::max(0, config.samples);
+  const int samples = std::max(0, config.samples);
+  const int rings = std::max(1, config.vertical_samples);
+  const int n = samples * rings;
   ranges->resize(n);
   const double inc = config.angleIncrement();
   if (static_cast<int>(b.dirs_S.size()) != n || b.dirs_min != config.min_angle ||
-      b.dirs_inc != inc) {
+      b.dirs_inc != inc || b.dirs_rings != rings || b.dirs_vmin != config.vertical_min_angle ||
+      b.dirs_vmax != config.vertical_max_angle) {
     b.dirs_S.resize(n);
-    for (int i = 0; i < n; ++i) {
-      const double a = config.angle(i);
-      b.dirs_S[i] = Eigen::Vector3d(std::cos(a), std::sin(a), 0.0);
+    for (int j = 0; j < rings; ++j) {
+      const double p = config.verticalAngle(j);
+      const double cp = rings > 1 ? std::cos(p) : 1.0, sp = rings > 1 ? std::sin(p) : 0.0;
+      for (int i = 0; i < samples; ++i) {
+        const double a = config.angle(i);
+        b.dirs_S[j * samples + i] = Eigen::Vector3d(cp * std::cos(a), cp * std::sin(a), sp);
+      }
     }
     b.dirs_min = config.min_angle;
     b.dirs_inc = inc;
+    b.dirs_rings = rings;
+    b.dirs_vmin = config.vertical_min_angle;
+    b.dirs_vmax = config.vertical_max_angle;
   }
   b.dirs_W.resize(n);
   const Eigen::Matrix3d R_WS = X_WS.linear();
@@ -306,7 +385,11 @@ void scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_
   // Look a little past range_max: anything there maps to +inf anyway.
   const float t_max = static_cast<float>(config.range_max * (1.0 + 1e-6) + 1e-6);
   caster.castRays(X_WS.translation(), b.dirs_W, t_max, ranges->data());
-  applyRangeModel(config, rng, ranges->data(), n);
+  if (config.velodyne) {
+    applyCloudRangeModel(config, rng, ranges->data(), n);
+  } else {
+    applyRangeModel(config, rng, ranges->data(), n);
+  }
 }
 
 std::vector<float> scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,

@@ -1,5 +1,10 @@
 #include "tianracer_sim/ros/laser_msgs.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
 #include <cassert>
 
 namespace tianracer_sim {
@@ -25,6 +30,52 @@ sensor_msgs::LaserScan toLaserScan(const RaySensorConfig& config, const std::vec
   sensor_msgs::LaserScan msg;
   toLaserScan(config, ranges, stamp, &msg);
   return msg;
+}
+
+void toVelodyneCloud(const RaySensorConfig& config, const std::vector<float>& ranges,
+                     const std::vector<Eigen::Vector3d>& directions, const ros::Time& stamp,
+                     sensor_msgs::PointCloud2* msg) {
+  constexpr std::uint32_t kPointStep = 32;
+  msg->header.stamp = stamp;
+  msg->header.frame_id = config.frame_name;
+  if (msg->fields.size() != 5) {
+    msg->fields.resize(5);
+    const char* names[] = {"x", "y", "z", "intensity", "ring"};
+    const std::uint32_t offsets[] = {0, 4, 8, 16, 20};
+    for (int f = 0; f < 5; ++f) {
+      msg->fields[f].name = names[f];
+      msg->fields[f].offset = offsets[f];
+      msg->fields[f].datatype =
+          f == 4 ? sensor_msgs::PointField::UINT16 : sensor_msgs::PointField::FLOAT32;
+      msg->fields[f].count = 1;
+    }
+  }
+  const std::size_t n = std::min(ranges.size(), directions.size());
+  const int samples = std::max(1, config.samples);
+  msg->data.resize(n * kPointStep);
+  std::uint8_t* out = msg->data.data();
+  for (std::size_t k = 0; k < n; ++k) {
+    const float r = ranges[k];
+    if (!std::isfinite(r)) continue;
+    const Eigen::Vector3d& d = directions[k];
+    const float xyz[3] = {static_cast<float>(r * d.x()), static_cast<float>(r * d.y()),
+                          static_cast<float>(r * d.z())};
+    const float intensity = 0.0f;
+    const std::uint16_t ring = static_cast<std::uint16_t>(k / samples);
+    std::memset(out, 0, kPointStep);
+    std::memcpy(out, xyz, sizeof(xyz));
+    std::memcpy(out + 16, &intensity, sizeof(intensity));
+    std::memcpy(out + 20, &ring, sizeof(ring));
+    out += kPointStep;
+  }
+  const std::uint32_t points = static_cast<std::uint32_t>((out - msg->data.data()) / kPointStep);
+  msg->data.resize(points * kPointStep);
+  msg->height = 1;
+  msg->width = points;
+  msg->point_step = kPointStep;
+  msg->row_step = points * kPointStep;
+  msg->is_bigendian = false;
+  msg->is_dense = true;
 }
 
 }  // namespace tianracer_sim

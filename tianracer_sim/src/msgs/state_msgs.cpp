@@ -65,4 +65,28 @@ bool fromTwistMsg(const geometry_msgs::Twist& msg, Twist* twist) {
   return true;
 }
 
+void toOdometry(const P3dReading& r, const ros::Time& stamp, const std::string& frame,
+                const std::string& child_frame, nav_msgs::Odometry* msg) {
+  msg->header.stamp = stamp;
+  msg->header.frame_id = frame;
+  msg->child_frame_id = child_frame;
+  msg->pose.pose.position.x = r.position.x();
+  msg->pose.pose.position.y = r.position.y();
+  msg->pose.pose.position.z = r.position.z();
+  msg->pose.pose.orientation.x = r.orientation.x();
+  msg->pose.pose.orientation.y = r.orientation.y();
+  msg->pose.pose.orientation.z = r.orientation.z();
+  msg->pose.pose.orientation.w = r.orientation.w();
+  msg->twist.twist.linear.x = r.linear.x();
+  msg->twist.twist.linear.y = r.linear.y();
+  msg->twist.twist.linear.z = r.linear.z();
+  msg->twist.twist.angular.x = r.angular.x();
+  msg->twist.twist.angular.y = r.angular.y();
+  msg->twist.twist.angular.z = r.angular.z();
+  for (int i = 0; i < 6; ++i) {
+    msg->pose.covariance[7 * i] = r.variance;
+    msg->twist.covariance[7 * i] = r.variance;
+  }
+}
+
 }  // namespace tianracer_sim

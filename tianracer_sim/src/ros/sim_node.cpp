@@ -157,6 +157,8 @@ void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name
 
   std::string model_file;
   rp.param<std::string>("model", model_file, "");
+  // Relative mesh URIs of a robot_description filled from a file resolve against its folder.
+  rp.param<std::string>("model_dir", options.resolver.base_dir, "");
   RobotModel model;
   if (!model_file.empty()) {
     model = loadRobotModelFile(model_file, options);
@@ -401,6 +403,18 @@ const Scene& SimNode::scene() {
 
 Eigen::Isometry3d SimNode::linkPose(std::size_t robot, const std::string& link) const {
   return sim_->physics().robot(robots_[robot].robot->id).linkPose(link);
+}
+
+bool SimNode::linkState(std::size_t robot, const std::string& link, LinkState* state) const {
+  const PhysicsRobot& pr = sim_->physics().robot(robots_[robot].robot->id);
+  const auto it = pr.tree().links.find(link);
+  if (it == pr.tree().links.end() || it->second.first != 0) return false;
+  const Twist base = pr.baseTwist();
+  state->X_WL = pr.linkPose(link);
+  state->w_W = base.angular;
+  state->v_W = base.linear + base.angular.cross(state->X_WL.translation() -
+                                                pr.basePose().translation());
+  return true;
 }
 
 void SimNode::publishStatus() {

@@ -8,6 +8,7 @@
 #include "tianracer_sim/lidar/ray_sensor.h"
 #include "tianracer_sim/render/camera_sensor.h"
 #include "tianracer_sim/sensors/imu_sensor.h"
+#include "tianracer_sim/sensors/p3d.h"
 
 namespace tianracer_sim {
 namespace {
@@ -66,18 +67,26 @@ std::vector<SensorTopic> imuPluginTopics(const SensorSpec& sensor, const std::st
   return publishedTopics(parseImuPluginConfig(sensor, model_name, warn));
 }
 
+std::vector<SensorTopic> p3dTopics(const SensorSpec& sensor, const std::string& model_name,
+                                   const WarningSink& warn) {
+  return publishedTopics(parseP3dConfig(sensor, model_name, warn));
+}
+
 }  // namespace
 
 const std::vector<SensorKind>& sensorKinds() {
   // To add a sensor type: one line here, its publisher in ros/sensors/sensor_publishers.cpp.
   static const std::vector<SensorKind> kinds = {
-      {"lidar", {"ray", "gpu_ray"}, {"libgazebo_ros_laser.so", "libgazebo_ros_gpu_laser.so"},
+      {"lidar", {"ray", "gpu_ray"},
+       {"libgazebo_ros_laser.so", "libgazebo_ros_gpu_laser.so", "libgazebo_ros_velodyne_laser.so",
+        "libgazebo_ros_velodyne_gpu_laser.so"},
        &lidarTopics},
       {"camera", {"camera"}, {"libgazebo_ros_camera.so"}, &cameraTopics},
       {"depth_camera", {"depth"},
        {"libgazebo_ros_openni_kinect.so", "libgazebo_ros_depth_camera.so"}, &depthCameraTopics},
       {"imu", {"imu"}, {"libgazebo_ros_imu_sensor.so"}, &imuTopics},
       {"imu_plugin", {}, {"libgazebo_ros_imu.so"}, &imuPluginTopics},
+      {"p3d", {}, {"libgazebo_ros_p3d.so"}, &p3dTopics},
   };
   return kinds;
 }

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""rostest: the IMUs of tianracer_imu.xacro in a steady turn (0.5 m/s, 0.5 rad/s through
+"""rostest: the IMUs and the p3d ground truth plugin of tianracer_imu.xacro in a steady turn (0.5 m/s, 0.5 rad/s through
 /cmd_vel and the cmd_vel node) against the sim's ground truth, and the bad IMUs left out.
 
 The sensor's plugin has no robotNamespace, so it publishes under the model's name
@@ -41,7 +41,9 @@ class ImuTest(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node('test_imu')
         cls.lock = threading.Lock()
-        cls.truth, cls.imu, cls.imu_model = [], [], []
+        cls.truth, cls.imu, cls.imu_model, cls.p3d = [], [], [], []
+        rospy.Subscriber('/tianracer/p3d/odom', Odometry, lambda m: cls._add(cls.p3d, m),
+                         queue_size=500)
         rospy.Subscriber('/tianracer/ground_truth/odom', Odometry,
                          lambda m: cls._add(cls.truth, m), queue_size=500)
         rospy.Subscriber('/tianracer/imu', Imu, lambda m: cls._add(cls.imu, m), queue_size=500)
@@ -117,6 +119,39 @@ class ImuTest(unittest.TestCase):
             self.assertGreater(matched, 50, topic)
             cov = samples[-1].angular_velocity_covariance
             self.assertEqual(list(cov), [0.0] * 9, topic)  # noise off
+
+    def test_ab_p3d_equals_ground_truth(self):
+        """libgazebo_ros_p3d with noise off: the sim's ground truth at the same stamps, its twist
+        in the world frame (p3d's convention) where ground_truth/odom has it in base_link."""
+        self.wait_for(self.p3d)
+        self.wait_sim(1.0)
+        with self.lock:
+            by_stamp = {round(m.header.stamp.to_sec(), 6): m for m in self.truth}
+            p3d = list(self.p3d)
+        matched = 0
+        for m in p3d:
+            t = by_stamp.get(round(m.header.stamp.to_sec(), 6))
+            if t is None:
+                continue
+            matched += 1
+            self.assertEqual(m.header.frame_id, 'world')
+            self.assertEqual(m.child_frame_id, 'base_link')
+            a, b = m.pose.pose, t.pose.pose
+            for u, v in ((a.position.x, b.position.x), (a.position.y, b.position.y),
+                         (a.position.z, b.position.z), (a.orientation.x, b.orientation.x),
+                         (a.orientation.y, b.orientation.y), (a.orientation.z, b.orientation.z),
+                         (a.orientation.w, b.orientation.w)):
+                self.assertAlmostEqual(u, v, delta=1e-9)
+            q = b.orientation
+            yaw = yaw_of(q)
+            vb = t.twist.twist.linear  # body frame; the car is level to within a fraction of a degree
+            vx_w = math.cos(yaw) * vb.x - math.sin(yaw) * vb.y
+            vy_w = math.sin(yaw) * vb.x + math.cos(yaw) * vb.y
+            self.assertAlmostEqual(m.twist.twist.linear.x, vx_w, delta=2e-3)
+            self.assertAlmostEqual(m.twist.twist.linear.y, vy_w, delta=2e-3)
+            self.assertAlmostEqual(m.twist.twist.angular.z, t.twist.twist.angular.z, delta=2e-3)
+            self.assertEqual(list(m.twist.covariance), [0.0] * 36)
+        self.assertGreater(matched, 50)
 
     def test_b_bad_imus_left_out(self):
         """The bad IMUs are left out and the others publish (this sim)."""

@@ -197,14 +197,66 @@ TEST(RaySensorConfig, ValidateCatchesProgrammaticValues) {
   EXPECT_DOUBLE_EQ(c.angleIncrement(), 0.0);
 }
 
-TEST(RaySensorConfig, VerticalScanIsWarned) {
+TEST(RaySensorConfig, VerticalSamplesMakeA3dLidar) {
   std::vector<std::string> warnings;
+  const auto warn = [&](const std::string& w) { warnings.push_back(w); };
   const std::string xml = replaced(kSeedSensor, "</horizontal>",
                                    "</horizontal><vertical><samples>16</samples>"
-                                   "<min_angle>-0.2</min_angle></vertical>");
-  parseRaySensorConfig(spec(xml), [&](const std::string& w) { warnings.push_back(w); });
-  ASSERT_EQ(warnings.size(), 2u) << ::testing::PrintToString(warnings);
-  EXPECT_NE(warnings[0].find("only the horizontal plane"), std::string::npos);
+                                   "<min_angle>-0.2</min_angle><max_angle>0.25</max_angle></vertical>");
+  const RaySensorConfig c = parseRaySensorConfig(spec(xml), warn);
+  EXPECT_TRUE(warnings.empty()) << ::testing::PrintToString(warnings);
+  EXPECT_EQ(c.vertical_samples, 16);
+  EXPECT_DOUBLE_EQ(c.verticalAngle(0), -0.2);
+  EXPECT_DOUBLE_EQ(c.verticalAngle(15), 0.25);
+  EXPECT_EQ(c.rayCount(), 16 * 1081);
+  // A planar scan with vertical angles: they are ignored, with a warning.
+  parseRaySensorConfig(spec(replaced(kSeedSensor, "</horizontal>",
+                                     "</horizontal><vertical><samples>1</samples>"
+                                     "<min_angle>-0.2</min_angle></vertical>")),
+                       warn);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("planar scan"), std::string::npos);
+  // Bad input: 0 or more than 512 rings, min above max.
+  for (const std::string& bad : {std::string("0"), std::string("513"), std::string("-3")}) {
+    try {
+      parseRaySensorConfig(spec(replaced(kSeedSensor, "</horizontal>",
+                                         "</horizontal><vertical><samples>" + bad +
+                                             "</samples></vertical>")));
+      ADD_FAILURE() << bad;
+    } catch (const SensorError& e) {
+      EXPECT_NE(std::string(e.what()).find("<vertical><samples> " + bad + " out of range 1..512"),
+                std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("hokuyo_sensor"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_THROW(parseRaySensorConfig(spec(replaced(
+                   kSeedSensor, "</horizontal>",
+                   "</horizontal><vertical><samples>4</samples><min_angle>0.3</min_angle>"
+                   "<max_angle>0.1</max_angle></vertical>"))),
+               SensorError);
+}
+
+TEST(RaySensorConfig, VelodynePlugin) {
+  const std::string xml = replaced(kSeedSensor, "</horizontal>",
+                                   "</horizontal><vertical><samples>16</samples><min_angle>-0.26"
+                                   "</min_angle><max_angle>0.26</max_angle></vertical>");
+  SensorSpec s = spec(xml, false);
+  PluginSpec p;
+  p.name = "v";
+  p.filename = "libgazebo_ros_velodyne_gpu_laser.so";
+  p.params = {{"topicName", "/velodyne_points"}, {"frameName", "velodyne"}, {"min_range", "0.9"},
+              {"max_range", "130"}, {"gaussianNoise", "0.008"}};
+  s.plugins.push_back(p);
+  const RaySensorConfig c = parseRaySensorConfig(s);
+  EXPECT_TRUE(c.velodyne);
+  EXPECT_EQ(c.topic_name, "/velodyne_points");
+  EXPECT_EQ(c.frame_name, "velodyne");
+  EXPECT_DOUBLE_EQ(c.cloud_min_range, 0.9);
+  EXPECT_DOUBLE_EQ(c.cloud_max_range, 130.0);
+  EXPECT_DOUBLE_EQ(c.cloud_noise, 0.008);
+  const auto topics = publishedTopics(c);
+  ASSERT_EQ(topics.size(), 1u);
+  EXPECT_EQ(topics[0].msg_type, "sensor_msgs/PointCloud2");
 }
 
 }  // namespace

@@ -60,7 +60,7 @@ TEST(MeshResolver, Errors) {
   EXPECT_THAT(error(r, "package:///meshes/a.stl"), HasSubstr("is not package://<package>/<path>"));
   EXPECT_THAT(error(r, "package://tianracer_description/"),
               HasSubstr("is not package://<package>/<path>"));
-  EXPECT_THAT(error(r, "model://ground_plane/x.dae"), HasSubstr("unsupported scheme"));
+  EXPECT_THAT(error(r, "http://host/x.dae"), HasSubstr("unsupported scheme"));  // model:// is resolved (ModelPath)
   EXPECT_THAT(error(r, ""), HasSubstr("empty mesh URI"));
   EXPECT_THAT(error(r, "file://"), HasSubstr("has no path"));
 
@@ -70,6 +70,20 @@ TEST(MeshResolver, Errors) {
   EXPECT_THAT(error(bare, "meshes/m.stl"),
               HasSubstr("is relative but the model has no folder to resolve it against"));
   EXPECT_EQ(bare.resolve("/abs/m.stl"), "/abs/m.stl");
+}
+
+TEST(MeshResolver, ModelPath) {
+  MeshResolver r = resolver();
+  const std::string data = TEST_DATA_DIR;
+  // test/data/urdf/meshes holds the test meshes: a "model" named meshes in test/data/urdf.
+  r.model_paths = {"/nonexistent/models", data + "/urdf"};
+  EXPECT_EQ(r.resolve("model://meshes/cube.stl"), data + "/urdf/meshes/cube.stl");
+  // A miss names the URI and every folder searched.
+  EXPECT_THAT(error(r, "model://no_such_model/meshes/x.dae"),
+              HasSubstr("mesh URI 'model://no_such_model/meshes/x.dae' not found in the model path"));
+  EXPECT_THAT(error(r, "model://no_such_model/meshes/x.dae"),
+              HasSubstr("searched /nonexistent/models, " + data + "/urdf"));
+  EXPECT_THAT(error(r, "model://"), HasSubstr("is not model://<model>/<path>"));
 }
 
 }  // namespace

@@ -104,6 +104,9 @@ struct RobotExtensions {
 struct MeshResolver {
   std::function<std::string(const std::string& package)> find_package;  // "" when unknown
   std::string base_dir;
+  /// Folders searched for model://<name>/<path>, in order (Gazebo's GAZEBO_MODEL_PATH);
+  /// empty: GAZEBO_MODEL_PATH from the environment, then ~/.gazebo/models.
+  std::vector<std::string> model_paths;
   /// Returns the absolute path, or throws ModelError naming the URI.
   std::string resolve(const std::string& uri) const;
 };

@@ -7,6 +7,7 @@
 
 #include <ros/time.h>
 #include <sensor_msgs/LaserScan.h>
+#include <sensor_msgs/PointCloud2.h>
 
 #include "tianracer_sim/lidar/ray_sensor.h"
 
@@ -22,6 +23,15 @@ sensor_msgs::LaserScan toLaserScan(const RaySensorConfig& config, const std::vec
 /// As above into an existing message, reusing its buffers (no allocation once warm).
 void toLaserScan(const RaySensorConfig& config, const std::vector<float>& ranges,
                  const ros::Time& stamp, sensor_msgs::LaserScan* msg);
+
+/// A 3D lidar scan -> sensor_msgs/PointCloud2 as velodyne_gazebo_plugins fills it: one point
+/// per finite range (NaN ranges are left out), x y z = r * direction (sensor frame), fields
+/// x, y, z (FLOAT32 at 0, 4, 8), intensity (FLOAT32 at 16, 0 here), ring (UINT16 at 20),
+/// point_step 32, height 1, is_dense. `directions` are RaySensor::directions(): range k is ring
+/// k / samples. Reuses the message's buffers (no allocation once warm).
+void toVelodyneCloud(const RaySensorConfig& config, const std::vector<float>& ranges,
+                     const std::vector<Eigen::Vector3d>& directions, const ros::Time& stamp,
+                     sensor_msgs::PointCloud2* msg);
 
 }  // namespace tianracer_sim
 

@@ -8,6 +8,8 @@
 //                    are then read from ~<name>/ and its robot_name is <name>. Unset: one
 //                    robot from the parameters in ~ itself.
 //   model            xacro/URDF file; when empty, the URDF is read from robot_param
+//   model_dir        folder that relative mesh URIs of robot_param's URDF resolve against
+//                    (sim.launch sets it to the model file's folder)
 //   robot_param      parameter holding the URDF (default: the gazebo_ros_control plugin's
 //                    robotParam, else "robot_description"), resolved in the robot namespace's
 //                    parent like gazebo_ros_control does (i.e. /robot_description)
@@ -120,6 +122,7 @@ class SimNode : private SensorHost {
   const Scene& scene() override;
   RayCaster& caster() override { return caster_; }
   Eigen::Isometry3d linkPose(std::size_t robot, const std::string& link) const override;
+  bool linkState(std::size_t robot, const std::string& link, LinkState* state) const override;
   void requestFrame(const FrameRequest& request) override { due_frames_.frames.push_back(request); }
   SensorStat& stat(std::size_t index) override { return stats_[index]; }
 

@@ -11,6 +11,7 @@
 #include <ros/time.h>
 
 #include "tianracer_sim/physics/world.h"
+#include "tianracer_sim/sensors/p3d.h"
 
 namespace tianracer_sim {
 
@@ -18,11 +19,17 @@ geometry_msgs::Pose toPose(const Eigen::Isometry3d& X);
 /// World-frame twist as a geometry_msgs::Twist (linear and angular in the world frame).
 geometry_msgs::Twist toTwistMsg(const Twist& twist);
 
-/// Ground truth as Gazebo's p3d plugin publishes it: pose of `child_frame` in `frame`, twist
-/// in the child frame (nav_msgs/Odometry's convention), zero covariance.
+/// The sim's ground truth: pose of `child_frame` in `frame`, twist in the child frame
+/// (nav_msgs/Odometry's convention), zero covariance. (libgazebo_ros_p3d's twist is in the
+/// world frame: toOdometry() below.)
 nav_msgs::Odometry toGroundTruth(const Eigen::Isometry3d& X_WB, const Twist& twist_W,
                                  const ros::Time& stamp, const std::string& frame,
                                  const std::string& child_frame);
+
+/// libgazebo_ros_p3d's odometry: the reading as it is (see sensors/p3d.h), gn^2 on the pose
+/// and twist covariance diagonals.
+void toOdometry(const P3dReading& reading, const ros::Time& stamp, const std::string& frame,
+                const std::string& child_frame, nav_msgs::Odometry* msg);
 
 /// A pose message -> isometry. Returns false (and leaves X untouched) when any value is not
 /// finite or the quaternion's norm is 0; the quaternion is normalised otherwise.

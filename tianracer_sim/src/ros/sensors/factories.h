@@ -14,6 +14,7 @@ std::unique_ptr<SensorPublisher> makeCameraPublisher(const SensorSetup& setup);
 std::unique_ptr<SensorPublisher> makeDepthCameraPublisher(const SensorSetup& setup);
 std::unique_ptr<SensorPublisher> makeImuPublisher(const SensorSetup& setup);
 std::unique_ptr<SensorPublisher> makeImuPluginPublisher(const SensorSetup& setup);
+std::unique_ptr<SensorPublisher> makeP3dPublisher(const SensorSetup& setup);
 
 }  // namespace tianracer_sim
 

@@ -1,5 +1,6 @@
 // ray / gpu_ray sensors with gazebo_ros_laser: RaySensor scans -> sensor_msgs/LaserScan.
 #include <sensor_msgs/LaserScan.h>
+#include <sensor_msgs/PointCloud2.h>
 
 #include <tianracer_control/frames.h>
 
@@ -10,6 +11,7 @@
 namespace tianracer_sim {
 namespace {
 
+/// LaserScan for a planar lidar, PointCloud2 (velodyne_gazebo_plugins) for a 3D one.
 class LidarPublisher : public SensorPublisher {
  public:
   LidarPublisher(const SensorSetup& setup) : robot_(setup.robot), own_body_(setup.own_body) {
@@ -21,11 +23,16 @@ class LidarPublisher : public SensorPublisher {
     const std::string topic = publishedTopics(config).front().topic;
     setup.claim_topic(topic, "robot '" + setup.robot_name + "' sensor '" + config.name + "'");
     ros::NodeHandle root = setup.root;
-    pub_ = root.advertise<sensor_msgs::LaserScan>(topic, 5);
+    if (config.velodyne) {
+      pub_ = root.advertise<sensor_msgs::PointCloud2>(topic, 5);
+    } else {
+      pub_ = root.advertise<sensor_msgs::LaserScan>(topic, 5);
+    }
     schedule_.period = config.update_rate > 0.0 ? 1.0 / config.update_rate : 0.0;
-    ROS_INFO("lidar '%s' on link %s: %d beams, %.4g..%.4g rad, %g Hz on %s (frame %s)",
-             config.name.c_str(), config.link.c_str(), config.samples, config.min_angle,
-             config.max_angle, config.update_rate, topic.c_str(), config.frame_name.c_str());
+    ROS_INFO("lidar '%s' on link %s: %d x %d beams, %.4g..%.4g rad, %g Hz on %s (frame %s)",
+             config.name.c_str(), config.link.c_str(), config.vertical_samples, config.samples,
+             config.min_angle, config.max_angle, config.update_rate, topic.c_str(),
+             config.frame_name.c_str());
     stat_ = setup.add_stat(topic, config.update_rate);
   }
 
@@ -41,8 +48,13 @@ class LidarPublisher : public SensorPublisher {
     const RaySensorConfig& config = sensor_->config();
     const std::vector<float>& ranges =
         sensor_->scan(host.caster(), scene, host.linkPose(robot_, config.link), own_body_);
-    toLaserScan(config, ranges, stamp, &msg_);
-    pub_.publish(msg_);
+    if (config.velodyne) {
+      toVelodyneCloud(config, ranges, sensor_->directions(), stamp, &cloud_);
+      pub_.publish(cloud_);
+    } else {
+      toLaserScan(config, ranges, stamp, &msg_);
+      pub_.publish(msg_);
+    }
     ++stat.count;
     ++stat.renders;
   }
@@ -56,6 +68,7 @@ class LidarPublisher : public SensorPublisher {
   ros::Publisher pub_;
   Schedule schedule_;
   sensor_msgs::LaserScan msg_;
+  sensor_msgs::PointCloud2 cloud_;
   std::size_t stat_ = 0;
 };
 

@@ -29,6 +29,7 @@ std::unique_ptr<SensorPublisher> makeSensorPublisher(const SensorKind& kind,
       {"depth_camera", &makeDepthCameraPublisher},
       {"imu", &makeImuPublisher},
       {"imu_plugin", &makeImuPluginPublisher},
+      {"p3d", &makeP3dPublisher},
   };
   const auto it = factories.find(kind.id);
   if (it == factories.end())

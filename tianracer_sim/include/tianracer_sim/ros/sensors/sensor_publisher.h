@@ -18,6 +18,7 @@
 #include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/render/renderer.h"
 #include "tianracer_sim/scene/scene.h"
+#include "tianracer_sim/sensors/p3d.h"  // LinkState
 #include "tianracer_sim/sensors/sensor_registry.h"
 
 namespace tianracer_sim {
@@ -59,6 +60,10 @@ class SensorHost {
   virtual RayCaster& caster() = 0;
   /// Pose in the world of link `link` of robot `robot` at this step.
   virtual Eigen::Isometry3d linkPose(std::size_t robot, const std::string& link) const = 0;
+  /// Pose and world-frame velocities of a link, exact when the link is rigid with the robot's
+  /// root body (the base's twist carried to the link's origin); false otherwise (the caller
+  /// differentiates poses).
+  virtual bool linkState(std::size_t robot, const std::string& link, LinkState* state) const = 0;
   /// Renders the frame on the frame worker from a snapshot of this step's scene, then
   /// calls request.sensor->renderFrame() there.
   virtual void requestFrame(const FrameRequest& request) = 0;
