@@ -58,6 +58,7 @@
 #include "tianracer_sim/render/camera_sensor.h"
 #include "tianracer_sim/render/renderer.h"
 #include "tianracer_sim/ros/borrowed_msgs.h"
+#include "tianracer_sim/ros/contact_publisher.h"
 #include "tianracer_sim/scene/scene.h"
 #include "tianracer_sim/sim/frame_worker.h"
 #include "tianracer_sim/sim/robot_scene.h"
@@ -203,6 +204,7 @@ class SimNode {
   double status_sim_ = 0.0;
   std::uint64_t seed_ = 0;
   std::vector<RobotIo> robots_;
+  std::unique_ptr<ContactPublisher> contacts_;  // robots' contacts and their counts
   std::map<std::string, std::string> topic_owner_;  // sensor topics: who publishes there
 
   ros::Publisher clock_pub_;
