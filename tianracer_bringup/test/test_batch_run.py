@@ -105,6 +105,32 @@ class TestBatch(unittest.TestCase):
         self.assertNotIn('### run_000', md)
         self.assertEqual(batch_processes(), [])
 
+    def test_collision_with_a_wall(self):
+        out = os.path.join(self.tmp, 'wall')
+        code, log = batch('wall_ahead.yaml', out)
+        self.assertEqual(code, 1, log)  # the run ran, and missed no_collision
+        row, = rows_of(out)
+        self.assertEqual(row['status'], 'ok', row)
+        self.assertEqual(row['completed'], 'False', row)
+        self.assertEqual(row['first_collision_with'], 'box_front::link', row)
+        self.assertIn('collided with box_front::link', row['reason'])
+        # Ground truth: the car is stopped by the box; contact is when its speed (finite
+        # differences of the 50 Hz ground-truth path) first falls below half the cruise speed.
+        import json
+        with open(os.path.join(out, 'runs', 'run_000', 'result.json')) as f:
+            path = json.load(f)['metrics']['path']
+        t_contact = None
+        cruising = False
+        for (t0, x0, y0), (t1, x1, y1) in zip(path, path[1:]):
+            v = ((x1 - x0) ** 2 + (y1 - y0) ** 2) ** 0.5 / (t1 - t0)
+            cruising = cruising or v > 0.9
+            if cruising and v < 0.5:
+                t_contact = t0
+                break
+        self.assertIsNotNone(t_contact, 'the car never stopped at the box')
+        self.assertAlmostEqual(float(row['first_collision_time']), t_contact, delta=0.05)
+        self.assertEqual(batch_processes(), [])
+
     def test_scenario_error_starts_nothing(self):
         out = os.path.join(self.tmp, 'invalid')
         bad = os.path.join(self.tmp, 'bad.yaml')

@@ -113,7 +113,9 @@ def main(argv=None):
         note = '%s, %g CPUs, %g per run, up to %d at a time' % (
             'Ray cluster %s' % args.address if args.address else 'local Ray on %s' % socket.gethostname(),
             cpus, args.cpus_per_run, slots)
-        print('==> [batch] %s: %d run(s); %s' % (sc.name, len(runs), note), flush=True)
+        print('==> [batch] %s: %d run(s); %s (Ray up in %.1f s)' % (
+            sc.name, len(runs), note, time.time() - wall0), flush=True)
+        runs_wall0 = time.time()
         task = ray.remote(num_cpus=args.cpus_per_run, max_retries=0)(_remote_run)
         refs = {task.remote(run.id, run.config, os.path.join(out, 'runs', run.id)): run for run in runs}
         results = {}
@@ -154,6 +156,7 @@ def main(argv=None):
     finally:
         ray.shutdown()
     wall = time.time() - wall0
+    runs_wall = time.time() - runs_wall0
     ordered = [results[run.id] for run in runs]
     for res in ordered:
         path = os.path.join(out, 'runs', res['id'])
@@ -163,8 +166,10 @@ def main(argv=None):
     from tianracer_bringup import report
     rows = report.write_all(out, sc, runs, ordered, wall, note)
     done = sum(1 for r in rows if r['completed'])
-    print('==> [batch] %d of %d run(s) completed in %.1f s wall; wrote %s' % (
-        done, len(rows), wall, ', '.join(sorted(n for n in os.listdir(out) if n.endswith(('.csv', '.md', '.png'))))))
+    sim = sum(r.get('sim_time') or 0.0 for r in rows)
+    print('==> [batch] %d of %d run(s) completed in %.1f s wall (runs %.1f s: %.2f sim s per wall s); '
+          'wrote %s' % (done, len(rows), wall, runs_wall, sim / max(runs_wall, 1e-9), ', '.join(
+              sorted(n for n in os.listdir(out) if n.endswith(('.csv', '.md', '.png'))))))
     for r in rows:
         if not r['completed']:
             print('    %s (%s): %s' % (r['id'], r['label'], r['reason']))

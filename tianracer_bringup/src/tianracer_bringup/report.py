@@ -94,8 +94,8 @@ def axis_table(scenario, rows, axis, metrics):
                 cells.append('–')
                 continue
             mean = sum(vals) / len(vals)
-            if min(vals) == max(vals):
-                cells.append(_cell(mean, fmt))
+            if _cell(min(vals), fmt) == _cell(max(vals), fmt):
+                cells.append(_cell(vals[0], fmt))
             else:
                 cells.append('%s (%s – %s)' % (_cell(mean, fmt if fmt != '%d' else '%.1f'),
                                                 _cell(min(vals), fmt), _cell(max(vals), fmt)))
@@ -248,8 +248,12 @@ def plot_metric_vs(path, axis, rows, metrics):
         if r.get(axis) not in values:
             values.append(r.get(axis))
     numeric = all(_num(v) for v in values)
-    fig, axes = plt.subplots(1, len(metrics), figsize=(3.2 * len(metrics), 3.0), squeeze=False)
-    for ax, (key, heading, _) in zip(axes[0], metrics):
+    cols = min(4, len(metrics))
+    nrows = (len(metrics) + cols - 1) // cols
+    fig, axes = plt.subplots(nrows, cols, figsize=(3.2 * cols, 2.8 * nrows), squeeze=False)
+    for ax in axes.flat[len(metrics):]:
+        ax.set_visible(False)
+    for ax, (key, heading, _) in zip(axes.flat, metrics):
         xs, ys, cs = [], [], []
         for r in rows:
             if _num(r.get(key)):

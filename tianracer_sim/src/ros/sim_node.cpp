@@ -132,6 +132,9 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh
     for (const std::string& name : robot_names) loadRobot(ros::NodeHandle(pnh_, name), name);
   }
 
+  contacts_ = std::make_unique<ContactPublisher>(staticShapeOwners(*world_));
+  for (RobotIo& io : robots_) contacts_->addRobot(root, io.robot->id, io.robot->name, io.ns);
+
   ros::NodeHandle gazebo("/gazebo");
   gazebo.setCallbackQueue(&queue_);
   services_.push_back(gazebo.advertiseService("pause_physics", &SimNode::onPause, this));
@@ -444,6 +447,9 @@ void SimNode::publishStatus() {
   sim_status.values.push_back(kv("sim_time", sim_->time()));
   sim_status.values.push_back(kv("real_time_factor", rtf));
   sim_status.values.push_back(kv("target_real_time_factor", real_time_factor_));
+  for (const RobotIo& io : robots_) {
+    sim_status.values.push_back(kv("contacts " + io.robot->name, contacts_->count(io.robot->id)));
+  }
   array.status.push_back(sim_status);
   // In sim time every sensor keeps its rate by construction (rendering holds the step); what
   // can fall behind is the wall-clock rate a consumer sees when the sim cannot keep real time.
@@ -603,6 +609,7 @@ void SimNode::stepOnce() {
   for (RobotIo& io : robots_) io.commands->apply();
   gazebo_->beforeStep();
   sim_->step();
+  contacts_->update(sim_->physics(), sim_->time());
   publishDue();
   gazebo_->afterStep();
 }
@@ -659,6 +666,7 @@ bool SimNode::onResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Resp
   for (RobotIo& io : robots_) io.commands->clear();
   sim_->resetSimulation();
   gazebo_->onReset();
+  contacts_->reset();
   restartSchedules();
   pacing_reset_ = true;
   publishClock();
@@ -668,6 +676,7 @@ bool SimNode::onResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Resp
 bool SimNode::onResetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   sim_->resetWorld();
   gazebo_->onReset();
+  contacts_->reset();
   return true;
 }
 

@@ -53,6 +53,7 @@
 #include "tianracer_sim/lidar/ray_caster.h"
 #include "tianracer_sim/render/renderer.h"
 #include "tianracer_sim/ros/borrowed_msgs.h"
+#include "tianracer_sim/ros/contact_publisher.h"
 #include "tianracer_sim/ros/gazebo_interface.h"
 #include "tianracer_sim/ros/sensors/sensor_publisher.h"
 #include "tianracer_sim/scene/scene.h"
@@ -151,6 +152,7 @@ class SimNode : private SensorHost {
   double status_sim_ = 0.0;
   std::uint64_t seed_ = 0;
   std::vector<RobotIo> robots_;
+  std::unique_ptr<ContactPublisher> contacts_;  // robots' contacts and their counts
   std::map<std::string, std::string> topic_owner_;  // sensor topics: who publishes there
 
   ros::Publisher clock_pub_;
