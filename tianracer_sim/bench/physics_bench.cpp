@@ -1,7 +1,8 @@
 // Physics step benchmark: the shipped tianracer on the ground plane, stepped at 1 ms with its
 // controllers' commands (rear wheel motors, hinge PID through efforts), for a few scenarios and
-// solver settings. Prints microseconds per step (wall and CPU), the real-time factor of physics
-// alone, and heap allocations per step once warm (Bullet's and ours).
+// solver settings, and with 50 free boxes (a world's dynamic models) in the car's path. Prints
+// microseconds per step (wall and CPU), the real-time factor of physics alone, and heap
+// allocations per step once warm (Bullet's and ours).
 //
 // Usage: physics_bench [tianracer_description dir] [steps per scenario]
 #include <chrono>
@@ -53,7 +54,27 @@ struct Scenario {
   double speed;   // m/s at the rear wheels
   int iterations;
   int robots;
+  int boxes = 0;  // free 0.2 m boxes (1 kg) on a 0.3 m grid ahead of the car, in its path
 };
+
+/// A free box as a world's dynamic model becomes: one body, one box collision.
+RigidTree boxTree(double side, double mass) {
+  RigidTree tree;
+  TreeBody body;
+  body.link = "link";
+  body.merged_links = {"link"};
+  body.X_BL["link"] = Eigen::Isometry3d::Identity();
+  body.mass.mass = mass;
+  body.mass.inertia = Eigen::Matrix3d::Identity() * mass * side * side / 6.0;
+  CollisionGeometry g;
+  g.type = GeometryType::kBox;
+  g.size = Eigen::Vector3d::Constant(side);
+  g.link = "link";
+  body.collisions.push_back(g);
+  tree.bodies.push_back(body);
+  tree.links["link"] = {0, Eigen::Isometry3d::Identity()};
+  return tree;
+}
 
 struct Result {
   double wall_us = 0.0, cpu_us = 0.0, allocs_per_step = 0.0;
@@ -68,6 +89,11 @@ Result run(const RobotModel& model, const Scenario& sc, int steps) {
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
     X.translation() = Eigen::Vector3d(0.0, 1.0 * i, 0.0095);
     cars.push_back(&world.robot(addRobotModel(&world, model, X, "car" + std::to_string(i))));
+  }
+  for (int i = 0; i < sc.boxes; ++i) {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.translation() = Eigen::Vector3d(0.6 + 0.3 * (i / 5), -0.6 + 0.3 * (i % 5), 0.1);
+    world.addFreeBody(boxTree(0.2, 1.0), {SurfaceParams()}, X, "box" + std::to_string(i));
   }
   struct Pid {
     double prev = 0.0;
@@ -134,6 +160,7 @@ int main(int argc, char** argv) {
       {"straight 1 m/s, 30 sweeps", 0.0, 1.0, 30, 1},
       {"straight 1 m/s, 50 sweeps", 0.0, 1.0, 50, 1},
       {"two cars, 1 m/s", 0.0, 1.0, def, 2},
+      {"50 free boxes, car at 1 m/s", 0.0, 1.0, def, 1, 50},
   };
   std::printf("tianracer physics step (dt 1 ms, %d solver sweeps unless noted), %d steps per row\n",
               def, steps);

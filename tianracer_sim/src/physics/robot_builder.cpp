@@ -5,17 +5,7 @@
 
 namespace tianracer_sim {
 
-namespace {
-
-const SurfaceParams& surfaceOf(const LinkSurfaces& surfaces, const std::string& link) {
-  static const SurfaceParams kDefault;  // Gazebo's defaults: mu 1, kp 1e12, kd 1
-  auto it = surfaces.find(link);
-  return it == surfaces.end() ? kDefault : it->second;
-}
-
-}  // namespace
-
-void PhysicsWorld::Impl::buildRobot(RobotState* r, const LinkSurfaces& link_surfaces) {
+void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) {
   const RigidTree& tree = r->tree;
   const int nb = static_cast<int>(tree.bodies.size());
   const int nlinks = nb - 1;
@@ -69,6 +59,7 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const LinkSurfaces& link_surf
 
   // Colliders, one per body with collisions: a compound in the COM frame.
   r->colliders.resize(nb);
+  int collision_index = 0;
   for (int b = 0; b < nb; ++b) {
     const TreeBody& body = tree.bodies[b];
     if (body.collisions.empty()) {
@@ -82,7 +73,7 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const LinkSurfaces& link_surf
       col->setCollisionShape(sphere.get());
       col->setActivationState(DISABLE_DEACTIVATION);
       col->setUserPointer(surfaces.get());
-      col->setUserIndex(r->id);
+      col->setUserIndex(r->user_index);
       col->setUserIndex2(b);
       world->addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter, 0);
       if (b == 0) {
@@ -109,7 +100,7 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const LinkSurfaces& link_surf
       compound->addChildShape(toBt(Eigen::Isometry3d(X_CB * X_BS)), shape.get());
       const Eigen::Matrix3d R_CL = X_CB.linear() * body.X_BL.at(g.link).linear();
       surfaces->children.push_back(
-          toSurface(surfaceOf(link_surfaces, g.link), R_CL, options.contact_max_vel));
+          toSurface(surface_of(g, collision_index++), R_CL, options.contact_max_vel));
       r->shapes.push_back(std::move(shape));
     }
     surfaces->body = true;
@@ -123,7 +114,7 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const LinkSurfaces& link_surf
     col->setRollingFriction(0.0);
     col->setSpinningFriction(0.0);
     col->setUserPointer(surfaces.get());
-    col->setUserIndex(r->id);
+    col->setUserIndex(r->user_index);
     col->setUserIndex2(b);
     if (all_wheels) {
       // A rolling wheel's manifold keeps up to 3 stale points behind the contact (rising off

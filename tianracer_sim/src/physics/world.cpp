@@ -73,9 +73,11 @@ PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
 
 PhysicsWorld::Impl::~Impl() {
   for (auto& r : robots) removeFromWorld(r.get());
+  for (auto& b : free_bodies) removeFromWorld(b.get());
   for (auto& s : statics) world->removeCollisionObject(s->object.get());
   if (ground) world->removeCollisionObject(ground->object.get());
   robots.clear();
+  free_bodies.clear();
   statics.clear();
   ground.reset();
   world.reset();
@@ -111,6 +113,23 @@ std::unique_ptr<PhysicsWorld::Impl::StaticBody> PhysicsWorld::Impl::makeStatic(
 PhysicsWorld::PhysicsWorld(const PhysicsOptions& options) : impl_(std::make_unique<Impl>(options)) {}
 PhysicsWorld::~PhysicsWorld() = default;
 
+void PhysicsWorld::Impl::add(std::unique_ptr<RobotState> r, const SurfaceOf& surface_of,
+                             std::vector<std::unique_ptr<RobotState>>* list) {
+  r->world = this;
+  const Eigen::Isometry3d X = r->spawn;
+  r->spawn.linear() = Eigen::Quaterniond(X.rotation()).normalized().toRotationMatrix();
+  RobotState* rp = r.get();
+  list->push_back(std::move(r));
+  try {
+    buildRobot(rp, surface_of);
+  } catch (...) {
+    removeFromWorld(rp);
+    list->pop_back();
+    throw;
+  }
+  rp->handle.resetToSpawn();
+}
+
 RobotId PhysicsWorld::addRobot(RigidTree tree, const LinkSurfaces& surfaces,
                                const Eigen::Isometry3d& X_WB_spawn, const std::string& name) {
   if (robotId(name) >= 0) throw PhysicsError("robot '" + name + "' already exists");
@@ -119,23 +138,67 @@ RobotId PhysicsWorld::addRobot(RigidTree tree, const LinkSurfaces& surfaces,
   }
   if (tree.bodies.empty()) throw PhysicsError("robot '" + name + "': no bodies");
   auto r = std::make_unique<RobotState>();
-  r->world = impl_.get();
   r->id = static_cast<RobotId>(impl_->robots.size());
+  r->user_index = r->id;
   r->name = name;
   r->tree = std::move(tree);
   r->spawn = X_WB_spawn;
-  r->spawn.linear() = Eigen::Quaterniond(X_WB_spawn.rotation()).normalized().toRotationMatrix();
-  RobotState* rp = r.get();
-  impl_->robots.push_back(std::move(r));
-  try {
-    impl_->buildRobot(rp, surfaces);
-  } catch (...) {
-    impl_->removeFromWorld(rp);
-    impl_->robots.pop_back();
-    throw;
+  static const SurfaceParams kDefault;  // Gazebo's defaults: mu 1, kp 1e12, kd 1
+  impl_->add(std::move(r),
+             [&surfaces](const CollisionGeometry& g, int) -> const SurfaceParams& {
+               auto it = surfaces.find(g.link);
+               return it == surfaces.end() ? kDefault : it->second;
+             },
+             &impl_->robots);
+  return static_cast<RobotId>(impl_->robots.size()) - 1;
+}
+
+int PhysicsWorld::addFreeBody(RigidTree tree, const std::vector<SurfaceParams>& surfaces,
+                              const Eigen::Isometry3d& X_WB, const std::string& name) {
+  const std::string what = "free body '" + name + "'";
+  if (freeBodyIndex(name) >= 0) throw PhysicsError(what + " already exists");
+  if (!X_WB.matrix().allFinite()) throw PhysicsError(what + ": non-finite pose");
+  if (tree.bodies.size() != 1) throw PhysicsError(what + ": must be one body (links merged)");
+  const MassProperties& m = tree.bodies[0].mass;
+  if (!(m.mass > 0.0) || !std::isfinite(m.mass)) {
+    throw PhysicsError(what + ": mass must be positive, got " + std::to_string(m.mass));
   }
-  rp->handle.resetToSpawn();
-  return rp->id;
+  if (!isPhysicalInertia(m.inertia)) throw PhysicsError(what + ": inertia is not physical");
+  tree.fixed_base = false;
+  auto r = std::make_unique<RobotState>();
+  r->id = static_cast<int>(impl_->free_bodies.size());
+  r->user_index = -2 - r->id;
+  r->name = name;
+  r->tree = std::move(tree);
+  r->spawn = X_WB;
+  static const SurfaceParams kDefault;
+  impl_->add(std::move(r),
+             [&surfaces](const CollisionGeometry&, int k) -> const SurfaceParams& {
+               return k < static_cast<int>(surfaces.size()) ? surfaces[k] : kDefault;
+             },
+             &impl_->free_bodies);
+  return static_cast<int>(impl_->free_bodies.size()) - 1;
+}
+
+int PhysicsWorld::freeBodyCount() const { return static_cast<int>(impl_->free_bodies.size()); }
+
+PhysicsRobot& PhysicsWorld::freeBody(int index) {
+  if (index < 0 || index >= freeBodyCount()) {
+    throw PhysicsError("no free body with index " + std::to_string(index));
+  }
+  return impl_->free_bodies[index]->handle;
+}
+const PhysicsRobot& PhysicsWorld::freeBody(int index) const {
+  if (index < 0 || index >= freeBodyCount()) {
+    throw PhysicsError("no free body with index " + std::to_string(index));
+  }
+  return impl_->free_bodies[index]->handle;
+}
+int PhysicsWorld::freeBodyIndex(const std::string& name) const {
+  for (const auto& b : impl_->free_bodies) {
+    if (b->name == name) return b->id;
+  }
+  return -1;
 }
 
 int PhysicsWorld::addStaticShape(const StaticShape& shape) {
@@ -146,6 +209,10 @@ int PhysicsWorld::addStaticShape(const StaticShape& shape) {
 
 void PhysicsWorld::step() {
   for (auto& r : impl_->robots) impl_->applyCommands(r.get());
+  // A free body has no joints: only an external wrench (apply_body_wrench) acts through it.
+  for (auto& b : impl_->free_bodies) {
+    if (b->has_ext_wrench) impl_->applyCommands(b.get());
+  }
   // maxSubSteps = 0: exactly one internal step of dt (no accumulator, no interpolation).
   impl_->world->stepSimulation(impl_->options.dt, 0, impl_->options.dt);
   ++impl_->steps;

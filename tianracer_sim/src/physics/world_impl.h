@@ -5,6 +5,7 @@
 #define TIANRACER_SIM_PHYSICS_WORLD_IMPL_H
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -27,7 +28,8 @@ struct RobotState {
   };
 
   PhysicsWorld::Impl* world = nullptr;
-  RobotId id = -1;
+  RobotId id = -1;          // robots: robot id; free bodies: free body index
+  int user_index = -1;      // btCollisionObject::getUserIndex() of its colliders
   std::string name;
   RigidTree tree;
   std::vector<JointInfo> joints;
@@ -81,6 +83,7 @@ struct PhysicsWorld::Impl {
   std::unique_ptr<btMultiBodyDynamicsWorld> world;
 
   std::vector<std::unique_ptr<RobotState>> robots;
+  std::vector<std::unique_ptr<RobotState>> free_bodies;  // robots without joints
 
   struct StaticBody {
     std::unique_ptr<btCollisionObject> object;
@@ -95,9 +98,15 @@ struct PhysicsWorld::Impl {
   explicit Impl(const PhysicsOptions& o);
   ~Impl();
   std::unique_ptr<StaticBody> makeStatic(const StaticShape& shape, int index);
+  /// The surface of collision `index` (in body order) of a robot's tree.
+  using SurfaceOf = std::function<const SurfaceParams&(const CollisionGeometry& g, int index)>;
   /// Builds the robot's multibody, colliders, joints, limits and motors and adds them to the
   /// world; what is added is recorded in r, so removeFromWorld can undo a partial build.
-  void buildRobot(RobotState* r, const LinkSurfaces& surfaces);
+  void buildRobot(RobotState* r, const SurfaceOf& surface_of);
+  /// addRobot / addFreeBody: r (with name, tree, spawn, ids set) is built into the world and
+  /// appended to `list`, or nothing of it stays.
+  void add(std::unique_ptr<RobotState> r, const SurfaceOf& surface_of,
+           std::vector<std::unique_ptr<RobotState>>* list);
   /// Takes everything of r out of the Bullet world (constraints, colliders, multibody).
   void removeFromWorld(RobotState* r);
   void applyCommands(RobotState* r);

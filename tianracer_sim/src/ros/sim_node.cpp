@@ -614,6 +614,7 @@ void SimNode::updateScene() {
   for (const RobotIo& io : robots_) {
     updateRobotScene(sim_->physics().robot(io.robot->id), io.scene_bodies, &scene_);
   }
+  updateFreeBodyScene(sim_->physics(), &scene_);
   scene_step_ = sim_->stepCount();
 }
 

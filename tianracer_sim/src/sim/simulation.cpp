@@ -239,6 +239,16 @@ void Simulation::resetWorld() {
     physics_.robot(robot->id).resetToSpawn();
     restartControllers(*robot);
   }
+  // The world's free bodies back to their poses in the world file.
+  for (int i = 0; i < physics_.freeBodyCount(); ++i) physics_.freeBody(i).resetToSpawn();
+}
+
+const PhysicsRobot* Simulation::findModel(const std::string& name) const {
+  for (const auto& r : robots_) {
+    if (r->name == name) return &physics_.robot(r->id);
+  }
+  const int i = physics_.freeBodyIndex(name);
+  return i >= 0 ? &physics_.freeBody(i) : nullptr;
 }
 
 std::string checkModelState(const Eigen::Isometry3d& X_WB, const Twist& V_WB) {

@@ -142,7 +142,8 @@ class Parser {
   InertialDescription parseInertial(const XMLElement* e, const std::string& what);
   Shape parseGeometry(const XMLElement* e, const std::string& what);
   Material parseMaterial(const XMLElement* e, const std::string& what);
-  Friction parseSurface(const XMLElement* e, const std::string& what);
+  Friction parseSurface(const XMLElement* e, const std::string& what, ContactDescription* contact);
+  JointDescription parseJoint(const XMLElement* e, const std::string& model);
   std::string resolveMesh(const XMLElement* e, const std::string& uri, const std::string& what);
 
   std::string source_;
@@ -356,18 +357,35 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
       LinkDescription l = parseLink(c, m.name);
       if (!link_names.insert(l.name).second) fail(c, what + ": duplicate link name '" + l.name + "'");
       m.links.push_back(std::move(l));
+    } else if (tag == "joint") {
+      m.joints.push_back(parseJoint(c, m.name));
     } else {
       unsupported(c);
     }
   }
   if (m.links.empty()) warn(e, what + " has no <link>: nothing to simulate or see");
+  for (const JointDescription& j : m.joints) {
+    for (const std::string* end : {&j.parent, &j.child}) {
+      if (*end != "world" && !link_names.count(*end))
+        throw WorldError(source_ + ":" + std::to_string(j.line) + ": " + what + " joint '" +
+                         j.name + "': no link '" + *end + "' in the model");
+    }
+  }
   if (!m.is_static) {
+    // A free body needs a mass and an inertia it can be divided by (mass is checked > 0 when
+    // read; inertia here, where a dynamic model makes it matter).
     for (const LinkDescription& l : m.links) {
       const InertialDescription& in = l.inertial;
       const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(in.inertia);
-      if (eig.eigenvalues().minCoeff() <= 0.0)
-        throw WorldError(source_ + ":" + std::to_string(l.line) + ": " + what + " link '" +
-                         l.name + "': inertia is not positive definite");
+      if (!in.inertia.allFinite() || !(eig.eigenvalues().minCoeff() > 0.0)) {
+        const Eigen::Matrix3d& I = in.inertia;
+        std::ostringstream os;
+        os << source_ << ":" << (in.line > 0 ? in.line : l.line) << ": " << what << " link '"
+           << l.name << "': inertia (ixx iyy izz ixy ixz iyz) = (" << I(0, 0) << " " << I(1, 1)
+           << " " << I(2, 2) << " " << I(0, 1) << " " << I(0, 2) << " " << I(1, 2)
+           << ") is not positive definite; a dynamic model needs a positive inertia";
+        throw WorldError(os.str());
+      }
     }
   }
   return m;
@@ -391,6 +409,7 @@ LinkDescription Parser::parseLink(const XMLElement* e, const std::string& model)
       const XMLElement* geometry = nullptr;
       Eigen::Isometry3d X_LS = Eigen::Isometry3d::Identity();
       Friction friction;
+      ContactDescription contact;
       Material material;
       for (const XMLElement* g = c->FirstChildElement(); g; g = g->NextSiblingElement()) {
         const std::string gtag = g->Name();
@@ -400,7 +419,7 @@ LinkDescription Parser::parseLink(const XMLElement* e, const std::string& model)
         } else if (gtag == "pose") {
           X_LS = pose(g, cwhat);
         } else if (gtag == "surface" && tag == "collision") {
-          friction = parseSurface(g, cwhat);
+          friction = parseSurface(g, cwhat, &contact);
         } else if (gtag == "material" && tag == "visual") {
           material = parseMaterial(g, cwhat);
         } else {
@@ -410,7 +429,7 @@ LinkDescription Parser::parseLink(const XMLElement* e, const std::string& model)
       if (!geometry) fail(c, cwhat + " has no <geometry>");
       const Shape shape = parseGeometry(geometry, cwhat);
       if (tag == "collision") {
-        l.collisions.push_back({name, shape, X_LS, friction, c->GetLineNum()});
+        l.collisions.push_back({name, shape, X_LS, friction, c->GetLineNum(), contact});
       } else {
         l.visuals.push_back({name, shape, X_LS, material, c->GetLineNum()});
       }
@@ -423,6 +442,7 @@ LinkDescription Parser::parseLink(const XMLElement* e, const std::string& model)
 
 InertialDescription Parser::parseInertial(const XMLElement* e, const std::string& what) {
   InertialDescription in;
+  in.line = e->GetLineNum();
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
     if (tag == "mass") {
@@ -606,10 +626,12 @@ Material Parser::parseMaterial(const XMLElement* e, const std::string& what) {
   return m;
 }
 
-Friction Parser::parseSurface(const XMLElement* e, const std::string& what) {
+Friction Parser::parseSurface(const XMLElement* e, const std::string& what,
+                              ContactDescription* contact) {
   Friction f;
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
-    if (std::string(c->Name()) != "friction") {
+    const std::string ctag = c->Name();
+    if (ctag != "friction" && ctag != "contact") {
       unsupported(c);
       continue;
     }
@@ -620,13 +642,36 @@ Friction Parser::parseSurface(const XMLElement* e, const std::string& what) {
       }
       for (const XMLElement* p = k->FirstChildElement(); p; p = p->NextSiblingElement()) {
         const std::string tag = p->Name();
-        if (tag == "mu") f.mu = nonNegative(p, what + " friction");
-        else if (tag == "mu2") f.mu2 = nonNegative(p, what + " friction");
+        if (ctag == "friction" && tag == "mu") f.mu = nonNegative(p, what + " friction");
+        else if (ctag == "friction" && tag == "mu2") f.mu2 = nonNegative(p, what + " friction");
+        else if (ctag == "contact" && tag == "kp") contact->kp = positive(p, what + " contact");
+        else if (ctag == "contact" && tag == "kd") contact->kd = nonNegative(p, what + " contact");
+        else if (ctag == "contact" && tag == "max_vel") contact->max_vel = number(p, what + " contact");
+        else if (ctag == "contact" && tag == "min_depth")
+          contact->min_depth = nonNegative(p, what + " contact");
         else unsupported(p);
       }
     }
   }
   return f;
+}
+
+JointDescription Parser::parseJoint(const XMLElement* e, const std::string& model) {
+  JointDescription j;
+  j.name = e->Attribute("name") ? trim(e->Attribute("name")) : "";
+  j.type = e->Attribute("type") ? trim(e->Attribute("type")) : "";
+  j.line = e->GetLineNum();
+  const std::string what = "model '" + model + "' joint '" + j.name + "'";
+  if (j.type.empty()) fail(e, what + " has no type");
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "parent") j.parent = text(c);
+    else if (tag == "child") j.child = text(c);
+    else if (tag == "pose" || tag == "axis" || tag == "physics") continue;  // joint held fixed
+    else unsupported(c);
+  }
+  if (j.parent.empty() || j.child.empty()) fail(e, what + " needs <parent> and <child>");
+  return j;
 }
 
 }  // namespace

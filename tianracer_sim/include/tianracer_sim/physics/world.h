@@ -148,7 +148,7 @@ class PhysicsRobot {
   Twist baseTwist() const;
   void setBasePose(const Eigen::Isometry3d& X_WB);
   void setBaseTwist(const Twist& twist);
-  /// Spawn pose, joints at 0, all velocities and commands zero.
+  /// Spawn pose, joints at 0, all velocities and commands zero (free bodies: their initial pose).
   void resetToSpawn();
   const Eigen::Isometry3d& spawnPose() const;
 
@@ -188,8 +188,9 @@ class PhysicsRobot {
 };
 
 /// Where a ray/contact hit lands: btCollisionObject user indices set by the world.
-/// getUserIndex() = robot id (-1 for static shapes and the ground), getUserIndex2() = body
-/// index in the robot's RigidTree (static: index of addStaticShape, ground: -1).
+/// getUserIndex() = robot id (-1 for static shapes and the ground, -2 - index for free bodies),
+/// getUserIndex2() = body index in the robot's RigidTree (static: index of addStaticShape,
+/// ground: -1).
 
 class PhysicsWorld {
  public:
@@ -205,6 +206,18 @@ class PhysicsWorld {
                    const Eigen::Isometry3d& X_WB_spawn, const std::string& name);
   /// Adds a static body; returns its index.
   int addStaticShape(const StaticShape& shape);
+
+  /// Adds a free rigid body (a world's dynamic model): a rigid tree of one body (its links
+  /// merged) with its frame at X_WB, surfaces[k] for its k-th collision (missing: defaults).
+  /// Meshes collide as convex hulls. It is handled like a robot without joints (pose, twist,
+  /// reset to X_WB, link poses, contacts). Throws PhysicsError / MeshError naming the body.
+  int addFreeBody(RigidTree tree, const std::vector<SurfaceParams>& surfaces,
+                  const Eigen::Isometry3d& X_WB, const std::string& name);
+  int freeBodyCount() const;
+  PhysicsRobot& freeBody(int index);
+  const PhysicsRobot& freeBody(int index) const;
+  /// -1 when no free body has that name.
+  int freeBodyIndex(const std::string& name) const;
 
   /// Advances exactly dt: apply commands -> Bullet step (collide, solve, integrate).
   void step();

@@ -59,7 +59,8 @@ class Simulation {
 
   /// /gazebo/reset_simulation: time to 0, robots to spawn, controllers reset.
   void resetSimulation();
-  /// /gazebo/reset_world: robots to spawn and controllers reset; time keeps running.
+  /// /gazebo/reset_world: robots to spawn, controllers reset, the world's free bodies to their
+  /// initial poses; time keeps running.
   void resetWorld();
 
   double time() const { return physics_.time(); }
@@ -70,6 +71,8 @@ class Simulation {
   const PhysicsWorld& physics() const { return physics_; }
   std::vector<std::unique_ptr<SimRobot>>& robots() { return robots_; }
   SimRobot* findRobot(const std::string& name);
+  /// A robot or a free body of the world (a dynamic model) by name; null when none.
+  const PhysicsRobot* findModel(const std::string& name) const;
 
  private:
   void read(SimRobot& robot);

@@ -4,9 +4,9 @@
 // Supported: <sdf><world> with <physics> (max_step_size, real_time_factor, real_time_update_rate,
 // gravity, also <world><gravity> as in SDF 1.6), <scene> (ambient, background), <include> of
 // model://ground_plane and model://sun (with <pose>, <name>), <light type="directional">, and
-// static or dynamic <model>s with <pose> and <link>s (<pose>, <inertial>, <collision>, <visual>;
-// geometry box, cylinder, sphere, plane, mesh; <material> colours or Gazebo script names;
-// <surface><friction><ode> mu/mu2). Everything else is reported once per element name through
+// static or dynamic <model>s with <pose>, <joint>s and <link>s (<pose>, <inertial>, <collision>,
+// <visual>; geometry box, cylinder, sphere, plane, mesh; <material> colours or Gazebo script
+// names; <surface><friction><ode> mu/mu2, <surface><contact><ode> kp/kd/max_vel/min_depth). Everything else is reported once per element name through
 // the WarningSink, with file and line; nothing is dropped silently.
 #ifndef TIANRACER_SIM_WORLD_WORLD_H
 #define TIANRACER_SIM_WORLD_WORLD_H
@@ -46,11 +46,19 @@ struct Friction {
   double mu2 = 1.0;
 };
 
+/// <surface><contact><ode>: contact softness and penetration recovery (unset: the physics'
+/// defaults, as for a robot link without these tags).
+struct ContactDescription {
+  std::optional<double> kp, kd, max_vel, min_depth;
+};
+
 /// <inertial>: mass, inertia about the centre of mass, and the CoM frame in the link frame.
+/// SDF's defaults (mass 1, unit inertia) where a link has none.
 struct InertialDescription {
   double mass = 1.0;
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Identity();
   Eigen::Isometry3d X_LI = Eigen::Isometry3d::Identity();
+  int line = 0;  // of <inertial>; 0 = none given
 };
 
 struct CollisionDescription {
@@ -59,6 +67,7 @@ struct CollisionDescription {
   Eigen::Isometry3d X_LS = Eigen::Isometry3d::Identity();  // shape in its link
   Friction friction;
   int line = 0;
+  ContactDescription contact;
 };
 
 struct VisualDescription {
@@ -78,11 +87,21 @@ struct LinkDescription {
   int line = 0;
 };
 
+/// <joint> of a model: a dynamic model's links move as one rigid body (joined by fixed joints;
+/// other joint types are warned about and held fixed).
+struct JointDescription {
+  std::string name;
+  std::string type;  // "fixed", "revolute", ...
+  std::string parent, child;
+  int line = 0;
+};
+
 struct ModelDescription {
   std::string name;
   bool is_static = false;
   Eigen::Isometry3d X_WM = Eigen::Isometry3d::Identity();
   std::vector<LinkDescription> links;
+  std::vector<JointDescription> joints;
   int line = 0;
 };
 
