@@ -209,6 +209,10 @@ int PhysicsWorld::addStaticShape(const StaticShape& shape) {
 
 void PhysicsWorld::step() {
   for (auto& r : impl_->robots) impl_->applyCommands(r.get());
+  // A free body has no joints: only an external wrench (apply_body_wrench) acts through it.
+  for (auto& b : impl_->free_bodies) {
+    if (b->has_ext_wrench) impl_->applyCommands(b.get());
+  }
   // maxSubSteps = 0: exactly one internal step of dt (no accumulator, no interpolation).
   impl_->world->stepSimulation(impl_->options.dt, 0, impl_->options.dt);
   ++impl_->steps;

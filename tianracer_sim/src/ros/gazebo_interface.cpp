@@ -103,6 +103,9 @@ bool GazeboInterface::resolve(const std::string& name, bool allow_model, Entity*
   for (const ModelDescription& m : world_.models) {
     if (m.name != n.model) continue;
     e->model = &m;
+    if (const int i = sim_.physics().freeBodyIndex(m.name); i >= 0) {
+      e->free = &sim_.physics().freeBody(i);
+    }
     if (!n.link.empty() &&
         std::none_of(m.links.begin(), m.links.end(),
                      [&](const LinkDescription& l) { return l.name == n.link; })) {
@@ -117,10 +120,15 @@ bool GazeboInterface::resolve(const std::string& name, bool allow_model, Entity*
   return false;
 }
 
+PhysicsRobot* GazeboInterface::physicsOf(const Entity& e) const {
+  if (e.robot) return &sim_.physics().robot(e.robot->id);
+  return e.free;
+}
+
 EntityState GazeboInterface::stateOf(const Entity& e) const {
   EntityState s;
-  if (e.robot) {
-    const PhysicsRobot& pr = sim_.physics().robot(e.robot->id);
+  if (const PhysicsRobot* body = physicsOf(e)) {
+    const PhysicsRobot& pr = *body;
     if (e.link.empty()) {
       s.X_WE = pr.basePose();
       s.V_WE = pr.baseTwist();
@@ -164,12 +172,12 @@ std::vector<std::string> GazeboInterface::modelNames() const {
   return names;
 }
 
-bool GazeboInterface::setRobotBase(SimRobot* robot, const EntityState& s, std::string* error) {
+bool GazeboInterface::setBase(PhysicsRobot* body, const EntityState& s, std::string* error) {
   if (const std::string bad = checkModelState(s.X_WE, s.V_WE); !bad.empty()) {
     *error = bad;
     return false;
   }
-  PhysicsRobot& pr = sim_.physics().robot(robot->id);
+  PhysicsRobot& pr = *body;
   pr.setBasePose(s.X_WE);
   pr.setBaseTwist(s.V_WE);
   return true;
@@ -215,16 +223,16 @@ bool GazeboInterface::setModelState(gazebo_msgs::SetModelState::Request& req,
     res.status_message = "set_model_state: " + error;
   } else if (!e.link.empty()) {
     res.status_message = "set_model_state: '" + m.model_name + "' is a link; use set_link_state";
-  } else if (!e.robot) {
+  } else if (!physicsOf(e)) {
     res.status_message = "set_model_state: model '" + m.model_name +
-                         "' is static in this simulator (a world model) and cannot be moved";
+                         "' is static and cannot be moved";
   } else if (!fromPose(m.pose, &in_frame.X_WE)) {
     res.status_message = "set_model_state: pose of '" + m.model_name +
                          "' is not finite or has a zero quaternion; state unchanged";
   } else if (!fromTwistMsg(m.twist, &in_frame.V_WE)) {
     res.status_message = "set_model_state: twist of '" + m.model_name +
                          "' is not finite; state unchanged";
-  } else if (!setRobotBase(e.robot, fromFrame(in_frame, frame), &error)) {
+  } else if (!setBase(physicsOf(e), fromFrame(in_frame, frame), &error)) {
     res.status_message = "set_model_state: " + error + " for '" + m.model_name +
                          "'; state unchanged";
   } else {
@@ -267,22 +275,22 @@ bool GazeboInterface::setLinkState(gazebo_msgs::SetLinkState::Request& req,
   const EntityState in_frame = stateFromMsg(l.pose, l.twist, &finite);
   if (!resolve(l.link_name, false, &e, &error) || !frameState(l.reference_frame, &frame, &error)) {
     res.status_message = "set_link_state: " + error;
-  } else if (!e.robot) {
+  } else if (!physicsOf(e)) {
     res.status_message = "set_link_state: '" + l.link_name +
-                         "' belongs to a static model in this simulator and cannot be moved";
+                         "' belongs to a static model and cannot be moved";
   } else if (!finite) {
     res.status_message = "set_link_state: pose or twist of '" + l.link_name +
                          "' is not finite or has a zero quaternion; state unchanged";
   } else {
     // The whole robot moves rigidly so that the link gets the state (joints kept): gazebo
     // moves the one link and lets the joints pull the others after it.
-    const PhysicsRobot& pr = sim_.physics().robot(e.robot->id);
+    const PhysicsRobot& pr = *physicsOf(e);
     const EntityState L = fromFrame(in_frame, frame);
     const Eigen::Isometry3d X_LB = pr.linkPose(e.link).inverse() * pr.basePose();
     EntityState B;
     B.X_WE = L.X_WE * X_LB;
     B.V_WE = shiftTwist(L.V_WE, L.X_WE.translation(), B.X_WE.translation());
-    if (!setRobotBase(e.robot, B, &error)) {
+    if (!setBase(physicsOf(e), B, &error)) {
       res.status_message = "set_link_state: " + error + " for '" + l.link_name +
                            "' (its model's base); state unchanged";
     } else {
@@ -349,8 +357,7 @@ bool GazeboInterface::getModelProperties(gazebo_msgs::GetModelProperties::Reques
       for (const CollisionDescription& c : l.collisions) res.geom_names.push_back(c.name);
     }
     if (!e.model->links.empty()) res.canonical_body_name = e.model->links.front().name;
-    // Dynamic world models are simulated as static here (see the README).
-    res.is_static = e.model->is_static;
+    res.is_static = e.free == nullptr;
   }
   res.success = true;
   res.status_message = "GetModelProperties: got properties";
@@ -380,9 +387,9 @@ bool GazeboInterface::applyBodyWrench(gazebo_msgs::ApplyBodyWrench::Request& req
   if (!resolve(req.body_name, false, &e, &error) ||
       !frameState(req.reference_frame, &frame, &error)) {
     res.status_message = "apply_body_wrench: " + error;
-  } else if (!e.robot) {
+  } else if (!physicsOf(e)) {
     res.status_message = "apply_body_wrench: '" + req.body_name +
-                         "' belongs to a static model in this simulator: nothing to push";
+                         "' belongs to a static model: nothing to push";
   } else if (!finiteVec(w.force) || !finiteVec(w.torque) || !std::isfinite(p.x) ||
              !std::isfinite(p.y) || !std::isfinite(p.z)) {
     res.status_message = "apply_body_wrench: force " + fmt(w.force) + ", torque " +
@@ -429,10 +436,10 @@ bool GazeboInterface::clearBodyWrenches(gazebo_msgs::BodyRequest::Request& req,
 void GazeboInterface::beforeStep() {
   if (wrenches_.empty()) return;
   for (const WrenchSchedule::Total& w : wrenches_.totals(sim_.time())) {
-    const ScopedName n = splitScopedName(w.body);
-    SimRobot* robot = sim_.findRobot(n.model);
-    if (!robot) continue;  // deleted since
-    sim_.physics().robot(robot->id).setExternalWrench(n.link, w.force_W, w.torque_W);
+    Entity e;
+    std::string error;
+    if (!resolve(w.body, false, &e, &error) || !physicsOf(e)) continue;  // gone since
+    physicsOf(e)->setExternalWrench(e.link, w.force_W, w.torque_W);
   }
 }
 
@@ -443,42 +450,50 @@ void GazeboInterface::onReset() {
 }
 
 void GazeboInterface::rebuildStateMessages() {
-  auto& robots = sim_.robots();
-  model_states_.name = modelNames();
-  const std::size_t n_models = model_states_.name.size();
-  model_states_.pose.assign(n_models, geometry_msgs::Pose());
-  model_states_.twist.assign(n_models, geometry_msgs::Twist());
-  std::size_t k = 0;
-  if (world_.ground_plane) model_states_.pose[k++] = toPose(world_.X_WG);
-  for (const ModelDescription& m : world_.models) model_states_.pose[k++] = toPose(m.X_WM);
-
+  model_states_.name.clear();
+  model_states_.pose.clear();
+  model_slots_.clear();
   link_states_.name.clear();
+  link_states_.pose.clear();
   link_slots_.clear();
-  std::vector<geometry_msgs::Pose> fixed;
+  auto add_model = [&](const std::string& name, const PhysicsRobot* body,
+                       const Eigen::Isometry3d& X_WM) {
+    model_states_.name.push_back(name);
+    model_slots_.push_back({body, ""});
+    model_states_.pose.push_back(toPose(X_WM));
+  };
+  auto add_link = [&](const std::string& name, const PhysicsRobot* body, const std::string& link,
+                      const Eigen::Isometry3d& X_WL) {
+    link_states_.name.push_back(name);
+    link_slots_.push_back({body, link});
+    link_states_.pose.push_back(toPose(X_WL));
+  };
   if (world_.ground_plane) {
-    link_states_.name.push_back("ground_plane::link");
-    link_slots_.push_back({-1, ""});
-    fixed.push_back(toPose(world_.X_WG));
+    add_model("ground_plane", nullptr, world_.X_WG);
+    add_link("ground_plane::link", nullptr, "", world_.X_WG);
   }
   for (const ModelDescription& m : world_.models) {
+    const int free = sim_.physics().freeBodyIndex(m.name);
+    const PhysicsRobot* body = free >= 0 ? &sim_.physics().freeBody(free) : nullptr;
+    add_model(m.name, body, m.X_WM);
+    // A free body's links are merged into one body: one entry, named after its first link.
     for (const LinkDescription& l : m.links) {
-      link_states_.name.push_back(m.name + "::" + l.name);
-      link_slots_.push_back({-1, ""});
-      fixed.push_back(toPose(m.X_WM * l.X_ML));
+      add_link(m.name + "::" + l.name, body, l.name, m.X_WM * l.X_ML);
+      if (body) break;
     }
   }
-  for (std::size_t r = 0; r < robots.size(); ++r) {
+  for (const auto& robot : sim_.robots()) {
+    const PhysicsRobot* body = &sim_.physics().robot(robot->id);
+    add_model(robot->name, body, Eigen::Isometry3d::Identity());
     // One entry per rigid body, named after its first link: what Gazebo lists after lumping
     // the links joined by fixed joints.
-    for (const TreeBody& b : sim_.physics().robot(robots[r]->id).tree().bodies) {
-      link_states_.name.push_back(robots[r]->name + "::" + b.link);
-      link_slots_.push_back({static_cast<int>(r), b.link});
-      fixed.push_back(geometry_msgs::Pose());
+    for (const TreeBody& b : body->tree().bodies) {
+      add_link(robot->name + "::" + b.link, body, b.link, Eigen::Isometry3d::Identity());
     }
   }
-  link_states_.pose = fixed;
-  link_states_.twist.assign(fixed.size(), geometry_msgs::Twist());
-  robots_in_msgs_ = robots.size();
+  model_states_.twist.assign(model_states_.name.size(), geometry_msgs::Twist());
+  link_states_.twist.assign(link_states_.name.size(), geometry_msgs::Twist());
+  robots_in_msgs_ = sim_.robots().size();
 }
 
 void GazeboInterface::afterStep() {
@@ -495,24 +510,22 @@ void GazeboInterface::afterStep() {
   const bool want_models = model_states_pub_.getNumSubscribers() > 0;
   const bool want_links = link_states_pub_.getNumSubscribers() > 0;
   if (!want_models && !want_links) return;
-  auto& robots = sim_.robots();
-  if (robots_in_msgs_ != robots.size()) rebuildStateMessages();
-  const std::size_t first_robot = model_states_.name.size() - robots.size();
+  if (robots_in_msgs_ != sim_.robots().size()) rebuildStateMessages();
   if (want_models) {
-    for (std::size_t r = 0; r < robots.size(); ++r) {
-      const PhysicsRobot& pr = sim_.physics().robot(robots[r]->id);
-      model_states_.pose[first_robot + r] = toPose(pr.basePose());
-      model_states_.twist[first_robot + r] = toTwistMsg(pr.baseTwist());
+    for (std::size_t i = 0; i < model_slots_.size(); ++i) {
+      const Slot& s = model_slots_[i];
+      if (!s.body) continue;
+      model_states_.pose[i] = toPose(s.body->basePose());
+      model_states_.twist[i] = toTwistMsg(s.body->baseTwist());
     }
     model_states_pub_.publish(model_states_);
   }
   if (want_links) {
     for (std::size_t i = 0; i < link_slots_.size(); ++i) {
-      const LinkSlot& s = link_slots_[i];
-      if (s.robot < 0) continue;
-      const PhysicsRobot& pr = sim_.physics().robot(robots[s.robot]->id);
-      link_states_.pose[i] = toPose(pr.linkPose(s.link));
-      link_states_.twist[i] = toTwistMsg(pr.linkTwist(s.link));
+      const Slot& s = link_slots_[i];
+      if (!s.body) continue;
+      link_states_.pose[i] = toPose(s.body->linkPose(s.link));
+      link_states_.twist[i] = toTwistMsg(s.body->linkTwist(s.link));
     }
     link_states_pub_.publish(link_states_);
   }

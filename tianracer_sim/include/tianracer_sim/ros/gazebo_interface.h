@@ -78,6 +78,7 @@ class GazeboInterface {
   struct Entity {
     SimRobot* robot = nullptr;                // a robot, or
     const ModelDescription* model = nullptr;  // a model of the world file, or
+    PhysicsRobot* free = nullptr;             //   (with its free body when it is dynamic)
     bool ground_plane = false;                // model://ground_plane
     std::string model_name;
     std::string link;  // "" = the model itself (its canonical link)
@@ -87,9 +88,11 @@ class GazeboInterface {
   bool resolve(const std::string& name, bool allow_model, Entity* e, std::string* error) const;
   /// The world state of an entity (static models: their pose, zero twist).
   EntityState stateOf(const Entity& e) const;
+  /// What moves an entity: a robot's or a free body's physics; null for static models.
+  PhysicsRobot* physicsOf(const Entity& e) const;
   /// The frame named by reference_frame (world when isWorldFrame()).
   bool frameState(const std::string& name, EntityState* frame, std::string* error) const;
-  bool setRobotBase(SimRobot* robot, const EntityState& X_WB, std::string* error);
+  bool setBase(PhysicsRobot* body, const EntityState& X_WB, std::string* error);
   std::vector<std::string> modelNames() const;
   void rebuildStateMessages();
   void onModelStateTopic(const gazebo_msgs::ModelState::ConstPtr& msg);
@@ -107,12 +110,13 @@ class GazeboInterface {
   std::size_t robots_in_msgs_ = ~std::size_t(0);  // robot count the messages were built for
   gazebo_msgs::ModelStates model_states_;
   gazebo_msgs::LinkStates link_states_;
-  /// link_states_ entries: robot index and body link, or -1 and a fixed world pose.
-  struct LinkSlot {
-    int robot = -1;
+  /// Where each entry of the messages comes from: a robot's or free body's physics (its base,
+  /// or a link), or null for a static model whose pose was filled in once.
+  struct Slot {
+    const PhysicsRobot* body = nullptr;
     std::string link;
   };
-  std::vector<LinkSlot> link_slots_;
+  std::vector<Slot> model_slots_, link_slots_;
 };
 
 }  // namespace tianracer_sim

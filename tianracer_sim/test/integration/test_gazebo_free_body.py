@@ -1,0 +1,127 @@
+#!/usr/bin/env python3
+"""rostest: the Gazebo interface on a free box (free_box.world's 'crate', 0.5 kg): it is in
+model_states and link_states where the physics has it, set_model_state moves it, and
+apply_body_wrench moves it by F t^2/(2m) (lifted 3 m, so that only gravity, vertical, acts
+besides the force). Sim time; wall time only bounds the waits."""
+import math
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from gazebo_msgs.msg import LinkStates, ModelState, ModelStates
+from gazebo_msgs.srv import (ApplyBodyWrench, GetModelProperties, GetModelState,
+                             GetWorldProperties, SetModelState)
+from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3, Wrench
+from std_srvs.srv import Empty
+
+BOX, MASS = 'crate', 0.5
+
+
+class GazeboFreeBody(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('test_gazebo_free_body')
+        cls.lock = threading.Lock()
+        cls.models, cls.links = [], []
+        rospy.Subscriber('/gazebo/model_states', ModelStates, cls.keep(cls.models), queue_size=50)
+        rospy.Subscriber('/gazebo/link_states', LinkStates, cls.keep(cls.links), queue_size=50)
+        names = ['pause_physics', 'unpause_physics', 'reset_world', 'get_model_state',
+                 'set_model_state', 'get_model_properties', 'get_world_properties',
+                 'apply_body_wrench']
+        types = [Empty, Empty, Empty, GetModelState, SetModelState, GetModelProperties,
+                 GetWorldProperties, ApplyBodyWrench]
+        for n, t in zip(names, types):
+            rospy.wait_for_service('/gazebo/' + n, timeout=60)
+            setattr(cls, n, rospy.ServiceProxy('/gazebo/' + n, t))
+        end = time.time() + 60
+        while time.time() < end:
+            with cls.lock:
+                if cls.models and cls.links:
+                    break
+            time.sleep(0.1)
+
+    @classmethod
+    def keep(cls, store):
+        def cb(msg):
+            with cls.lock:
+                store.append(msg)
+                del store[:-100]
+        return cb
+
+    def wait_sim(self, seconds):
+        target = rospy.get_time() + seconds
+        end = time.time() + 60
+        while rospy.get_time() < target:
+            self.assertLess(time.time(), end, 'sim time stalled')
+            time.sleep(0.01)
+
+    def paused(self):
+        self.pause_physics()
+        time.sleep(0.3)
+
+    def test_a_the_box_is_a_moving_model(self):
+        props = self.get_model_properties(BOX)
+        self.assertTrue(props.success, props.status_message)
+        self.assertFalse(props.is_static)
+        self.assertIn(BOX, self.get_world_properties().model_names)
+        # Lift it 0.5 m: it falls back; model_states and link_states follow it.
+        self.paused()
+        s = self.get_model_state(BOX, '')
+        r = self.set_model_state(ModelState(BOX, Pose(Point(0.8, 0.0, 0.65),
+                                                      Quaternion(0, 0, 0, 1)), Twist(), ''))
+        self.assertTrue(r.success, r.status_message)
+        self.unpause_physics()
+        self.wait_sim(0.2)
+        with self.lock:
+            m, l = self.models[-1], self.links[-1]
+        z_model = m.pose[m.name.index(BOX)].position.z
+        z_link = l.pose[l.name.index(BOX + '::link')].position.z
+        vz = m.twist[m.name.index(BOX)].linear.z
+        text = 'after 0.2 s: z %.4f (link %.4f), vz %.3f' % (z_model, z_link, vz)
+        self.assertLess(z_model, 0.65 - 0.1, text)  # falling: 0.196 m after 0.2 s
+        self.assertGreater(z_model, s.pose.position.z, text)
+        self.assertAlmostEqual(z_model, z_link, places=9, msg=text)
+        self.assertLess(vz, -1.5, text)
+        self.wait_sim(1.0)
+        self.reset_world()
+        self.wait_sim(0.3)
+
+    def test_b_apply_body_wrench_moves_the_box(self):
+        F, T = 1.0, 0.4
+        self.paused()
+        r = self.set_model_state(ModelState(BOX, Pose(Point(0.8, 0.0, 3.0),
+                                                      Quaternion(0, 0, 0, 1)), Twist(), ''))
+        self.assertTrue(r.success, r.status_message)
+        x0 = self.get_model_state(BOX, '').pose.position.x
+        t0 = self.get_world_properties().sim_time
+        r = self.apply_body_wrench(BOX + '::link', '', Point(),
+                                   Wrench(Vector3(F, 0, 0), Vector3()), rospy.Time(0),
+                                   rospy.Duration(T))
+        self.assertTrue(r.success, r.status_message)
+        self.unpause_physics()
+        self.wait_sim(0.5)
+        self.paused()
+        s = self.get_model_state(BOX, '')
+        t = self.get_world_properties().sim_time - t0
+        self.unpause_physics()
+        expected = F * T * T / (2 * MASS) + F * T / MASS * (t - T)
+        dx = s.pose.position.x - x0
+        text = ('F %.1f N for %.2f s on the %.1f kg box, %.3f s in the air: moved %.5f m, '
+                'F T^2/(2m) + (F T/m)(t - T) = %.5f m (%+.2f %%); vx %.4f m/s (F T/m = %.4f)'
+                % (F, T, MASS, t, dx, expected, 100.0 * (dx / expected - 1.0),
+                   s.twist.linear.x, F * T / MASS))
+        print('FIGURE apply_body_wrench on a free box: ' + text)
+        self.assertGreater(s.pose.position.z, 1.0, text)  # still in the air
+        self.assertLess(abs(dx / expected - 1.0), 0.03, text)
+        self.assertAlmostEqual(s.twist.linear.x, F * T / MASS, delta=0.01 * F * T / MASS)
+        self.wait_sim(1.0)
+        self.reset_world()
+        self.wait_sim(0.3)
+        back = self.get_model_state(BOX, '').pose.position
+        self.assertAlmostEqual(back.x, 0.8, delta=0.01)
+
+
+if __name__ == '__main__':
+    rostest.rosrun('tianracer_sim', 'gazebo_free_body', GazeboFreeBody)
