@@ -79,7 +79,8 @@ std::string world(const std::string& material) {
          "<material>" + material + "</material></visual></link></model></world></sdf>";
 }
 
-const Material& visualMaterial(const WorldDescription& w) { return w.models.at(0).links.at(0).visuals.at(0).material; }
+// By value: callers pass temporaries (a reference into one would dangle after the statement).
+Material visualMaterial(const WorldDescription& w) { return w.models.at(0).links.at(0).visuals.at(0).material; }
 
 std::string scriptFor(const std::string& name) {
   return "<script><uri>model://board/materials/scripts</uri><uri>model://board/materials/textures</uri>"
