@@ -16,6 +16,8 @@
 //    dropped (tf2 frame ids have none).
 #include "tianracer_sim/lidar/ray_sensor.h"
 
+#include "tianracer_sim/common/text.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -34,19 +36,9 @@ namespace {
 
 using tinyxml2::XMLElement;
 
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return "";
-  const auto e = s.find_last_not_of(" \t\r\n");
-  return s.substr(b, e - b + 1);
-}
+std::string trim(const std::string& s) { return trimText(s); }
 
-std::string fmt(double v) {
-  std::ostringstream ss;
-  ss.precision(10);
-  ss << v;
-  return ss.str();
-}
+std::string fmt(double v) { return formatNumber(v); }
 
 class ConfigReader {
  public:

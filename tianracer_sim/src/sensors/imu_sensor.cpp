@@ -12,6 +12,8 @@
 //  - covariances add the SDF noise variance of each axis to gaussianNoise^2.
 #include "tianracer_sim/sensors/imu_sensor.h"
 
+#include "tianracer_sim/common/text.h"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -26,19 +28,9 @@ namespace {
 
 using tinyxml2::XMLElement;
 
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return "";
-  const auto e = s.find_last_not_of(" \t\r\n");
-  return s.substr(b, e - b + 1);
-}
+std::string trim(const std::string& s) { return trimText(s); }
 
-std::string fmt(double v) {
-  std::ostringstream ss;
-  ss.precision(10);
-  ss << v;
-  return ss.str();
-}
+std::string fmt(double v) { return formatNumber(v); }
 
 std::string baseName(const std::string& path) {
   const auto slash = path.find_last_of('/');

@@ -1,5 +1,7 @@
 #include "tianracer_sim/sensors/p3d.h"
 
+#include "tianracer_sim/common/text.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -10,12 +12,7 @@ namespace tianracer_sim {
 
 namespace {
 
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return "";
-  const auto e = s.find_last_not_of(" \t\r\n");
-  return s.substr(b, e - b + 1);
-}
+std::string trim(const std::string& s) { return trimText(s); }
 
 }  // namespace
 
