@@ -8,6 +8,7 @@
 #include "tianracer_sim/lidar/ray_sensor.h"
 #include "tianracer_sim/render/camera_sensor.h"
 #include "tianracer_sim/sensors/imu_sensor.h"
+#include "tianracer_sim/sensors/multicamera_topics.h"
 #include "tianracer_sim/sensors/p3d.h"
 
 namespace tianracer_sim {
@@ -82,6 +83,7 @@ const std::vector<SensorKind>& sensorKinds() {
         "libgazebo_ros_velodyne_gpu_laser.so"},
        &lidarTopics},
       {"camera", {"camera"}, {"libgazebo_ros_camera.so"}, &cameraTopics},
+      {"multicamera", {"multicamera"}, {"libgazebo_ros_multicamera.so"}, &multiCameraTopics},
       {"depth_camera", {"depth"},
        {"libgazebo_ros_openni_kinect.so", "libgazebo_ros_depth_camera.so"}, &depthCameraTopics},
       {"imu", {"imu"}, {"libgazebo_ros_imu_sensor.so"}, &imuTopics},

@@ -11,6 +11,7 @@ namespace tianracer_sim {
 
 std::unique_ptr<SensorPublisher> makeLidarPublisher(const SensorSetup& setup);
 std::unique_ptr<SensorPublisher> makeCameraPublisher(const SensorSetup& setup);
+std::unique_ptr<SensorPublisher> makeMultiCameraPublisher(const SensorSetup& setup);
 std::unique_ptr<SensorPublisher> makeDepthCameraPublisher(const SensorSetup& setup);
 std::unique_ptr<SensorPublisher> makeImuPublisher(const SensorSetup& setup);
 std::unique_ptr<SensorPublisher> makeImuPluginPublisher(const SensorSetup& setup);

@@ -26,6 +26,7 @@ std::unique_ptr<SensorPublisher> makeSensorPublisher(const SensorKind& kind,
   static const std::map<std::string, Factory> factories = {
       {"lidar", &makeLidarPublisher},
       {"camera", &makeCameraPublisher},
+      {"multicamera", &makeMultiCameraPublisher},
       {"depth_camera", &makeDepthCameraPublisher},
       {"imu", &makeImuPublisher},
       {"imu_plugin", &makeImuPluginPublisher},
