@@ -190,11 +190,25 @@ class CarATest(unittest.TestCase):
                                      '_disable_sensors:=ray imu'],
                                     env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                     universal_newlines=True)
-            try:  # paused, it runs until interrupted
-                out, _ = node.communicate(timeout=20)
-            except subprocess.TimeoutExpired:
-                node.send_signal(signal.SIGINT)
-                out, _ = node.communicate(timeout=10)
+            # Paused, it runs until interrupted: read until both errors are there (stderr,
+            # unbuffered; the INFO lines on stdout come when it exits), for at most 90 s of a
+            # loaded machine's wall time.
+            lines = []
+
+            def read():
+                for line in node.stdout:
+                    lines.append(line)
+
+            reader = threading.Thread(target=read, daemon=True)
+            reader.start()
+            wanted = ["has 1 <camera>", "two cameras are named 'left'"]
+            end = time.time() + 90.0
+            while time.time() < end and not all(any(w in l for l in list(lines)) for w in wanted):
+                time.sleep(0.2)
+            node.send_signal(signal.SIGINT)
+            node.wait(timeout=20)
+            reader.join(timeout=10)
+            out = ''.join(lines)
         finally:
             master.terminate()
             master.wait(timeout=10)
