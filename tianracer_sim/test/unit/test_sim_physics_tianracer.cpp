@@ -473,7 +473,7 @@ TEST(Tianracer, SpawnedInAWallIsPushedOutNotThrown) {
     Car car(PhysicsOptions(), yaw);
     StaticShape wall;
     wall.name = "north_wall";
-    wall.size = Eigen::Vector3d(6.2, 0.1, 1.0);
+    wall.shape.size = Eigen::Vector3d(6.2, 0.1, 1.0);
     wall.X_WS.translation() = Eigen::Vector3d(0.0, 0.05, 0.5);  // face y = 0
     car.world->addStaticShape(wall);
     double top = 0.0, top_spin = 0.0;
