@@ -1,9 +1,9 @@
-// <sensor type="ray"> -> RaySensorConfig, its validation, the SPEC §5.1 range model and
+// <sensor type="ray"> -> RaySensorConfig, its validation, the range model (ray_sensor.h) and
 // RaySensor.
 //
 // Deliberate differences from Gazebo, documented here once:
 //  - rays start at the sensor origin (Gazebo starts them at range_min and so sees through
-//    anything closer); a surface closer than range_min reads -inf, as SPEC §5.1 says;
+//    anything closer); a surface closer than range_min reads -inf (REP 117: too close);
 //  - <horizontal><resolution> other than 1 is accepted but rays = samples (Gazebo casts
 //    samples*resolution rays and interpolates);
 //  - <range><resolution> is not applied to ranges (neither does Gazebo's RaySensor);

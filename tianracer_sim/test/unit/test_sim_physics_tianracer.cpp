@@ -98,7 +98,8 @@ struct Car {
     const long n = std::lround(seconds / world->dt());
     for (long k = 0; k < n; ++k) step();
   }
-  /// Exact Ackermann hinge angles for a bicycle angle delta (SPEC 8), with per-wheel rear speeds.
+  /// Exact Ackermann hinge angles for a bicycle angle delta (cot(delta_i) = cot(delta) -+ T/(2L)),
+  /// with per-wheel rear speeds.
   void ackermann(double delta, double v) {
     const double t = std::tan(delta);
     steer_l = std::atan(kWheelbase * t / (kWheelbase - 0.5 * kHingeTrack * t));
