@@ -149,9 +149,10 @@ double XmlReader::nonNegative(const XMLElement* e, const std::string& what) cons
 
 int XmlReader::integer(const XMLElement* e, const std::string& what) const {
   const std::string t = text(e);
-  int v = 0;
+  const char* begin = t.data() + (t.size() > 1 && t[0] == '+' && t[1] != '-' ? 1 : 0);  // as strtol
   const char* end = t.data() + t.size();
-  const auto r = std::from_chars(t.data(), end, v);
+  int v = 0;
+  const auto r = std::from_chars(begin, end, v);
   if (t.empty() || r.ec != std::errc() || r.ptr != end)
     fail(e, lead(what, e) + " '" + t + "' is not an integer");
   return v;

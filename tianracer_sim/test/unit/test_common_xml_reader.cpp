@@ -101,7 +101,8 @@ TEST_F(XmlReaderTest, TextAndAttributesAreTrimmed) {
 
 TEST_F(XmlReaderTest, NumbersNameFileLineElementAndValue) {
   load("<physics>\n<step>0.001</step>\n<bad>fast</bad>\n<nan>nan</nan>\n<big>1e999</big>\n"
-       "<neg>-1</neg>\n<zero>0</zero>\n<two>1 2</two>\n<int>7</int>\n<frac>7.5</frac>\n</physics>");
+       "<neg>-1</neg>\n<zero>0</zero>\n<two>1 2</two>\n<int>7</int>\n<frac>7.5</frac>\n"
+       "<plus>+7</plus><minus>-7</minus><huge>99999999999</huge></physics>");
   EXPECT_EQ(reader_.number(el("step"), "<physics>"), 0.001);
   EXPECT_EQ(error([&] { reader_.number(el("bad"), "<physics>"); }),
             "room.world:3: <physics>: <bad> 'fast' is not a list of numbers");
@@ -117,6 +118,9 @@ TEST_F(XmlReaderTest, NumbersNameFileLineElementAndValue) {
   EXPECT_EQ(error([&] { reader_.positive(el("zero"), "w"); }),
             "room.world:7: w: <zero> must be > 0 (got 0)");
   EXPECT_EQ(reader_.integer(el("int"), "w"), 7);
+  EXPECT_EQ(reader_.integer(el("plus"), "w"), 7);
+  EXPECT_EQ(reader_.integer(el("minus"), "w"), -7);
+  EXPECT_THAT(error([&] { reader_.integer(el("huge"), "w"); }), HasSubstr("is not an integer"));
   EXPECT_EQ(error([&] { reader_.integer(el("frac"), "w"); }),
             "room.world:10: w: <frac> '7.5' is not an integer");
   // Without a `what` the message starts at the element.
