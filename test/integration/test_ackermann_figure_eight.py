@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""rostest, issue 4 (d): wheel odometry against ground truth after a 10 m figure-eight
+"""rostest: wheel odometry against ground truth after a 10 m figure-eight
 (R = 0.796 m, 0.5 m/s, tianracer_control's scripted_driver through /cmd_vel): position error
 < 2 % of the distance travelled, heading error < 5 deg.
 
 ackermann_figure_eight.test runs the cmd_vel node with per-wheel rear speeds
-(differential:=true, SPEC 8's option v (1 -+ T_r tan(delta) / (2 L)) / r), as the car's rear
+(differential:=true, the option v (1 -+ T_r tan(delta) / (2 L)) / r), as the car's rear
 differential turns them. With the default (both rear wheels at v / r, a locked axle) the inner
 and outer rear wheels must scrub against each other by v T_r / R, about 10 % in this 0.8 m turn;
 the car's path then follows how the scrub splits between the tyres, and the same figure-eight

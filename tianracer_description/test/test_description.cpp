@@ -1,4 +1,4 @@
-// Tests every shipped file of tianracer_description (STYLE.md §9): the xacro expands (with and
+// Tests every shipped file of tianracer_description: the xacro expands (with and
 // without the Gazebo laser), the URDF matches the seed literally, every mesh it references loads
 // and fits the joint layout, and the committed meshes are exactly the generator's output.
 // No roscore needed; xacro and the generator run as child processes.
@@ -37,7 +37,7 @@ const std::string kSourceDir = TIANRACER_DESCRIPTION_SOURCE_DIR;
 const std::string kXacroPath = kSourceDir + "/urdf/tianracer_description.xacro";
 const std::string kMeshPrefix = "package://tianracer_description/";
 
-// Layout constants the meshes are built against (SPEC §2).
+// Layout constants the meshes are built against (README, The model).
 constexpr double kWheelRadius = 0.032;
 constexpr double kGroundZ = 0.0225 - kWheelRadius;  // rear wheel centre z minus radius
 constexpr double kNonWheelMinZ = kGroundZ + 0.003;  // clearance kept by everything but wheels

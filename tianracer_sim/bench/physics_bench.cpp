@@ -67,8 +67,8 @@ RigidTree boxTree(double side, double mass) {
   body.mass.mass = mass;
   body.mass.inertia = Eigen::Matrix3d::Identity() * mass * side * side / 6.0;
   CollisionGeometry g;
-  g.type = GeometryType::kBox;
-  g.size = Eigen::Vector3d::Constant(side);
+  g.shape.type = ShapeType::kBox;
+  g.shape.size = Eigen::Vector3d::Constant(side);
   g.link = "link";
   body.collisions.push_back(g);
   tree.bodies.push_back(body);

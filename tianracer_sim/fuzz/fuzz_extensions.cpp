@@ -19,7 +19,7 @@ void check(bool ok, const char* what) {
   }
 }
 
-// What loadRobotModel validates on success (STYLE.md §4: validated once on load).
+// What loadRobotModel validates on success (validated once, on load).
 void checkModel(const tianracer_sim::RobotModel& m) {
   check(m.urdf != nullptr, "urdf is null");
   for (const auto& [name, link] : m.urdf->links_) {

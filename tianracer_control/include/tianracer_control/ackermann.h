@@ -23,7 +23,7 @@ struct AckermannGeometry {
   /// refer to P; odometry reports the base frame.
   double rear_axle_x = 0.0;
   double rear_axle_y = 0.0;
-  /// Where the hinges really are. SPEC 8's formulas assume a symmetric car; CAD-exported URDFs
+  /// Where the hinges really are. Textbook Ackermann assumes a symmetric car; CAD-exported URDFs
   /// are not (the seed's hinges are 2.6 mm apart in x and their midpoint is 4.7 mm left of P,
   /// which turns a left circle 1.4 % wide and a right one 1.3 % tight if ignored). In the rear
   /// axle frame (origin P, x forward, y left):
@@ -65,7 +65,7 @@ double yawRateFromSteeringAngle(double wheelbase, double v, double delta);
 /// turning centre is (0, R), R = L / tan(delta), in the rear axle frame; a hinge at (dx, dy)
 /// must point its wheel perpendicular to the ray from the centre:
 ///   tan(a) = dx / (R - dy) = dx tan(delta) / (L - dy tan(delta))
-/// For a symmetric car (s = c = 0) that is SPEC 8's
+/// For a symmetric car (s = c = 0) that is the textbook
 ///   tan(delta_left)  = L tan(delta) / (L - T/2 tan(delta))
 ///   tan(delta_right) = L tan(delta) / (L + T/2 tan(delta))
 /// i.e. cot(delta_left) = cot(delta) - T/(2L), cot(delta_right) = cot(delta) + T/(2L).

@@ -1,9 +1,9 @@
-// <sensor type="ray"> -> RaySensorConfig, its validation, the SPEC §5.1 range model and
+// <sensor type="ray"> -> RaySensorConfig, its validation, the range model (ray_sensor.h) and
 // RaySensor.
 //
 // Deliberate differences from Gazebo, documented here once:
 //  - rays start at the sensor origin (Gazebo starts them at range_min and so sees through
-//    anything closer); a surface closer than range_min reads -inf, as SPEC §5.1 says;
+//    anything closer); a surface closer than range_min reads -inf (REP 117: too close);
 //  - <horizontal><resolution> other than 1 is accepted but rays = samples (Gazebo casts
 //    samples*resolution rays and interpolates);
 //  - <range><resolution> is not applied to ranges (neither does Gazebo's RaySensor);
@@ -16,10 +16,9 @@
 //    dropped (tf2 frame ids have none).
 #include "tianracer_sim/lidar/ray_sensor.h"
 
-#include "tianracer_sim/common/text.h"
+#include "tianracer_sim/common/xml_reader.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -36,60 +35,38 @@ namespace {
 
 using tinyxml2::XMLElement;
 
-std::string trim(const std::string& s) { return trimText(s); }
-
 std::string fmt(double v) { return formatNumber(v); }
 
 class ConfigReader {
  public:
   ConfigReader(const SensorSpec& spec, const WarningSink& warn)
-      : spec_(spec), warn_(warn), what_("sensor '" + spec.name + "'") {}
+      : spec_(spec), warn_(warn), what_("sensor '" + spec.name + "'"),
+        xml_(spec.name, warn, [](const std::string& m) { throw SensorError(m); },
+             [this](const XMLElement* e) {
+               return what_ + (e ? " (line " + std::to_string(e->GetLineNum()) + ")" : "") + ": ";
+             }) {}
 
   RaySensorConfig read();
 
  private:
-  [[noreturn]] void fail(const XMLElement* e, const std::string& msg) const {
-    throw SensorError(what_ + (e ? " (line " + std::to_string(e->GetLineNum()) + ")" : "") +
-                      ": " + msg);
-  }
-  void unsupported(const XMLElement* e) {
-    const XMLElement* parent = e->Parent() ? e->Parent()->ToElement() : nullptr;
-    const std::string where = parent ? std::string(parent->Name()) : "";
-    if (!warned_.insert(where + "/" + e->Name()).second || !warn_) return;
-    warn_(what_ + ": <" + std::string(e->Name()) + "> in <" + where +
-          "> is not supported, ignored");
-  }
-  std::string text(const XMLElement* e) const {
-    const char* t = e->GetText();
-    return t ? trim(t) : std::string();
-  }
+  [[noreturn]] void fail(const XMLElement* e, const std::string& msg) const { xml_.fail(e, msg); }
+  void unsupported(const XMLElement* e) { xml_.unsupported(e); }
+  std::string text(const XMLElement* e) const { return elementText(e); }
   double number(const XMLElement* e) const {
     const std::string t = text(e);
-    char* end = nullptr;
-    errno = 0;
-    const double v = std::strtod(t.c_str(), &end);
-    if (t.empty() || *end != '\0')
-      fail(e, "<" + std::string(e->Name()) + "> '" + t + "' is not a number");
-    if (!std::isfinite(v) || errno == ERANGE)
+    const auto v = parseNumber(t);
+    if (!v) fail(e, "<" + std::string(e->Name()) + "> '" + t + "' is not a number");
+    if (!std::isfinite(*v))
       fail(e, "<" + std::string(e->Name()) + "> '" + t + "' is not a finite number");
-    return v;
+    return *v;
   }
-  int integer(const XMLElement* e) const {
-    const std::string t = text(e);
-    char* end = nullptr;
-    errno = 0;
-    const long v = std::strtol(t.c_str(), &end, 10);
-    if (t.empty() || *end != '\0' || errno == ERANGE || v > std::numeric_limits<int>::max() ||
-        v < std::numeric_limits<int>::min())
-      fail(e, "<" + std::string(e->Name()) + "> '" + t + "' is not an integer");
-    return static_cast<int>(v);
-  }
+  int integer(const XMLElement* e) const { return xml_.integer(e, ""); }
   void readRay(const XMLElement* ray, RaySensorConfig& c);
 
   const SensorSpec& spec_;
   const WarningSink& warn_;
   std::string what_;
-  std::set<std::string> warned_;
+  XmlReader xml_;
 };
 
 RaySensorConfig ConfigReader::read() {
@@ -133,14 +110,13 @@ RaySensorConfig ConfigReader::read() {
       c.velodyne = true;
       c.topic_name = "/world";  // the plugin's defaults
       for (const auto& kv : p.params) {
-        const std::string v = trim(kv.second);
+        const std::string v = trimText(kv.second);
         auto num = [&] {
-          char* end = nullptr;
-          const double d = std::strtod(v.c_str(), &end);
-          if (v.empty() || *end != '\0')
+          const auto d = parseNumber(v);
+          if (!d)
             throw SensorError(what_ + ": <" + kv.first + "> '" + v + "' of plugin '" + p.filename +
                               "' is not a number");
-          return d;
+          return *d;
         };
         if (kv.first == "topicName") c.topic_name = v;
         else if (kv.first == "frameName") {

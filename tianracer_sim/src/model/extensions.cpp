@@ -1,5 +1,6 @@
 // <gazebo> and <transmission> tags -> plain structs (tinyxml2). Must never crash on any input:
 // every failure is a ModelError (this file is the libFuzzer target's code under test).
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -18,33 +19,19 @@ using tinyxml2::XMLElement;
 
 namespace model_internal {
 
-std::string trim(const std::string& s) {
-  const char* ws = " \t\n\r\f\v";
-  const auto b = s.find_first_not_of(ws);
-  if (b == std::string::npos) return "";
-  const auto e = s.find_last_not_of(ws);
-  return s.substr(b, e - b + 1);
-}
-
 std::string at(const std::string& source, const XMLElement* e) {
   if (e == nullptr || e->GetLineNum() <= 0) return source + ": ";
   return source + ": line " + std::to_string(e->GetLineNum()) + ": ";
 }
 
-std::optional<double> toDouble(const std::string& text) {
-  std::string t = trim(text);
-  if (!t.empty() && t[0] == '+') t.erase(0, 1);
-  if (t.empty()) return std::nullopt;
-  double v = 0.0;
-  const char* end = t.data() + t.size();
-  const auto r = std::from_chars(t.data(), end, v);
-  if (r.ec != std::errc() || r.ptr != end) return std::nullopt;
-  return v;
+XmlReader modelReader(const std::string& source, WarningSink warn) {
+  return XmlReader(source, std::move(warn), [](const std::string& m) { throw ModelError(m); },
+                   [source](const XMLElement* e) { return at(source, e); });
 }
 
 const XMLElement* parseRobotXml(tinyxml2::XMLDocument& doc, const std::string& text,
                                 const std::string& source) {
-  if (trim(text).empty()) throw ModelError(source + ": robot_description is empty");
+  if (trimText(text).empty()) throw ModelError(source + ": robot_description is empty");
   if (doc.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
     // ErrorStr() reads "Error=NAME ErrorID=N (0xN) Line number=N: detail"; keep name + detail.
     std::string detail = doc.ErrorStr() ? doc.ErrorStr() : "";
@@ -78,19 +65,19 @@ std::string attr(const XMLElement* e, const char* name) {
 
 std::string text(const XMLElement* e) {
   const char* t = e->GetText();
-  return t ? mi::trim(t) : "";
+  return t ? trimText(t) : "";
 }
 
 /// Value of <tag value="..."/> (the seed's form) or <tag>...</tag> (Gazebo's form).
 std::string valueOf(const XMLElement* e) {
-  if (const char* v = e->Attribute("value")) return mi::trim(v);
+  if (const char* v = e->Attribute("value")) return trimText(v);
   return text(e);
 }
 
 /// A finite, non-negative number, or a ModelError naming the element and value.
 double nonNegative(const XMLElement* e, const std::string& what, const std::string& source) {
   const std::string v = valueOf(e);
-  const auto d = mi::toDouble(v);
+  const auto d = parseNumber(v);
   if (!d) throw ModelError(mi::at(source, e) + what + ": <" + e->Name() + "> value '" + v +
                            "' is not a number");
   if (!std::isfinite(*d) || *d < 0.0)
@@ -108,25 +95,15 @@ bool toBool(const XMLElement* e, const std::string& what, const std::string& sou
 }
 
 std::vector<double> numbers(const std::string& s, bool* ok) {
-  std::vector<double> out;
-  *ok = true;
-  std::istringstream in(s);
-  std::string tok;
-  while (in >> tok) {
-    const auto d = mi::toDouble(tok);
-    if (!d || !std::isfinite(*d)) {
-      *ok = false;
-      return out;
-    }
-    out.push_back(*d);
-  }
-  return out;
+  auto v = parseNumbers(s);
+  *ok = v && std::all_of(v->begin(), v->end(), [](double d) { return std::isfinite(d); });
+  return *ok ? *v : std::vector<double>();
 }
 
 PluginSpec parsePlugin(const XMLElement* e, const std::string& source) {
   PluginSpec p;
   p.name = attr(e, "name");
-  p.filename = mi::trim(attr(e, "filename"));
+  p.filename = trimText(attr(e, "filename"));
   p.line = e->GetLineNum();
   if (p.filename.empty())
     throw ModelError(mi::at(source, e) + "plugin '" + p.name + "' has no filename");
@@ -138,7 +115,7 @@ PluginSpec parsePlugin(const XMLElement* e, const std::string& source) {
 SensorSpec parseSensor(const XMLElement* e, const std::string& link, const std::string& source) {
   SensorSpec s;
   s.name = attr(e, "name");
-  s.type = mi::trim(attr(e, "type"));
+  s.type = trimText(attr(e, "type"));
   s.link = link;
   s.line = e->GetLineNum();
   const std::string what = "sensor '" + s.name + "' on link '" + link + "'";
@@ -181,7 +158,7 @@ SensorSpec parseSensor(const XMLElement* e, const std::string& link, const std::
 }
 
 void parseLinkExtension(const XMLElement* g, const std::string& link, LinkExtension& ext,
-                        const std::string& source, mi::Warner& warner) {
+                        const std::string& source, XmlReader& warner) {
   const std::string what = "<gazebo reference='" + link + "'>";
   for (const XMLElement* c = g->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
@@ -219,7 +196,7 @@ void parseLinkExtension(const XMLElement* g, const std::string& link, LinkExtens
 }
 
 void checkKnownParams(const PluginSpec& p, const std::set<std::string>& known,
-                      const std::string& source, mi::Warner& warner) {
+                      const std::string& source, XmlReader& warner) {
   for (const auto& kv : p.params) {
     if (known.count(kv.first)) continue;
     warner.warnOnce("plugin-param:" + p.filename + ":" + kv.first,
@@ -228,7 +205,7 @@ void checkKnownParams(const PluginSpec& p, const std::set<std::string>& known,
   }
 }
 
-RosControlSpec rosControl(const PluginSpec& p, const std::string& source, mi::Warner& warner) {
+RosControlSpec rosControl(const PluginSpec& p, const std::string& source, XmlReader& warner) {
   checkKnownParams(p,
                    {"robotNamespace", "robotParam", "controlPeriod", "robotSimType",
                     "legacyModeNS", "eStopTopic"},
@@ -242,7 +219,7 @@ RosControlSpec rosControl(const PluginSpec& p, const std::string& source, mi::Wa
   if (it != p.params.end() && !it->second.empty()) r.robot_param = it->second;
   it = p.params.find("controlPeriod");
   if (it != p.params.end()) {
-    const auto d = mi::toDouble(it->second);
+    const auto d = parseNumber(it->second);
     if (!d || !std::isfinite(*d) || *d < 0.0)
       throw ModelError(where + "controlPeriod '" + it->second +
                        "' must be a finite number of seconds >= 0");
@@ -257,7 +234,7 @@ RosControlSpec rosControl(const PluginSpec& p, const std::string& source, mi::Wa
 
 JointStatePublisherSpec jointStatePublisher(const PluginSpec& p, const std::string& source,
                                             const std::map<std::string, int>& joints,
-                                            mi::Warner& warner) {
+                                            XmlReader& warner) {
   checkKnownParams(p, {"jointName", "updateRate", "robotNamespace", "alwaysOn"}, source, warner);
   const std::string where = source + ": line " + std::to_string(p.line) + ": plugin '" + p.name +
                             "' (" + p.filename + "): ";
@@ -284,7 +261,7 @@ JointStatePublisherSpec jointStatePublisher(const PluginSpec& p, const std::stri
   if (s.joint_names.empty()) throw ModelError(where + "<jointName> lists no joints");
   it = p.params.find("updateRate");
   if (it != p.params.end()) {
-    const auto d = mi::toDouble(it->second);
+    const auto d = parseNumber(it->second);
     if (!d || !std::isfinite(*d) || *d < 0.0)
       throw ModelError(where + "updateRate '" + it->second + "' must be a finite number >= 0");
     s.update_rate = *d;
@@ -311,7 +288,7 @@ std::vector<JointInterface> interfaces(const XMLElement* e, const std::string& w
 
 TransmissionSpec parseTransmission(const XMLElement* t, const std::string& source,
                                    const std::map<std::string, int>& joints,
-                                   mi::Warner& warner) {
+                                   XmlReader& warner) {
   TransmissionSpec s;
   s.name = attr(t, "name");
   s.line = t->GetLineNum();
@@ -320,7 +297,7 @@ TransmissionSpec parseTransmission(const XMLElement* t, const std::string& sourc
 
   // <type> child (current format) or type attribute (pre-Indigo format).
   const XMLElement* type = t->FirstChildElement("type");
-  s.type = type ? text(type) : mi::trim(attr(t, "type"));
+  s.type = type ? text(type) : trimText(attr(t, "type"));
   if (s.type.empty()) throw ModelError(mi::at(source, t) + what + ": no <type>");
   if (s.type != kSimpleTransmission)
     throw ModelError(mi::at(source, type ? type : t) + what + ": unsupported type '" + s.type +
@@ -345,7 +322,7 @@ TransmissionSpec parseTransmission(const XMLElement* t, const std::string& sourc
   if (!joint) throw ModelError(mi::at(source, t) + what + ": no <joint>");
   if (!actuator) throw ModelError(mi::at(source, t) + what + ": no <actuator>");
 
-  s.joint = mi::trim(attr(joint, "name"));
+  s.joint = trimText(attr(joint, "name"));
   if (s.joint.empty()) throw ModelError(mi::at(source, joint) + what + ": <joint> has no name");
   if (!joints.count(s.joint))
     throw ModelError(mi::at(source, joint) + what + ": unknown joint '" + s.joint + "'");
@@ -358,7 +335,7 @@ TransmissionSpec parseTransmission(const XMLElement* t, const std::string& sourc
                           tag + "> ignored");
   }
 
-  s.actuator = mi::trim(attr(actuator, "name"));
+  s.actuator = trimText(attr(actuator, "name"));
   if (s.actuator.empty())
     throw ModelError(mi::at(source, actuator) + what + ": <actuator> has no name");
   const std::string awhat = what + ": actuator '" + s.actuator + "'";
@@ -368,7 +345,7 @@ TransmissionSpec parseTransmission(const XMLElement* t, const std::string& sourc
     if (tag == "hardwareInterface") continue;
     if (tag == "mechanicalReduction") {
       const std::string v = text(c);
-      const auto d = mi::toDouble(v);
+      const auto d = parseNumber(v);
       if (!d || !std::isfinite(*d) || *d == 0.0)
         throw ModelError(mi::at(source, c) + awhat + ": mechanicalReduction '" + v +
                          "' must be a finite non-zero number");
@@ -394,7 +371,7 @@ TransmissionSpec parseTransmission(const XMLElement* t, const std::string& sourc
 }  // namespace
 
 std::optional<JointInterface> parseJointInterface(const std::string& text) {
-  std::string t = mi::trim(text);
+  std::string t = trimText(text);
   const std::string prefix = "hardware_interface/";
   if (t.compare(0, prefix.size(), prefix) == 0) t.erase(0, prefix.size());
   if (t == "EffortJointInterface") return JointInterface::kEffort;
@@ -418,7 +395,7 @@ const char* toString(JointInterface iface) {
 namespace model_internal {
 
 RobotExtensions parseExtensionsXml(const XMLElement* robot, const std::string& source,
-                                   Warner& warner) {
+                                   XmlReader& warner) {
   std::map<std::string, int> links, joints;
   for (const XMLElement* e = robot->FirstChildElement("link"); e;
        e = e->NextSiblingElement("link"))
@@ -448,7 +425,7 @@ RobotExtensions parseExtensionsXml(const XMLElement* robot, const std::string& s
       continue;
     }
     if (const char* ref = e->Attribute("reference")) {
-      const std::string link = trim(ref);
+      const std::string link = trimText(ref);
       if (links.count(link)) {
         parseLinkExtension(e, link, ext.links[link], source, warner);
       } else if (joints.count(link)) {
@@ -500,7 +477,7 @@ RobotExtensions parseExtensions(const std::string& urdf_xml, const std::string& 
                                 const WarningSink& warn) {
   tinyxml2::XMLDocument doc;
   const XMLElement* robot = mi::parseRobotXml(doc, urdf_xml, source);
-  mi::Warner warner(warn);
+  XmlReader warner = mi::modelReader(source, warn);
   return mi::parseExtensionsXml(robot, source, warner);
 }
 

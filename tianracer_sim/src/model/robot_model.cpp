@@ -49,7 +49,7 @@ void checkInertial(const XMLElement* link, const std::string& name, const std::s
     throw ModelError(mi::at(source, mass ? mass : inertial) + what +
                      "<inertial> has no <mass value=...>");
   const std::string mv = attr(mass, "value");
-  const auto m = mi::toDouble(mv);
+  const auto m = parseNumber(mv);
   if (!m || !std::isfinite(*m) || *m <= 0.0)
     throw ModelError(mi::at(source, mass) + what + "mass '" + mv +
                      "' must be a positive finite number");
@@ -60,7 +60,7 @@ void checkInertial(const XMLElement* link, const std::string& name, const std::s
   for (int i = 0; i < 6; ++i) {
     const char* a = inertia->Attribute(kKeys[i]);
     if (!a) throw ModelError(mi::at(source, inertia) + what + "<inertia> has no " + kKeys[i]);
-    const auto d = mi::toDouble(a);
+    const auto d = parseNumber(a);
     if (!d || !std::isfinite(*d))
       throw ModelError(mi::at(source, inertia) + what + "inertia " + kKeys[i] + "='" + a +
                        "' is not a finite number");
@@ -163,7 +163,7 @@ class CaptureHandler : public console_bridge::OutputHandler {
 };
 
 urdf::ModelInterfaceSharedPtr parseWithUrdfdom(const std::string& xml, const std::string& source,
-                                               mi::Warner& warner) {
+                                               XmlReader& warner) {
   static std::mutex mutex;
   static CaptureHandler handler;  // static: console_bridge keeps a pointer as "previous"
   std::lock_guard<std::mutex> lock(mutex);
@@ -194,7 +194,7 @@ urdf::ModelInterfaceSharedPtr parseWithUrdfdom(const std::string& xml, const std
   return model;
 }
 
-void collectMeshes(RobotModel& model, const LoadOptions& options, mi::Warner& warner) {
+void collectMeshes(RobotModel& model, const LoadOptions& options, XmlReader& warner) {
   for (const auto& kv : model.urdf->links_) {
     const urdf::LinkSharedPtr& link = kv.second;
     if (!link) continue;
@@ -231,7 +231,7 @@ void collectMeshes(RobotModel& model, const LoadOptions& options, mi::Warner& wa
 
 RobotModel loadRobotModel(const std::string& urdf_xml, const std::string& source,
                           const LoadOptions& options) {
-  mi::Warner warner(options.warn);
+  XmlReader warner = mi::modelReader(source, options.warn);
   tinyxml2::XMLDocument doc;
   const XMLElement* robot = mi::parseRobotXml(doc, urdf_xml, source);
   checkStructure(robot, source);

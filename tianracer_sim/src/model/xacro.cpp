@@ -84,7 +84,7 @@ std::string expandXacro(const std::string& path, const std::vector<std::string>&
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   ::lseek(err.fd, 0, SEEK_SET);
-  const std::string errors = model_internal::trim(readAll(err.fd));
+  const std::string errors = trimText(readAll(err.fd));
 
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     std::string why = errors;

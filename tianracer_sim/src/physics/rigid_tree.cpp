@@ -26,6 +26,41 @@ MassProperties linkMassProperties(const urdf::Link& link) {
   return transformMassProperties(m_I, toIsometry(in.origin));
 }
 
+bool shapeFromUrdf(const urdf::Geometry& geometry,
+                   const std::function<std::string(const std::string&)>& resolve_mesh,
+                   Shape* shape) {
+  switch (geometry.type) {
+    case urdf::Geometry::BOX: {
+      const auto& b = static_cast<const urdf::Box&>(geometry);
+      shape->type = ShapeType::kBox;
+      shape->size = Eigen::Vector3d(b.dim.x, b.dim.y, b.dim.z);
+      return true;
+    }
+    case urdf::Geometry::CYLINDER: {
+      const auto& c = static_cast<const urdf::Cylinder&>(geometry);
+      shape->type = ShapeType::kCylinder;
+      shape->radius = c.radius;
+      shape->length = c.length;
+      return true;
+    }
+    case urdf::Geometry::SPHERE: {
+      shape->type = ShapeType::kSphere;
+      shape->radius = static_cast<const urdf::Sphere&>(geometry).radius;
+      return true;
+    }
+    case urdf::Geometry::MESH: {
+      const auto& m = static_cast<const urdf::Mesh&>(geometry);
+      const std::string path = resolve_mesh(m.filename);
+      if (path.empty()) return false;
+      shape->type = ShapeType::kMesh;
+      shape->mesh_path = path;
+      shape->scale = Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z);
+      return true;
+    }
+  }
+  return false;
+}
+
 namespace {
 
 std::string resolveMesh(const std::string& uri, const std::map<std::string, std::string>& paths,
@@ -44,36 +79,12 @@ void addCollisions(const urdf::Link& link, const Eigen::Isometry3d& X_BL,
     CollisionGeometry g;
     g.link = link.name;
     g.X_BG = X_BL * toIsometry(col->origin);
-    switch (col->geometry->type) {
-      case urdf::Geometry::BOX: {
-        const auto& b = static_cast<const urdf::Box&>(*col->geometry);
-        g.type = GeometryType::kBox;
-        g.size = Eigen::Vector3d(b.dim.x, b.dim.y, b.dim.z);
-        break;
-      }
-      case urdf::Geometry::CYLINDER: {
-        const auto& c = static_cast<const urdf::Cylinder&>(*col->geometry);
-        g.type = GeometryType::kCylinder;
-        g.size = Eigen::Vector3d(c.radius, c.radius, c.length);
-        break;
-      }
-      case urdf::Geometry::SPHERE: {
-        const auto& s = static_cast<const urdf::Sphere&>(*col->geometry);
-        g.type = GeometryType::kSphere;
-        g.size = Eigen::Vector3d::Constant(s.radius);
-        break;
-      }
-      case urdf::Geometry::MESH: {
-        const auto& m = static_cast<const urdf::Mesh&>(*col->geometry);
-        g.type = GeometryType::kMesh;
-        g.mesh_uri = m.filename;
-        g.mesh_path = resolveMesh(m.filename, mesh_paths, link.name);
-        g.mesh_scale = Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z);
-        break;
-      }
-      default:
-        throw PhysicsError("link '" + link.name + "': unsupported collision geometry type");
-    }
+    const auto resolve = [&](const std::string& uri) {
+      g.mesh_uri = uri;
+      return resolveMesh(uri, mesh_paths, link.name);
+    };
+    if (!shapeFromUrdf(*col->geometry, resolve, &g.shape))
+      throw PhysicsError("link '" + link.name + "': unsupported collision geometry type");
     body->collisions.push_back(g);
   }
 }

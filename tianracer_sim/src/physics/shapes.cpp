@@ -80,25 +80,34 @@ WheelFit fitWheel(const std::vector<Eigen::Vector3d>& vertices_B, const Eigen::V
   return fit;
 }
 
-void makeStaticShape(const StaticShape& s, double margin, OwnedShape* out) {
-  const std::string what = "static shape '" + s.name + "'";
-  if (!s.size.allFinite()) throw PhysicsError(what + ": non-finite size");
+std::unique_ptr<btCollisionShape> makePrimitive(const Shape& s, double margin,
+                                                const std::string& what) {
   switch (s.type) {
-    case StaticShape::Type::kBox:
-      out->shape = makeBox(s.size, margin, what);
+    case ShapeType::kBox: return makeBox(s.size, margin, what);
+    case ShapeType::kCylinder: return makeCylinderZ(s.radius, s.length, margin, what);
+    case ShapeType::kSphere: return makeSphere(s.radius, what);
+    case ShapeType::kPlane:
+    case ShapeType::kMesh: break;
+  }
+  return nullptr;
+}
+
+void makeStaticShape(const StaticShape& st, double margin, OwnedShape* out) {
+  const std::string what = "static shape '" + st.name + "'";
+  const Shape& s = st.shape;
+  if (!isFinite(s)) throw PhysicsError(what + ": non-finite size");
+  switch (s.type) {
+    case ShapeType::kBox:
+    case ShapeType::kCylinder:
+    case ShapeType::kSphere:
+      out->shape = makePrimitive(s, margin, what);
       return;
-    case StaticShape::Type::kCylinder:
-      out->shape = makeCylinderZ(s.size.x(), s.size.z(), margin, what);
+    case ShapeType::kPlane:
+      if (!(s.normal.norm() > 0.0)) throw PhysicsError(what + ": plane normal is zero");
+      out->shape = std::make_unique<btStaticPlaneShape>(toBt(Eigen::Vector3d(s.normal.normalized())), 0.0);
       return;
-    case StaticShape::Type::kSphere:
-      out->shape = makeSphere(s.size.x(), what);
-      return;
-    case StaticShape::Type::kPlane:
-      if (!(s.size.norm() > 0.0)) throw PhysicsError(what + ": plane normal is zero");
-      out->shape = std::make_unique<btStaticPlaneShape>(toBt(Eigen::Vector3d(s.size.normalized())), 0.0);
-      return;
-    case StaticShape::Type::kMesh: {
-      const auto mesh = MeshCache::global().get(s.mesh_path, s.mesh_scale);
+    case ShapeType::kMesh: {
+      const auto mesh = MeshCache::global().get(s.mesh_path, s.scale);
       out->mesh_vertices.reserve(mesh->vertices.size() * 3);
       for (const auto& v : mesh->vertices) {
         out->mesh_vertices.insert(out->mesh_vertices.end(), {v.x(), v.y(), v.z()});
@@ -124,19 +133,19 @@ std::unique_ptr<btCollisionShape> makeLinkShape(const TreeBody& body, const Coll
   const bool wheel_joint = body.parent >= 0 && body.joint_type == TreeJointType::kContinuous;
   WheelFit fit;
   std::vector<Eigen::Vector3d> verts_B;
-  if (g.type == GeometryType::kMesh) {
-    const auto mesh = MeshCache::global().get(g.mesh_path, g.mesh_scale);
+  if (g.shape.type == ShapeType::kMesh) {
+    const auto mesh = MeshCache::global().get(g.shape.mesh_path, g.shape.scale);
     verts_B.reserve(mesh->vertices.size());
     for (const auto& v : mesh->vertices) verts_B.push_back(g.X_BG * v.cast<double>());
     if (wheel_joint && wheel_shape != WheelShape::kMeshHull) fit = fitWheel(verts_B, body.axis_B);
-  } else if (g.type == GeometryType::kCylinder && wheel_joint) {
+  } else if (g.shape.type == ShapeType::kCylinder && wheel_joint) {
     const Eigen::Vector3d cyl_axis = g.X_BG.linear().col(2);
     const Eigen::Vector3d c = g.X_BG.translation();
     const Eigen::Vector3d off = c - c.dot(body.axis_B) * body.axis_B;
     if (std::abs(std::abs(cyl_axis.dot(body.axis_B)) - 1.0) < 1e-9 && off.norm() < 1e-9) {
       fit.is_wheel = true;
-      fit.radius = g.size.x();
-      fit.width = g.size.z();
+      fit.radius = g.shape.radius;
+      fit.width = g.shape.length;
       fit.center = c;
       fit.roundness = 1.0;
     }
@@ -166,14 +175,14 @@ std::unique_ptr<btCollisionShape> makeLinkShape(const TreeBody& body, const Coll
     }
   }
 
-  switch (g.type) {
-    case GeometryType::kBox:
-      return makeBox(g.size, margin, what);
-    case GeometryType::kCylinder:
-      return makeCylinderZ(g.size.x(), g.size.z(), margin, what);
-    case GeometryType::kSphere:
-      return makeSphere(g.size.x(), what);
-    case GeometryType::kMesh: {
+  switch (g.shape.type) {
+    case ShapeType::kBox:
+    case ShapeType::kCylinder:
+    case ShapeType::kSphere:
+      return makePrimitive(g.shape, margin, what);
+    case ShapeType::kPlane:
+      throw PhysicsError(what + ": a plane cannot move with a body");
+    case ShapeType::kMesh: {
       // Hull in the body frame (vertices already there): the child transform is identity.
       X_BS->setIdentity();
       std::vector<btVector3> pts;

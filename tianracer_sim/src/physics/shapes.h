@@ -33,6 +33,10 @@ struct OwnedShape {
   std::vector<int> mesh_indices;
 };
 
+/// A box, cylinder or sphere; nullptr for a plane or a mesh.
+std::unique_ptr<btCollisionShape> makePrimitive(const Shape& s, double margin,
+                                                const std::string& what);
+
 /// The shape of a static body: primitives, a plane, or the exact triangle mesh.
 void makeStaticShape(const StaticShape& s, double margin, OwnedShape* out);
 

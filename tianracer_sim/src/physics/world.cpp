@@ -61,8 +61,8 @@ PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
   if (options.ground_plane) {
     StaticShape g;
     g.name = "ground_plane";
-    g.type = StaticShape::Type::kPlane;
-    g.size = Eigen::Vector3d::UnitZ();
+    g.shape.type = ShapeType::kPlane;
+    g.shape.normal = Eigen::Vector3d::UnitZ();
     g.surface.mu1 = options.ground_mu;
     g.surface.mu2 = options.ground_mu2;
     g.surface.kp = options.ground_kp;

@@ -8,6 +8,8 @@
 
 #include <tinyxml2.h>
 
+#include "tianracer_sim/common/xml_reader.h"
+
 namespace tianracer_sim {
 
 std::string opticalFrameId(const std::string& frame_name) { return frame_name + "_optical_frame"; }
@@ -56,17 +58,10 @@ bool endsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-std::string trim(const std::string& s) {
-  const char* ws = " \t\n\r\f\v";
-  const auto b = s.find_first_not_of(ws);
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(ws) - b + 1);
-}
-
 using tinyxml2::XMLElement;
 
 // Text directly inside an element, trimmed ("" when none).
-std::string textOf(const XMLElement* e) { return trim(e->GetText() ? e->GetText() : ""); }
+std::string textOf(const XMLElement* e) { return elementText(e); }
 
 uint32_t fnv1a(const std::string& s) {
   uint32_t h = 2166136261u;
@@ -93,13 +88,9 @@ class Parser {
   }
 
   double number(const std::string& element, const std::string& text) const {
-    const std::string t = trim(text);
-    char* end = nullptr;
-    const double v = std::strtod(t.c_str(), &end);
-    if (t.empty() || end != t.c_str() + t.size() || !std::isfinite(v)) {
-      fail(element + " '" + text + "' is not a number");
-    }
-    return v;
+    const auto v = parseNumber(text);
+    if (!v || !std::isfinite(*v)) fail(element + " '" + text + "' is not a number");
+    return *v;
   }
 
   int integer(const std::string& element, const std::string& text) const {
@@ -118,7 +109,7 @@ class Parser {
     if (!(c->update_rate >= 0.0) || !std::isfinite(c->update_rate)) {
       fail("<update_rate> " + std::to_string(c->update_rate) + " must be >= 0");
     }
-    if (trim(sensor_.xml).empty()) fail("no <sensor> XML to read the <camera> element from");
+    if (trimText(sensor_.xml).empty()) fail("no <sensor> XML to read the <camera> element from");
     tinyxml2::XMLDocument doc;
     if (doc.Parse(sensor_.xml.c_str()) != tinyxml2::XML_SUCCESS || !doc.RootElement()) {
       fail(std::string("its XML does not parse (line ") + std::to_string(doc.ErrorLineNum()) +
@@ -139,7 +130,7 @@ class Parser {
           const std::string g_name = g->Name(), g_text = textOf(g);
           if (g_name == "width") c->width = integer("<image><width>", g_text);
           else if (g_name == "height") c->height = integer("<image><height>", g_text);
-          else if (g_name == "format") c->format_name = trim(g_text);
+          else if (g_name == "format") c->format_name = trimText(g_text);
           else warn("unknown element <camera><image><" + g_name + "> ignored");
         }
       } else if (n == "clip") {
@@ -153,7 +144,7 @@ class Parser {
         std::string type = "gaussian";
         for (const XMLElement* g = child->FirstChildElement(); g; g = g->NextSiblingElement()) {
           const std::string g_name = g->Name(), g_text = textOf(g);
-          if (g_name == "type") type = trim(g_text);
+          if (g_name == "type") type = trimText(g_text);
           else if (g_name == "mean") c->noise_mean = number("<noise><mean>", g_text);
           else if (g_name == "stddev") c->noise_stddev = number("<noise><stddev>", g_text);
           else warn("unknown element <camera><noise><" + g_name + "> ignored");
@@ -234,7 +225,7 @@ class Parser {
       const auto it = p.params.find(key);
       if (it == p.params.end()) return false;
       used->insert(key);
-      *out = trim(it->second);
+      *out = trimText(it->second);
       return true;
     };
     auto num = [&](const std::string& key, double* out) {
@@ -324,7 +315,7 @@ DepthCameraConfig parseDepthCameraConfig(const SensorSpec& sensor, const Warning
       const auto it = p->params.find(key);
       if (it == p->params.end()) return false;
       used.insert(key);
-      *out = trim(it->second);
+      *out = trimText(it->second);
       return true;
     };
     auto num = [&](const std::string& key, double* out) {

@@ -12,9 +12,8 @@
 //  - covariances add the SDF noise variance of each axis to gaussianNoise^2.
 #include "tianracer_sim/sensors/imu_sensor.h"
 
-#include "tianracer_sim/common/text.h"
+#include "tianracer_sim/common/xml_reader.h"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <set>
@@ -27,8 +26,6 @@ namespace tianracer_sim {
 namespace {
 
 using tinyxml2::XMLElement;
-
-std::string trim(const std::string& s) { return trimText(s); }
 
 std::string fmt(double v) { return formatNumber(v); }
 
@@ -47,12 +44,9 @@ class Reader {
     if (warn_ && warned_.insert(msg).second) warn_(what_ + ": " + msg);
   }
   double number(const std::string& name, const std::string& text) const {
-    const std::string t = trim(text);
-    char* end = nullptr;
-    errno = 0;
-    const double v = std::strtod(t.c_str(), &end);
-    if (t.empty() || *end != '\0') fail(name + " '" + t + "' is not a number");
-    return v;
+    const auto v = parseNumber(text);
+    if (!v) fail(name + " '" + trimText(text) + "' is not a number");
+    return *v;
   }
   double number(const XMLElement* e) const {
     return number("<" + std::string(e->Name()) + "> (line " + std::to_string(e->GetLineNum()) + ")",
@@ -62,14 +56,13 @@ class Reader {
     std::istringstream in(text);
     std::vector<double> v;
     for (std::string tok; in >> tok;) v.push_back(number(name, tok));
-    if (v.size() != 3) fail(name + " '" + trim(text) + "' is not 3 numbers");
+    if (v.size() != 3) fail(name + " '" + trimText(text) + "' is not 3 numbers");
     return Eigen::Vector3d(v[0], v[1], v[2]);
   }
   bool boolean(const std::string& name, const std::string& text) const {
-    const std::string t = trim(text);
-    if (t == "true" || t == "1") return true;
-    if (t == "false" || t == "0") return false;
-    fail(name + " '" + t + "' is not a boolean (true/false/1/0)");
+    const auto b = parseBool(text);
+    if (!b) fail(name + " '" + trimText(text) + "' is not a boolean (true/false/1/0)");
+    return *b;
   }
   const std::string& what() const { return what_; }
 
@@ -81,10 +74,10 @@ class Reader {
 
 void readNoise(Reader& r, const XMLElement* noise, ImuAxisNoise* n, const std::string& where) {
   n->type = "gaussian";  // SDF's default
-  if (const char* type = noise->Attribute("type")) n->type = trim(type);
+  if (const char* type = noise->Attribute("type")) n->type = trimText(type);
   for (const XMLElement* k = noise->FirstChildElement(); k; k = k->NextSiblingElement()) {
     const std::string key = k->Name();
-    if (key == "type") n->type = trim(k->GetText() ? k->GetText() : "");
+    if (key == "type") n->type = trimText(k->GetText() ? k->GetText() : "");
     else if (key == "mean") n->mean = r.number(k);
     else if (key == "stddev") n->stddev = r.number(k);
     else if (key == "bias_mean") n->bias_mean = r.number(k);
@@ -115,7 +108,7 @@ void readImu(Reader& r, const XMLElement* imu, ImuConfig& c) {
     } else if (tag == "noise") {
       // SDF 1.4: one <noise><type> with <rate> and <accel> for all three axes.
       std::string type = "gaussian";
-      if (const XMLElement* t = e->FirstChildElement("type")) type = trim(t->GetText() ? t->GetText() : "");
+      if (const XMLElement* t = e->FirstChildElement("type")) type = trimText(t->GetText() ? t->GetText() : "");
       for (const XMLElement* k = e->FirstChildElement(); k; k = k->NextSiblingElement()) {
         const std::string key = k->Name();
         if (key == "type") continue;
@@ -150,9 +143,9 @@ void readSensorPlugin(Reader& r, const PluginSpec& p, const std::string& model_n
   c.plugin_rate = 1.0;  // libgazebo_ros_imu_sensor's default updateRateHZ
   for (const auto& [key, value] : p.params) {
     const std::string name = "<" + key + "> of " + baseName(p.filename);
-    if (key == "robotNamespace") c.robot_namespace = trim(value);
-    else if (key == "topicName") c.topic_name = trim(value);
-    else if (key == "frameName") c.frame_name = trim(value);
+    if (key == "robotNamespace") c.robot_namespace = trimText(value);
+    else if (key == "topicName") c.topic_name = trimText(value);
+    else if (key == "frameName") c.frame_name = trimText(value);
     else if (key == "bodyName") {}  // not read by the plugin either
     else if (key == "updateRateHZ") c.plugin_rate = r.number(name, value);
     else if (key == "gaussianNoise") c.gaussian_noise = r.number(name, value);
@@ -230,11 +223,11 @@ ImuConfig parseImuPluginConfig(const SensorSpec& spec, const std::string& model_
   c.service_name = "/default_imu";
   for (const auto& [key, value] : p.params) {
     const std::string name = "<" + key + ">";
-    if (key == "robotNamespace") c.robot_namespace = trim(value);
-    else if (key == "topicName") c.topic_name = trim(value);
-    else if (key == "serviceName") c.service_name = trim(value);
-    else if (key == "bodyName") c.link = trim(value);
-    else if (key == "frameName") c.frame_name = trim(value);
+    if (key == "robotNamespace") c.robot_namespace = trimText(value);
+    else if (key == "topicName") c.topic_name = trimText(value);
+    else if (key == "serviceName") c.service_name = trimText(value);
+    else if (key == "bodyName") c.link = trimText(value);
+    else if (key == "frameName") c.frame_name = trimText(value);
     else if (key == "updateRate") c.plugin_rate = r.number(name, value);
     else if (key == "gaussianNoise") c.gaussian_noise = r.number(name, value);
     else if (key == "xyzOffset") c.xyz_offset = r.vector3(name, value);

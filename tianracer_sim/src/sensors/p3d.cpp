@@ -1,6 +1,6 @@
 #include "tianracer_sim/sensors/p3d.h"
 
-#include "tianracer_sim/common/text.h"
+#include "tianracer_sim/common/xml_reader.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -10,39 +10,32 @@
 
 namespace tianracer_sim {
 
-namespace {
-
-std::string trim(const std::string& s) { return trimText(s); }
-
-}  // namespace
-
 P3dConfig parseP3dConfig(const SensorSpec& spec, const std::string& model_name,
                          const WarningSink& warn) {
   const std::string what = "p3d plugin '" + spec.name + "' of model '" + model_name + "'";
   if (spec.plugins.size() != 1) throw SensorError(what + ": expected one plugin");
   const PluginSpec& p = spec.plugins.front();
   auto number = [&](const std::string& key, const std::string& text) {
-    const std::string t = trim(text);
-    char* end = nullptr;
-    const double v = std::strtod(t.c_str(), &end);
-    if (t.empty() || *end != '\0') throw SensorError(what + ": <" + key + "> '" + t + "' is not a number");
-    if (!std::isfinite(v)) throw SensorError(what + ": <" + key + "> " + t + " is not finite");
-    return v;
+    const std::string t = trimText(text);
+    const auto v = parseNumber(t);
+    if (!v) throw SensorError(what + ": <" + key + "> '" + t + "' is not a number");
+    if (!std::isfinite(*v)) throw SensorError(what + ": <" + key + "> " + t + " is not finite");
+    return *v;
   };
   auto vector3 = [&](const std::string& key, const std::string& text) {
     std::istringstream in(text);
     std::vector<double> v;
     for (std::string tok; in >> tok;) v.push_back(number(key, tok));
-    if (v.size() != 3) throw SensorError(what + ": <" + key + "> '" + trim(text) + "' is not 3 numbers");
+    if (v.size() != 3) throw SensorError(what + ": <" + key + "> '" + trimText(text) + "' is not 3 numbers");
     return Eigen::Vector3d(v[0], v[1], v[2]);
   };
   P3dConfig c;
   c.name = spec.name;
   for (const auto& [key, value] : p.params) {
-    if (key == "robotNamespace") c.robot_namespace = trim(value);
-    else if (key == "bodyName") c.link = trim(value);
-    else if (key == "topicName") c.topic_name = trim(value);
-    else if (key == "frameName") c.frame_name = trim(value);
+    if (key == "robotNamespace") c.robot_namespace = trimText(value);
+    else if (key == "bodyName") c.link = trimText(value);
+    else if (key == "topicName") c.topic_name = trimText(value);
+    else if (key == "frameName") c.frame_name = trimText(value);
     else if (key == "updateRate") c.update_rate = number(key, value);
     else if (key == "gaussianNoise") c.gaussian_noise = number(key, value);
     else if (key == "xyzOffsets" || key == "xyzOffset") c.xyz_offsets = vector3(key, value);
@@ -55,7 +48,7 @@ P3dConfig parseP3dConfig(const SensorSpec& spec, const std::string& model_name,
   if (c.topic_name.empty())
     throw SensorError(what + ": <topicName> is missing (Gazebo does not load the plugin without it)");
   if (c.update_rate < 0.0)
-    throw SensorError(what + ": <updateRate> " + trim(p.params.at("updateRate")) + " must be >= 0");
+    throw SensorError(what + ": <updateRate> " + trimText(p.params.at("updateRate")) + " must be >= 0");
   if (c.gaussian_noise < 0.0)
     throw SensorError(what + ": <gaussianNoise> must be >= 0");
   std::string frame = c.frame_name;

@@ -8,36 +8,11 @@ namespace {
 
 bool toShape(const urdf::GeometrySharedPtr& geometry, const RobotModel& model, Shape* shape) {
   if (!geometry) return false;
-  switch (geometry->type) {
-    case urdf::Geometry::BOX: {
-      const auto& box = static_cast<const urdf::Box&>(*geometry);
-      shape->type = ShapeType::kBox;
-      shape->size = Eigen::Vector3d(box.dim.x, box.dim.y, box.dim.z);
-      return true;
-    }
-    case urdf::Geometry::CYLINDER: {
-      const auto& cyl = static_cast<const urdf::Cylinder&>(*geometry);
-      shape->type = ShapeType::kCylinder;
-      shape->radius = cyl.radius;
-      shape->length = cyl.length;
-      return true;
-    }
-    case urdf::Geometry::SPHERE: {
-      shape->type = ShapeType::kSphere;
-      shape->radius = static_cast<const urdf::Sphere&>(*geometry).radius;
-      return true;
-    }
-    case urdf::Geometry::MESH: {
-      const auto& mesh = static_cast<const urdf::Mesh&>(*geometry);
-      const auto it = model.mesh_paths.find(mesh.filename);
-      if (it == model.mesh_paths.end()) return false;  // unresolved: the loader warned
-      shape->type = ShapeType::kMesh;
-      shape->mesh_path = it->second;
-      shape->scale = Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z);
-      return true;
-    }
-  }
-  return false;
+  // An unresolved mesh is left out: the loader warned.
+  return shapeFromUrdf(*geometry, [&model](const std::string& uri) {
+    const auto it = model.mesh_paths.find(uri);
+    return it == model.mesh_paths.end() ? std::string() : it->second;
+  }, shape);
 }
 
 }  // namespace

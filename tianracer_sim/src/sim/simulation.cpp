@@ -72,22 +72,24 @@ double depthBelowBase(const RobotModel& model, const Eigen::Matrix3d& R_WB) {
       const Eigen::Isometry3d X_WG = X_WR * X_RB[b] * g.X_BG;
       const Eigen::Vector3d c = X_WG.translation();
       double z = c.z();
-      switch (g.type) {
-        case GeometryType::kBox: {
-          const Eigen::Vector3d h = 0.5 * g.size;
+      switch (g.shape.type) {
+        case ShapeType::kBox: {
+          const Eigen::Vector3d h = 0.5 * g.shape.size;
           z -= (X_WG.linear().row(2).cwiseAbs().transpose().cwiseProduct(h)).sum();
           break;
         }
-        case GeometryType::kSphere:
-          z -= g.size.x();
+        case ShapeType::kSphere:
+          z -= g.shape.radius;
           break;
-        case GeometryType::kCylinder: {
+        case ShapeType::kCylinder: {
           const double az = std::min(1.0, std::fabs(X_WG.linear()(2, 2)));
-          z -= 0.5 * g.size.z() * az + g.size.x() * std::sqrt(1.0 - az * az);
+          z -= 0.5 * g.shape.length * az + g.shape.radius * std::sqrt(1.0 - az * az);
           break;
         }
-        case GeometryType::kMesh: {
-          const auto mesh = MeshCache::global().get(g.mesh_path, g.mesh_scale);
+        case ShapeType::kPlane:
+          break;  // never on a robot (the rigid tree holds URDF geometry only)
+        case ShapeType::kMesh: {
+          const auto mesh = MeshCache::global().get(g.shape.mesh_path, g.shape.scale);
           double m = std::numeric_limits<double>::infinity();
           for (const Eigen::Vector3f& v : mesh->vertices) {
             m = std::min(m, (X_WG * v.cast<double>()).z());

@@ -92,29 +92,12 @@ RigidTree freeBodyTree(const WorldDescription& world, const ModelDescription& mo
       CollisionGeometry g;
       g.link = l.name;
       g.X_BG = l.X_ML * c.X_LS;
-      switch (c.shape.type) {
-        case ShapeType::kBox:
-          g.type = GeometryType::kBox;
-          g.size = c.shape.size;
-          break;
-        case ShapeType::kCylinder:
-          g.type = GeometryType::kCylinder;
-          g.size = Eigen::Vector3d(c.shape.radius, c.shape.radius, c.shape.length);
-          break;
-        case ShapeType::kSphere:
-          g.type = GeometryType::kSphere;
-          g.size = Eigen::Vector3d::Constant(c.shape.radius);
-          break;
-        case ShapeType::kMesh:
-          g.type = GeometryType::kMesh;
-          g.mesh_path = c.shape.mesh_path;
-          g.mesh_scale = c.shape.scale;
-          break;
-        case ShapeType::kPlane:
-          warnAt(c.line, "collision '" + c.name +
-                             "' is a plane, which cannot move: left out of the physics");
-          continue;
+      if (c.shape.type == ShapeType::kPlane) {
+        warnAt(c.line, "collision '" + c.name +
+                           "' is a plane, which cannot move: left out of the physics");
+        continue;
       }
+      g.shape = c.shape;
       body.collisions.push_back(g);
       surfaces->push_back(surfaceOf(c));
     }
@@ -148,29 +131,7 @@ int addWorldToPhysics(const WorldDescription& world, PhysicsWorld* physics,
         s.name = model.name + "::" + link.name + "::" + c.name;
         s.X_WS = model.X_WM * link.X_ML * c.X_LS;
         s.surface = surfaceOf(c);
-        switch (c.shape.type) {
-          case ShapeType::kBox:
-            s.type = StaticShape::Type::kBox;
-            s.size = c.shape.size;
-            break;
-          case ShapeType::kCylinder:
-            s.type = StaticShape::Type::kCylinder;
-            s.size = Eigen::Vector3d(c.shape.radius, c.shape.radius, c.shape.length);
-            break;
-          case ShapeType::kSphere:
-            s.type = StaticShape::Type::kSphere;
-            s.size = Eigen::Vector3d::Constant(c.shape.radius);
-            break;
-          case ShapeType::kPlane:
-            s.type = StaticShape::Type::kPlane;
-            s.size = c.shape.normal;
-            break;
-          case ShapeType::kMesh:
-            s.type = StaticShape::Type::kMesh;
-            s.mesh_path = c.shape.mesh_path;
-            s.mesh_scale = c.shape.scale;
-            break;
-        }
+        s.shape = c.shape;
         physics->addStaticShape(s);
         ++added;
       }

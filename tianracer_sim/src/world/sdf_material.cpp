@@ -1,5 +1,7 @@
 #include "tianracer_sim/world/sdf_material.h"
+#include "tianracer_sim/common/xml_reader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -14,15 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using tinyxml2::XMLElement;
-
-std::string trimmed(const XMLElement* e) {
-  const char* t = e->GetText();
-  if (!t) return "";
-  std::string s = t;
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
-}
 
 bool exists(const std::string& p) {
   std::error_code ec;
@@ -52,21 +45,10 @@ class Reader {
   }
 
   Eigen::Vector4f color(const XMLElement* e) const {
-    std::istringstream in(trimmed(e));
-    std::vector<double> v;
-    std::string tok;
-    while (in >> tok) {
-      char* end = nullptr;
-      const double x = std::strtod(tok.c_str(), &end);
-      if (end != tok.c_str() + tok.size() || !std::isfinite(x)) {
-        v.clear();
-        v.resize(99);
-        break;
-      }
-      v.push_back(x);
-    }
+    std::vector<double> v = parseNumbers(elementText(e)).value_or(std::vector<double>(99));
+    if (!std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); })) v.resize(99);
     if (v.size() != 3 && v.size() != 4) {
-      throw WorldError(at(e) + "<" + e->Name() + "> '" + trimmed(e) +
+      throw WorldError(at(e) + "<" + e->Name() + "> '" + elementText(e) +
                        "' is not a colour \"r g b [a]\"");
     }
     return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]),
@@ -92,14 +74,14 @@ class Reader {
     for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
       const std::string tag = c->Name();
       if (tag == "uri") {
-        const std::string uri = trimmed(c);
+        const std::string uri = elementText(c);
         std::vector<std::string> tried;
         const std::string p = resolveMaterialUri(uri, ctx_, &tried);
         // Gazebo's own media folders are not shipped: only a model's URIs are worth a warning.
         if (!p.empty()) folders.push_back(p);
         else if (uri.rfind("file://media/", 0) != 0) warn(c, "<script><uri> '" + uri + "' not found");
       } else if (tag == "name") {
-        name = trimmed(c);
+        name = elementText(c);
         name_e = c;
       } else {
         unsupported(c);
@@ -160,7 +142,7 @@ class Reader {
       }
       for (const XMLElement* c = w->FirstChildElement(); c; c = c->NextSiblingElement()) {
         if (std::string(c->Name()) == "albedo_map") {
-          const std::string uri = trimmed(c);
+          const std::string uri = elementText(c);
           const std::string p = uri.empty() ? std::string() : texture(c, uri);
           if (!p.empty()) {
             m->texture = p;

@@ -2,6 +2,8 @@
 // checked, every failure is a WorldError naming file and line, every element we do not use is
 // reported once through the WarningSink.
 #include "tianracer_sim/world/world.h"
+#include "tianracer_sim/common/xml_reader.h"
+#include "world_parser.h"
 #include "tianracer_sim/world/sdf_material.h"
 #include "tianracer_sim/world/map_world.h"
 
@@ -9,270 +11,26 @@
 
 #include <sys/stat.h>
 
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <algorithm>
 #include <filesystem>
-#include <mutex>
 #include <set>
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
 #include <tinyxml2.h>
 
-#include "tianracer_sim/scene/materials.h"
-
 namespace tianracer_sim {
 
 namespace {
 
-using tinyxml2::XMLElement;
-
-bool isFile(const std::string& path) {
-  struct stat st {};
-  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
-}
-
-bool isDir(const std::string& path) {
-  struct stat st {};
-  return ::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
-}
-
-std::string join(const std::string& dir, const std::string& rest) {
-  if (dir.empty()) return rest;
-  if (dir.back() == '/') return dir + rest;
-  return dir + "/" + rest;
-}
-
-std::string dirName(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  if (slash == std::string::npos) return ".";
-  if (slash == 0) return "/";
-  return path.substr(0, slash);
-}
-
-bool startsWith(const std::string& s, const std::string& prefix) {
-  return s.compare(0, prefix.size(), prefix) == 0;
-}
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return "";
-  const auto e = s.find_last_not_of(" \t\r\n");
-  return s.substr(b, e - b + 1);
-}
-
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
-std::vector<std::string> splitPath(const char* env) {
-  std::vector<std::string> dirs;
-  if (!env) return dirs;
-  std::stringstream ss(env);
-  std::string d;
-  while (std::getline(ss, d, ':'))
-    if (!d.empty()) dirs.push_back(d);
-  return dirs;
-}
+}  // namespace
 
-/// The gazebo_model_path exports of the ROS packages under ROS_PACKAGE_PATH
-/// (<export><gazebo_ros gazebo_model_path="${prefix}/models"/></export>), crawled as rospack
-/// does (a folder with package.xml is a package; CATKIN_IGNORE and hidden folders are skipped).
-/// Computed once per ROS_PACKAGE_PATH value.
-std::vector<std::string> rosExportedModelPaths() {
-  static std::mutex mutex;
-  static std::map<std::string, std::vector<std::string>> cache;
-  const char* env = std::getenv("ROS_PACKAGE_PATH");
-  const std::string key = env ? env : "";
-  std::lock_guard<std::mutex> lock(mutex);
-  auto it = cache.find(key);
-  if (it != cache.end()) return it->second;
-  std::vector<std::string> out;
-  namespace fs = std::filesystem;
-  std::function<void(const fs::path&, int)> crawl = [&](const fs::path& dir, int depth) {
-    std::error_code ec;
-    if (fs::exists(dir / "package.xml", ec)) {
-      tinyxml2::XMLDocument doc;
-      if (doc.LoadFile((dir / "package.xml").c_str()) != tinyxml2::XML_SUCCESS) return;
-      const XMLElement* pkg = doc.RootElement();
-      const XMLElement* exp = pkg ? pkg->FirstChildElement("export") : nullptr;
-      for (const XMLElement* g = exp ? exp->FirstChildElement("gazebo_ros") : nullptr; g;
-           g = g->NextSiblingElement("gazebo_ros")) {
-        const char* attr = g->Attribute("gazebo_model_path");
-        if (!attr) continue;
-        std::string path = attr;
-        const auto p = path.find("${prefix}");
-        if (p != std::string::npos) path.replace(p, 9, dir.string());
-        out.push_back(path);
-      }
-      return;
-    }
-    if (depth > 8 || fs::exists(dir / "CATKIN_IGNORE", ec)) return;
-    std::vector<fs::path> subs;
-    for (fs::directory_iterator d(dir, ec), end; !ec && d != end; d.increment(ec)) {
-      if (d->is_directory(ec) && d->path().filename().string()[0] != '.') subs.push_back(d->path());
-    }
-    std::sort(subs.begin(), subs.end());  // same order on every run
-    for (const fs::path& sub : subs) crawl(sub, depth + 1);
-  };
-  for (const std::string& root : splitPath(env)) crawl(root, 0);
-  cache[key] = out;
-  return out;
-}
-
-/// SDF version "1.6" -> 1.6; unparsable -> 0.
-double sdfVersion(const char* v) {
-  if (!v) return 0.0;
-  char* end = nullptr;
-  const double d = std::strtod(v, &end);
-  return end == v ? 0.0 : d;
-}
-
-/// State shared by the parse functions of one file.
-class Parser {
- public:
-  Parser(std::string source, std::string base_dir, const WorldLoadOptions& options)
-      : source_(std::move(source)), base_dir_(std::move(base_dir)), options_(options) {}
-
-  WorldDescription parse(const std::string& xml);
-  /// A model file (<sdf><model>) of an <include>.
-  ModelDescription parseModelFile(const std::string& xml);
-
-  /// Model files being included, outermost first (an <include> loop is an error).
-  std::vector<std::string> include_stack_;
-  /// Folders an enclosing <include> found its model in (searched for model:// URIs too).
-  std::vector<std::string> model_roots_;
-
- private:
-  // "<file>:<line>: "
-  std::string at(const XMLElement* e) const {
-    return source_ + ":" + std::to_string(e ? e->GetLineNum() : 0) + ": ";
-  }
-  [[noreturn]] void fail(const XMLElement* e, const std::string& message) const {
-    throw WorldError(at(e) + message);
-  }
-  // Reports an element we do not support, once per (parent, element) pair.
-  void unsupported(const XMLElement* e, const std::string& why = "") {
-    const XMLElement* parent = e->Parent() ? e->Parent()->ToElement() : nullptr;
-    const std::string key = std::string(parent ? parent->Name() : "") + "/" + e->Name();
-    if (!warned_.insert(key).second || !options_.warn) return;
-    std::string msg = at(e) + "<" + e->Name() + ">";
-    if (parent) msg += " in <" + std::string(parent->Name()) + ">";
-    msg += " is not supported, ignored";
-    if (!why.empty()) msg += " (" + why + ")";
-    options_.warn(msg);
-  }
-  void warn(const XMLElement* e, const std::string& message) {
-    if (options_.warn) options_.warn(at(e) + message);
-  }
-
-  std::string text(const XMLElement* e) const {
-    const char* t = e->GetText();
-    return t ? trim(t) : std::string();
-  }
-  std::vector<double> numbers(const XMLElement* e, const std::string& what) const;
-  double number(const XMLElement* e, const std::string& what) const {
-    const auto v = numbers(e, what);
-    if (v.size() != 1) fail(e, what + ": <" + e->Name() + "> '" + text(e) + "' is not a number");
-    return v[0];
-  }
-  double positive(const XMLElement* e, const std::string& what) const {
-    const double v = number(e, what);
-    if (!(v > 0.0)) fail(e, what + ": <" + e->Name() + "> must be > 0 (got " + text(e) + ")");
-    return v;
-  }
-  double nonNegative(const XMLElement* e, const std::string& what) const {
-    const double v = number(e, what);
-    if (!(v >= 0.0)) fail(e, what + ": <" + e->Name() + "> must be >= 0 (got " + text(e) + ")");
-    return v;
-  }
-  Eigen::Vector3d vector3(const XMLElement* e, const std::string& what) const {
-    const auto v = numbers(e, what);
-    if (v.size() != 3)
-      fail(e, what + ": <" + e->Name() + "> '" + text(e) + "' is not 3 numbers \"x y z\"");
-    return {v[0], v[1], v[2]};
-  }
-  Eigen::Vector4f color(const XMLElement* e, const std::string& what) const {
-    const auto v = numbers(e, what);
-    if (v.size() != 3 && v.size() != 4)
-      fail(e, what + ": <" + e->Name() + "> '" + text(e) + "' is not a colour \"r g b [a]\"");
-    return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]),
-            v.size() == 4 ? static_cast<float>(v[3]) : 1.0f};
-  }
-  bool boolean(const XMLElement* e, const std::string& what) const {
-    const std::string t = text(e);
-    if (t == "true" || t == "1") return true;
-    if (t == "false" || t == "0") return false;
-    fail(e, what + ": <" + e->Name() + "> '" + t + "' is not a boolean (true/false/1/0)");
-  }
-  Eigen::Isometry3d pose(const XMLElement* e, const std::string& what);
-
-  void parsePhysics(const XMLElement* e, PhysicsSettings& physics);
-  void parseScene(const XMLElement* e, WorldDescription& world);
-  void parseInclude(const XMLElement* e, WorldDescription& world);
-  void parseLight(const XMLElement* e, WorldDescription& world);
-  ModelDescription parseModel(const XMLElement* e);
-  LinkDescription parseLink(const XMLElement* e, const std::string& model);
-  InertialDescription parseInertial(const XMLElement* e, const std::string& what);
-  Shape parseGeometry(const XMLElement* e, const std::string& what);
-  Friction parseSurface(const XMLElement* e, const std::string& what, ContactDescription* contact);
-  struct IncludeSpec {
-    std::string uri, name;
-    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    bool has_pose = false;
-    std::optional<bool> is_static;
-  };
-  IncludeSpec parseIncludeSpec(const XMLElement* e);
-  /// Resolves and parses the model an <include> names, with its <name>/<pose>/<static>.
-  ModelDescription includeModel(const XMLElement* e, const IncludeSpec& spec);
-  /// Folders searched for model://NAME: GAZEBO_MODEL_PATH, the load options' model_paths, the
-  /// folders of enclosing includes, ~/.gazebo/models, ROS packages' exported
-  /// gazebo_model_path, the world file's folder and its models/ subfolder.
-  std::vector<std::string> modelDirs() const;
-  void applyState(const XMLElement* e, WorldDescription& world, std::set<std::string>& names);
-  static void mergeSubModel(ModelDescription* m, const ModelDescription& sub,
-                            const Eigen::Isometry3d& X_MS);
-  JointDescription parseJoint(const XMLElement* e, const std::string& model);
-  std::string resolveMesh(const XMLElement* e, const std::string& uri, const std::string& what);
-
-  std::string source_;
-  std::string base_dir_;
-  const WorldLoadOptions& options_;
-  std::set<std::string> warned_;
-};
-
-std::vector<double> Parser::numbers(const XMLElement* e, const std::string& what) const {
-  const std::string t = text(e);
-  std::vector<double> out;
-  const char* p = t.c_str();
-  while (*p) {
-    while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r') ++p;
-    if (!*p) break;
-    char* end = nullptr;
-    errno = 0;
-    const double v = std::strtod(p, &end);
-    if (end == p || (*end && *end != ' ' && *end != '\t' && *end != '\n' && *end != '\r'))
-      fail(e, what + ": <" + e->Name() + "> '" + t + "' is not a list of numbers");
-    if (!std::isfinite(v) || errno == ERANGE)
-      fail(e, what + ": <" + e->Name() + "> '" + t + "' is not finite");
-    out.push_back(v);
-    p = end;
-  }
-  return out;
-}
-
-Eigen::Isometry3d Parser::pose(const XMLElement* e, const std::string& what) {
-  for (const char* a : {"frame", "relative_to"}) {
-    const char* v = e->Attribute(a);
-    if (v && *v)
-      warn(e, what + ": <pose " + a + "='" + v + "'> is not supported; taken relative to the parent");
-  }
-  const auto v = numbers(e, what);
-  if (v.size() != 6)
-    fail(e, what + ": <pose> '" + text(e) + "' is not 6 numbers \"x y z roll pitch yaw\"");
-  return sdfPose(v[0], v[1], v[2], v[3], v[4], v[5]);
-}
+namespace world_internal {
 
 WorldDescription Parser::parse(const std::string& xml) {
   tinyxml2::XMLDocument doc;
@@ -344,87 +102,6 @@ WorldDescription Parser::parse(const std::string& xml) {
   return world;
 }
 
-ModelDescription Parser::parseModelFile(const std::string& xml) {
-  tinyxml2::XMLDocument doc;
-  if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS)
-    throw WorldError(source_ + ":" + std::to_string(doc.ErrorLineNum()) + ": malformed XML: " +
-                     doc.ErrorName());
-  const XMLElement* root = doc.RootElement();
-  if (!root) throw WorldError(source_ + ":1: malformed XML: no root element");
-  if (std::string(root->Name()) == "model") return parseModel(root);  // a bare <model>
-  if (std::string(root->Name()) != "sdf")
-    fail(root, "root element is <" + std::string(root->Name()) + ">, expected <sdf>");
-  const XMLElement* m = root->FirstChildElement("model");
-  if (!m) fail(root, "no <model> in this model file");
-  for (const XMLElement* c = root->FirstChildElement(); c; c = c->NextSiblingElement()) {
-    if (c != m) unsupported(c, "a model file holds one <model>");
-  }
-  return parseModel(m);
-}
-
-void Parser::applyState(const XMLElement* e, WorldDescription& world,
-                        std::set<std::string>& names) {
-  auto findModel = [&](const std::string& name) -> ModelDescription* {
-    for (ModelDescription& m : world.models)
-      if (m.name == name) return &m;
-    return nullptr;
-  };
-  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
-    const std::string tag = c->Name();
-    if (tag == "sim_time" || tag == "wall_time" || tag == "real_time" || tag == "iterations" ||
-        tag == "light") {
-      continue;  // times and light states do not change what is simulated
-    } else if (tag == "insertions") {
-      for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
-        if (std::string(k->Name()) != "model") {
-          unsupported(k);
-          continue;
-        }
-        ModelDescription m = parseModel(k);
-        if (!names.insert(m.name).second) fail(k, "duplicate model name '" + m.name + "'");
-        world.models.push_back(std::move(m));
-      }
-    } else if (tag == "deletions") {
-      for (const XMLElement* k = c->FirstChildElement("name"); k; k = k->NextSiblingElement("name")) {
-        const std::string name = text(k);
-        auto it = std::find_if(world.models.begin(), world.models.end(),
-                               [&](const ModelDescription& m) { return m.name == name; });
-        if (it == world.models.end())
-          fail(k, "<state> <deletions> names model '" + name + "', which the world does not have");
-        world.models.erase(it);
-        names.erase(name);
-      }
-    } else if (tag == "model") {
-      const std::string name = c->Attribute("name") ? trim(c->Attribute("name")) : "";
-      ModelDescription* m = findModel(name);
-      if (!m) fail(c, "<state> names model '" + name + "', which the world does not have");
-      const std::string what = "<state> of model '" + name + "'";
-      if (const XMLElement* p = c->FirstChildElement("pose")) m->X_WM = pose(p, what);
-      for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
-        const std::string ktag = k->Name();
-        if (ktag == "pose") continue;
-        if (ktag == "scale") {
-          const Eigen::Vector3d scale = vector3(k, what);
-          if (!scale.isApprox(Eigen::Vector3d::Ones())) warn(k, what + ": <scale> is not applied");
-        } else if (ktag == "link") {
-          const std::string lname = k->Attribute("name") ? trim(k->Attribute("name")) : "";
-          auto l = std::find_if(m->links.begin(), m->links.end(),
-                                [&](const LinkDescription& d) { return d.name == lname; });
-          if (l == m->links.end())
-            fail(k, what + " names link '" + lname + "', which the model does not have");
-          // A link's state pose is its world pose.
-          if (const XMLElement* p = k->FirstChildElement("pose"))
-            l->X_ML = m->X_WM.inverse() * pose(p, what + " link '" + lname + "'");
-        } else if (ktag != "joint") {
-          unsupported(k);
-        }
-      }
-    } else {
-      unsupported(c);
-    }
-  }
-}
-
 void Parser::parsePhysics(const XMLElement* e, PhysicsSettings& physics) {
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
@@ -452,148 +129,6 @@ void Parser::parseScene(const XMLElement* e, WorldDescription& world) {
     } else {
       unsupported(c);
     }
-  }
-}
-
-Parser::IncludeSpec Parser::parseIncludeSpec(const XMLElement* e) {
-  IncludeSpec spec;
-  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
-    const std::string tag = c->Name();
-    if (tag == "uri") {
-      spec.uri = text(c);
-    } else if (tag == "pose") {
-      spec.X = pose(c, "<include>");
-      spec.has_pose = true;
-    } else if (tag == "name") {
-      spec.name = text(c);
-    } else if (tag == "static") {
-      spec.is_static = boolean(c, "<include>");
-    } else {
-      unsupported(c);
-    }
-  }
-  while (!spec.uri.empty() && spec.uri.back() == '/') spec.uri.pop_back();
-  if (spec.uri.empty()) fail(e, "<include> has no <uri>");
-  return spec;
-}
-
-void Parser::parseInclude(const XMLElement* e, WorldDescription& world) {
-  const IncludeSpec spec = parseIncludeSpec(e);
-  if (spec.uri == "model://ground_plane") {
-    if (world.ground_plane) warn(e, "model://ground_plane included twice; using the last pose");
-    world.ground_plane = true;
-    world.X_WG = spec.X;
-  } else if (spec.uri == "model://sun") {
-    DirectionalLight sun;  // Gazebo's sun model: the defaults of DirectionalLight
-    if (spec.has_pose) sun.direction = spec.X.linear() * sun.direction;
-    world.sun = sun;
-  } else {
-    world.models.push_back(includeModel(e, spec));
-  }
-}
-
-std::vector<std::string> Parser::modelDirs() const {
-  std::vector<std::string> dirs = splitPath(std::getenv("GAZEBO_MODEL_PATH"));
-  dirs.insert(dirs.end(), options_.model_paths.begin(), options_.model_paths.end());
-  dirs.insert(dirs.end(), model_roots_.begin(), model_roots_.end());
-  if (const char* home = std::getenv("HOME")) dirs.push_back(join(home, ".gazebo/models"));
-  for (const std::string& d : rosExportedModelPaths()) dirs.push_back(d);
-  dirs.push_back(base_dir_);
-  dirs.push_back(join(base_dir_, "models"));
-  return dirs;
-}
-
-ModelDescription Parser::includeModel(const XMLElement* e, const IncludeSpec& spec) {
-  // The model's folder: model://NAME in the model folders, or a file:// / plain path.
-  std::string dir;
-  std::vector<std::string> tried;
-  if (startsWith(spec.uri, "model://")) {
-    const std::string rest = spec.uri.substr(8);
-    for (const std::string& d : modelDirs()) {
-      const std::string p = join(d, rest);
-      tried.push_back(d);
-      if (isDir(p)) {
-        dir = p;
-        break;
-      }
-    }
-  } else {
-    std::string p = startsWith(spec.uri, "file://") ? spec.uri.substr(7) : spec.uri;
-    if (!p.empty() && p[0] != '/') p = join(base_dir_, p);
-    tried.push_back(p);
-    if (isDir(p)) dir = p;
-  }
-  if (dir.empty()) {
-    std::string msg = "<include> of '" + spec.uri + "': model not found; searched:";
-    for (const std::string& t : tried) msg += " " + t;
-    if (startsWith(spec.uri, "model://"))
-      msg += " (set GAZEBO_MODEL_PATH, or export gazebo_model_path from a ROS package)";
-    fail(e, msg);
-  }
-  // model.config names the model file(s): the highest SDF version we read (<= 1.7) wins.
-  std::string file;
-  const std::string config = join(dir, "model.config");
-  if (isFile(config)) {
-    tinyxml2::XMLDocument doc;
-    if (doc.LoadFile(config.c_str()) != tinyxml2::XML_SUCCESS)
-      fail(e, "<include> of '" + spec.uri + "': " + config + " is not valid XML");
-    const XMLElement* root = doc.RootElement();
-    double best = -1.0;
-    for (const XMLElement* s = root ? root->FirstChildElement("sdf") : nullptr; s;
-         s = s->NextSiblingElement("sdf")) {
-      const double v = sdfVersion(s->Attribute("version"));
-      if (v <= 1.7 + 1e-9 && v > best && s->GetText()) {
-        best = v;
-        file = join(dir, trim(s->GetText()));
-      }
-    }
-    if (file.empty())
-      fail(e, "<include> of '" + spec.uri + "': " + config + " names no <sdf> file of version <= 1.7");
-  } else if (isFile(join(dir, "model.sdf"))) {
-    file = join(dir, "model.sdf");
-  } else {
-    fail(e, "<include> of '" + spec.uri + "': " + dir + " has neither model.config nor model.sdf");
-  }
-  std::string canonical = file;
-  std::error_code ec;
-  const auto c = std::filesystem::weakly_canonical(file, ec);
-  if (!ec) canonical = c.string();
-  if (std::find(include_stack_.begin(), include_stack_.end(), canonical) != include_stack_.end()) {
-    std::string chain;
-    for (const std::string& f : include_stack_) chain += f + " -> ";
-    fail(e, "<include> loop: " + chain + canonical);
-  }
-  std::ifstream in(file);
-  if (!in) fail(e, "<include> of '" + spec.uri + "': cannot read " + file);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  Parser sub(file, dir, options_);
-  sub.include_stack_ = include_stack_;
-  sub.include_stack_.push_back(canonical);
-  sub.model_roots_ = model_roots_;
-  // Its siblings, and what the including file could reach, resolve its model:// URIs too.
-  sub.model_roots_.push_back(dirName(dir));
-  sub.model_roots_.push_back(base_dir_);
-  sub.model_roots_.push_back(join(base_dir_, "models"));
-  ModelDescription m = sub.parseModelFile(ss.str());
-  if (!spec.name.empty()) m.name = spec.name;
-  if (spec.has_pose) m.X_WM = spec.X;
-  if (spec.is_static) m.is_static = *spec.is_static;
-  return m;
-}
-
-void Parser::mergeSubModel(ModelDescription* m, const ModelDescription& sub,
-                           const Eigen::Isometry3d& X_MS) {
-  for (LinkDescription l : sub.links) {
-    l.name = sub.name + "::" + l.name;
-    l.X_ML = X_MS * l.X_ML;
-    m->links.push_back(std::move(l));
-  }
-  for (JointDescription j : sub.joints) {
-    j.name = sub.name + "::" + j.name;
-    if (j.parent != "world") j.parent = sub.name + "::" + j.parent;
-    if (j.child != "world") j.child = sub.name + "::" + j.child;
-    m->joints.push_back(std::move(j));
   }
 }
 
@@ -651,7 +186,7 @@ void Parser::parseLight(const XMLElement* e, WorldDescription& world) {
 
 ModelDescription Parser::parseModel(const XMLElement* e) {
   ModelDescription m;
-  m.name = e->Attribute("name") ? trim(e->Attribute("name")) : "";
+  m.name = e->Attribute("name") ? trimText(e->Attribute("name")) : "";
   m.line = e->GetLineNum();
   if (m.name.empty()) fail(e, "<model> has no name");
   const std::string what = "model '" + m.name + "'";
@@ -719,7 +254,7 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
 
 LinkDescription Parser::parseLink(const XMLElement* e, const std::string& model) {
   LinkDescription l;
-  l.name = e->Attribute("name") ? trim(e->Attribute("name")) : "";
+  l.name = e->Attribute("name") ? trimText(e->Attribute("name")) : "";
   l.line = e->GetLineNum();
   if (l.name.empty()) fail(e, "model '" + model + "': <link> has no name");
   const std::string what = "model '" + model + "' link '" + l.name + "'";
@@ -943,8 +478,8 @@ Friction Parser::parseSurface(const XMLElement* e, const std::string& what,
 
 JointDescription Parser::parseJoint(const XMLElement* e, const std::string& model) {
   JointDescription j;
-  j.name = e->Attribute("name") ? trim(e->Attribute("name")) : "";
-  j.type = e->Attribute("type") ? trim(e->Attribute("type")) : "";
+  j.name = e->Attribute("name") ? trimText(e->Attribute("name")) : "";
+  j.type = e->Attribute("type") ? trimText(e->Attribute("type")) : "";
   j.line = e->GetLineNum();
   const std::string what = "model '" + model + "' joint '" + j.name + "'";
   if (j.type.empty()) fail(e, what + " has no type");
@@ -959,17 +494,9 @@ JointDescription Parser::parseJoint(const XMLElement* e, const std::string& mode
   return j;
 }
 
-}  // namespace
+}  // namespace world_internal
 
-Eigen::Isometry3d sdfPose(double x, double y, double z, double roll, double pitch, double yaw) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.translation() = Eigen::Vector3d(x, y, z);
-  X.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-                Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
-                   .toRotationMatrix();
-  return X;
-}
+using namespace world_internal;
 
 WorldDescription loadWorldString(const std::string& xml, const std::string& source,
                                  const std::string& base_dir, const WorldLoadOptions& options) {

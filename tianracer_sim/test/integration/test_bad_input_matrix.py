@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""rostest: the running-node rows of the bad-input matrix (issue 9 part 1, docs/bad_input.md).
+"""rostest: the running-node rows of the bad-input matrix (docs/bad_input.md).
 
 NaN, inf and 1e30 on every input topic (the controllers' command topics, /cmd_vel, the wheel
 odometry's joint_states) and on every numeric field of the services (set_model_state pose and

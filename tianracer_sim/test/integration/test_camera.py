@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
 """rostest: the seed's camera (800x800, 30 Hz) and RealSense depth camera (640x480, images and
-cloud at 20 Hz, camera_infos at 10 Hz) in walled_room, as SPEC 5.2 and 5.3 describe them:
+cloud at 20 Hz, camera_infos at 10 Hz) in walled_room, as the README (Sensors) lists them:
 
 - the seven topics at their rates in sim time (header stamps, +-10 % over >= 2 s), with their
   encodings, sizes, steps, cloud layout and optical frame ids; the cloud's z and colour equal
   the depth and colour images of the same render (colour in PCL's byte order, not Gazebo's);
-- CameraInfo per SPEC 5.2 (f 476.70, cx = cy = 400.5, P[3] = -33.37; real_sense f 554.60);
+- CameraInfo as gazebo_ros fills it (f 476.70, cx = cy = 400.5, P[3] = -33.37; real_sense f 554.60);
 - no image subscriber, no rendering: renders_total in /diagnostics (the sim's status_period is
   0.5 s in camera.test) stays put without one, and with only a camera_info subscriber;
 - the optical frames in TF: camera -> camera_optical_frame is rpy(-pi/2, 0, -pi/2);

@@ -1,5 +1,5 @@
 // Ray casting against analytic scenes: every beam within 1 mm of the exact distance (corners
-// included), the SPEC §5.1 range model, noise statistics, determinism and moving bodies.
+// included), the range model of ray_sensor.h, noise statistics, determinism and moving bodies.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -145,7 +145,7 @@ double reference(const Scene& scene, const Eigen::Vector3d& o, const Eigen::Vect
   return best;
 }
 
-/// The SPEC §5.1 model without noise applied to a true range.
+/// The range model without noise applied to a true range.
 double expected(const RaySensorConfig& c, double r) {
   if (r >= c.range_max) return kInf;
   if (r <= c.range_min) return -kInf;
@@ -299,7 +299,7 @@ TEST(RayCaster, RangeLimitsMapToInfinity) {
 }
 
 // A sensor teleported to 1e30 (set_model_state) or NaN: Embree would abort on such a ray origin;
-// the caster reports no hit instead (issue 9).
+// the caster reports no hit instead.
 TEST(RayCaster, SensorFarOutsideTheWorldSeesNothing) {
   Scene scene;
   addRoom(scene, -2, 2, -2, 2);

@@ -282,7 +282,7 @@ std::string readFile(const std::string& path) {
   return s.str();
 }
 
-// A small deterministic stand-in for the libFuzzer run of issue 9: byte flips, insertions and
+// A small deterministic stand-in for the libFuzzer run (fuzz.sh): byte flips, insertions and
 // truncations of full.urdf. Anything but a result or a ModelError fails the test (a crash
 // fails it too).
 TEST(Extensions, MutatedInputsOnlyEverThrowModelError) {

@@ -326,7 +326,7 @@ TEST(ModelLoaderBadInput, UrdfdomErrorsNameTheSource) {
 }
 
 // urdfdom logs an error for a link whose <inertial> does not parse and returns the model anyway,
-// with mass 0 on that link; the loader must refuse it (fuzz_extensions crash, issue 9).
+// with mass 0 on that link; the loader must refuse it (a crash fuzz_extensions found).
 TEST(ModelLoaderBadInput, UrdfdomErrorWithAModelIsStillAnError) {
   Loader l;
   EXPECT_THAT(l.error("invalid_inertial_origin.urdf"),

@@ -1,4 +1,4 @@
-// toLaserScan: every field of SPEC §5.1 for the seed's hokuyo.
+// toLaserScan: every field gazebo_ros_laser fills, for the seed's hokuyo.
 #include <cmath>
 #include <limits>
 #include <vector>

@@ -34,7 +34,7 @@ TEST(RobotContacts, SlidingIntoAStaticBox) {
   PhysicsWorld w(o);
   StaticShape box;
   box.name = "wall::link::collision";
-  box.size = Eigen::Vector3d::Ones();
+  box.shape.size = Eigen::Vector3d::Ones();
   w.addStaticShape(box);
   const RobotId id = addTestRobot(w, cube(), at(-1.0, 0.0, 0.0), "cube");
   Twist v;

@@ -44,8 +44,8 @@ PhysicsOptions weightless() {
 StaticShape block() {
   StaticShape s;
   s.name = "block";
-  s.type = StaticShape::Type::kBox;
-  s.size = Eigen::Vector3d::Ones();
+  s.shape.type = ShapeType::kBox;
+  s.shape.size = Eigen::Vector3d::Ones();
   return s;
 }
 

@@ -98,14 +98,14 @@ TEST(PhysicsWorld, StaticShapesCollide) {
   PhysicsWorld w;
   StaticShape table;
   table.name = "table";
-  table.type = StaticShape::Type::kBox;
-  table.size = Eigen::Vector3d(1.0, 1.0, 0.2);
+  table.shape.type = ShapeType::kBox;
+  table.shape.size = Eigen::Vector3d(1.0, 1.0, 0.2);
   table.X_WS = at(0, 0, 0.1);
   EXPECT_EQ(w.addStaticShape(table), 0);
   StaticShape mesh;
   mesh.name = "cube";
-  mesh.type = StaticShape::Type::kMesh;
-  mesh.mesh_path = kCube;
+  mesh.shape.type = ShapeType::kMesh;
+  mesh.shape.mesh_path = kCube;
   mesh.X_WS = at(2, 0, 0.05);
   EXPECT_EQ(w.addStaticShape(mesh), 1);
   PhysicsRobot& on_table = w.robot(addTestRobot(w, 

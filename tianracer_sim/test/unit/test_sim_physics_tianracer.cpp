@@ -98,7 +98,8 @@ struct Car {
     const long n = std::lround(seconds / world->dt());
     for (long k = 0; k < n; ++k) step();
   }
-  /// Exact Ackermann hinge angles for a bicycle angle delta (SPEC 8), with per-wheel rear speeds.
+  /// Exact Ackermann hinge angles for a bicycle angle delta (cot(delta_i) = cot(delta) -+ T/(2L)),
+  /// with per-wheel rear speeds.
   void ackermann(double delta, double v) {
     const double t = std::tan(delta);
     steer_l = std::atan(kWheelbase * t / (kWheelbase - 0.5 * kHingeTrack * t));
@@ -473,7 +474,7 @@ TEST(Tianracer, SpawnedInAWallIsPushedOutNotThrown) {
     Car car(PhysicsOptions(), yaw);
     StaticShape wall;
     wall.name = "north_wall";
-    wall.size = Eigen::Vector3d(6.2, 0.1, 1.0);
+    wall.shape.size = Eigen::Vector3d(6.2, 0.1, 1.0);
     wall.X_WS.translation() = Eigen::Vector3d(0.0, 0.05, 0.5);  // face y = 0
     car.world->addStaticShape(wall);
     double top = 0.0, top_spin = 0.0;

@@ -1,4 +1,4 @@
-// Physics regression of the tianracer driven through its shipped controllers (issue 3 (a)-(d)).
+// Physics regression of the tianracer driven through its shipped controllers.
 // Sim time only: each test calls step() and never sleeps. Figures are printed for the notes.
 #include <cmath>
 #include <cstdio>

@@ -1,4 +1,4 @@
-// World loader: the SDF subset, the shipped worlds, and every bad input named in issue 5.
+// World loader: the SDF subset, the shipped worlds, and every bad input in docs/bad_input.md.
 #include <unistd.h>
 
 #include <cmath>

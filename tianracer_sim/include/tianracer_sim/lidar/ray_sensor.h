@@ -1,5 +1,5 @@
 // A Gazebo <sensor type="ray"> with its libgazebo_ros_laser plugin, as a plain validated struct,
-// and a RaySensor that scans a Scene with it (SPEC §5.1). ROS-free.
+// and a RaySensor that scans a Scene with it (README, Sensors). ROS-free.
 #ifndef TIANRACER_SIM_LIDAR_RAY_SENSOR_H
 #define TIANRACER_SIM_LIDAR_RAY_SENSOR_H
 
@@ -103,7 +103,7 @@ std::vector<SensorTopic> publishedTopics(const RaySensorConfig& config);
 class RayCaster;
 struct Scene;
 
-/// Applies SPEC §5.1 to true ranges (distances from the sensor origin, +inf for no hit):
+/// Applies the range model to true ranges (distances from the sensor origin, +inf for no hit):
 ///   r >= range_max -> +inf;  r <= range_min -> -inf;
 ///   else r + N(mean, stddev) clamped to [range_min, range_max] (noise enabled), r otherwise.
 /// Noise is drawn only for in-range beams, in beam order, from `rng`.

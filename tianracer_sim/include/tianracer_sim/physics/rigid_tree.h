@@ -4,6 +4,7 @@
 #ifndef TIANRACER_SIM_PHYSICS_RIGID_TREE_H
 #define TIANRACER_SIM_PHYSICS_RIGID_TREE_H
 
+#include <functional>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -12,6 +13,7 @@
 #include <Eigen/Geometry>
 #include <urdf_model/model.h>
 
+#include "tianracer_sim/geometry/shape.h"
 #include "tianracer_sim/physics/mass_properties.h"
 
 namespace tianracer_sim {
@@ -22,16 +24,10 @@ class PhysicsError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-enum class GeometryType { kBox, kCylinder, kSphere, kMesh };
-
 /// One <collision> element, placed in its body's frame.
 struct CollisionGeometry {
-  GeometryType type = GeometryType::kBox;
-  /// box: full extents (x, y, z); cylinder: (radius, radius, length), axis z; sphere: (r, r, r).
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();
-  std::string mesh_uri;   // as written in the URDF
-  std::string mesh_path;  // resolved absolute path
-  Eigen::Vector3d mesh_scale = Eigen::Vector3d::Ones();
+  Shape shape;  // box, cylinder, sphere or mesh (mesh_path resolved); never a plane
+  std::string mesh_uri;  // a mesh as written in the URDF
   std::string link;                                       // the URDF link it belongs to
   Eigen::Isometry3d X_BG = Eigen::Isometry3d::Identity();  // geometry frame in body frame B
 };
@@ -66,6 +62,12 @@ struct RigidTree {
   /// Every URDF link -> (body index, pose of the link in that body's frame).
   std::map<std::string, std::pair<int, Eigen::Isometry3d>> links;
 };
+
+/// A URDF <geometry> as a Shape; a mesh's path is resolve_mesh(its URI). False for an unknown
+/// type or a mesh that resolves to "".
+bool shapeFromUrdf(const urdf::Geometry& geometry,
+                   const std::function<std::string(const std::string&)>& resolve_mesh,
+                   Shape* shape);
 
 /// Builds the tree. Mesh URIs are resolved through `mesh_paths` (URI -> absolute path, as in
 /// RobotModel), else file:// and absolute paths are taken as they are.

@@ -77,14 +77,10 @@ using LinkSurfaces = std::map<std::string, SurfaceParams>;
 
 /// A static body of a world (walls, boxes, cones, track meshes).
 struct StaticShape {
-  enum class Type { kBox, kCylinder, kSphere, kMesh, kPlane };
   std::string name;
-  Type type = Type::kBox;
-  /// box: full extents; cylinder: (radius, radius, length) along z; sphere: (r, r, r);
-  /// plane: the normal (plane through the shape origin).
-  Eigen::Vector3d size = Eigen::Vector3d::Ones();
-  std::string mesh_path;  // kMesh: loaded through MeshCache::global(), used as triangles
-  Eigen::Vector3d mesh_scale = Eigen::Vector3d::Ones();
+  /// A plane passes through the shape origin; a mesh is loaded through MeshCache::global() and
+  /// used as triangles.
+  Shape shape;
   Eigen::Isometry3d X_WS = Eigen::Isometry3d::Identity();
   SurfaceParams surface;
 };

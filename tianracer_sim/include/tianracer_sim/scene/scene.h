@@ -9,26 +9,9 @@
 
 #include <Eigen/Geometry>
 
+#include "tianracer_sim/geometry/shape.h"
+
 namespace tianracer_sim {
-
-enum class ShapeType { kBox, kCylinder, kSphere, kPlane, kMesh };
-
-/// One geometric primitive in its own frame S.
-///  - box: full extents `size` (x, y, z), centred;
-///  - cylinder: `radius`, `length` along S's z axis, centred;
-///  - sphere: `radius`;
-///  - plane: infinite plane through S's origin with normal `normal` (S frame), `size` x/y is the
-///    visual extent (0 = unbounded);
-///  - mesh: `mesh_path` (absolute, resolved), scaled component-wise by `scale`.
-struct Shape {
-  ShapeType type = ShapeType::kBox;
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();
-  double radius = 0.0;
-  double length = 0.0;
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
-  std::string mesh_path;
-  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
-};
 
 /// Surface colour: Phong-style ambient/diffuse/specular in linear [0, 1] RGBA, and an optional
 /// diffuse texture that modulates the lit colour (Ogre's default colour_op modulate).

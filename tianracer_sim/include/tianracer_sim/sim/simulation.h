@@ -1,5 +1,5 @@
-// Simulation: the step loop of SPEC §1 without ROS. Robots from their RobotModel, their
-// ros_control-style controllers from tianracer_control, the physics world, and sim time:
+// Simulation: the step loop without ROS (README, The simulator): robots from their RobotModel,
+// their ros_control-style controllers from tianracer_control, the physics world, and sim time:
 //   read joint state -> controllers update (every control period) -> write commands ->
 //   physics step.
 // Sensors and publishing are driven by the host (the ROS node) from the state after a step.

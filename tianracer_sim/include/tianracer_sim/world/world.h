@@ -1,4 +1,4 @@
-// The SDF world subset of SPEC §6 as plain structs (tinyxml2), and its insertion into the Scene
+// The SDF world subset (README) as plain structs (tinyxml2), and its insertion into the Scene
 // that sensors and the renderer see. ROS-free.
 //
 // Supported: <sdf><world> with <physics> (max_step_size, real_time_factor, real_time_update_rate,
@@ -26,6 +26,7 @@
 
 #include <Eigen/Geometry>
 
+#include "tianracer_sim/common/sdf_pose.h"
 #include "tianracer_sim/model/robot_model.h"  // WarningSink
 #include "tianracer_sim/scene/scene.h"
 
@@ -164,9 +165,6 @@ std::string resolveWorld(const std::string& arg, const std::string& worlds_dir);
 /// "ground_plane::link" with an infinite collision plane, so rays hit the ground.
 /// Returns the index of each body added, by name.
 std::map<std::string, int> addToScene(const WorldDescription& world, Scene& scene);
-
-/// SDF pose "x y z roll pitch yaw": translation, then R = Rz(yaw) Ry(pitch) Rx(roll).
-Eigen::Isometry3d sdfPose(double x, double y, double z, double roll, double pitch, double yaw);
 
 }  // namespace tianracer_sim
 

@@ -1,0 +1,98 @@
+// The one XML reader of the parsers (URDF <gazebo> tags, SDF worlds, <sensor> blocks): text,
+// numbers, vectors, poses, warn-once and the unknown-element report, every message prefixed with
+// the place it came from. Each parser keeps its own error type: the reader raises through it.
+#ifndef TIANRACER_SIM_COMMON_XML_READER_H
+#define TIANRACER_SIM_COMMON_XML_READER_H
+
+#include <functional>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <tinyxml2.h>
+
+#include "tianracer_sim/common/text.h"
+#include "tianracer_sim/common/warning.h"
+
+namespace tianracer_sim {
+
+/// A whole string (blanks around it ignored, one leading '+' allowed) as a double, independent of
+/// the C locale; nullopt on anything else. "nan" and "inf" parse (callers decide whether they may);
+/// a value beyond double's range reads as +-inf, one below it as 0 or a denormal.
+std::optional<double> parseNumber(const std::string& text);
+
+/// Blank-separated numbers ("1 2.5 -3"); nullopt when any token is not a number. "" -> {}.
+std::optional<std::vector<double>> parseNumbers(const std::string& text);
+
+/// "true"/"1" and "false"/"0" (blanks around ignored), as SDF and gazebo_ros read them.
+std::optional<bool> parseBool(const std::string& text);
+
+/// The text directly inside `e`, trimmed; "" when there is none.
+std::string elementText(const tinyxml2::XMLElement* e);
+
+/// An attribute's value, trimmed; "" when absent.
+std::string attributeText(const tinyxml2::XMLElement* e, const char* name);
+
+/// `e`'s line in its document (0 when unknown).
+inline int lineOf(const tinyxml2::XMLElement* e) { return e ? e->GetLineNum() : 0; }
+
+/// Reads values out of the elements of one document named `source`, the way the SDF world
+/// parser always has: a bad value raises "<source>:<line>: <what>: <tag> '<text>' is not ...".
+class XmlReader {
+ public:
+  /// Throws the caller's error type with the message (must not return).
+  using Raise = std::function<void(const std::string& message)>;
+  /// The prefix naming an element's place; default "<source>:<line>: ".
+  using Locate = std::function<std::string(const tinyxml2::XMLElement*)>;
+
+  XmlReader(std::string source, WarningSink warn, Raise raise, Locate locate = {});
+
+  const std::string& source() const { return source_; }
+  /// The place of `e` (its file and line), as every message starts.
+  std::string at(const tinyxml2::XMLElement* e) const;
+
+  [[noreturn]] void fail(const tinyxml2::XMLElement* e, const std::string& message) const;
+  /// Forwards at(e) + message, once per distinct message.
+  void warn(const tinyxml2::XMLElement* e, const std::string& message);
+  /// Forwards `message` (already placed) once.
+  void warn(const std::string& message) { warnOnce(message, message); }
+  /// Forwards `message` once per `key` (and once per distinct message).
+  void warnOnce(const std::string& key, const std::string& message);
+  /// "<tag> in <parent> is not supported, ignored[ (why)]", once per (parent, tag) pair.
+  void unsupported(const tinyxml2::XMLElement* e, const std::string& why = "");
+  /// Reports each child of `e` whose name is not in `known` (unsupported()); returns how many.
+  int checkChildren(const tinyxml2::XMLElement* e, const std::set<std::string>& known);
+
+  std::string text(const tinyxml2::XMLElement* e) const { return elementText(e); }
+  /// The child named `name`, or a failure naming `what` and the parent's place.
+  const tinyxml2::XMLElement* required(const tinyxml2::XMLElement* e, const char* name,
+                                       const std::string& what) const;
+
+  /// Finite numbers separated by blanks.
+  std::vector<double> numbers(const tinyxml2::XMLElement* e, const std::string& what) const;
+  double number(const tinyxml2::XMLElement* e, const std::string& what) const;
+  double positive(const tinyxml2::XMLElement* e, const std::string& what) const;
+  double nonNegative(const tinyxml2::XMLElement* e, const std::string& what) const;
+  int integer(const tinyxml2::XMLElement* e, const std::string& what) const;
+  bool boolean(const tinyxml2::XMLElement* e, const std::string& what) const;
+  Eigen::Vector3d vector3(const tinyxml2::XMLElement* e, const std::string& what) const;
+  /// "r g b [a]" (alpha 1 when left out).
+  Eigen::Vector4f color(const tinyxml2::XMLElement* e, const std::string& what) const;
+  /// SDF "x y z roll pitch yaw": translation, then R = Rz(yaw) Ry(pitch) Rx(roll). A frame or
+  /// relative_to attribute is warned about and the pose taken relative to the parent.
+  Eigen::Isometry3d pose(const tinyxml2::XMLElement* e, const std::string& what);
+
+ private:
+  std::string source_;
+  WarningSink warn_;
+  Raise raise_;
+  Locate locate_;
+  std::set<std::string> keys_;
+  std::set<std::string> messages_;
+};
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_COMMON_XML_READER_H

@@ -1,0 +1,204 @@
+#include "tianracer_sim/common/xml_reader.h"
+#include "tianracer_sim/common/sdf_pose.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+
+namespace tianracer_sim {
+
+using tinyxml2::XMLElement;
+
+namespace {
+
+// "<what>: <tag>", or "<tag>" when the place already says what it is.
+std::string lead(const std::string& what, const XMLElement* e) {
+  return (what.empty() ? "" : what + ": ") + "<" + e->Name() + ">";
+}
+
+}  // namespace
+
+std::optional<double> parseNumber(const std::string& text) {
+  std::string t = trimText(text);
+  if (!t.empty() && t[0] == '+') t.erase(0, 1);
+  if (t.empty()) return std::nullopt;
+  double v = 0.0;
+  const char* end = t.data() + t.size();
+  const auto r = std::from_chars(t.data(), end, v);
+  if (r.ptr != end) return std::nullopt;
+  // from_chars leaves v unset out of range; strtod gives the saturated value (+-HUGE_VAL or 0).
+  if (r.ec == std::errc::result_out_of_range) return std::strtod(t.c_str(), nullptr);
+  if (r.ec != std::errc()) return std::nullopt;
+  return v;
+}
+
+std::optional<std::vector<double>> parseNumbers(const std::string& text) {
+  std::vector<double> out;
+  std::istringstream in(text);
+  for (std::string tok; in >> tok;) {
+    const auto v = parseNumber(tok);
+    if (!v) return std::nullopt;
+    out.push_back(*v);
+  }
+  return out;
+}
+
+std::optional<bool> parseBool(const std::string& text) {
+  const std::string t = trimText(text);
+  if (t == "true" || t == "1") return true;
+  if (t == "false" || t == "0") return false;
+  return std::nullopt;
+}
+
+std::string elementText(const XMLElement* e) {
+  const char* t = e ? e->GetText() : nullptr;
+  return t ? trimText(t) : std::string();
+}
+
+std::string attributeText(const XMLElement* e, const char* name) {
+  const char* v = e ? e->Attribute(name) : nullptr;
+  return v ? trimText(v) : std::string();
+}
+
+XmlReader::XmlReader(std::string source, WarningSink warn, Raise raise, Locate locate)
+    : source_(std::move(source)), warn_(std::move(warn)), raise_(std::move(raise)),
+      locate_(std::move(locate)) {}
+
+std::string XmlReader::at(const XMLElement* e) const {
+  if (locate_) return locate_(e);
+  return source_ + ":" + std::to_string(lineOf(e)) + ": ";
+}
+
+void XmlReader::fail(const XMLElement* e, const std::string& message) const {
+  const std::string full = at(e) + message;
+  if (raise_) raise_(full);
+  // A Raise that returns is a programming error; still never continue with a bad value.
+  throw std::runtime_error(full);
+}
+
+void XmlReader::warn(const XMLElement* e, const std::string& message) {
+  const std::string full = at(e) + message;
+  warnOnce(full, full);
+}
+
+void XmlReader::warnOnce(const std::string& key, const std::string& message) {
+  if (!keys_.insert(key).second) return;
+  if (!messages_.insert(message).second) return;
+  if (warn_) warn_(message);
+}
+
+void XmlReader::unsupported(const XMLElement* e, const std::string& why) {
+  const XMLElement* parent = e->Parent() ? e->Parent()->ToElement() : nullptr;
+  const std::string key = std::string(parent ? parent->Name() : "") + "/" + e->Name();
+  std::string msg = at(e) + "<" + e->Name() + ">";
+  if (parent) msg += " in <" + std::string(parent->Name()) + ">";
+  msg += " is not supported, ignored";
+  if (!why.empty()) msg += " (" + why + ")";
+  warnOnce("unsupported " + key, msg);
+}
+
+int XmlReader::checkChildren(const XMLElement* e, const std::set<std::string>& known) {
+  int unknown = 0;
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    if (known.count(c->Name())) continue;
+    unsupported(c);
+    ++unknown;
+  }
+  return unknown;
+}
+
+const XMLElement* XmlReader::required(const XMLElement* e, const char* name,
+                                      const std::string& what) const {
+  const XMLElement* c = e->FirstChildElement(name);
+  if (!c) fail(e, lead(what, e) + " has no <" + name + ">");
+  return c;
+}
+
+std::vector<double> XmlReader::numbers(const XMLElement* e, const std::string& what) const {
+  const std::string t = text(e);
+  std::vector<double> out;
+  std::istringstream in(t);
+  for (std::string tok; in >> tok;) {
+    const auto v = parseNumber(tok);
+    if (!v) fail(e, lead(what, e) + " '" + t + "' is not a list of numbers");
+    if (!std::isfinite(*v)) fail(e, lead(what, e) + " '" + t + "' is not finite");
+    out.push_back(*v);
+  }
+  return out;
+}
+
+double XmlReader::number(const XMLElement* e, const std::string& what) const {
+  const auto v = numbers(e, what);
+  if (v.size() != 1) fail(e, lead(what, e) + " '" + text(e) + "' is not a number");
+  return v[0];
+}
+
+double XmlReader::positive(const XMLElement* e, const std::string& what) const {
+  const double v = number(e, what);
+  if (!(v > 0.0)) fail(e, lead(what, e) + " must be > 0 (got " + text(e) + ")");
+  return v;
+}
+
+double XmlReader::nonNegative(const XMLElement* e, const std::string& what) const {
+  const double v = number(e, what);
+  if (!(v >= 0.0)) fail(e, lead(what, e) + " must be >= 0 (got " + text(e) + ")");
+  return v;
+}
+
+int XmlReader::integer(const XMLElement* e, const std::string& what) const {
+  const std::string t = text(e);
+  const char* begin = t.data() + (t.size() > 1 && t[0] == '+' && t[1] != '-' ? 1 : 0);  // as strtol
+  const char* end = t.data() + t.size();
+  int v = 0;
+  const auto r = std::from_chars(begin, end, v);
+  if (t.empty() || r.ec != std::errc() || r.ptr != end)
+    fail(e, lead(what, e) + " '" + t + "' is not an integer");
+  return v;
+}
+
+bool XmlReader::boolean(const XMLElement* e, const std::string& what) const {
+  const auto b = parseBool(text(e));
+  if (!b) fail(e, lead(what, e) + " '" + text(e) + "' is not a boolean (true/false/1/0)");
+  return *b;
+}
+
+Eigen::Vector3d XmlReader::vector3(const XMLElement* e, const std::string& what) const {
+  const auto v = numbers(e, what);
+  if (v.size() != 3)
+    fail(e, lead(what, e) + " '" + text(e) + "' is not 3 numbers \"x y z\"");
+  return {v[0], v[1], v[2]};
+}
+
+Eigen::Vector4f XmlReader::color(const XMLElement* e, const std::string& what) const {
+  const auto v = numbers(e, what);
+  if (v.size() != 3 && v.size() != 4)
+    fail(e, lead(what, e) + " '" + text(e) + "' is not a colour \"r g b [a]\"");
+  return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]),
+          v.size() == 4 ? static_cast<float>(v[3]) : 1.0f};
+}
+
+Eigen::Isometry3d XmlReader::pose(const XMLElement* e, const std::string& what) {
+  for (const char* a : {"frame", "relative_to"}) {
+    const char* v = e->Attribute(a);
+    if (v && *v)
+      warn(e, what + ": <pose " + a + "='" + v + "'> is not supported; taken relative to the parent");
+  }
+  const auto v = numbers(e, what);
+  if (v.size() != 6)
+    fail(e, lead(what, e) + " '" + text(e) + "' is not 6 numbers \"x y z roll pitch yaw\"");
+  return sdfPose(v[0], v[1], v[2], v[3], v[4], v[5]);
+}
+
+Eigen::Isometry3d sdfPose(double x, double y, double z, double roll, double pitch, double yaw) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() = Eigen::Vector3d(x, y, z);
+  X.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  return X;
+}
+
+}  // namespace tianracer_sim

@@ -1,0 +1,337 @@
+// <include>: model files, the model:// search path and merging included models; and a saved
+// <state> applied over the models of the world.
+#include "world_parser.h"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <sstream>
+
+namespace tianracer_sim {
+namespace world_internal {
+
+bool isFile(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+bool isDir(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+std::string join(const std::string& dir, const std::string& rest) {
+  if (dir.empty()) return rest;
+  if (dir.back() == '/') return dir + rest;
+  return dir + "/" + rest;
+}
+
+std::string dirName(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  if (slash == 0) return "/";
+  return path.substr(0, slash);
+}
+
+bool startsWith(const std::string& s, const std::string& prefix) {
+  return s.compare(0, prefix.size(), prefix) == 0;
+}
+
+std::vector<std::string> splitPath(const char* env) {
+  std::vector<std::string> dirs;
+  if (!env) return dirs;
+  std::stringstream ss(env);
+  std::string d;
+  while (std::getline(ss, d, ':'))
+    if (!d.empty()) dirs.push_back(d);
+  return dirs;
+}
+
+/// The gazebo_model_path exports of the ROS packages under ROS_PACKAGE_PATH
+/// (<export><gazebo_ros gazebo_model_path="${prefix}/models"/></export>), crawled as rospack
+/// does (a folder with package.xml is a package; CATKIN_IGNORE and hidden folders are skipped).
+/// Computed once per ROS_PACKAGE_PATH value.
+std::vector<std::string> rosExportedModelPaths() {
+  static std::mutex mutex;
+  static std::map<std::string, std::vector<std::string>> cache;
+  const char* env = std::getenv("ROS_PACKAGE_PATH");
+  const std::string key = env ? env : "";
+  std::lock_guard<std::mutex> lock(mutex);
+  auto it = cache.find(key);
+  if (it != cache.end()) return it->second;
+  std::vector<std::string> out;
+  namespace fs = std::filesystem;
+  std::function<void(const fs::path&, int)> crawl = [&](const fs::path& dir, int depth) {
+    std::error_code ec;
+    if (fs::exists(dir / "package.xml", ec)) {
+      tinyxml2::XMLDocument doc;
+      if (doc.LoadFile((dir / "package.xml").c_str()) != tinyxml2::XML_SUCCESS) return;
+      const XMLElement* pkg = doc.RootElement();
+      const XMLElement* exp = pkg ? pkg->FirstChildElement("export") : nullptr;
+      for (const XMLElement* g = exp ? exp->FirstChildElement("gazebo_ros") : nullptr; g;
+           g = g->NextSiblingElement("gazebo_ros")) {
+        const char* attr = g->Attribute("gazebo_model_path");
+        if (!attr) continue;
+        std::string path = attr;
+        const auto p = path.find("${prefix}");
+        if (p != std::string::npos) path.replace(p, 9, dir.string());
+        out.push_back(path);
+      }
+      return;
+    }
+    if (depth > 8 || fs::exists(dir / "CATKIN_IGNORE", ec)) return;
+    std::vector<fs::path> subs;
+    for (fs::directory_iterator d(dir, ec), end; !ec && d != end; d.increment(ec)) {
+      if (d->is_directory(ec) && d->path().filename().string()[0] != '.') subs.push_back(d->path());
+    }
+    std::sort(subs.begin(), subs.end());  // same order on every run
+    for (const fs::path& sub : subs) crawl(sub, depth + 1);
+  };
+  for (const std::string& root : splitPath(env)) crawl(root, 0);
+  cache[key] = out;
+  return out;
+}
+
+namespace {
+
+/// SDF version "1.6" -> 1.6; unparsable -> 0.
+double sdfVersion(const char* v) {
+  if (!v) return 0.0;
+  char* end = nullptr;
+  const double d = std::strtod(v, &end);
+  return end == v ? 0.0 : d;
+}
+
+}  // namespace
+
+ModelDescription Parser::parseModelFile(const std::string& xml) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS)
+    throw WorldError(source_ + ":" + std::to_string(doc.ErrorLineNum()) + ": malformed XML: " +
+                     doc.ErrorName());
+  const XMLElement* root = doc.RootElement();
+  if (!root) throw WorldError(source_ + ":1: malformed XML: no root element");
+  if (std::string(root->Name()) == "model") return parseModel(root);  // a bare <model>
+  if (std::string(root->Name()) != "sdf")
+    fail(root, "root element is <" + std::string(root->Name()) + ">, expected <sdf>");
+  const XMLElement* m = root->FirstChildElement("model");
+  if (!m) fail(root, "no <model> in this model file");
+  for (const XMLElement* c = root->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    if (c != m) unsupported(c, "a model file holds one <model>");
+  }
+  return parseModel(m);
+}
+
+void Parser::applyState(const XMLElement* e, WorldDescription& world,
+                        std::set<std::string>& names) {
+  auto findModel = [&](const std::string& name) -> ModelDescription* {
+    for (ModelDescription& m : world.models)
+      if (m.name == name) return &m;
+    return nullptr;
+  };
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "sim_time" || tag == "wall_time" || tag == "real_time" || tag == "iterations" ||
+        tag == "light") {
+      continue;  // times and light states do not change what is simulated
+    } else if (tag == "insertions") {
+      for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
+        if (std::string(k->Name()) != "model") {
+          unsupported(k);
+          continue;
+        }
+        ModelDescription m = parseModel(k);
+        if (!names.insert(m.name).second) fail(k, "duplicate model name '" + m.name + "'");
+        world.models.push_back(std::move(m));
+      }
+    } else if (tag == "deletions") {
+      for (const XMLElement* k = c->FirstChildElement("name"); k; k = k->NextSiblingElement("name")) {
+        const std::string name = text(k);
+        auto it = std::find_if(world.models.begin(), world.models.end(),
+                               [&](const ModelDescription& m) { return m.name == name; });
+        if (it == world.models.end())
+          fail(k, "<state> <deletions> names model '" + name + "', which the world does not have");
+        world.models.erase(it);
+        names.erase(name);
+      }
+    } else if (tag == "model") {
+      const std::string name = c->Attribute("name") ? trimText(c->Attribute("name")) : "";
+      ModelDescription* m = findModel(name);
+      if (!m) fail(c, "<state> names model '" + name + "', which the world does not have");
+      const std::string what = "<state> of model '" + name + "'";
+      if (const XMLElement* p = c->FirstChildElement("pose")) m->X_WM = pose(p, what);
+      for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
+        const std::string ktag = k->Name();
+        if (ktag == "pose") continue;
+        if (ktag == "scale") {
+          const Eigen::Vector3d scale = vector3(k, what);
+          if (!scale.isApprox(Eigen::Vector3d::Ones())) warn(k, what + ": <scale> is not applied");
+        } else if (ktag == "link") {
+          const std::string lname = k->Attribute("name") ? trimText(k->Attribute("name")) : "";
+          auto l = std::find_if(m->links.begin(), m->links.end(),
+                                [&](const LinkDescription& d) { return d.name == lname; });
+          if (l == m->links.end())
+            fail(k, what + " names link '" + lname + "', which the model does not have");
+          // A link's state pose is its world pose.
+          if (const XMLElement* p = k->FirstChildElement("pose"))
+            l->X_ML = m->X_WM.inverse() * pose(p, what + " link '" + lname + "'");
+        } else if (ktag != "joint") {
+          unsupported(k);
+        }
+      }
+    } else {
+      unsupported(c);
+    }
+  }
+}
+
+Parser::IncludeSpec Parser::parseIncludeSpec(const XMLElement* e) {
+  IncludeSpec spec;
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    if (tag == "uri") {
+      spec.uri = text(c);
+    } else if (tag == "pose") {
+      spec.X = pose(c, "<include>");
+      spec.has_pose = true;
+    } else if (tag == "name") {
+      spec.name = text(c);
+    } else if (tag == "static") {
+      spec.is_static = boolean(c, "<include>");
+    } else {
+      unsupported(c);
+    }
+  }
+  while (!spec.uri.empty() && spec.uri.back() == '/') spec.uri.pop_back();
+  if (spec.uri.empty()) fail(e, "<include> has no <uri>");
+  return spec;
+}
+
+void Parser::parseInclude(const XMLElement* e, WorldDescription& world) {
+  const IncludeSpec spec = parseIncludeSpec(e);
+  if (spec.uri == "model://ground_plane") {
+    if (world.ground_plane) warn(e, "model://ground_plane included twice; using the last pose");
+    world.ground_plane = true;
+    world.X_WG = spec.X;
+  } else if (spec.uri == "model://sun") {
+    DirectionalLight sun;  // Gazebo's sun model: the defaults of DirectionalLight
+    if (spec.has_pose) sun.direction = spec.X.linear() * sun.direction;
+    world.sun = sun;
+  } else {
+    world.models.push_back(includeModel(e, spec));
+  }
+}
+
+std::vector<std::string> Parser::modelDirs() const {
+  std::vector<std::string> dirs = splitPath(std::getenv("GAZEBO_MODEL_PATH"));
+  dirs.insert(dirs.end(), options_.model_paths.begin(), options_.model_paths.end());
+  dirs.insert(dirs.end(), model_roots_.begin(), model_roots_.end());
+  if (const char* home = std::getenv("HOME")) dirs.push_back(join(home, ".gazebo/models"));
+  for (const std::string& d : rosExportedModelPaths()) dirs.push_back(d);
+  dirs.push_back(base_dir_);
+  dirs.push_back(join(base_dir_, "models"));
+  return dirs;
+}
+
+ModelDescription Parser::includeModel(const XMLElement* e, const IncludeSpec& spec) {
+  // The model's folder: model://NAME in the model folders, or a file:// / plain path.
+  std::string dir;
+  std::vector<std::string> tried;
+  if (startsWith(spec.uri, "model://")) {
+    const std::string rest = spec.uri.substr(8);
+    for (const std::string& d : modelDirs()) {
+      const std::string p = join(d, rest);
+      tried.push_back(d);
+      if (isDir(p)) {
+        dir = p;
+        break;
+      }
+    }
+  } else {
+    std::string p = startsWith(spec.uri, "file://") ? spec.uri.substr(7) : spec.uri;
+    if (!p.empty() && p[0] != '/') p = join(base_dir_, p);
+    tried.push_back(p);
+    if (isDir(p)) dir = p;
+  }
+  if (dir.empty()) {
+    std::string msg = "<include> of '" + spec.uri + "': model not found; searched:";
+    for (const std::string& t : tried) msg += " " + t;
+    if (startsWith(spec.uri, "model://"))
+      msg += " (set GAZEBO_MODEL_PATH, or export gazebo_model_path from a ROS package)";
+    fail(e, msg);
+  }
+  // model.config names the model file(s): the highest SDF version we read (<= 1.7) wins.
+  std::string file;
+  const std::string config = join(dir, "model.config");
+  if (isFile(config)) {
+    tinyxml2::XMLDocument doc;
+    if (doc.LoadFile(config.c_str()) != tinyxml2::XML_SUCCESS)
+      fail(e, "<include> of '" + spec.uri + "': " + config + " is not valid XML");
+    const XMLElement* root = doc.RootElement();
+    double best = -1.0;
+    for (const XMLElement* s = root ? root->FirstChildElement("sdf") : nullptr; s;
+         s = s->NextSiblingElement("sdf")) {
+      const double v = sdfVersion(s->Attribute("version"));
+      if (v <= 1.7 + 1e-9 && v > best && s->GetText()) {
+        best = v;
+        file = join(dir, trimText(s->GetText()));
+      }
+    }
+    if (file.empty())
+      fail(e, "<include> of '" + spec.uri + "': " + config + " names no <sdf> file of version <= 1.7");
+  } else if (isFile(join(dir, "model.sdf"))) {
+    file = join(dir, "model.sdf");
+  } else {
+    fail(e, "<include> of '" + spec.uri + "': " + dir + " has neither model.config nor model.sdf");
+  }
+  std::string canonical = file;
+  std::error_code ec;
+  const auto c = std::filesystem::weakly_canonical(file, ec);
+  if (!ec) canonical = c.string();
+  if (std::find(include_stack_.begin(), include_stack_.end(), canonical) != include_stack_.end()) {
+    std::string chain;
+    for (const std::string& f : include_stack_) chain += f + " -> ";
+    fail(e, "<include> loop: " + chain + canonical);
+  }
+  std::ifstream in(file);
+  if (!in) fail(e, "<include> of '" + spec.uri + "': cannot read " + file);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  Parser sub(file, dir, options_);
+  sub.include_stack_ = include_stack_;
+  sub.include_stack_.push_back(canonical);
+  sub.model_roots_ = model_roots_;
+  // Its siblings, and what the including file could reach, resolve its model:// URIs too.
+  sub.model_roots_.push_back(dirName(dir));
+  sub.model_roots_.push_back(base_dir_);
+  sub.model_roots_.push_back(join(base_dir_, "models"));
+  ModelDescription m = sub.parseModelFile(ss.str());
+  if (!spec.name.empty()) m.name = spec.name;
+  if (spec.has_pose) m.X_WM = spec.X;
+  if (spec.is_static) m.is_static = *spec.is_static;
+  return m;
+}
+
+void Parser::mergeSubModel(ModelDescription* m, const ModelDescription& sub,
+                           const Eigen::Isometry3d& X_MS) {
+  for (LinkDescription l : sub.links) {
+    l.name = sub.name + "::" + l.name;
+    l.X_ML = X_MS * l.X_ML;
+    m->links.push_back(std::move(l));
+  }
+  for (JointDescription j : sub.joints) {
+    j.name = sub.name + "::" + j.name;
+    if (j.parent != "world") j.parent = sub.name + "::" + j.parent;
+    if (j.child != "world") j.child = sub.name + "::" + j.child;
+    m->joints.push_back(std::move(j));
+  }
+}
+
+}  // namespace world_internal
+}  // namespace tianracer_sim

@@ -1,0 +1,85 @@
+// The SDF world parser's pieces shared by world.cpp (worlds, models, links, geometry) and
+// world_include.cpp (<include>, model files and model:// search, <state>). Private to src/world.
+#ifndef TIANRACER_SIM_SRC_WORLD_WORLD_PARSER_H
+#define TIANRACER_SIM_SRC_WORLD_WORLD_PARSER_H
+
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <tinyxml2.h>
+
+#include "tianracer_sim/common/xml_reader.h"
+#include "tianracer_sim/world/world.h"
+
+namespace tianracer_sim {
+namespace world_internal {
+
+using tinyxml2::XMLElement;
+
+bool isFile(const std::string& path);
+bool isDir(const std::string& path);
+std::string join(const std::string& dir, const std::string& rest);
+/// "." for a bare file name.
+std::string dirName(const std::string& path);
+bool startsWith(const std::string& s, const std::string& prefix);
+/// A ':'-separated list of folders (empty entries dropped).
+std::vector<std::string> splitPath(const char* env);
+/// The gazebo_model_path exports of the ROS packages under ROS_PACKAGE_PATH.
+std::vector<std::string> rosExportedModelPaths();
+
+/// State shared by the parse functions of one file.
+class Parser : public XmlReader {
+ public:
+  Parser(std::string source, std::string base_dir, const WorldLoadOptions& options)
+      : XmlReader(source, options.warn, [](const std::string& m) { throw WorldError(m); }),
+        source_(std::move(source)), base_dir_(std::move(base_dir)), options_(options) {}
+
+  WorldDescription parse(const std::string& xml);
+  /// A model file (<sdf><model>) of an <include>.
+  ModelDescription parseModelFile(const std::string& xml);
+
+  /// Model files being included, outermost first (an <include> loop is an error).
+  std::vector<std::string> include_stack_;
+  /// Folders an enclosing <include> found its model in (searched for model:// URIs too).
+  std::vector<std::string> model_roots_;
+
+ private:
+  void parsePhysics(const XMLElement* e, PhysicsSettings& physics);
+  void parseScene(const XMLElement* e, WorldDescription& world);
+  void parseInclude(const XMLElement* e, WorldDescription& world);
+  void parseLight(const XMLElement* e, WorldDescription& world);
+  ModelDescription parseModel(const XMLElement* e);
+  LinkDescription parseLink(const XMLElement* e, const std::string& model);
+  InertialDescription parseInertial(const XMLElement* e, const std::string& what);
+  Shape parseGeometry(const XMLElement* e, const std::string& what);
+  Friction parseSurface(const XMLElement* e, const std::string& what, ContactDescription* contact);
+  struct IncludeSpec {
+    std::string uri, name;
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    bool has_pose = false;
+    std::optional<bool> is_static;
+  };
+  IncludeSpec parseIncludeSpec(const XMLElement* e);
+  /// Resolves and parses the model an <include> names, with its <name>/<pose>/<static>.
+  ModelDescription includeModel(const XMLElement* e, const IncludeSpec& spec);
+  /// Folders searched for model://NAME: GAZEBO_MODEL_PATH, the load options' model_paths, the
+  /// folders of enclosing includes, ~/.gazebo/models, ROS packages' exported
+  /// gazebo_model_path, the world file's folder and its models/ subfolder.
+  std::vector<std::string> modelDirs() const;
+  void applyState(const XMLElement* e, WorldDescription& world, std::set<std::string>& names);
+  static void mergeSubModel(ModelDescription* m, const ModelDescription& sub,
+                            const Eigen::Isometry3d& X_MS);
+  JointDescription parseJoint(const XMLElement* e, const std::string& model);
+  std::string resolveMesh(const XMLElement* e, const std::string& uri, const std::string& what);
+
+  std::string source_;
+  std::string base_dir_;
+  const WorldLoadOptions& options_;
+};
+
+}  // namespace world_internal
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_SRC_WORLD_WORLD_PARSER_H

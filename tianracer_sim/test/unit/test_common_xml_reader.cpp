@@ -1,0 +1,208 @@
+// The XML reader every parser uses: text, numbers, vectors, poses, warn-once, unknown elements,
+// and the place (file:line) at the start of every message.
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "tianracer_sim/common/sdf_pose.h"
+#include "tianracer_sim/common/xml_reader.h"
+
+namespace tianracer_sim {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+using tinyxml2::XMLElement;
+
+struct TestError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// One document; `el(name)` finds the first element of that name anywhere in it.
+class XmlReaderTest : public ::testing::Test {
+ protected:
+  void load(const std::string& xml) {
+    ASSERT_EQ(doc_.Parse(xml.c_str()), tinyxml2::XML_SUCCESS) << xml;
+  }
+  const XMLElement* el(const char* name) const { return find(doc_.RootElement(), name); }
+  static const XMLElement* find(const XMLElement* e, const char* name) {
+    if (!e) return nullptr;
+    if (std::string(e->Name()) == name) return e;
+    for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement())
+      if (const XMLElement* f = find(c, name)) return f;
+    return nullptr;
+  }
+  // The message of the TestError `f` throws ("" when it throws none).
+  template <class F>
+  static std::string error(F f) {
+    try {
+      f();
+    } catch (const TestError& e) {
+      return e.what();
+    }
+    return "";
+  }
+
+  std::vector<std::string> warnings_;
+  tinyxml2::XMLDocument doc_;
+  XmlReader reader_{"room.world", [this](const std::string& w) { warnings_.push_back(w); },
+                    [](const std::string& m) { throw TestError(m); }};
+};
+
+TEST(XmlText, ParseNumberTakesTheWholeStringOnly) {
+  EXPECT_EQ(parseNumber("1.5"), 1.5);
+  EXPECT_EQ(parseNumber("  -2e3\n"), -2000.0);
+  EXPECT_EQ(parseNumber("+4"), 4.0);
+  EXPECT_FALSE(parseNumber(""));
+  EXPECT_FALSE(parseNumber("   "));
+  EXPECT_FALSE(parseNumber("1.5m"));
+  EXPECT_FALSE(parseNumber("1 2"));
+  EXPECT_FALSE(parseNumber("abc"));
+  EXPECT_FALSE(parseNumber("1,5"));  // never the locale's decimal comma
+  EXPECT_FALSE(parseNumber("++1"));
+}
+
+TEST(XmlText, ParseNumberLeavesNanAndInfToTheCaller) {
+  ASSERT_TRUE(parseNumber("nan"));
+  EXPECT_TRUE(std::isnan(*parseNumber("nan")));
+  ASSERT_TRUE(parseNumber("-inf"));
+  EXPECT_EQ(*parseNumber("-inf"), -INFINITY);
+  // Beyond double's range: saturates (so a finiteness check names it) instead of failing.
+  ASSERT_TRUE(parseNumber("1e999"));
+  EXPECT_EQ(*parseNumber("1e999"), INFINITY);
+}
+
+TEST(XmlText, ParseNumbersAndBools) {
+  EXPECT_EQ(parseNumbers(" 1 2.5\t-3\n"), std::vector<double>({1.0, 2.5, -3.0}));
+  EXPECT_EQ(parseNumbers(""), std::vector<double>());
+  EXPECT_FALSE(parseNumbers("1 two 3"));
+  EXPECT_EQ(parseBool(" true "), true);
+  EXPECT_EQ(parseBool("1"), true);
+  EXPECT_EQ(parseBool("false"), false);
+  EXPECT_EQ(parseBool("0"), false);
+  EXPECT_FALSE(parseBool("yes"));
+  EXPECT_FALSE(parseBool(""));
+}
+
+TEST_F(XmlReaderTest, TextAndAttributesAreTrimmed) {
+  load("<a name='  box '>\n  hello \n<b/></a>");
+  EXPECT_EQ(elementText(el("a")), "hello");
+  EXPECT_EQ(elementText(el("b")), "");
+  EXPECT_EQ(elementText(nullptr), "");
+  EXPECT_EQ(attributeText(el("a"), "name"), "box");
+  EXPECT_EQ(attributeText(el("a"), "missing"), "");
+  EXPECT_EQ(lineOf(el("b")), 3);
+  EXPECT_EQ(lineOf(nullptr), 0);
+}
+
+TEST_F(XmlReaderTest, NumbersNameFileLineElementAndValue) {
+  load("<physics>\n<step>0.001</step>\n<bad>fast</bad>\n<nan>nan</nan>\n<big>1e999</big>\n"
+       "<neg>-1</neg>\n<zero>0</zero>\n<two>1 2</two>\n<int>7</int>\n<frac>7.5</frac>\n"
+       "<plus>+7</plus><minus>-7</minus><huge>99999999999</huge></physics>");
+  EXPECT_EQ(reader_.number(el("step"), "<physics>"), 0.001);
+  EXPECT_EQ(error([&] { reader_.number(el("bad"), "<physics>"); }),
+            "room.world:3: <physics>: <bad> 'fast' is not a list of numbers");
+  EXPECT_EQ(error([&] { reader_.number(el("nan"), "<physics>"); }),
+            "room.world:4: <physics>: <nan> 'nan' is not finite");
+  EXPECT_EQ(error([&] { reader_.number(el("big"), "<physics>"); }),
+            "room.world:5: <physics>: <big> '1e999' is not finite");
+  EXPECT_EQ(error([&] { reader_.number(el("two"), "<physics>"); }),
+            "room.world:8: <physics>: <two> '1 2' is not a number");
+  EXPECT_EQ(reader_.nonNegative(el("zero"), "w"), 0.0);
+  EXPECT_EQ(error([&] { reader_.nonNegative(el("neg"), "w"); }),
+            "room.world:6: w: <neg> must be >= 0 (got -1)");
+  EXPECT_EQ(error([&] { reader_.positive(el("zero"), "w"); }),
+            "room.world:7: w: <zero> must be > 0 (got 0)");
+  EXPECT_EQ(reader_.integer(el("int"), "w"), 7);
+  EXPECT_EQ(reader_.integer(el("plus"), "w"), 7);
+  EXPECT_EQ(reader_.integer(el("minus"), "w"), -7);
+  EXPECT_THAT(error([&] { reader_.integer(el("huge"), "w"); }), HasSubstr("is not an integer"));
+  EXPECT_EQ(error([&] { reader_.integer(el("frac"), "w"); }),
+            "room.world:10: w: <frac> '7.5' is not an integer");
+  // Without a `what` the message starts at the element.
+  EXPECT_EQ(error([&] { reader_.integer(el("bad"), ""); }),
+            "room.world:3: <bad> 'fast' is not an integer");
+}
+
+TEST_F(XmlReaderTest, VectorsColoursBooleans) {
+  load("<m><v>1 2 3</v><v2>1 2</v2><c>0.1 0.2 0.3</c><c4>0.1 0.2 0.3 0.5</c4>"
+       "<b>true</b><nb>maybe</nb></m>");
+  EXPECT_EQ(reader_.vector3(el("v"), "m"), Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(error([&] { reader_.vector3(el("v2"), "m"); }),
+            "room.world:1: m: <v2> '1 2' is not 3 numbers \"x y z\"");
+  EXPECT_EQ(reader_.color(el("c"), "m"), Eigen::Vector4f(0.1f, 0.2f, 0.3f, 1.0f));
+  EXPECT_EQ(reader_.color(el("c4"), "m"), Eigen::Vector4f(0.1f, 0.2f, 0.3f, 0.5f));
+  EXPECT_THAT(error([&] { reader_.color(el("v2"), "m"); }), HasSubstr("is not a colour"));
+  EXPECT_TRUE(reader_.boolean(el("b"), "m"));
+  EXPECT_EQ(error([&] { reader_.boolean(el("nb"), "m"); }),
+            "room.world:1: m: <nb> 'maybe' is not a boolean (true/false/1/0)");
+}
+
+TEST_F(XmlReaderTest, PosesAreSdfPoses) {
+  load("<m>\n<pose>1 2 3 0.1 0.2 0.3</pose>\n<p5>1 2 3 4 5</p5>\n"
+       "<pr relative_to='other'>0 0 1 0 0 0</pr></m>");
+  EXPECT_TRUE(reader_.pose(el("pose"), "model 'm'").isApprox(sdfPose(1, 2, 3, 0.1, 0.2, 0.3)));
+  const Eigen::Isometry3d X = sdfPose(0, 0, 0, 0, 0, M_PI / 2);  // yaw turns x onto y
+  EXPECT_TRUE((X.linear() * Eigen::Vector3d::UnitX()).isApprox(Eigen::Vector3d::UnitY()));
+  EXPECT_EQ(error([&] { reader_.pose(el("p5"), "model 'm'"); }),
+            "room.world:3: model 'm': <p5> '1 2 3 4 5' is not 6 numbers \"x y z roll pitch yaw\"");
+  EXPECT_TRUE(warnings_.empty());
+  reader_.pose(el("pr"), "model 'm'");
+  EXPECT_THAT(warnings_, ElementsAre("room.world:4: model 'm': <pose relative_to='other'> is not "
+                                     "supported; taken relative to the parent"));
+}
+
+TEST_F(XmlReaderTest, MissingElements) {
+  load("<link>\n<visual/>\n</link>");
+  EXPECT_EQ(reader_.required(el("link"), "visual", "link 'a'"), el("visual"));
+  EXPECT_EQ(error([&] { reader_.required(el("link"), "collision", "link 'a'"); }),
+            "room.world:1: link 'a': <link> has no <collision>");
+}
+
+TEST_F(XmlReaderTest, UnknownElementsAreReportedOncePerParentAndTag) {
+  load("<world>\n<physics/>\n<wind/>\n<wind/>\n<model><wind/></model>\n<magnet/>\n</world>");
+  EXPECT_EQ(reader_.checkChildren(el("world"), {"physics", "model"}), 3);
+  reader_.checkChildren(el("model"), {});
+  EXPECT_THAT(warnings_,
+              ElementsAre("room.world:3: <wind> in <world> is not supported, ignored",
+                          "room.world:6: <magnet> in <world> is not supported, ignored",
+                          "room.world:5: <wind> in <model> is not supported, ignored"));
+  warnings_.clear();
+  reader_.unsupported(el("physics"), "not simulated");
+  EXPECT_THAT(warnings_, ElementsAre("room.world:2: <physics> in <world> is not supported, "
+                                     "ignored (not simulated)"));
+}
+
+TEST_F(XmlReaderTest, WarningsAreForwardedOnce) {
+  load("<a/>");
+  reader_.warn(el("a"), "odd");
+  reader_.warn(el("a"), "odd");
+  reader_.warn("placed elsewhere");
+  reader_.warn("placed elsewhere");
+  reader_.warnOnce("key", "first text");
+  reader_.warnOnce("key", "second text");
+  EXPECT_THAT(warnings_, ElementsAre("room.world:1: odd", "placed elsewhere", "first text"));
+}
+
+TEST_F(XmlReaderTest, AnEmptySinkDropsWarningsAndAPlaceFunctionNamesThePlace) {
+  load("<sensor>\n<samples>many</samples></sensor>");
+  XmlReader quiet("x", {}, [](const std::string& m) { throw TestError(m); },
+                  [](const XMLElement* e) { return "sensor 'lidar' (line " + std::to_string(lineOf(e)) + "): "; });
+  quiet.unsupported(el("samples"));  // no sink: nothing to call, nothing breaks
+  EXPECT_EQ(quiet.at(el("samples")), "sensor 'lidar' (line 2): ");
+  EXPECT_EQ(error([&] { quiet.integer(el("samples"), ""); }),
+            "sensor 'lidar' (line 2): <samples> 'many' is not an integer");
+}
+
+TEST_F(XmlReaderTest, ARaiseThatReturnsStillStopsTheParse) {
+  load("<a>x</a>");
+  XmlReader careless("f", {}, [](const std::string&) {});
+  EXPECT_THROW(careless.number(el("a"), "a"), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace tianracer_sim
