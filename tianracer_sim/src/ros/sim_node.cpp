@@ -330,6 +330,7 @@ void SimNode::setUpSensor(size_t robot_index, const SensorSpec& spec) {
   setup.seed = seed_;
   setup.index = sensors_of_kind_[kind->id];
   setup.gravity = sim_->physics().options().gravity;
+  setup.dt = sim_->physics().options().dt;
   setup.root = root;
   setup.static_tf = &static_tf_;
   setup.warn = [](const std::string& w) { warnOnce(w); };
@@ -406,6 +407,30 @@ const Scene& SimNode::scene() {
 
 Eigen::Isometry3d SimNode::linkPose(std::size_t robot, const std::string& link) const {
   return sim_->physics().robot(robots_[robot].robot->id).linkPose(link);
+}
+
+void SimNode::linkContacts(std::size_t robot, const std::string& link,
+                           std::vector<BumperContact>* out) {
+  out->clear();
+  PhysicsWorld& world = sim_->physics();
+  const RobotId id = robots_[robot].robot->id;
+  const PhysicsRobot& pr = world.robot(id);
+  const auto it = pr.tree().links.find(link);
+  if (it == pr.tree().links.end()) return;
+  robotContacts(world, id, &contact_scratch_);
+  for (const RobotContact& c : contact_scratch_) {
+    if (c.body != it->second.first) continue;
+    BumperContact b;
+    b.own = pr.name() + "::" + pr.tree().bodies.at(c.body).link;
+    std::string other_link;
+    contacts_->otherOf(world, c, &b.other, &other_link);
+    if (!other_link.empty()) b.other += "::" + other_link;
+    b.position_W = c.position_W;
+    b.normal_W = c.normal_W;
+    b.depth = c.depth;
+    b.impulse = c.impulse;
+    out->push_back(std::move(b));
+  }
 }
 
 bool SimNode::linkState(std::size_t robot, const std::string& link, LinkState* state) const {

@@ -125,6 +125,8 @@ class SimNode : private SensorHost {
   Eigen::Isometry3d linkPose(std::size_t robot, const std::string& link) const override;
   bool linkState(std::size_t robot, const std::string& link, LinkState* state) const override;
   void requestFrame(const FrameRequest& request) override { due_frames_.frames.push_back(request); }
+  void linkContacts(std::size_t robot, const std::string& link,
+                    std::vector<BumperContact>* out) override;
   SensorStat& stat(std::size_t index) override { return stats_[index]; }
 
   bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
@@ -153,6 +155,7 @@ class SimNode : private SensorHost {
   std::uint64_t seed_ = 0;
   std::vector<RobotIo> robots_;
   std::unique_ptr<ContactPublisher> contacts_;  // robots' contacts and their counts
+  std::vector<RobotContact> contact_scratch_;   // for linkContacts
   std::map<std::string, std::string> topic_owner_;  // sensor topics: who publishes there
 
   ros::Publisher clock_pub_;
