@@ -55,6 +55,7 @@
 #include "tianracer_sim/ros/borrowed_msgs.h"
 #include "tianracer_sim/ros/contact_publisher.h"
 #include "tianracer_sim/ros/gazebo_interface.h"
+#include "tianracer_sim/ros/lockstep.h"
 #include "tianracer_sim/ros/sensors/sensor_publisher.h"
 #include "tianracer_sim/scene/scene.h"
 #include "tianracer_sim/sim/frame_worker.h"
@@ -115,7 +116,8 @@ class SimNode : private SensorHost {
   void updateScene();
   void setUpJointStates(RobotIo& io);
   void stepOnce();
-  void publishDue();
+  /// Publishes what is due at this step; `clock` false leaves /clock to the caller (lockstep).
+  void publishDue(bool clock = true);
   void publishClock();
   void restartSchedules();
 
@@ -165,6 +167,7 @@ class SimNode : private SensorHost {
   bool paused_ = false;
   bool pacing_reset_ = true;
   std::vector<ros::ServiceServer> services_;
+  std::unique_ptr<Lockstep> lockstep_;  // null unless ~lockstep/ names topics
   std::unique_ptr<GazeboInterface> gazebo_;  // gazebo_msgs topics and services
 
   FrameJob due_frames_;  // filled each step, handed to the worker (capacity kept)
