@@ -3,7 +3,12 @@
 walled_room's box_front (its face at x = 1.8 m), publishes gazebo_msgs/ContactsState on
 /tianracer/bumper: empty before the car reaches the box, then states naming the box, with
 contact points at the box's face, normals pushing the car back and a force that stops it.
-Everything in sim time."""
+Everything in sim time. A bumper whose frameName is no link, and a contact sensor without the
+plugin, are left out with a message."""
+import os
+import signal
+import socket
+import subprocess
 import threading
 import time
 import unittest
@@ -13,13 +18,15 @@ import rostest
 from gazebo_msgs.msg import ContactsState
 from std_msgs.msg import Float64
 
+from sim_node_binary import node_binary
+
 WHEEL_RADIUS = 0.032
 COMMANDS = ['/tianracer/left_rear_wheel_velocity_controller/command',
             '/tianracer/right_rear_wheel_velocity_controller/command']
 
 
 class BumperTest(unittest.TestCase):
-    def test_car_into_box(self):
+    def test_a_car_into_box(self):
         rospy.init_node('test_bumper')
         lock = threading.Lock()
         states = []
@@ -68,6 +75,41 @@ class BumperTest(unittest.TestCase):
                       if st.collision2_name.startswith('box_front')]
             self.assertTrue(forces)
             self.assertLess(sum(forces) / len(forces), 0.0)
+        published = dict(rospy.get_published_topics())
+        self.assertIn('/tianracer/bumper', published)
+        self.assertNotIn('/tianracer/bad_bumper', published)
+
+    def test_b_bad_sensors_messages(self):
+        """What the node says about them: the same model in a sim of its own (own master), so
+        that its start-up output can be read."""
+        with socket.socket() as s:
+            s.bind(('localhost', 0))
+            port = s.getsockname()[1]
+        env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
+        master = subprocess.Popen(['rosmaster', '--core', '-p', str(port)], env=env,
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        try:
+            model = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data', 'urdf',
+                                 'tianracer_bumper.xacro')
+            node = subprocess.Popen([node_binary(), '__name:=bumper_bad_input', '_model:=' + model,
+                                     '_paused:=true', '_disable_sensors:=camera depth ray'],
+                                    env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                    universal_newlines=True)
+            try:  # paused, it runs until interrupted
+                out, _ = node.communicate(timeout=15)
+            except subprocess.TimeoutExpired:
+                node.send_signal(signal.SIGINT)
+                out, _ = node.communicate(timeout=10)
+        finally:
+            master.terminate()
+            master.wait(timeout=10)
+        bad = [l for l in out.splitlines() if 'bad_frame_bumper' in l and "'nowhere'" in l
+               and 'neither world nor a link' in l and 'left out' in l]
+        self.assertTrue(bad, out)
+        silent = [l for l in out.splitlines() if "'silent_contact'" in l
+                  and 'no libgazebo_ros_bumper plugin' in l]
+        self.assertTrue(silent, out)
+        self.assertIn("contact sensor 'bumper'", out)  # the good one is set up in the same run
 
 
 if __name__ == '__main__':
