@@ -27,6 +27,8 @@ MSG_MD5 = {
     'gazebo_msgs/ModelState': '9330fd35f2fcd82d457e54bd54e10593',
     'gazebo_msgs/ModelStates': '48c080191eb15c41858319b4d8a609c2',
     'gazebo_msgs/LinkStates': '48c080191eb15c41858319b4d8a609c2',
+    'gazebo_msgs/ContactState': '48c0ffb054b8c444f870cecea1ee50d9',
+    'gazebo_msgs/ContactsState': 'acbcb1601a8e525bf72509f18e6f668d',
 }
 SRV_MD5 = {
     'GetModelState': '4c515e936d3319c9610c559c60bfc3d4',

@@ -27,18 +27,22 @@ def rows_of(out):
         return list(csv.DictReader(f))
 
 
-def batch_processes():
-    """pids of live processes that any batch run started (they carry the run token)."""
+def batch_processes(root):
+    """pids of live processes that a batch run under `root` started: they carry a run token,
+    and their ROS_HOME is in the run's folder (other batches on the machine, e.g. another
+    checkout's tests, have theirs elsewhere)."""
     out = []
     needle = TOKEN_VAR.encode() + b'='
+    home = b'ROS_HOME=' + os.path.realpath(root).encode()
     for entry in os.listdir('/proc'):
         if not entry.isdigit():
             continue
         try:
             with open('/proc/%s/environ' % entry, 'rb') as f:
-                if any(v.startswith(needle) for v in f.read().split(b'\0')):
-                    with open('/proc/%s/cmdline' % entry, 'rb') as g:
-                        out.append((int(entry), g.read().replace(b'\0', b' ').decode(errors='replace')))
+                env = f.read().split(b'\0')
+            if any(v.startswith(needle) for v in env) and any(v.startswith(home) for v in env):
+                with open('/proc/%s/cmdline' % entry, 'rb') as g:
+                    out.append((int(entry), g.read().replace(b'\0', b' ').decode(errors='replace')))
         except OSError:
             pass
     return out
@@ -73,7 +77,7 @@ class TestBatch(unittest.TestCase):
                 self.assertLess(float(r['distance']), 10 * float(r['driver.args.speed']), r)
                 self.assertEqual(r['leftover_processes'], '0')
             results.append(rows)
-        self.assertEqual(batch_processes(), [])
+        self.assertEqual(batch_processes(self.tmp), [])
         for a, b in zip(*results):
             self.assertEqual(a['label'], b['label'])
             self.assertEqual((a['completed'], a['collisions']), (b['completed'], b['collisions']))
@@ -103,7 +107,7 @@ class TestBatch(unittest.TestCase):
         self.assertIn('### run_002', md)
         self.assertIn('$ sleep 600', md)  # the hanging driver's log
         self.assertNotIn('### run_000', md)
-        self.assertEqual(batch_processes(), [])
+        self.assertEqual(batch_processes(self.tmp), [])
 
     def test_collision_with_a_wall(self):
         out = os.path.join(self.tmp, 'wall')
@@ -129,7 +133,7 @@ class TestBatch(unittest.TestCase):
                 break
         self.assertIsNotNone(t_contact, 'the car never stopped at the box')
         self.assertAlmostEqual(float(row['first_collision_time']), t_contact, delta=0.05)
-        self.assertEqual(batch_processes(), [])
+        self.assertEqual(batch_processes(self.tmp), [])
 
     def test_scenario_error_starts_nothing(self):
         out = os.path.join(self.tmp, 'invalid')

@@ -129,6 +129,16 @@ class TestScenarioErrors(unittest.TestCase):
               driver: {args: {speed: 1}}
             """, 4, 'driver needs exactly one of')
 
+    def test_negative_reply_period(self):
+        self.assertProblem("""\
+            base:
+              world: empty
+              duration: 5
+              driver:
+                command: rosrun tianracer_bringup pure_pursuit
+                reply_period: -0.02
+            """, 6, 'driver.reply_period must be >= 0')
+
     def test_bad_metric(self):
         self.assertProblem("""\
             base:
@@ -183,6 +193,24 @@ class TestExpansion(unittest.TestCase):
         sc, _ = load_text("base: {world: empty, duration: 3}\n")
         self.assertEqual(len(sc.runs), 1)
         self.assertEqual(sc.runs[0].label, 'base')
+
+    def test_lockstep_parameters(self):
+        """At real_time_factor 0 the simulator waits for the driver's ready_topic each
+        reply_period and for the controller commands; otherwise, or with reply_period 0, not."""
+        sc, _ = load_text("""\
+            base:
+              world: empty
+              duration: 5
+              driver: {command: rosrun tianracer_bringup pure_pursuit}
+            matrix:
+              real_time_factor: [0, 2]
+              driver.reply_period: [0.025, 0]
+            """)
+        got = [scenario.lockstep(r.config) for r in sc.runs]
+        self.assertEqual(got[0], {'replies': '/cmd_vel', 'reply_period': 0.025, 'ticks': 'commands'})
+        self.assertEqual(got[1:], [{}, {}, {}])
+        sc, _ = load_text("base: {world: empty, duration: 3}\n")
+        self.assertEqual(scenario.lockstep(sc.runs[0].config), {})
 
     def test_shipped_scenarios_load(self):
         files = sorted(glob.glob(os.path.join(SHIPPED, '*.yaml')))

@@ -12,9 +12,10 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
 from tf2_msgs.msg import TFMessage
 
+from tianracer_bringup.ros_session import yaw_from_quaternion
 
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+
+yaw_of = yaw_from_quaternion
 
 
 def wall_wait(predicate, wall_timeout):

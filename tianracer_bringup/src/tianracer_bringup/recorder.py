@@ -16,10 +16,7 @@ import threading
 import time
 
 from tianracer_bringup.metrics import Metrics, get_field
-
-
-def _yaw(q):
-    return math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
+from tianracer_bringup.ros_session import yaw_from_quaternion
 
 
 def main(argv):
@@ -57,7 +54,7 @@ def main(argv):
         p = msg.pose.pose.position
         v = msg.twist.twist.linear
         with lock:
-            m.on_truth(msg.header.stamp.to_sec(), p.x, p.y, _yaw(msg.pose.pose.orientation),
+            m.on_truth(msg.header.stamp.to_sec(), p.x, p.y, yaw_from_quaternion(msg.pose.pose.orientation),
                        math.sqrt(v.x * v.x + v.y * v.y + v.z * v.z))
 
     def on_odom(msg):

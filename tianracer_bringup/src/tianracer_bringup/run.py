@@ -2,8 +2,8 @@
 simulator paused until the recorder and the user's driver are connected, then unpaused and run to
 the scenario's sim duration; everything stopped afterwards, whatever happened.
 
-The approach is the one of tianracer_bringup/scripts/demo and bench/ros_session.py (a private
-master, roslaunch in its own session, SIGINT then SIGKILL). roslaunch puts every node in a new
+The approach is the one of tianracer_bringup.ros_session (a private master, roslaunch in its
+own session, SIGINT then SIGKILL). roslaunch puts every node in a new
 session, so process groups do not reach them all: every process of a run carries the environment
 variable TIANRACER_BATCH_RUN=<token>, and after stopping, the process table is searched for that
 token; survivors are killed and counted.
@@ -11,6 +11,7 @@ token; survivors are killed and counted.
 import json
 import os
 import re
+import resource
 import shlex
 import signal
 import socket
@@ -21,17 +22,12 @@ import uuid
 import xmlrpc.client
 from xml.sax.saxutils import quoteattr
 
-from tianracer_bringup.scenario import run_timeout
+from tianracer_bringup.ros_session import free_port, graph_connected, ros_env
+from tianracer_bringup.scenario import lockstep, run_timeout
 
 TOKEN_VAR = 'TIANRACER_BATCH_RUN'
 CALLER = '/batch_runner'
 LOG_TAIL_LINES = 25
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(('127.0.0.1', 0))
-        return s.getsockname()[1]
 
 
 def _fmt(v):
@@ -59,6 +55,8 @@ def sim_launch_xml(cfg):
         cmd = 'xacro %s %s' % (shlex.quote(model), ' '.join(
             shlex.quote('%s:=%s' % (k, _fmt(v))) for k, v in cfg['model_args'].items()))
         lines.append('  <param name="robot_description" command=%s />' % quoteattr(cmd))
+    for name, value in lockstep(cfg).items():
+        lines.append('  <param name="/tianracer_sim/lockstep/%s" value=%s />' % (name, quoteattr(_fmt(value))))
     for name, value in cfg['params'].items():
         lines.append('  <param name=%s value=%s />' % (quoteattr(name), quoteattr(_fmt(value))))
     lines.append('</launch>')
@@ -105,6 +103,13 @@ def processes_with_token(token):
     return out
 
 
+def children_cpu_seconds():
+    """CPU time (user + system) of this process's children that have exited and been waited
+    for, with their own waited-for descendants (roslaunch waits for its nodes)."""
+    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return ru.ru_utime + ru.ru_stime
+
+
 class RunFailed(Exception):
     pass
 
@@ -117,13 +122,8 @@ class _Run:
         os.makedirs(self.logs, exist_ok=True)
         self.port = free_port()
         self.token = uuid.uuid4().hex
-        env = dict(os.environ)
-        env['PATH'] = '/usr/bin:' + env.get('PATH', '')
-        env['ROS_MASTER_URI'] = 'http://localhost:%d' % self.port
-        env['ROS_HOSTNAME'] = 'localhost'
-        env.pop('ROS_IP', None)
+        env = ros_env(self.port, self.logs)
         env['ROS_HOME'] = os.path.join(run_dir, 'ros_home')
-        env['ROS_LOG_DIR'] = self.logs
         env[TOKEN_VAR] = self.token
         self.env = env
         self.procs = {}
@@ -231,6 +231,7 @@ def run_one(run_id, cfg, run_dir):
     """Runs one scenario run; never raises for a failed run. Returns a dict: id, status ('ok' or
     'failed'), reason, metrics (from the recorder), wall times, leftover processes, log tails."""
     wall0 = time.time()
+    cpu0 = children_cpu_seconds()  # a Ray worker runs one task at a time: the delta is this run's
     r = _Run(cfg, run_dir)
     timeout = run_timeout(cfg)
     deadline = wall0 + timeout
@@ -268,7 +269,9 @@ def run_one(run_id, cfg, run_dir):
             topic = cfg['driver']['ready_topic']
             if topic:
                 r.wait('the driver to publish %s' % topic, lambda: r.publishers(topic), deadline, watch)
-                time.sleep(0.3)  # the subscriber's connection follows the registration
+            # Connections follow registrations: unpaused earlier, a first message could be lost
+            # to one node and not another, and the run would start differently.
+            r.wait('the ROS graph to connect', lambda: graph_connected(r.master(), CALLER), deadline, watch)
         stage = 'running'
         result['startup_wall_time'] = time.time() - wall0
         t_unpause = time.time()
@@ -294,7 +297,11 @@ def run_one(run_id, cfg, run_dir):
         t_stop = time.time()
         leftovers = r.stop()
         result['stop_wall_time'] = time.time() - t_stop
-    result['wall_time'] = time.time() - wall0
+    # Every process of the run has been waited for by now (stop()), its nodes by roslaunch.
+    result['cpu_seconds'] = children_cpu_seconds() - cpu0
+    result['wall_start'] = wall0
+    result['wall_end'] = time.time()
+    result['wall_time'] = result['wall_end'] - wall0
     result['leftover_processes'] = len(leftovers)
     result['leftover_commands'] = r.leftover_names
     if result['status'] != 'ok' or result['metrics'] is None or not result['metrics']['success']:

@@ -52,7 +52,8 @@ SCHEMA = {
     'real_time_factor': (NUMBER, False, 0.0),
     'params': (ANY_MAP, False, {}),
     'driver': ({'launch': (STR, False, None), 'command': (STR_OR_LIST, False, None),
-                'args': (ANY_MAP, False, {}), 'ready_topic': (STR, False, '/cmd_vel')},
+                'args': (ANY_MAP, False, {}), 'ready_topic': (STR, False, '/cmd_vel'),
+                'reply_period': (NUMBER, False, 0.02)},
                False, None),
     'success': ({'laps': (INT, False, 0),
                  'goal': ({'x': (NUMBER, True, None), 'y': (NUMBER, True, None),
@@ -435,6 +436,9 @@ def _finish(cfg, c, base_node, combo_nodes, base_dir, check_files):
             d['command'] = [str(x) for x in d['command']]
         if d['command'] is not None and not d['command']:
             c.err(line_of('driver.command'), 'driver.command is empty')
+        if d['reply_period'] < 0:
+            c.err(line_of('driver.reply_period'),
+                  'driver.reply_period must be >= 0 sim seconds (0 = no lockstep), got %r' % d['reply_period'])
     s = cfg['success']
     if s is not None:
         if s['laps'] < 0:
@@ -446,6 +450,16 @@ def _finish(cfg, c, base_node, combo_nodes, base_dir, check_files):
         if names.count(n) > 1:
             c.err(line_of('metrics'), 'metric name %r is used twice' % n)
     return cfg
+
+
+def lockstep(cfg):
+    """The simulator's lockstep parameters for a run ({} = none): at real_time_factor 0 the
+    simulator waits each driver.reply_period for the driver's answer on its ready_topic, and for
+    the cmd_vel node's controller commands at each of its ticks."""
+    d = cfg['driver']
+    if cfg['real_time_factor'] != 0 or not d or not d['ready_topic'] or not d['reply_period']:
+        return {}
+    return {'replies': d['ready_topic'], 'reply_period': d['reply_period'], 'ticks': 'commands'}
 
 
 def run_timeout(cfg):

@@ -51,3 +51,21 @@ def pure_pursuit(path, x, y, yaw, index, lookahead):
         j = (j + 1) % n
     alpha = math.atan2(path[j][1] - y, path[j][0] - x) - yaw
     return 2.0 * math.sin(alpha) / lookahead, best
+
+
+class LapProgress:
+    """Distance along a closed path covered as the pursuit's nearest-point index advances."""
+
+    def __init__(self, path):
+        n = len(path)
+        self.segments = [math.hypot(path[(i + 1) % n][0] - path[i][0], path[(i + 1) % n][1] - path[i][1])
+                         for i in range(n)]
+        self.lap_length = sum(self.segments)
+        self.distance = 0.0
+
+    def advance(self, old, new):
+        """Adds the segments from index `old` forward to `new` (wrapping round the lap)."""
+        n = len(self.segments)
+        for k in range((new - old) % n):
+            self.distance += self.segments[(old + k) % n]
+        return self.distance

@@ -56,22 +56,7 @@ void ContactPublisher::publish(PhysicsWorld& world, Robot& r, const RobotContact
   msg.robot = r.name;
   const PhysicsRobot& own = world.robot(r.id);
   msg.link = own.tree().bodies.at(c.body).link;
-  if (c.other_robot >= 0) {
-    const PhysicsRobot& o = world.robot(c.other_robot);
-    msg.other_model = o.name();
-    msg.other_link = o.tree().bodies.at(c.other_body).link;
-  } else if (c.other_free_body >= 0) {
-    const PhysicsRobot& o = world.freeBody(c.other_free_body);
-    msg.other_model = o.name();
-    msg.other_link = o.tree().bodies.at(c.other_body).link;
-  } else if (c.other_static >= 0 && c.other_static < static_cast<int>(static_owners_.size())) {
-    msg.other_model = static_owners_[c.other_static].first;
-    msg.other_link = static_owners_[c.other_static].second;
-  } else if (c.other_static >= 0) {
-    msg.other_model = "static shape " + std::to_string(c.other_static);
-  } else {
-    msg.other_model = "ground_plane";
-  }
+  otherOf(world, c, &msg.other_model, &msg.other_link);
   msg.position.x = c.position_W.x();
   msg.position.y = c.position_W.y();
   msg.position.z = c.position_W.z();
@@ -81,6 +66,27 @@ void ContactPublisher::publish(PhysicsWorld& world, Robot& r, const RobotContact
   msg.depth = c.depth;
   msg.impulse = c.impulse;
   r.pub.publish(msg);
+}
+
+void ContactPublisher::otherOf(PhysicsWorld& world, const RobotContact& c, std::string* model,
+                               std::string* link) const {
+  link->clear();
+  if (c.other_robot >= 0) {
+    const PhysicsRobot& o = world.robot(c.other_robot);
+    *model = o.name();
+    *link = o.tree().bodies.at(c.other_body).link;
+  } else if (c.other_free_body >= 0) {
+    const PhysicsRobot& o = world.freeBody(c.other_free_body);
+    *model = o.name();
+    *link = o.tree().bodies.at(c.other_body).link;
+  } else if (c.other_static >= 0 && c.other_static < static_cast<int>(static_owners_.size())) {
+    *model = static_owners_[c.other_static].first;
+    *link = static_owners_[c.other_static].second;
+  } else if (c.other_static >= 0) {
+    *model = "static shape " + std::to_string(c.other_static);
+  } else {
+    *model = "ground_plane";
+  }
 }
 
 std::uint64_t ContactPublisher::count(RobotId id) const {

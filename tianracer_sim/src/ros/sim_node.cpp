@@ -135,6 +135,18 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh
   contacts_ = std::make_unique<ContactPublisher>(staticShapeOwners(*world_));
   for (RobotIo& io : robots_) contacts_->addRobot(root, io.robot->id, io.robot->name, io.ns);
 
+  std::vector<std::string> command_topics;
+  for (const RobotIo& io : robots_) {
+    for (const std::string& t : io.commands->topics()) command_topics.push_back(t);
+  }
+  LockstepOptions lockstep = lockstepOptions(pnh_, command_topics);
+  if (lockstep.enabled()) {
+    lockstep_ = std::make_unique<Lockstep>(root, &queue_, lockstep);
+    ROS_INFO("lockstep: each %g s waits for %zu reply topics, each %g s for %zu tick topics "
+             "(timeout %g s wall)", lockstep.reply_period, lockstep.replies.size(),
+             lockstep.tick_period, lockstep.ticks.size(), lockstep.timeout);
+  }
+
   ros::NodeHandle gazebo("/gazebo");
   gazebo.setCallbackQueue(&queue_);
   services_.push_back(gazebo.advertiseService("pause_physics", &SimNode::onPause, this));
@@ -330,6 +342,7 @@ void SimNode::setUpSensor(size_t robot_index, const SensorSpec& spec) {
   setup.seed = seed_;
   setup.index = sensors_of_kind_[kind->id];
   setup.gravity = sim_->physics().options().gravity;
+  setup.dt = sim_->physics().options().dt;
   setup.root = root;
   setup.static_tf = &static_tf_;
   setup.warn = [](const std::string& w) { warnOnce(w); };
@@ -406,6 +419,30 @@ const Scene& SimNode::scene() {
 
 Eigen::Isometry3d SimNode::linkPose(std::size_t robot, const std::string& link) const {
   return sim_->physics().robot(robots_[robot].robot->id).linkPose(link);
+}
+
+void SimNode::linkContacts(std::size_t robot, const std::string& link,
+                           std::vector<BumperContact>* out) {
+  out->clear();
+  PhysicsWorld& world = sim_->physics();
+  const RobotId id = robots_[robot].robot->id;
+  const PhysicsRobot& pr = world.robot(id);
+  const auto it = pr.tree().links.find(link);
+  if (it == pr.tree().links.end()) return;
+  robotContacts(world, id, &contact_scratch_);
+  for (const RobotContact& c : contact_scratch_) {
+    if (c.body != it->second.first) continue;
+    BumperContact b;
+    b.own = pr.name() + "::" + pr.tree().bodies.at(c.body).link;
+    std::string other_link;
+    contacts_->otherOf(world, c, &b.other, &other_link);
+    if (!other_link.empty()) b.other += "::" + other_link;
+    b.position_W = c.position_W;
+    b.normal_W = c.normal_W;
+    b.depth = c.depth;
+    b.impulse = c.impulse;
+    out->push_back(std::move(b));
+  }
 }
 
 bool SimNode::linkState(std::size_t robot, const std::string& link, LinkState* state) const {
@@ -570,10 +607,10 @@ void SimNode::publishClock() {
   clock_pub_.publish(clock);
 }
 
-void SimNode::publishDue() {
+void SimNode::publishDue(bool clock) {
   const double t = sim_->time();
   const ros::Time stamp(t);
-  if (clock_schedule_.due(t)) publishClock();
+  if (clock_schedule_.due(t) && clock) publishClock();
   for (RobotIo& io : robots_) {
     const PhysicsRobot& pr = sim_->physics().robot(io.robot->id);
     for (JointStateStream& s : io.joint_states) {
@@ -610,7 +647,21 @@ void SimNode::stepOnce() {
   gazebo_->beforeStep();
   sim_->step();
   contacts_->update(sim_->physics(), sim_->time());
-  publishDue();
+  const double t = sim_->time();
+  const bool replies = lockstep_ && lockstep_->repliesDue(t);
+  const bool ticks = lockstep_ && lockstep_->ticksDue(t);
+  if (!replies && !ticks) {
+    publishDue();
+  } else {
+    // The driver answers this step's sensor data before the clock moves on to this step, so
+    // that nodes on sim-time timers (the cmd_vel node) tick with its answer in hand.
+    if (replies) lockstep_->markReplies();
+    publishDue(false);
+    if (replies) lockstep_->awaitReplies(t);
+    if (ticks) lockstep_->markTicks();
+    publishClock();
+    if (ticks) lockstep_->awaitTicks(t);
+  }
   gazebo_->afterStep();
 }
 
@@ -668,6 +719,7 @@ bool SimNode::onResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Resp
   gazebo_->onReset();
   contacts_->reset();
   restartSchedules();
+  if (lockstep_) lockstep_->restart(sim_->time());
   pacing_reset_ = true;
   publishClock();
   return true;

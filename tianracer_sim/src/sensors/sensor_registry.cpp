@@ -7,6 +7,7 @@
 
 #include "tianracer_sim/lidar/ray_sensor.h"
 #include "tianracer_sim/render/camera_sensor.h"
+#include "tianracer_sim/sensors/bumper.h"
 #include "tianracer_sim/sensors/imu_sensor.h"
 #include "tianracer_sim/sensors/multicamera_topics.h"
 #include "tianracer_sim/sensors/p3d.h"
@@ -73,6 +74,11 @@ std::vector<SensorTopic> p3dTopics(const SensorSpec& sensor, const std::string& 
   return publishedTopics(parseP3dConfig(sensor, model_name, warn));
 }
 
+std::vector<SensorTopic> bumperTopics(const SensorSpec& sensor, const std::string& model_name,
+                                     const WarningSink& warn) {
+  return publishedTopics(parseBumperConfig(sensor, model_name, warn));
+}
+
 }  // namespace
 
 const std::vector<SensorKind>& sensorKinds() {
@@ -89,6 +95,7 @@ const std::vector<SensorKind>& sensorKinds() {
       {"imu", {"imu"}, {"libgazebo_ros_imu_sensor.so"}, &imuTopics},
       {"imu_plugin", {}, {"libgazebo_ros_imu.so"}, &imuPluginTopics},
       {"p3d", {}, {"libgazebo_ros_p3d.so"}, &p3dTopics},
+      {"bumper", {"contact"}, {"libgazebo_ros_bumper.so"}, &bumperTopics},
   };
   return kinds;
 }

@@ -135,6 +135,17 @@ class SimBadInput(unittest.TestCase):
         rospy.set_param('/robot_description', self.urdf)
         self.assert_fails(['real_time_factor', '-1'], '_real_time_factor:=-1.0')
 
+    def test_bad_lockstep_parameters(self):
+        rospy.set_param('/robot_description', self.urdf)
+        rospy.set_param('/sim_under_test/lockstep/replies', '/cmd_vel')
+        rospy.set_param('/sim_under_test/lockstep/reply_period', 0.0)
+        self.assert_fails(['/sim_under_test/lockstep/reply_period', 'must be a number > 0'],
+                          '_disable_sensors:=ray camera depth')
+        rospy.set_param('/sim_under_test/lockstep/reply_period', 0.02)
+        rospy.set_param('/sim_under_test/lockstep/ticks', [1, 2])
+        self.assert_fails(['/sim_under_test/lockstep/ticks', 'must be a list of topics'],
+                          '_disable_sensors:=ray camera depth')
+
     def test_empty_robot_list(self):
         rospy.set_param('/robot_description', self.urdf)
         rospy.set_param('/sim_under_test/robots', [])

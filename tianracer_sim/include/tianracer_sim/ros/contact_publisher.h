@@ -35,6 +35,9 @@ class ContactPublisher {
   void addRobot(ros::NodeHandle& nh, RobotId id, const std::string& name, const std::string& ns);
   /// After each step: queries every robot's contacts, publishes the due ones.
   void update(PhysicsWorld& world, double t);
+  /// The other object of a contact: model name and link ("" for a static shape's or the
+  /// ground's own).
+  void otherOf(PhysicsWorld& world, const RobotContact& c, std::string* model, std::string* link) const;
   /// Contacts begun since the start (a pair touching again after kSameContactGap counts again).
   std::uint64_t count(RobotId id) const;
   /// Forget contacts in progress (time jumped back on a reset).

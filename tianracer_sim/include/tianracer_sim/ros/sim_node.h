@@ -55,6 +55,7 @@
 #include "tianracer_sim/ros/borrowed_msgs.h"
 #include "tianracer_sim/ros/contact_publisher.h"
 #include "tianracer_sim/ros/gazebo_interface.h"
+#include "tianracer_sim/ros/lockstep.h"
 #include "tianracer_sim/ros/sensors/sensor_publisher.h"
 #include "tianracer_sim/scene/scene.h"
 #include "tianracer_sim/sim/frame_worker.h"
@@ -115,7 +116,8 @@ class SimNode : private SensorHost {
   void updateScene();
   void setUpJointStates(RobotIo& io);
   void stepOnce();
-  void publishDue();
+  /// Publishes what is due at this step; `clock` false leaves /clock to the caller (lockstep).
+  void publishDue(bool clock = true);
   void publishClock();
   void restartSchedules();
 
@@ -125,6 +127,8 @@ class SimNode : private SensorHost {
   Eigen::Isometry3d linkPose(std::size_t robot, const std::string& link) const override;
   bool linkState(std::size_t robot, const std::string& link, LinkState* state) const override;
   void requestFrame(const FrameRequest& request) override { due_frames_.frames.push_back(request); }
+  void linkContacts(std::size_t robot, const std::string& link,
+                    std::vector<BumperContact>* out) override;
   SensorStat& stat(std::size_t index) override { return stats_[index]; }
 
   bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
@@ -153,6 +157,7 @@ class SimNode : private SensorHost {
   std::uint64_t seed_ = 0;
   std::vector<RobotIo> robots_;
   std::unique_ptr<ContactPublisher> contacts_;  // robots' contacts and their counts
+  std::vector<RobotContact> contact_scratch_;   // for linkContacts
   std::map<std::string, std::string> topic_owner_;  // sensor topics: who publishes there
 
   ros::Publisher clock_pub_;
@@ -162,6 +167,7 @@ class SimNode : private SensorHost {
   bool paused_ = false;
   bool pacing_reset_ = true;
   std::vector<ros::ServiceServer> services_;
+  std::unique_ptr<Lockstep> lockstep_;  // null unless ~lockstep/ names topics
   std::unique_ptr<GazeboInterface> gazebo_;  // gazebo_msgs topics and services
 
   FrameJob due_frames_;  // filled each step, handed to the worker (capacity kept)

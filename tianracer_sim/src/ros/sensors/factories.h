@@ -16,6 +16,7 @@ std::unique_ptr<SensorPublisher> makeDepthCameraPublisher(const SensorSetup& set
 std::unique_ptr<SensorPublisher> makeImuPublisher(const SensorSetup& setup);
 std::unique_ptr<SensorPublisher> makeImuPluginPublisher(const SensorSetup& setup);
 std::unique_ptr<SensorPublisher> makeP3dPublisher(const SensorSetup& setup);
+std::unique_ptr<SensorPublisher> makeBumperPublisher(const SensorSetup& setup);
 
 }  // namespace tianracer_sim
 

@@ -31,6 +31,7 @@ std::unique_ptr<SensorPublisher> makeSensorPublisher(const SensorKind& kind,
       {"imu", &makeImuPublisher},
       {"imu_plugin", &makeImuPluginPublisher},
       {"p3d", &makeP3dPublisher},
+      {"bumper", &makeBumperPublisher},
   };
   const auto it = factories.find(kind.id);
   if (it == factories.end())

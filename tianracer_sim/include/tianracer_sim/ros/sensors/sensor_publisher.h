@@ -18,6 +18,7 @@
 #include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/render/renderer.h"
 #include "tianracer_sim/scene/scene.h"
+#include "tianracer_sim/sensors/bumper.h"  // BumperContact
 #include "tianracer_sim/sensors/p3d.h"  // LinkState
 #include "tianracer_sim/sensors/sensor_registry.h"
 
@@ -67,6 +68,10 @@ class SensorHost {
   /// Renders the frame on the frame worker from a snapshot of this step's scene, then
   /// calls request.sensor->renderFrame() there.
   virtual void requestFrame(const FrameRequest& request) = 0;
+  /// The contacts of the body that carries `link` in the last step (a wheel on the ground is
+  /// not one), named "model::link".
+  virtual void linkContacts(std::size_t robot, const std::string& link,
+                            std::vector<BumperContact>* out) = 0;
   virtual SensorStat& stat(std::size_t index) = 0;
 };
 
@@ -80,6 +85,7 @@ struct SensorSetup {
   std::uint64_t seed = 0;     // the node's ~seed
   int index = 0;              // sensors of this kind set up before this one
   Eigen::Vector3d gravity{0.0, 0.0, -9.8};  // the world's, m/s^2
+  double dt = 0.001;          // the physics step, s
   ros::NodeHandle root;       // "/" on the node's callback queue
   tf2_ros::StaticTransformBroadcaster* static_tf = nullptr;
   WarningSink warn;

@@ -1,10 +1,12 @@
-"""One roslaunch with its own master on its own port, and a reliable way to end it.
+"""What the demo, the benchmarks, the soak, the batch runner and the tests share: a ROS graph
+of their own (a private master on a free port, the environment for it), one roslaunch with a
+reliable way to end it, questions to the graph, and yaw from a quaternion.
 
 roslaunch starts every node (and the master) in a new session (os.setsid), so killing
 roslaunch's process group does not reach them: RosSession records the pid of the master and
 of every node it sees, asks roslaunch to shut down (SIGINT), and SIGKILLs whatever is left.
-Shared by bench/run_benchmarks and test/determinism_node.
 """
+import math
 import os
 import signal
 import socket
@@ -211,3 +213,39 @@ def proc_peak_rss_mb(pid):
             if line.startswith("VmHWM:"):
                 return int(line.split()[1]) / 1024.0
     return None
+
+
+def bus_connections(node_uri, caller=CALLER):
+    """A node's connections (getBusInfo): [id, other end, 'i'/'o'/'b', transport, topic, connected, ...]."""
+    code, _, info = xmlrpc.client.ServerProxy(node_uri).getBusInfo(caller)
+    return info if code == 1 else []
+
+
+def graph_connected(master, caller=CALLER):
+    """True when every publisher of every subscribed topic has a live connection to each of the
+    topic's subscribers (registration at the master comes before the connection: a message
+    published in between is lost to the subscriber that is not yet connected)."""
+    code, _, (pubs, subs, _) = master.getSystemState(caller)
+    if code != 1:
+        return False
+    subscribers = {t: set(nodes) for t, nodes in subs}
+    uris = {}
+    for topic, nodes in pubs:
+        wanted = subscribers.get(topic, set())
+        for node in nodes:
+            if not wanted - {node}:
+                continue
+            if node not in uris:
+                code, _, uri = master.lookupNode(caller, node)
+                uris[node] = uri if code == 1 else None
+            if not uris[node]:
+                return False
+            out = [c for c in bus_connections(uris[node], caller) if c[2] == 'o' and c[4] == topic and c[5]]
+            if len(out) < len(wanted - {node}):
+                return False
+    return True
+
+
+def yaw_from_quaternion(q):
+    """Yaw (rad) of a quaternion with fields x, y, z, w (REP-103: about z, from x towards y)."""
+    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))

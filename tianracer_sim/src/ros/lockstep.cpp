@@ -1,0 +1,130 @@
+#include "tianracer_sim/ros/lockstep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include <topic_tools/shape_shifter.h>
+
+namespace tianracer_sim {
+
+namespace {
+
+std::vector<std::string> topicList(const ros::NodeHandle& pnh, const std::string& key) {
+  std::vector<std::string> names;
+  XmlRpc::XmlRpcValue v;
+  if (!pnh.getParam(key, v)) return names;
+  const auto bad = [&] {
+    return std::runtime_error("parameter " + pnh.resolveName(key) +
+                              " must be a list of topics or a space-separated string, got " + v.toXml());
+  };
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeString) {
+    std::istringstream in(static_cast<std::string>(v));
+    for (std::string n; in >> n;) names.push_back(n);
+  } else if (v.getType() == XmlRpc::XmlRpcValue::TypeArray) {
+    for (int i = 0; i < v.size(); ++i) {
+      if (v[i].getType() != XmlRpc::XmlRpcValue::TypeString) throw bad();
+      names.push_back(static_cast<std::string>(v[i]));
+    }
+  } else {
+    throw bad();
+  }
+  return names;
+}
+
+double positive(const ros::NodeHandle& pnh, const std::string& key, double fallback) {
+  XmlRpc::XmlRpcValue v;
+  if (!pnh.getParam(key, v)) return fallback;
+  double x = NAN;
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) x = static_cast<double>(v);
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) x = static_cast<int>(v);
+  if (!(x > 0.0) || !std::isfinite(x)) {
+    throw std::runtime_error("parameter " + pnh.resolveName(key) + " must be a number > 0, got " +
+                             v.toXml());
+  }
+  return x;
+}
+
+}  // namespace
+
+LockstepOptions lockstepOptions(const ros::NodeHandle& pnh,
+                                const std::vector<std::string>& command_topics) {
+  LockstepOptions o;
+  o.replies = topicList(pnh, "lockstep/replies");
+  for (const std::string& t : topicList(pnh, "lockstep/ticks")) {
+    if (t == "commands") {
+      o.ticks.insert(o.ticks.end(), command_topics.begin(), command_topics.end());
+    } else {
+      o.ticks.push_back(t);
+    }
+  }
+  o.reply_period = positive(pnh, "lockstep/reply_period", o.reply_period);
+  o.tick_period = positive(pnh, "lockstep/tick_period", o.tick_period);
+  o.timeout = positive(pnh, "lockstep/timeout", o.timeout);
+  return o;
+}
+
+Lockstep::Lockstep(ros::NodeHandle nh, ros::CallbackQueue* queue, LockstepOptions options)
+    : queue_(queue), options_(std::move(options)) {
+  nh.setCallbackQueue(queue_);
+  subscribe(nh, options_.replies, &replies_);
+  subscribe(nh, options_.ticks, &ticks_);
+  reply_schedule_.period = options_.reply_period;
+  tick_schedule_.period = options_.tick_period;
+  restart(0.0);
+}
+
+void Lockstep::subscribe(ros::NodeHandle& nh, const std::vector<std::string>& names, Group* group) {
+  for (const std::string& name : names) {
+    auto topic = std::make_unique<Topic>();
+    topic->name = nh.resolveName(name);
+    Topic* raw = topic.get();
+    // Any type: only the arrival matters. tcp_nodelay, as the answer is awaited.
+    topic->sub = nh.subscribe<topic_tools::ShapeShifter>(
+        topic->name, 10,
+        [raw](const topic_tools::ShapeShifter::ConstPtr&) {
+          raw->arrived = true;
+          raw->absent = false;
+        },
+        ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
+    group->push_back(std::move(topic));
+  }
+}
+
+void Lockstep::restart(double t) {
+  // The data at t itself went out before anyone could answer it (start, reset): the first wait
+  // is one period later.
+  reply_schedule_.next = t + reply_schedule_.period;
+  tick_schedule_.next = t + tick_schedule_.period;
+}
+
+void Lockstep::mark(Group& group) {
+  queue_->callAvailable(ros::WallDuration(0.0));  // what already came answers an earlier step
+  for (auto& topic : group) topic->arrived = false;
+}
+
+void Lockstep::await(Group& group, double t, const char* after) {
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(options_.timeout);
+  while (ros::ok()) {
+    bool all = true;
+    for (const auto& topic : group) all = all && (topic->arrived || topic->absent);
+    if (all) return;
+    const ros::WallTime now = ros::WallTime::now();
+    if (now >= deadline) break;
+    queue_->callAvailable(std::min(deadline - now, ros::WallDuration(0.01)));
+  }
+  for (auto& topic : group) {
+    if (topic->arrived || topic->absent) continue;
+    topic->absent = true;
+    ++timeouts_;
+    if (!topic->reported) {
+      ROS_WARN("lockstep: nothing on %s within %g s (wall) after %s sim time %.3f s: going on "
+               "without it until its next message (reported once per topic)",
+               topic->name.c_str(), options_.timeout, after, t);
+      topic->reported = true;
+    }
+  }
+}
+
+}  // namespace tianracer_sim
