@@ -33,6 +33,8 @@ class ContactPublisher {
       : static_owners_(std::move(static_owners)) {}
 
   void addRobot(ros::NodeHandle& nh, RobotId id, const std::string& name, const std::string& ns);
+  /// Stops publishing for a robot that was deleted (its topic shuts down).
+  void removeRobot(RobotId id);
   /// After each step: queries every robot's contacts, publishes the due ones.
   void update(PhysicsWorld& world, double t);
   /// Contacts begun since the start (a pair touching again after kSameContactGap counts again).
