@@ -30,6 +30,13 @@ void ContactPublisher::addRobot(ros::NodeHandle& nh, RobotId id, const std::stri
   robots_.push_back(std::move(r));
 }
 
+void ContactPublisher::setStaticOwner(int index, const std::string& model,
+                                      const std::string& link) {
+  if (index < 0) return;
+  if (index >= static_cast<int>(static_owners_.size())) static_owners_.resize(index + 1);
+  static_owners_[index] = {model, link};
+}
+
 void ContactPublisher::removeRobot(RobotId id) {
   robots_.erase(std::remove_if(robots_.begin(), robots_.end(),
                                [id](const Robot& r) { return r.id == id; }),

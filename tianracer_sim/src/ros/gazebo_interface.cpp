@@ -49,8 +49,8 @@ void addRobotNamespace(tinyxml2::XMLElement* e, const std::string& ns) {
 std::string withRobotNamespace(const std::string& urdf, const std::string& robot_namespace) {
   tinyxml2::XMLDocument doc;
   if (doc.Parse(urdf.data(), urdf.size()) != tinyxml2::XML_SUCCESS) {
-    throw std::runtime_error("malformed XML at line " + std::to_string(doc.ErrorLineNum()) +
-                             ": " + doc.ErrorStr());
+    throw std::runtime_error("model_xml:" + std::to_string(doc.ErrorLineNum()) +
+                             ": malformed XML: " + doc.ErrorName());
   }
   if (robot_namespace.empty()) return urdf;
   addRobotNamespace(doc.RootElement(), robot_namespace);

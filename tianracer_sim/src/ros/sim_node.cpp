@@ -748,6 +748,13 @@ void SimNode::spawnWorldModel(const std::string& name, const std::string& sdf,
   const WorldModelBodies added =
       addModelToPhysics(*world_, model, &sim_->physics(), [](const std::string& w) { warnOnce(w); });
   world_bodies_[name] = added;
+  // Static shapes were added link by link, collision by collision.
+  std::size_t k = 0;
+  for (const LinkDescription& link : model.links) {
+    for (std::size_t c = 0; c < link.collisions.size() && k < added.statics.size(); ++c) {
+      contacts_->setStaticOwner(added.statics[k++], name, link.name);
+    }
+  }
   WorldDescription one;
   one.models.push_back(model);
   addToScene(one, scene_);

@@ -5,7 +5,8 @@
   joint_states, scan and ground truth appear under /car2 and it drives from /car2/cmd_vel;
 - delete_model removes it: nothing more on its topics in sim time, gone from model_states;
   its name can be spawned again;
-- spawn_sdf_model adds a box that falls and rests on the ground;
+- spawn_sdf_model adds a box that falls and rests on the ground, where the other car's lidar
+  sees it; once deleted, the lidar no longer does;
 - bad input (malformed URDF/SDF, a duplicate name, deleting an unknown model) is answered with
   success false and a message, nothing is half-spawned and the sim runs on.
 Sim time throughout; wall time only bounds the waits.
@@ -18,7 +19,8 @@ import unittest
 import rospy
 import rostest
 from gazebo_msgs.msg import ModelStates
-from gazebo_msgs.srv import DeleteModel, GetModelState, GetWorldProperties, SpawnModel
+from gazebo_msgs.srv import (DeleteModel, GetLinkState, GetModelState, GetWorldProperties,
+                             SpawnModel)
 from geometry_msgs.msg import Pose, Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import JointState, LaserScan
@@ -151,8 +153,21 @@ class SpawnTest(unittest.TestCase):
         res = self.delete('car2')
         self.assertTrue(res.success, res.status_message)
 
+    def scan_ahead(self, after):
+        """tianracer's lidar range straight ahead, from a scan stamped after `after` (sim s)."""
+        end = time.time() + WALL_TIMEOUT
+        while time.time() < end:
+            scan = rospy.wait_for_message('/scan', LaserScan, timeout=WALL_TIMEOUT)
+            if scan.header.stamp.to_sec() > after:
+                i = int(round((0.0 - scan.angle_min) / scan.angle_increment))
+                return scan.ranges[i]
+        self.fail('no scan after %.2f s' % after)
+
     def test_2_spawned_box_falls_and_rests(self):
-        res = self.spawn_sdf('box', BOX, '', pose(1.0, -1.0, 1.0), '')
+        # Straight ahead of tianracer (at the origin, facing +x), so its lidar sees it.
+        r = self.scan_ahead(rospy.Time.now().to_sec())
+        self.assertTrue(not math.isfinite(r) or r > 5.0, 'something ahead already: %g' % r)
+        res = self.spawn_sdf('box', BOX, '', pose(1.0, 0.0, 1.0), '')
         self.assertTrue(res.success, res.status_message)
         self.assertIn('box', self.models())
         self.wait_sim(2.0)
@@ -162,9 +177,21 @@ class SpawnTest(unittest.TestCase):
         self.assertAlmostEqual(s.pose.position.z, 0.1, delta=0.005)
         v = s.twist.linear
         self.assertLess(math.sqrt(v.x ** 2 + v.y ** 2 + v.z ** 2), 0.01)
+        # The lidar (0.094 m ahead of base_link) sees the box's near face at x 0.9.
+        lidar_x = self.get_link_x('tianracer::lidar')
+        self.assertAlmostEqual(self.scan_ahead(rospy.Time.now().to_sec()), 0.9 - lidar_x,
+                               delta=0.03)
         res = self.delete('box')
         self.assertTrue(res.success, res.status_message)
         self.assertNotIn('box', self.models())
+        r = self.scan_ahead(rospy.Time.now().to_sec())
+        self.assertTrue(not math.isfinite(r) or r > 5.0, 'the deleted box is still seen: %g' % r)
+
+    def get_link_x(self, link):
+        rospy.wait_for_service('/gazebo/get_link_state', timeout=WALL_TIMEOUT)
+        res = rospy.ServiceProxy('/gazebo/get_link_state', GetLinkState)(link, 'world')
+        self.assertTrue(res.success, res.status_message)
+        return res.link_state.pose.position.x
 
     def test_3_bad_input(self):
         before = self.models()
