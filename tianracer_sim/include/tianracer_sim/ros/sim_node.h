@@ -120,6 +120,8 @@ class SimNode : private SensorHost, private ModelSpawner {
     std::vector<FrameRequest> frames;
   };
 
+  /// Logs each distinct warning once (loaders repeat theirs for every robot and spawn).
+  static void warnOnce(const std::string& text);
   /// Loads one robot from the parameters in `rp`; `name` fixes its name (else ~robot_name).
   void loadRobot(const ros::NodeHandle& rp, const std::string& name);
   /// Adds the robot with its controllers, topics and sensors. Throws on bad input (a
@@ -128,9 +130,9 @@ class SimNode : private SensorHost, private ModelSpawner {
   /// The rest of addRobot once the robot is in the simulation: scene, frames, topics,
   /// contacts, sensors.
   void setUpRobotIo(std::size_t index, const ros::NodeHandle& rp);
+  // In sim_node_spawn.cpp: models at run time.
   /// Everything of robots_[index] out: topics, sensors, scene, physics.
   void removeRobotAt(std::size_t index);
-
   // ModelSpawner: spawn_urdf_model, spawn_sdf_model and delete_model, between steps.
   void spawnRobot(const std::string& name, const std::string& urdf,
                   const Eigen::Isometry3d& X_WB) override;
