@@ -25,8 +25,11 @@ void SimNode::removeRobotAt(std::size_t index) {
   contacts_->removeRobot(io.robot->id);
   removeModelFromScene(name, &scene_);
   scene_step_ = ~0ull;
+  // Publishers and subscribers shut down with their last handle; the command subscribers go
+  // before the controllers they point into.
+  io.commands.reset();
   sim_->removeRobot(name);
-  io = RobotIo();  // publishers and subscribers shut down with their last handle
+  io = RobotIo();
 }
 
 void SimNode::spawnRobot(const std::string& name, const std::string& urdf,
