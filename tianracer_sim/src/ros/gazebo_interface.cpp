@@ -515,14 +515,14 @@ bool GazeboInterface::spawn(const std::string& service, gazebo_msgs::SpawnModel:
   if (const std::string bad = checkModelState(X_WM, Twist()); !bad.empty())
     return fail("initial_pose: " + bad);
   // The root element decides, as the XML says what it is whichever service carried it.
-  const std::size_t start = req.model_xml.find_first_not_of(" \t\r\n");
-  if (start == std::string::npos) return fail("model_xml is empty");
-  std::size_t tag = start;
-  while (tag != std::string::npos && req.model_xml.compare(tag, 2, "<?") == 0)
-    tag = req.model_xml.find('<', req.model_xml.find("?>", tag));
-  while (tag != std::string::npos && req.model_xml.compare(tag, 4, "<!--") == 0)
-    tag = req.model_xml.find('<', req.model_xml.find("-->", tag));
-  const bool urdf = tag != std::string::npos && req.model_xml.compare(tag, 6, "<robot") == 0;
+  if (req.model_xml.find_first_not_of(" \t\r\n") == std::string::npos)
+    return fail("model_xml is empty");
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(req.model_xml.data(), req.model_xml.size()) != tinyxml2::XML_SUCCESS) {
+    return fail("model_xml:" + std::to_string(doc.ErrorLineNum()) + ": malformed XML: " +
+                doc.ErrorName());
+  }
+  const bool urdf = std::string(doc.RootElement()->Name()) == "robot";
   try {
     if (urdf) {
       spawner_->spawnRobot(req.model_name, withRobotNamespace(req.model_xml, req.robot_namespace),
