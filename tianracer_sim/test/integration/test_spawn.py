@@ -94,6 +94,9 @@ class SpawnTest(unittest.TestCase):
         self.wait_for(lambda: rospy.Time.now().to_sec() >= t0 + seconds,
                       '%.1f s of sim time' % seconds)
 
+    def sim_time(self):
+        return self.world().sim_time
+
     def models(self):
         return sorted(self.world().model_names)
 
@@ -135,7 +138,8 @@ class SpawnTest(unittest.TestCase):
         # delete_model: its topics stop in sim time, it leaves model_states.
         res = self.delete('car2')
         self.assertTrue(res.success, res.status_message)
-        t_del = rospy.Time.now().to_sec()
+        # The sim's own time once the delete is done (our /clock lags it by a few steps).
+        t_del = self.sim_time()
         self.wait_sim(1.0)
         self.assertEqual(joints.after(t_del + 1e-6), [])
         self.assertEqual(scans.after(t_del + 1e-6), [])
@@ -179,12 +183,12 @@ class SpawnTest(unittest.TestCase):
         self.assertLess(math.sqrt(v.x ** 2 + v.y ** 2 + v.z ** 2), 0.01)
         # The lidar (0.094 m ahead of base_link) sees the box's near face at x 0.9.
         lidar_x = self.get_link_x('tianracer::lidar')
-        self.assertAlmostEqual(self.scan_ahead(rospy.Time.now().to_sec()), 0.9 - lidar_x,
+        self.assertAlmostEqual(self.scan_ahead(self.sim_time()), 0.9 - lidar_x,
                                delta=0.03)
         res = self.delete('box')
         self.assertTrue(res.success, res.status_message)
         self.assertNotIn('box', self.models())
-        r = self.scan_ahead(rospy.Time.now().to_sec())
+        r = self.scan_ahead(self.sim_time())
         self.assertTrue(not math.isfinite(r) or r > 5.0, 'the deleted box is still seen: %g' % r)
 
     def get_link_x(self, link):
