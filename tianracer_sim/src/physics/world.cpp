@@ -72,9 +72,12 @@ PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
 }
 
 PhysicsWorld::Impl::~Impl() {
-  for (auto& r : robots) removeFromWorld(r.get());
-  for (auto& b : free_bodies) removeFromWorld(b.get());
-  for (auto& s : statics) world->removeCollisionObject(s->object.get());
+  for (auto& r : robots)
+    if (r) removeFromWorld(r.get());
+  for (auto& b : free_bodies)
+    if (b) removeFromWorld(b.get());
+  for (auto& s : statics)
+    if (s) world->removeCollisionObject(s->object.get());
   if (ground) world->removeCollisionObject(ground->object.get());
   robots.clear();
   free_bodies.clear();
@@ -183,22 +186,28 @@ int PhysicsWorld::addFreeBody(RigidTree tree, const std::vector<SurfaceParams>& 
 int PhysicsWorld::freeBodyCount() const { return static_cast<int>(impl_->free_bodies.size()); }
 
 PhysicsRobot& PhysicsWorld::freeBody(int index) {
-  if (index < 0 || index >= freeBodyCount()) {
+  return const_cast<PhysicsRobot&>(static_cast<const PhysicsWorld*>(this)->freeBody(index));
+}
+const PhysicsRobot& PhysicsWorld::freeBody(int index) const {
+  if (!hasFreeBody(index)) {
     throw PhysicsError("no free body with index " + std::to_string(index));
   }
   return impl_->free_bodies[index]->handle;
 }
-const PhysicsRobot& PhysicsWorld::freeBody(int index) const {
-  if (index < 0 || index >= freeBodyCount()) {
-    throw PhysicsError("no free body with index " + std::to_string(index));
-  }
-  return impl_->free_bodies[index]->handle;
+bool PhysicsWorld::hasFreeBody(int index) const {
+  return index >= 0 && index < freeBodyCount() && impl_->free_bodies[index];
 }
 int PhysicsWorld::freeBodyIndex(const std::string& name) const {
   for (const auto& b : impl_->free_bodies) {
-    if (b->name == name) return b->id;
+    if (b && b->name == name) return b->id;
   }
   return -1;
+}
+
+void PhysicsWorld::removeFreeBody(int index) {
+  if (!hasFreeBody(index)) throw PhysicsError("no free body with index " + std::to_string(index));
+  impl_->removeFromWorld(impl_->free_bodies[index].get());
+  impl_->free_bodies[index].reset();
 }
 
 int PhysicsWorld::addStaticShape(const StaticShape& shape) {
@@ -207,17 +216,33 @@ int PhysicsWorld::addStaticShape(const StaticShape& shape) {
   return index;
 }
 
+void PhysicsWorld::removeStaticShape(int index) {
+  if (index < 0 || index >= static_cast<int>(impl_->statics.size()) || !impl_->statics[index]) {
+    throw PhysicsError("no static shape with index " + std::to_string(index));
+  }
+  impl_->world->removeCollisionObject(impl_->statics[index]->object.get());
+  impl_->statics[index].reset();
+}
+
+void PhysicsWorld::removeRobot(RobotId id) {
+  if (!hasRobot(id)) throw PhysicsError("no robot with id " + std::to_string(id));
+  impl_->removeFromWorld(impl_->robots[id].get());
+  impl_->robots[id].reset();
+}
+
 void PhysicsWorld::step() {
-  for (auto& r : impl_->robots) impl_->applyCommands(r.get());
+  for (auto& r : impl_->robots)
+    if (r) impl_->applyCommands(r.get());
   // A free body has no joints: only an external wrench (apply_body_wrench) acts through it.
   for (auto& b : impl_->free_bodies) {
-    if (b->has_ext_wrench) impl_->applyCommands(b.get());
+    if (b && b->has_ext_wrench) impl_->applyCommands(b.get());
   }
   // maxSubSteps = 0: exactly one internal step of dt (no accumulator, no interpolation).
   impl_->world->stepSimulation(impl_->options.dt, 0, impl_->options.dt);
   ++impl_->steps;
   const double inv_dt = 1.0 / impl_->options.dt;
   for (auto& r : impl_->robots) {
+    if (!r) continue;
     for (std::size_t i = 0; i < r->joints.size(); ++i) {
       const RobotState::Command& c = r->commands[i];
       if (c.mode == RobotState::Mode::kEffort) {
@@ -239,16 +264,18 @@ void PhysicsWorld::resetTime() { impl_->steps = 0; }
 int PhysicsWorld::robotCount() const { return static_cast<int>(impl_->robots.size()); }
 
 PhysicsRobot& PhysicsWorld::robot(RobotId id) {
-  if (id < 0 || id >= robotCount()) throw PhysicsError("no robot with id " + std::to_string(id));
-  return impl_->robots[id]->handle;
+  return const_cast<PhysicsRobot&>(static_cast<const PhysicsWorld*>(this)->robot(id));
 }
 const PhysicsRobot& PhysicsWorld::robot(RobotId id) const {
-  if (id < 0 || id >= robotCount()) throw PhysicsError("no robot with id " + std::to_string(id));
+  if (!hasRobot(id)) throw PhysicsError("no robot with id " + std::to_string(id));
   return impl_->robots[id]->handle;
+}
+bool PhysicsWorld::hasRobot(RobotId id) const {
+  return id >= 0 && id < robotCount() && impl_->robots[id];
 }
 RobotId PhysicsWorld::robotId(const std::string& name) const {
   for (const auto& r : impl_->robots) {
-    if (r->name == name) return r->id;
+    if (r && r->name == name) return r->id;
   }
   return -1;
 }

@@ -1,5 +1,7 @@
 #include "tianracer_sim/ros/contact_publisher.h"
 
+#include <algorithm>
+
 #include "tianracer_sim/Contact.h"
 
 namespace tianracer_sim {
@@ -26,6 +28,19 @@ void ContactPublisher::addRobot(ros::NodeHandle& nh, RobotId id, const std::stri
   r.name = name;
   r.pub = nh.advertise<tianracer_sim::Contact>(ns + "/contacts", 100);
   robots_.push_back(std::move(r));
+}
+
+void ContactPublisher::setStaticOwner(int index, const std::string& model,
+                                      const std::string& link) {
+  if (index < 0) return;
+  if (index >= static_cast<int>(static_owners_.size())) static_owners_.resize(index + 1);
+  static_owners_[index] = {model, link};
+}
+
+void ContactPublisher::removeRobot(RobotId id) {
+  robots_.erase(std::remove_if(robots_.begin(), robots_.end(),
+                               [id](const Robot& r) { return r.id == id; }),
+                robots_.end());
 }
 
 void ContactPublisher::update(PhysicsWorld& world, double t) {

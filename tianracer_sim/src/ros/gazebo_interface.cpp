@@ -5,6 +5,8 @@
 #include <map>
 #include <sstream>
 
+#include <tinyxml2.h>
+
 #include "tianracer_sim/ros/state_msgs.h"
 
 namespace tianracer_sim {
@@ -33,11 +35,34 @@ std::string fmt(const geometry_msgs::Vector3& v) {
 
 Eigen::Vector3d vec(const geometry_msgs::Vector3& v) { return {v.x, v.y, v.z}; }
 
+void addRobotNamespace(tinyxml2::XMLElement* e, const std::string& ns) {
+  for (tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    if (std::string(c->Name()) == "plugin" && !c->FirstChildElement("robotNamespace")) {
+      c->InsertNewChildElement("robotNamespace")->SetText(ns.c_str());
+    }
+    addRobotNamespace(c, ns);
+  }
+}
+
 }  // namespace
 
+std::string withRobotNamespace(const std::string& urdf, const std::string& robot_namespace) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(urdf.data(), urdf.size()) != tinyxml2::XML_SUCCESS) {
+    throw std::runtime_error("model_xml:" + std::to_string(doc.ErrorLineNum()) +
+                             ": malformed XML: " + doc.ErrorName());
+  }
+  if (robot_namespace.empty()) return urdf;
+  addRobotNamespace(doc.RootElement(), robot_namespace);
+  tinyxml2::XMLPrinter printer;
+  doc.Print(&printer);
+  return printer.CStr();
+}
+
 GazeboInterface::GazeboInterface(ros::NodeHandle nh, Simulation& sim,
-                                 const WorldDescription& world, const Options& options)
-    : sim_(sim), world_(world), options_(options) {
+                                 const WorldDescription& world, const Options& options,
+                                 ModelSpawner* spawner)
+    : sim_(sim), world_(world), options_(options), spawner_(spawner) {
   if (!(options_.states_rate >= 0.0) || !std::isfinite(options_.states_rate)) {
     throw std::runtime_error("parameter ~gazebo_states_rate must be >= 0 (0 = every step), got " +
                              std::to_string(options_.states_rate));
@@ -63,6 +88,13 @@ GazeboInterface::GazeboInterface(ros::NodeHandle nh, Simulation& sim,
       nh.advertiseService("apply_body_wrench", &GazeboInterface::applyBodyWrench, this));
   services_.push_back(
       nh.advertiseService("clear_body_wrenches", &GazeboInterface::clearBodyWrenches, this));
+  if (spawner_) {
+    services_.push_back(
+        nh.advertiseService("spawn_urdf_model", &GazeboInterface::spawnUrdfModel, this));
+    services_.push_back(
+        nh.advertiseService("spawn_sdf_model", &GazeboInterface::spawnSdfModel, this));
+    services_.push_back(nh.advertiseService("delete_model", &GazeboInterface::deleteModel, this));
+  }
   ROS_INFO("%s and %s at %g Hz (sim time)%s", model_states_pub_.getTopic().c_str(),
            link_states_pub_.getTopic().c_str(), options_.states_rate,
            options_.states_rate > 0.0 ? "" : " (every step)");
@@ -441,6 +473,95 @@ void GazeboInterface::beforeStep() {
     if (!resolve(w.body, false, &e, &error) || !physicsOf(e)) continue;  // gone since
     physicsOf(e)->setExternalWrench(e.link, w.force_W, w.torque_W);
   }
+}
+
+// --- spawn and delete ---------------------------------------------------------------------------
+
+bool GazeboInterface::spawnUrdfModel(gazebo_msgs::SpawnModel::Request& req,
+                                     gazebo_msgs::SpawnModel::Response& res) {
+  return spawn("spawn_urdf_model", req, res);
+}
+
+bool GazeboInterface::spawnSdfModel(gazebo_msgs::SpawnModel::Request& req,
+                                    gazebo_msgs::SpawnModel::Response& res) {
+  return spawn("spawn_sdf_model", req, res);
+}
+
+bool GazeboInterface::spawn(const std::string& service, gazebo_msgs::SpawnModel::Request& req,
+                            gazebo_msgs::SpawnModel::Response& res) {
+  res.success = false;
+  auto fail = [&](const std::string& why) {
+    res.status_message = service + ": model '" + req.model_name + "': " + why;
+    ROS_ERROR_STREAM(res.status_message);
+    return true;
+  };
+  if (req.model_name.empty()) return fail("model_name is empty");
+  if (req.model_name.find("::") != std::string::npos)
+    return fail("a model name cannot contain '::' (it separates model and link)");
+  for (const std::string& m : modelNames()) {
+    if (m == req.model_name) return fail("a model of that name exists already; delete it first");
+  }
+  // Where the model goes: initial_pose in reference_frame. An all-zero quaternion (a default
+  // Pose message) is the identity, as in gazebo_ros, whose quaternion normalises it so.
+  geometry_msgs::Pose pose = req.initial_pose;
+  const auto& q = pose.orientation;
+  if (q.x == 0.0 && q.y == 0.0 && q.z == 0.0 && q.w == 0.0) pose.orientation.w = 1.0;
+  Eigen::Isometry3d X_FM;
+  if (!fromPose(pose, &X_FM)) return fail("initial_pose is not finite");
+  EntityState frame;
+  std::string error;
+  if (!frameState(req.reference_frame, &frame, &error)) return fail(error);
+  const Eigen::Isometry3d X_WM = frame.X_WE * X_FM;
+  if (const std::string bad = checkModelState(X_WM, Twist()); !bad.empty())
+    return fail("initial_pose: " + bad);
+  // The root element decides, as the XML says what it is whichever service carried it.
+  if (req.model_xml.find_first_not_of(" \t\r\n") == std::string::npos)
+    return fail("model_xml is empty");
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(req.model_xml.data(), req.model_xml.size()) != tinyxml2::XML_SUCCESS) {
+    return fail("model_xml:" + std::to_string(doc.ErrorLineNum()) + ": malformed XML: " +
+                doc.ErrorName());
+  }
+  const bool urdf = std::string(doc.RootElement()->Name()) == "robot";
+  try {
+    if (urdf) {
+      spawner_->spawnRobot(req.model_name, withRobotNamespace(req.model_xml, req.robot_namespace),
+                           X_WM);
+    } else {
+      spawner_->spawnWorldModel(req.model_name, req.model_xml, X_WM);
+    }
+  } catch (const std::exception& e) {
+    return fail(e.what());
+  }
+  onModelsChanged();
+  res.success = true;
+  res.status_message = service + ": model '" + req.model_name + "' spawned";
+  ROS_INFO_STREAM(res.status_message);
+  return true;
+}
+
+bool GazeboInterface::deleteModel(gazebo_msgs::DeleteModel::Request& req,
+                                  gazebo_msgs::DeleteModel::Response& res) {
+  res.success = false;
+  Entity e;
+  std::string error;
+  if (req.model_name.find("::") != std::string::npos) {
+    error = "'" + req.model_name + "' is a link; delete_model takes a model name";
+  } else if (resolve(req.model_name, true, &e, &error)) {
+    try {
+      spawner_->deleteModel(req.model_name);
+      onModelsChanged();
+      res.success = true;
+      res.status_message = "delete_model: model '" + req.model_name + "' deleted";
+      ROS_INFO_STREAM(res.status_message);
+      return true;
+    } catch (const std::exception& ex) {
+      error = ex.what();
+    }
+  }
+  res.status_message = "delete_model: " + error;
+  ROS_ERROR_STREAM(res.status_message);
+  return true;
 }
 
 void GazeboInterface::onReset() {

@@ -65,12 +65,12 @@ std::vector<std::string> getNameList(const ros::NodeHandle& pnh, const std::stri
   return names;
 }
 
-void warnOnce(const std::string& text) {
+}  // namespace
+
+void SimNode::warnOnce(const std::string& text) {
   static std::set<std::string> seen;
   if (seen.insert(text).second) ROS_WARN_STREAM(text);
 }
-
-}  // namespace
 
 SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh), pnh_(pnh) {
   nh_.setCallbackQueue(&queue_);
@@ -79,11 +79,10 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh
   // The world: a shipped name or a .world path. Its <physics> gives the step and gravity.
   std::string world_arg;
   pnh_.param<std::string>("world", world_arg, "empty");
-  WorldLoadOptions world_options;
-  world_options.warn = [](const std::string& w) { warnOnce(w); };
-  world_options.find_package = [](const std::string& pkg) { return ros::package::getPath(pkg); };
+  world_options_.warn = [](const std::string& w) { warnOnce(w); };
+  world_options_.find_package = [](const std::string& pkg) { return ros::package::getPath(pkg); };
   world_ = std::make_unique<WorldDescription>(loadWorldFile(
-      resolveWorld(world_arg, ros::package::getPath("tianracer_sim") + "/worlds"), world_options));
+      resolveWorld(world_arg, ros::package::getPath("tianracer_sim") + "/worlds"), world_options_));
 
   PhysicsOptions physics = physicsOptionsFor(*world_);
   physics.dt = getDouble(pnh_, "max_step_size", physics.dt);
@@ -108,7 +107,13 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh
   status_period_ = getDouble(pnh_, "status_period", 5.0);
 
   sim_ = std::make_unique<Simulation>(physics, [](const std::string& w) { warnOnce(w); });
-  const int shapes = addWorldToPhysics(*world_, &sim_->physics(), [](const std::string& w) { warnOnce(w); });
+  int shapes = 0;
+  for (const ModelDescription& model : world_->models) {
+    const WorldModelBodies added = addModelToPhysics(*world_, model, &sim_->physics(),
+                                                     [](const std::string& w) { warnOnce(w); });
+    shapes += added.shapes;
+    world_bodies_[model.name] = added;
+  }
   addToScene(*world_, scene_);
   ROS_INFO("world '%s' (%s): %zu models, %d collision shapes, ground plane %s", world_->name.c_str(),
            world_->source.c_str(), world_->models.size(), shapes, world_->ground_plane ? "yes" : "no");
@@ -119,6 +124,7 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh
   nh_.setParam("/use_sim_time", true);
   clock_pub_ = root.advertise<rosgraph_msgs::Clock>("/clock", 10);
   diagnostics_pub_ = root.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10);
+  contacts_ = std::make_unique<ContactPublisher>(staticShapeOwners(*world_));
 
   bool several = false;
   const std::vector<std::string> robot_names = getNameList(pnh_, "robots", &several);
@@ -131,9 +137,6 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh
   } else {
     for (const std::string& name : robot_names) loadRobot(ros::NodeHandle(pnh_, name), name);
   }
-
-  contacts_ = std::make_unique<ContactPublisher>(staticShapeOwners(*world_));
-  for (RobotIo& io : robots_) contacts_->addRobot(root, io.robot->id, io.robot->name, io.ns);
 
   std::vector<std::string> command_topics;
   for (const RobotIo& io : robots_) {
@@ -155,7 +158,8 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh
   services_.push_back(gazebo.advertiseService("reset_world", &SimNode::onResetWorld, this));
   GazeboInterface::Options gazebo_options;
   gazebo_options.states_rate = getDouble(pnh_, "gazebo_states_rate", gazebo_options.states_rate);
-  gazebo_ = std::make_unique<GazeboInterface>(gazebo, *sim_, *world_, gazebo_options);
+  gazebo_ = std::make_unique<GazeboInterface>(gazebo, *sim_, *world_, gazebo_options,
+                                             static_cast<ModelSpawner*>(this));
 
   ROS_INFO("tianracer_sim: step %.4f s, real_time_factor %g%s, %s", physics.dt, real_time_factor_,
            real_time_factor_ == 0.0 ? " (as fast as possible)" : "", paused_ ? "paused" : "running");
@@ -191,20 +195,14 @@ void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name
     model = loadRobotModel(urdf, nh_.resolveName(param), options);
   }
 
-  RobotIo io;
-  io.ns = model.ext.ros_control ? model.ext.ros_control->robot_namespace : "";
+  RobotRequest request;
   std::string name = fixed_name;
-  if (name.empty()) rp.param<std::string>("robot_name", name, trimSlashes(io.ns));
-  if (name.empty()) name = model.urdf->getName();
-  if (io.ns.empty()) io.ns = "/" + name;
-  io.ns = "/" + trimSlashes(io.ns);
-  for (const RobotIo& other : robots_) {
-    if (other.ns == io.ns) {
-      throw ModelError("robot '" + name + "' (" + model.source + "): its ros_control namespace " +
-                       io.ns + " is already robot '" + other.robot->name +
-                       "''s; give each robot its own (e.g. xacro robot_namespace:=/" + name + ")");
-    }
+  if (name.empty()) {
+    rp.param<std::string>("robot_name", name,
+                          trimSlashes(model.ext.ros_control ? model.ext.ros_control->robot_namespace
+                                                            : ""));
   }
+  if (name.empty()) name = model.urdf->getName();
 
   // Spawn pose.
   Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
@@ -225,6 +223,35 @@ void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name
   if (const std::string bad = checkModelState(X_WB, Twist()); !bad.empty())
     throw std::runtime_error("spawn pose (~x ~y ~z ~roll ~pitch ~yaw): " + bad);
 
+  request.model = std::move(model);
+  request.name = name;
+  request.X_WB = X_WB;
+  request.auto_z = auto_z;
+  request.rp = rp;
+  addRobot(std::move(request));
+}
+
+void SimNode::addRobot(RobotRequest request) {
+  const ros::NodeHandle& rp = request.rp;
+  const std::string& name = request.name;
+  RobotModel& model = request.model;
+  for (const RobotIo& other : robots_) {
+    if (other.robot && other.robot->name == name) {
+      throw ModelError("robot '" + name + "' exists already: robot names must be unique");
+    }
+  }
+  RobotIo io;
+  io.ns = model.ext.ros_control ? model.ext.ros_control->robot_namespace : "";
+  if (io.ns.empty()) io.ns = "/" + name;
+  io.ns = "/" + trimSlashes(io.ns);
+  for (const RobotIo& other : robots_) {
+    if (other.robot && other.ns == io.ns) {
+      throw ModelError("robot '" + name + "' (" + model.source + "): its ros_control namespace " +
+                       io.ns + " is already robot '" + other.robot->name +
+                       "''s; give each robot its own (e.g. xacro robot_namespace:=/" + name + ")");
+    }
+  }
+
   // Controllers: the list given, else every controller defined under the namespace.
   std::string control_ns;
   rp.param<std::string>("control_namespace", control_ns, io.ns);
@@ -234,8 +261,8 @@ void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name
   if (!given) names = listControllers(control_nh);
   RobotConfig config;
   config.name = name;
-  config.X_WB_spawn = X_WB;
-  config.drop_to_ground = auto_z;
+  config.X_WB_spawn = request.X_WB;
+  config.drop_to_ground = request.auto_z;
   config.controllers = tc::loadControllerSpecs(control_nh, names);
   config.model = std::move(model);
 
@@ -246,6 +273,22 @@ void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name
 
   SimRobot& robot = sim_->addRobot(std::move(config));
   io.robot = &robot;
+  robots_.push_back(std::move(io));
+  const std::size_t index = robots_.size() - 1;
+  try {
+    setUpRobotIo(index, rp);
+  } catch (...) {
+    // Nothing half-spawned: what was set up goes again.
+    removeRobotAt(index);
+    robots_.pop_back();
+    throw;
+  }
+}
+
+void SimNode::setUpRobotIo(std::size_t index, const ros::NodeHandle& rp) {
+  RobotIo& io = robots_[index];
+  SimRobot& robot = *io.robot;
+  const std::string& name = robot.name;
   io.scene_bodies = addRobotToScene(robot.model, robot.name, &scene_);
   PhysicsRobot& pr = sim_->physics().robot(robot.id);
   ROS_INFO_STREAM("robot '" << name << "' (" << robot.model.source << "): "
@@ -281,8 +324,10 @@ void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name
   io.commands = std::make_shared<tc::ControllerCommandSubscribers>(robot_nh, robot.controllers);
   io.ground_truth = robot_nh.advertise<nav_msgs::Odometry>("ground_truth/odom", 10);
   io.ground_truth_schedule.period = ground_truth_rate_ > 0.0 ? 1.0 / ground_truth_rate_ : 0.0;
-  robots_.push_back(std::move(io));
-  setUpSensors(robots_.size() - 1, rp);
+  ros::NodeHandle root;
+  root.setCallbackQueue(&queue_);
+  contacts_->addRobot(root, robot.id, robot.name, io.ns);
+  setUpSensors(index, rp);
 }
 
 void SimNode::setUpSensors(size_t robot_index, const ros::NodeHandle& rp) {
@@ -347,12 +392,14 @@ void SimNode::setUpSensor(size_t robot_index, const SensorSpec& spec) {
   setup.static_tf = &static_tf_;
   setup.warn = [](const std::string& w) { warnOnce(w); };
   setup.check_link = [&pr](const std::string& l) { (void)pr.linkPose(l); };
-  setup.claim_topic = [this](const std::string& topic, const std::string& owner) {
+  setup.claim_topic = [this, robot_index](const std::string& topic, const std::string& owner) {
     claimTopic(topic, owner);
+    robots_[robot_index].topics.push_back(topic);
   };
   setup.renderer = [this]() { return ensureRenderer() ? renderer_.get() : nullptr; };
-  setup.add_stat = [this](const std::string& name, double target) {
+  setup.add_stat = [this, robot_index](const std::string& name, double target) {
     stats_.push_back({name, target, 0, 0});
+    robots_[robot_index].stats.push_back(stats_.size() - 1);
     return stats_.size() - 1;
   };
   // A bad sensor is reported and left out; the robot and the other sensors run on.
@@ -360,6 +407,7 @@ void SimNode::setUpSensor(size_t robot_index, const SensorSpec& spec) {
     std::unique_ptr<SensorPublisher> sensor = makeSensorPublisher(*kind, setup);
     if (!sensor) return;
     sensors_.push_back(std::move(sensor));
+    sensor_robot_.push_back(robot_index);
     ++sensors_of_kind_[kind->id];
   } catch (const std::exception& e) {
     ROS_ERROR("robot '%s': %s '%s' on link '%s' left out: %s", io.robot->name.c_str(),
@@ -485,12 +533,14 @@ void SimNode::publishStatus() {
   sim_status.values.push_back(kv("real_time_factor", rtf));
   sim_status.values.push_back(kv("target_real_time_factor", real_time_factor_));
   for (const RobotIo& io : robots_) {
+    if (!io.robot) continue;
     sim_status.values.push_back(kv("contacts " + io.robot->name, contacts_->count(io.robot->id)));
   }
   array.status.push_back(sim_status);
   // In sim time every sensor keeps its rate by construction (rendering holds the step); what
   // can fall behind is the wall-clock rate a consumer sees when the sim cannot keep real time.
   for (SensorStat& stat : stats_) {
+    if (stat.name.empty()) continue;  // its robot was deleted
     const double rate = sim > 0.0 ? stat.count / sim : 0.0;
     const double wall_rate = stat.count / wall;
     diagnostic_msgs::DiagnosticStatus st;
@@ -535,6 +585,7 @@ void SimNode::publishStatus() {
 void SimNode::updateScene() {
   if (scene_step_ == sim_->stepCount()) return;
   for (const RobotIo& io : robots_) {
+    if (!io.robot) continue;
     updateRobotScene(sim_->physics().robot(io.robot->id), io.scene_bodies, &scene_);
   }
   updateFreeBodyScene(sim_->physics(), &scene_);
@@ -612,6 +663,7 @@ void SimNode::publishDue(bool clock) {
   const ros::Time stamp(t);
   if (clock_schedule_.due(t) && clock) publishClock();
   for (RobotIo& io : robots_) {
+    if (!io.robot) continue;
     const PhysicsRobot& pr = sim_->physics().robot(io.robot->id);
     for (JointStateStream& s : io.joint_states) {
       if (!s.schedule.due(t) || s.pub.getNumSubscribers() == 0) continue;
@@ -643,7 +695,8 @@ void SimNode::restartSchedules() {
 }
 
 void SimNode::stepOnce() {
-  for (RobotIo& io : robots_) io.commands->apply();
+  for (RobotIo& io : robots_)
+    if (io.commands) io.commands->apply();
   gazebo_->beforeStep();
   sim_->step();
   contacts_->update(sim_->physics(), sim_->time());
@@ -714,7 +767,8 @@ bool SimNode::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
 
 bool SimNode::onResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   if (camera_worker_) camera_worker_->wait();  // the frame in flight goes out before time jumps back
-  for (RobotIo& io : robots_) io.commands->clear();
+  for (RobotIo& io : robots_)
+    if (io.commands) io.commands->clear();
   sim_->resetSimulation();
   gazebo_->onReset();
   contacts_->reset();

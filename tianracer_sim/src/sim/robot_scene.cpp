@@ -1,5 +1,7 @@
 #include "tianracer_sim/sim/robot_scene.h"
 
+#include <algorithm>
+
 #include "tianracer_sim/physics/rigid_tree.h"
 
 namespace tianracer_sim {
@@ -68,6 +70,24 @@ void updateRobotScene(const PhysicsRobot& robot, const RobotSceneBodies& bodies,
   for (const auto& [index, link] : bodies.links) {
     scene->bodies[index].X_WB = robot.linkPose(link);
   }
+}
+
+void removeModelFromScene(const std::string& model, Scene* scene) {
+  std::vector<bool> gone(scene->bodies.size(), false);
+  for (std::size_t b = 0; b < scene->bodies.size(); ++b) {
+    SceneBody& body = scene->bodies[b];
+    if (body.model != model || body.name.empty()) continue;
+    gone[b] = true;
+    body.name.clear();
+    body.model.clear();
+  }
+  auto& items = scene->items;
+  items.erase(std::remove_if(items.begin(), items.end(),
+                             [&](const SceneItem& item) {
+                               return item.body >= 0 &&
+                                      item.body < static_cast<int>(gone.size()) && gone[item.body];
+                             }),
+              items.end());
 }
 
 }  // namespace tianracer_sim

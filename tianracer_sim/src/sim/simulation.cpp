@@ -157,15 +157,19 @@ SimRobot& Simulation::addRobot(RobotConfig config) {
       }
     }
   } catch (...) {
-    // The robot stays in the physics world (Bullet has no removal here) but without
-    // controllers: hold it still so that it is harmless, then report.
-    for (size_t j = 0; j < physics_robot.joints().size(); ++j) {
-      physics_robot.clearJointCommand(static_cast<int>(j));
-    }
+    physics_.removeRobot(robot->id);  // nothing of a robot that failed stays
     throw;
   }
   robots_.push_back(std::move(robot));
   return *robots_.back();
+}
+
+void Simulation::removeRobot(const std::string& name) {
+  const auto it = std::find_if(robots_.begin(), robots_.end(),
+                               [&](const std::unique_ptr<SimRobot>& r) { return r->name == name; });
+  if (it == robots_.end()) throw ModelError("no robot named '" + name + "'");
+  physics_.removeRobot((*it)->id);
+  robots_.erase(it);
 }
 
 SimRobot* Simulation::findRobot(const std::string& name) {
@@ -242,7 +246,8 @@ void Simulation::resetWorld() {
     restartControllers(*robot);
   }
   // The world's free bodies back to their poses in the world file.
-  for (int i = 0; i < physics_.freeBodyCount(); ++i) physics_.freeBody(i).resetToSpawn();
+  for (int i = 0; i < physics_.freeBodyCount(); ++i)
+    if (physics_.hasFreeBody(i)) physics_.freeBody(i).resetToSpawn();
 }
 
 const PhysicsRobot* Simulation::findModel(const std::string& name) const {

@@ -110,21 +110,21 @@ RigidTree freeBodyTree(const WorldDescription& world, const ModelDescription& mo
   return tree;
 }
 
-int addWorldToPhysics(const WorldDescription& world, PhysicsWorld* physics,
-                      const WarningSink& warn) {
-  int added = 0;
-  for (const ModelDescription& model : world.models) {
-    if (!model.is_static && !fixedToWorld(model) && !model.links.empty()) {
-      std::vector<SurfaceParams> surfaces;
-      RigidTree tree = freeBodyTree(world, model, &surfaces, warn);
-      added += static_cast<int>(surfaces.size());
-      try {
-        physics->addFreeBody(std::move(tree), surfaces, model.X_WM, model.name);
-      } catch (const PhysicsError& e) {
-        throw PhysicsError(at(world, model.line) + e.what());
-      }
-      continue;
+WorldModelBodies addModelToPhysics(const WorldDescription& world, const ModelDescription& model,
+                                   PhysicsWorld* physics, const WarningSink& warn) {
+  WorldModelBodies added;
+  if (!model.is_static && !fixedToWorld(model) && !model.links.empty()) {
+    std::vector<SurfaceParams> surfaces;
+    RigidTree tree = freeBodyTree(world, model, &surfaces, warn);
+    added.shapes = static_cast<int>(surfaces.size());
+    try {
+      added.free_body = physics->addFreeBody(std::move(tree), surfaces, model.X_WM, model.name);
+    } catch (const PhysicsError& e) {
+      throw PhysicsError(at(world, model.line) + e.what());
     }
+    return added;
+  }
+  try {
     for (const LinkDescription& link : model.links) {
       for (const CollisionDescription& c : link.collisions) {
         StaticShape s;
@@ -132,10 +132,27 @@ int addWorldToPhysics(const WorldDescription& world, PhysicsWorld* physics,
         s.X_WS = model.X_WM * link.X_ML * c.X_LS;
         s.surface = surfaceOf(c);
         s.shape = c.shape;
-        physics->addStaticShape(s);
-        ++added;
+        added.statics.push_back(physics->addStaticShape(s));
+        ++added.shapes;
       }
     }
+  } catch (...) {
+    removeModelFromPhysics(added, physics);
+    throw;
+  }
+  return added;
+}
+
+void removeModelFromPhysics(const WorldModelBodies& bodies, PhysicsWorld* physics) {
+  if (bodies.free_body >= 0) physics->removeFreeBody(bodies.free_body);
+  for (const int s : bodies.statics) physics->removeStaticShape(s);
+}
+
+int addWorldToPhysics(const WorldDescription& world, PhysicsWorld* physics,
+                      const WarningSink& warn) {
+  int added = 0;
+  for (const ModelDescription& model : world.models) {
+    added += addModelToPhysics(world, model, physics, warn).shapes;
   }
   return added;
 }

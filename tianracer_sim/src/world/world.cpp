@@ -504,6 +504,12 @@ WorldDescription loadWorldString(const std::string& xml, const std::string& sour
   return parser.parse(xml);
 }
 
+ModelDescription loadModelString(const std::string& xml, const std::string& source,
+                                 const std::string& base_dir, const WorldLoadOptions& options) {
+  Parser parser(source, base_dir, options);
+  return parser.parseModelFile(xml);
+}
+
 WorldDescription loadWorldFile(const std::string& path, const WorldLoadOptions& options) {
   if (path.empty()) throw WorldError("world file: empty path");
   if (isDir(path)) throw WorldError("world file '" + path + "' is a directory");

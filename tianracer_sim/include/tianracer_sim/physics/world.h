@@ -202,6 +202,8 @@ class PhysicsWorld {
                    const Eigen::Isometry3d& X_WB_spawn, const std::string& name);
   /// Adds a static body; returns its index.
   int addStaticShape(const StaticShape& shape);
+  /// Takes a static body out of the world (delete_model). Indices of the others stay.
+  void removeStaticShape(int index);
 
   /// Adds a free rigid body (a world's dynamic model): a rigid tree of one body (its links
   /// merged) with its frame at X_WB, surfaces[k] for its k-th collision (missing: defaults).
@@ -209,9 +211,15 @@ class PhysicsWorld {
   /// reset to X_WB, link poses, contacts). Throws PhysicsError / MeshError naming the body.
   int addFreeBody(RigidTree tree, const std::vector<SurfaceParams>& surfaces,
                   const Eigen::Isometry3d& X_WB, const std::string& name);
+  /// Free bodies ever added, removed ones included (their indices are never reused).
   int freeBodyCount() const;
+  /// False for an index out of range or of a removed body.
+  bool hasFreeBody(int index) const;
   PhysicsRobot& freeBody(int index);
   const PhysicsRobot& freeBody(int index) const;
+  /// Takes the free body out of the world (delete_model); its handle becomes invalid, the
+  /// other bodies keep their indices.
+  void removeFreeBody(int index);
   /// -1 when no free body has that name.
   int freeBodyIndex(const std::string& name) const;
 
@@ -224,7 +232,13 @@ class PhysicsWorld {
   /// Time and step count back to 0 (robots are reset separately).
   void resetTime();
 
+  /// Robots ever added, removed ones included (ids are never reused).
   int robotCount() const;
+  /// False for an id out of range or of a removed robot.
+  bool hasRobot(RobotId id) const;
+  /// Takes everything of the robot out of the world (delete_model); its handle becomes
+  /// invalid, the other robots keep their ids.
+  void removeRobot(RobotId id);
   PhysicsRobot& robot(RobotId id);
   const PhysicsRobot& robot(RobotId id) const;
   /// -1 when no robot has that name.

@@ -33,6 +33,10 @@ class ContactPublisher {
       : static_owners_(std::move(static_owners)) {}
 
   void addRobot(ros::NodeHandle& nh, RobotId id, const std::string& name, const std::string& ns);
+  /// Names the owner of a static shape added after start-up (spawn_sdf_model).
+  void setStaticOwner(int index, const std::string& model, const std::string& link);
+  /// Stops publishing for a robot that was deleted (its topic shuts down).
+  void removeRobot(RobotId id);
   /// After each step: queries every robot's contacts, publishes the due ones.
   void update(PhysicsWorld& world, double t);
   /// The other object of a contact: model name and link ("" for a static shape's or the

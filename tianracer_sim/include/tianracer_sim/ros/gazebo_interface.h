@@ -1,7 +1,9 @@
 // gazebo_ros's world interface (gazebo_ros_api_plugin) with gazebo_msgs types, over the
 // Simulation: /gazebo/model_states and /gazebo/link_states, the set_model_state and
 // set_link_state topics, and the services get/set_model_state, get/set_link_state,
-// get_model_properties, get_world_properties, apply_body_wrench and clear_body_wrenches.
+// get_model_properties, get_world_properties, apply_body_wrench and clear_body_wrenches,
+// spawn_urdf_model, spawn_sdf_model and delete_model (checked here, carried out by the owner's
+// ModelSpawner).
 // Entities are gazebo_ros's: a model by name (a robot, or a model of the world file, the
 // ground plane included), a link as "model::link". What differs from gazebo_ros is listed in
 // the README's "Gazebo interface" section.
@@ -17,6 +19,7 @@
 
 #include <gazebo_msgs/ApplyBodyWrench.h>
 #include <gazebo_msgs/BodyRequest.h>
+#include <gazebo_msgs/DeleteModel.h>
 #include <gazebo_msgs/GetLinkState.h>
 #include <gazebo_msgs/GetModelProperties.h>
 #include <gazebo_msgs/GetModelState.h>
@@ -25,6 +28,7 @@
 #include <gazebo_msgs/ModelStates.h>
 #include <gazebo_msgs/SetLinkState.h>
 #include <gazebo_msgs/SetModelState.h>
+#include <gazebo_msgs/SpawnModel.h>
 #include <ros/ros.h>
 
 #include "tianracer_sim/sim/entity_state.h"
@@ -32,6 +36,28 @@
 #include "tianracer_sim/world/world.h"
 
 namespace tianracer_sim {
+
+/// What adds and removes models at run time: the sim node, which builds them as at start-up.
+/// Called between steps with a name that is new (spawn) or known (delete) and a finite pose
+/// within checkModelState's bounds. Each throws std::exception saying what is wrong; nothing
+/// of the model stays then.
+class ModelSpawner {
+ public:
+  virtual ~ModelSpawner() = default;
+  /// A robot from URDF (xacro already expanded) with its plugins, sensors and controllers.
+  virtual void spawnRobot(const std::string& name, const std::string& urdf,
+                          const Eigen::Isometry3d& X_WB) = 0;
+  /// A world model from SDF (<sdf><model> or <model>), static or a free body; X_WM is where
+  /// its frame goes (the model's own <pose> is composed after it).
+  virtual void spawnWorldModel(const std::string& name, const std::string& sdf,
+                               const Eigen::Isometry3d& X_WM) = 0;
+  virtual void deleteModel(const std::string& name) = 0;
+};
+
+/// The URDF with <robotNamespace>robot_namespace</robotNamespace> added to every <plugin>
+/// that has none, as gazebo_ros's spawn_urdf_model does (unchanged when robot_namespace is
+/// empty). Throws std::runtime_error for malformed XML, naming the line.
+std::string withRobotNamespace(const std::string& urdf, const std::string& robot_namespace);
 
 class GazeboInterface {
  public:
@@ -42,9 +68,10 @@ class GazeboInterface {
     double states_rate = 50.0;
   };
 
-  /// Advertises on `gazebo_nh` (the /gazebo namespace, with the owner's callback queue).
+  /// Advertises on `gazebo_nh` (the /gazebo namespace, with the owner's callback queue). The
+  /// spawn and delete services only with a spawner.
   GazeboInterface(ros::NodeHandle gazebo_nh, Simulation& sim, const WorldDescription& world,
-                  const Options& options);
+                  const Options& options, ModelSpawner* spawner = nullptr);
 
   /// Applies the external wrenches due in the coming step.
   void beforeStep();
@@ -53,6 +80,8 @@ class GazeboInterface {
   /// Time went back (reset_simulation) or the world was reset: wrenches are cleared and the
   /// publishing schedule restarts.
   void onReset();
+  /// Models were added or removed: the state messages are rebuilt before the next publish.
+  void onModelsChanged() { robots_in_msgs_ = ~std::size_t(0); }
 
   // The handlers, public so that tests and the topics share them. Each answers success false
   // with a message naming the entity and the value on bad input, and changes nothing then.
@@ -72,6 +101,12 @@ class GazeboInterface {
                        gazebo_msgs::ApplyBodyWrench::Response& res);
   bool clearBodyWrenches(gazebo_msgs::BodyRequest::Request& req,
                          gazebo_msgs::BodyRequest::Response& res);
+  bool spawnUrdfModel(gazebo_msgs::SpawnModel::Request& req,
+                      gazebo_msgs::SpawnModel::Response& res);
+  bool spawnSdfModel(gazebo_msgs::SpawnModel::Request& req,
+                     gazebo_msgs::SpawnModel::Response& res);
+  bool deleteModel(gazebo_msgs::DeleteModel::Request& req,
+                   gazebo_msgs::DeleteModel::Response& res);
 
  private:
   /// A model or link found by name.
@@ -97,10 +132,15 @@ class GazeboInterface {
   void rebuildStateMessages();
   void onModelStateTopic(const gazebo_msgs::ModelState::ConstPtr& msg);
   void onLinkStateTopic(const gazebo_msgs::LinkState::ConstPtr& msg);
+  /// Both spawn services: checks the request, then hands it to the spawner by the XML's root
+  /// element (<robot>: a robot, <sdf>/<model>: a world model).
+  bool spawn(const std::string& service, gazebo_msgs::SpawnModel::Request& req,
+             gazebo_msgs::SpawnModel::Response& res);
 
   Simulation& sim_;
   const WorldDescription& world_;
   Options options_;
+  ModelSpawner* spawner_ = nullptr;
   WrenchSchedule wrenches_;
 
   ros::Publisher model_states_pub_, link_states_pub_;

@@ -34,6 +34,9 @@
 // as robot_state_publisher and gazebo_ros plugins do) prefixes every frame published for
 // the robot: sensor frames, optical frames, ground truth's child frame and the odom frame.
 //   status_period    wall seconds between status lines and /diagnostics (default 5; 0 = off)
+// Robots spawned at run time (/gazebo/spawn_urdf_model) read controllers, control_namespace,
+// odom_frame, disable_sensors and model_dir from ~<model name>/, as robots listed in ~robots.
+// Start-up and spawn build robots through the same addRobot().
 #ifndef TIANRACER_SIM_ROS_SIM_NODE_H
 #define TIANRACER_SIM_ROS_SIM_NODE_H
 
@@ -61,11 +64,12 @@
 #include "tianracer_sim/sim/frame_worker.h"
 #include "tianracer_sim/sim/robot_scene.h"
 #include "tianracer_sim/sim/simulation.h"
+#include "tianracer_sim/sim/world_physics.h"
 #include "tianracer_sim/world/world.h"
 
 namespace tianracer_sim {
 
-class SimNode : private SensorHost {
+class SimNode : private SensorHost, private ModelSpawner {
  public:
   /// Reads parameters, loads the robot and starts its controllers. Throws std::exception with
   /// a message naming the parameter, file or controller on a configuration error.
@@ -82,6 +86,8 @@ class SimNode : private SensorHost {
     Schedule schedule;
     sensor_msgs::JointState msg;
   };
+  /// One robot of the node; robot == nullptr once deleted (delete_model), so that the
+  /// indices sensors hold stay valid.
   struct RobotIo {
     SimRobot* robot = nullptr;
     std::string ns;  // ros_control namespace, e.g. "/tianracer"
@@ -92,6 +98,20 @@ class SimNode : private SensorHost {
     Schedule ground_truth_schedule;
     std::string tf_prefix;  // "" for a robot alone; e.g. "tianracer_02"
     std::string base_frame;  // tf_prefix + root link
+    std::vector<std::string> topics;  // sensor topics it claimed (topic_owner_)
+    std::vector<std::size_t> stats;   // its sensors' entries of stats_
+  };
+
+  /// A robot to add, however it came: from the node's parameters at start-up or from
+  /// spawn_urdf_model at run time. Both go through addRobot().
+  struct RobotRequest {
+    RobotModel model;
+    std::string name;
+    Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+    bool auto_z = false;  // drop to the ground (z "auto")
+    /// The robot's own parameters: controllers, control_namespace, odom_frame,
+    /// disable_sensors (~ for one robot, ~<name>/ for several or spawned ones).
+    ros::NodeHandle rp;
   };
 
   /// The frames due at one step: rendered and published on camera_worker_'s thread from
@@ -101,8 +121,25 @@ class SimNode : private SensorHost {
     std::vector<FrameRequest> frames;
   };
 
+  /// Logs each distinct warning once (loaders repeat theirs for every robot and spawn).
+  static void warnOnce(const std::string& text);
   /// Loads one robot from the parameters in `rp`; `name` fixes its name (else ~robot_name).
   void loadRobot(const ros::NodeHandle& rp, const std::string& name);
+  /// Adds the robot with its controllers, topics and sensors. Throws on bad input (a
+  /// message naming the robot); nothing of the robot stays then.
+  void addRobot(RobotRequest request);
+  /// The rest of addRobot once the robot is in the simulation: scene, frames, topics,
+  /// contacts, sensors.
+  void setUpRobotIo(std::size_t index, const ros::NodeHandle& rp);
+  // In sim_node_spawn.cpp: models at run time.
+  /// Everything of robots_[index] out: topics, sensors, scene, physics.
+  void removeRobotAt(std::size_t index);
+  // ModelSpawner: spawn_urdf_model, spawn_sdf_model and delete_model, between steps.
+  void spawnRobot(const std::string& name, const std::string& urdf,
+                  const Eigen::Isometry3d& X_WB) override;
+  void spawnWorldModel(const std::string& name, const std::string& sdf,
+                       const Eigen::Isometry3d& X_WM) override;
+  void deleteModel(const std::string& name) override;
   /// Advertises `topic` for a robot's sensor; throws when another sensor publishes there.
   void claimTopic(const std::string& topic, const std::string& owner);
   bool ensureRenderer();
@@ -139,6 +176,9 @@ class SimNode : private SensorHost {
   ros::NodeHandle nh_, pnh_;
   ros::CallbackQueue queue_;  // commands and services run between steps, in this thread
   std::unique_ptr<WorldDescription> world_;
+  WorldLoadOptions world_options_;
+  /// What each model of world_ put into the physics (delete_model takes it out again).
+  std::map<std::string, WorldModelBodies> world_bodies_;
   std::unique_ptr<Simulation> sim_;
   Scene scene_;  // what sensors see: the world's models and every robot's links
   std::uint64_t scene_step_ = ~0ull;  // step count the scene's poses belong to
@@ -147,6 +187,7 @@ class SimNode : private SensorHost {
   bool renderer_failed_ = false;
   // After renderer_: camera sensors render through it and go first.
   std::vector<std::unique_ptr<SensorPublisher>> sensors_;
+  std::vector<std::size_t> sensor_robot_;  // robots_ index of each of sensors_
   std::map<std::string, int> sensors_of_kind_;  // SensorKind id -> sensors set up
   tf2_ros::StaticTransformBroadcaster static_tf_;
   std::vector<SensorStat> stats_;  // one per sensor, in set-up order

@@ -26,6 +26,11 @@ RobotSceneBodies addRobotToScene(const RobotModel& model, const std::string& rob
 /// Copies the links' world poses from the physics into the scene bodies.
 void updateRobotScene(const PhysicsRobot& robot, const RobotSceneBodies& bodies, Scene* scene);
 
+/// Takes a model's (robot's or world model's) shapes out of the scene (delete_model). Its
+/// bodies stay as empty placeholders named "", so that body indices held by others (the
+/// robots' RobotSceneBodies, sensors' own bodies) keep pointing at the same bodies.
+void removeModelFromScene(const std::string& model, Scene* scene);
+
 }  // namespace tianracer_sim
 
 #endif  // TIANRACER_SIM_SIM_ROBOT_SCENE_H

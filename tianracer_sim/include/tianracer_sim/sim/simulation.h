@@ -51,8 +51,12 @@ class Simulation {
 
   /// Adds the robot to the physics world and starts its controllers. Throws ModelError,
   /// PhysicsError, MeshError or tianracer_control::ControllerError (messages name the robot,
-  /// joint or controller); on a throw nothing of the robot's controllers is kept.
+  /// joint or controller); on a throw nothing of the robot is kept.
   SimRobot& addRobot(RobotConfig config);
+  /// Takes the robot out (delete_model): its controllers stop and its bodies leave the
+  /// physics world; SimRobot references to it become invalid. Throws ModelError for an
+  /// unknown name.
+  void removeRobot(const std::string& name);
 
   /// One physics step of dt.
   void step();

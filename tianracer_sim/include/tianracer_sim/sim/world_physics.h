@@ -33,6 +33,21 @@ RigidTree freeBodyTree(const WorldDescription& world, const ModelDescription& mo
 int addWorldToPhysics(const WorldDescription& world, PhysicsWorld* physics,
                       const WarningSink& warn);
 
+/// What addModelToPhysics added for one model: its free body, or its static shapes.
+struct WorldModelBodies {
+  int free_body = -1;
+  std::vector<int> statics;
+  int shapes = 0;  // collision shapes added
+};
+
+/// Adds one model of `world` as addWorldToPhysics does (spawn_sdf_model reuses it). On a throw
+/// nothing of the model stays in the physics.
+WorldModelBodies addModelToPhysics(const WorldDescription& world, const ModelDescription& model,
+                                   PhysicsWorld* physics, const WarningSink& warn);
+
+/// Takes out what addModelToPhysics added (delete_model).
+void removeModelFromPhysics(const WorldModelBodies& bodies, PhysicsWorld* physics);
+
 /// Moves every non-static scene body "<model>::<link>" whose model is a free body of `physics`
 /// to that link's pose (robots' bodies are left alone). Call before sensing.
 void updateFreeBodyScene(const PhysicsWorld& physics, Scene* scene);

@@ -150,6 +150,12 @@ WorldDescription loadWorldString(const std::string& xml, const std::string& sour
                                  const std::string& base_dir,
                                  const WorldLoadOptions& options = {});
 
+/// Parses one model as a model file of an <include> (<sdf><model> or a bare <model>), e.g.
+/// what spawn_sdf_model receives. Throws WorldError naming `source` and the line.
+ModelDescription loadModelString(const std::string& xml, const std::string& source,
+                                 const std::string& base_dir,
+                                 const WorldLoadOptions& options = {});
+
 /// The names of the worlds shipped in tianracer_sim/worlds/.
 std::vector<std::string> shippedWorldNames();
 
