@@ -13,6 +13,7 @@
 #include <tianracer_control/frames.h>
 
 #include "tianracer_sim/model/sensor_topics.h"
+#include "tianracer_sim/sensors/model_report.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/TransformStamped.h>
@@ -271,6 +272,8 @@ void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name
   io.ground_truth_schedule.period = ground_truth_rate_ > 0.0 ? 1.0 / ground_truth_rate_ : 0.0;
   robots_.push_back(std::move(io));
   setUpSensors(robots_.size() - 1, rp);
+  ROS_INFO_STREAM(formatModelReport(name, modelReport(robot.model, name, left_out_)));
+  left_out_.clear();
 }
 
 void SimNode::setUpSensors(size_t robot_index, const ros::NodeHandle& rp) {
@@ -284,6 +287,7 @@ void SimNode::setUpSensors(size_t robot_index, const ros::NodeHandle& rp) {
           std::find(disabled.begin(), disabled.end(), spec.name) != disabled.end()) {
         ROS_INFO("sensor '%s' (%s) on link %s disabled by ~disable_sensors", spec.name.c_str(),
                  spec.type.c_str(), link.c_str());
+        left_out_[spec.name] = "disabled by ~disable_sensors";
         continue;
       }
       setUpSensor(robot_index, spec);
@@ -296,6 +300,7 @@ void SimNode::setUpSensors(size_t robot_index, const ros::NodeHandle& rp) {
     if (std::find(disabled.begin(), disabled.end(), spec.name) != disabled.end()) {
       ROS_INFO("plugin '%s' (%s) disabled by ~disable_sensors", spec.name.c_str(),
                plugin.filename.c_str());
+      left_out_[spec.name] = "disabled by ~disable_sensors";
       continue;
     }
     setUpSensor(robot_index, spec);
@@ -351,6 +356,7 @@ void SimNode::setUpSensor(size_t robot_index, const SensorSpec& spec) {
   } catch (const std::exception& e) {
     ROS_ERROR("robot '%s': %s '%s' on link '%s' left out: %s", io.robot->name.c_str(),
               what.c_str(), spec.name.c_str(), spec.link.c_str(), e.what());
+    left_out_[spec.name] = e.what();
   }
 }
 

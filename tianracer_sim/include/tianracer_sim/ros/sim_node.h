@@ -144,6 +144,7 @@ class SimNode : private SensorHost {
   // After renderer_: camera sensors render through it and go first.
   std::vector<std::unique_ptr<SensorPublisher>> sensors_;
   std::map<std::string, int> sensors_of_kind_;  // SensorKind id -> sensors set up
+  std::map<std::string, std::string> left_out_;  // the robot being loaded: sensor -> why left out
   tf2_ros::StaticTransformBroadcaster static_tf_;
   std::vector<SensorStat> stats_;  // one per sensor, in set-up order
   ros::Publisher diagnostics_pub_;
