@@ -21,10 +21,20 @@ std::string baseName(const std::string& path) {
   return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
-// Differences every instance of a type has, whatever its parameters.
+// Differences every instance of a type has, whatever its parameters (README, Known
+// differences and limits).
 std::vector<std::string> typeDifferences(const SensorSpec& s) {
-  if (s.type == "gpu_ray") return {"ray-cast on the CPU (Embree), exactly as type ray"};
-  return {};
+  std::vector<std::string> out;
+  if (s.type == "gpu_ray") out.push_back("ray-cast on the CPU (Embree), exactly as type ray");
+  if (s.type == "ray" || s.type == "gpu_ray") {
+    out.push_back("rays start at the sensor: a surface nearer than the minimum range reads -inf "
+                  "(Gazebo starts them at the minimum range)");
+  }
+  if (s.type == "camera" || s.type == "depth" || s.type == "multicamera") {
+    out.push_back("images are stamped in <frameName>_optical_frame (z forward), not the plain "
+                  "frame");
+  }
+  return out;
 }
 
 // Fills status, topics and notes of a sensor or plugin the registry may simulate.

@@ -30,7 +30,7 @@ const ReportRow& rowOf(const std::vector<ReportRow>& rows, const std::string& na
 TEST(SensorsModelReport, GoldenTable) {
   const RobotModel model = reportModel();
   const std::string table = formatModelReport("report", modelReport(model, "report"));
-  const std::string golden = R"(robot 'report': 10 plugins and sensors: 4 simulated, 1 with differences, 5 left out
+  const std::string golden = R"(robot 'report': 10 plugins and sensors: 3 simulated, 2 with differences, 5 left out
   KIND    NAME                TYPE                          LINK          STATUS
   plugin  gazebo_ros_control  libgazebo_ros_control.so      -             simulated
           runs the controllers of the YAML under /report
@@ -42,14 +42,16 @@ TEST(SensorsModelReport, GoldenTable) {
           why: link 'no_such_link' is not a link of the model
   plugin  planar_move         libgazebo_ros_planar_move.so  -             left out
           why: plugin 'libgazebo_ros_planar_move.so' is not simulated
-  sensor  front               camera                        base_link     simulated
+  sensor  front               camera                        base_link     simulated, with differences
           /front/image_raw sensor_msgs/Image @ 15 Hz
           /front/camera_info sensor_msgs/CameraInfo @ 15 Hz
+          difference: images are stamped in <frameName>_optical_frame (z forward), not the plain frame
   sensor  bayer               camera                        base_link     left out
           why: camera sensor 'bayer' on link 'base_link' (line 54): <image><format> 'BAYER_RGGB8' is a Gazebo format that is not simulated (supported: R8G8B8, B8G8R8, L8, L16); the camera is left out
   sensor  lidar               gpu_ray                       base_link     simulated, with differences
           /scan sensor_msgs/LaserScan @ 10 Hz
           difference: ray-cast on the CPU (Embree), exactly as type ray
+          difference: rays start at the sensor: a surface nearer than the minimum range reads -inf (Gazebo starts them at the minimum range)
   sensor  sonar               sonar                         base_link     left out
           why: sensor type 'sonar' is not simulated
   sensor  imu_bad_rate        imu                           base_link     left out
