@@ -48,7 +48,16 @@ AckermannSetup loadAckermannSetup(const ros::NodeHandle& nh, const ros::NodeHand
   std::string key, xml;
   if (nh.searchParam(param_name, key) && nh.getParam(key, xml)) {
     ROS_INFO_STREAM("geometry: reading " << key);
-    const ModelNames names = findModelNames(xml, setup.joints, setup.base_frame);
+    ModelNames names;
+    try {
+      names = findModelNames(xml, setup.joints, setup.base_frame);
+    } catch (const AckermannError& e) {
+      // Geometry given in full as parameters needs no URDF: the names are taken as given.
+      if (params.size() < geometryKeys().size()) throw;
+      ROS_WARN_STREAM("names: " << key << ": " << e.what() << "; joint names and ~base_frame as given");
+      names.joints = setup.joints;
+      names.base_link = setup.base_frame;
+    }
     for (const std::string& f : names.found) ROS_INFO_STREAM("names: " << key << ": " << f);
     for (const std::string& w : names.warnings) ROS_WARN_STREAM("names: " << key << ": " << w);
     setup.joints = names.joints;
