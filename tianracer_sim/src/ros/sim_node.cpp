@@ -185,6 +185,14 @@ void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name
   std::string name = fixed_name;
   if (name.empty()) rp.param<std::string>("robot_name", name, trimSlashes(io.ns));
   if (name.empty()) name = model.urdf->getName();
+  if (fixed_name.empty() && !trimSlashes(io.ns).empty() && name != trimSlashes(io.ns)) {
+    // robot_state_publisher and the control nodes of the launch files follow robot_name.
+    ROS_WARN_STREAM("robot '" << name << "': ~robot_name is '" << name << "' but the model's "
+                    << "gazebo_ros_control robotNamespace is '" << io.ns << "': its controllers "
+                    << "and joint_states are under /" << trimSlashes(io.ns) << ", not /" << name
+                    << " (give the model its namespace, e.g. model_args:=\"robot_namespace:=/"
+                    << name << "\", or robot_name:=" << trimSlashes(io.ns) << ")");
+  }
   if (io.ns.empty()) io.ns = "/" + name;
   io.ns = "/" + trimSlashes(io.ns);
   for (const RobotIo& other : robots_) {
