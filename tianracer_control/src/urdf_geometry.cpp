@@ -95,6 +95,90 @@ double meshRadiusAboutAxis(const std::string& path, const Eigen::Vector3d& scale
   return std::sqrt(r2);
 }
 
+namespace {
+
+// Names of `names` equal to `wanted`, else those ending in "/wanted" or "_wanted".
+std::vector<std::string> matchName(const std::vector<std::string>& names, const std::string& wanted) {
+  for (const std::string& n : names) {
+    if (n == wanted) return {n};
+  }
+  std::vector<std::string> out;
+  for (const std::string& n : names) {
+    if (n.size() <= wanted.size() || n.compare(n.size() - wanted.size(), wanted.size(), wanted))
+      continue;
+    const char sep = n[n.size() - wanted.size() - 1];
+    if (sep == '/' || sep == '_') out.push_back(n);
+  }
+  return out;
+}
+
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "'" : ", '") + n + "'";
+  return s;
+}
+
+}  // namespace
+
+ModelNames findModelNames(const std::string& urdf_xml, const AckermannJointNames& wanted,
+                          const std::string& base_link) {
+  if (urdf_xml.empty()) throw AckermannError("robot_description is empty");
+  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(urdf_xml);
+  if (!model) throw AckermannError("robot_description does not parse as URDF");
+  std::vector<std::string> joints, links;
+  for (const auto& kv : model->joints_) joints.push_back(kv.first);
+  for (const auto& kv : model->links_) links.push_back(kv.first);
+
+  ModelNames out;
+  out.joints = wanted;
+  out.base_link = base_link;
+  const AckermannJointNames defaults;
+  std::vector<std::string> prefixes;
+  const auto find = [&](const std::string& param, std::string* name, const std::vector<std::string>& pool,
+                        const char* what) {
+    const std::vector<std::string> m = matchName(pool, *name);
+    const std::string looked = "'" + *name + "' or a name ending in '/" + *name + "' or '_" +
+                               *name + "'";
+    if (m.size() == 1) {
+      if (m[0] != *name) {
+        out.found.push_back(std::string(what) + " '" + m[0] + "' for ~" + param + " '" + *name + "'");
+        prefixes.push_back(m[0].substr(0, m[0].size() - name->size()));
+        *name = m[0];
+      } else {
+        prefixes.push_back("");
+      }
+      return true;
+    }
+    out.warnings.push_back(
+        m.empty() ? std::string("no ") + what + " " + looked + " in the URDF: set ~" + param +
+                        " to the model's name"
+                  : std::string("several ") + what + "s match " + looked + " (" + joinNames(m) +
+                        "): set ~" + param + " to the one to use");
+    return false;
+  };
+  find(defaults.left_hinge, &out.joints.left_hinge, joints, "joint");
+  find(defaults.right_hinge, &out.joints.right_hinge, joints, "joint");
+  find(defaults.left_rear_wheel, &out.joints.left_rear_wheel, joints, "joint");
+  find(defaults.right_rear_wheel, &out.joints.right_rear_wheel, joints, "joint");
+  const bool one_prefix =
+      !prefixes.empty() &&
+      std::all_of(prefixes.begin(), prefixes.end(), [&](const std::string& p) { return p == prefixes[0]; });
+  if (one_prefix) out.prefix = prefixes[0];
+
+  if (!base_link.empty()) {
+    const std::vector<std::string> m = matchName(links, base_link);
+    if (m.size() == 1) {
+      out.base_link = m[0];
+    } else if (!out.prefix.empty() && model->getLink(out.prefix + base_link)) {
+      out.base_link = out.prefix + base_link;  // several candidates: the joints' prefix decides
+    }
+    if (out.base_link != base_link) {
+      out.found.push_back("link '" + out.base_link + "' for ~base_frame '" + base_link + "'");
+    }
+  }
+  return out;
+}
+
 UrdfGeometry geometryFromUrdf(const std::string& urdf_xml, const AckermannJointNames& names,
                               const std::string& base_link, const MeshPathResolver& mesh_path) {
   if (urdf_xml.empty()) throw AckermannError("robot_description is empty");

@@ -187,3 +187,91 @@ TEST(UrdfGeometry, SeedTianracer) {
             "robot_description: collision of the rear wheel links (mesh vertices farthest from "
             "the axle)");
 }
+
+namespace {
+
+// ackermann_cylinders with every link and joint name written as a prefix:=car1 xacro writes it.
+std::string prefixed(const std::string& prefix) {
+  std::string xml = urdf("ackermann_cylinders");
+  for (const std::string attr : {"name=\"", "link=\""}) {
+    for (size_t at = xml.find(attr); at != std::string::npos; at = xml.find(attr, at + 1)) {
+      if (xml.compare(at - 7, 7, "<robot ") == 0) continue;
+      xml.insert(at + attr.size(), prefix);
+    }
+  }
+  return xml;
+}
+
+}  // namespace
+
+TEST(ModelNames, SeedNamesAreFoundAsTheyAre) {
+  const ModelNames n = findModelNames(urdf("ackermann_cylinders"), AckermannJointNames());
+  EXPECT_EQ(n.joints.left_hinge, "left_steering_hinge_joint");
+  EXPECT_EQ(n.base_link, "base_link");
+  EXPECT_EQ(n.prefix, "");
+  EXPECT_TRUE(n.found.empty());
+  EXPECT_TRUE(n.warnings.empty());
+}
+
+TEST(ModelNames, PrefixedNamesAreFoundAndGiveTheSameGeometry) {
+  for (const std::string prefix : {"car1/", "car1_"}) {
+    const std::string xml = prefixed(prefix);
+    ASSERT_NE(xml.find("\"" + prefix + "right_rear_wheel_joint\""), std::string::npos);
+    const ModelNames n = findModelNames(xml, AckermannJointNames());
+    EXPECT_EQ(n.prefix, prefix);
+    EXPECT_EQ(n.joints.left_hinge, prefix + "left_steering_hinge_joint");
+    EXPECT_EQ(n.joints.right_hinge, prefix + "right_steering_hinge_joint");
+    EXPECT_EQ(n.joints.left_rear_wheel, prefix + "left_rear_wheel_joint");
+    EXPECT_EQ(n.joints.right_rear_wheel, prefix + "right_rear_wheel_joint");
+    EXPECT_EQ(n.base_link, prefix + "base_link");
+    EXPECT_TRUE(n.warnings.empty()) << n.warnings.front();
+    EXPECT_TRUE(anyContains(n.found, "link '" + prefix + "base_link' for ~base_frame 'base_link'"));
+    EXPECT_TRUE(anyContains(n.found, "joint '" + prefix +
+                                         "left_rear_wheel_joint' for ~left_rear_wheel_joint"));
+
+    const UrdfGeometry g = geometryFromUrdf(xml, n.joints, n.base_link);
+    EXPECT_TRUE(g.warnings.empty());
+    EXPECT_NEAR(g.values.at("wheelbase").value, 0.24996, 1e-12);
+    EXPECT_NEAR(g.values.at("rear_track").value, 0.081602 + 0.086296, 1e-12);
+    EXPECT_NEAR(g.values.at("wheel_radius").value, 0.032, 1e-12);
+    EXPECT_NEAR(g.values.at("max_steering_angle").value, 0.55, 1e-12);
+  }
+}
+
+TEST(ModelNames, TheJointsPrefixPicksTheBaseLinkAmongSeveral) {
+  // car1/base_link under a root whose own name also ends in base_link.
+  std::string xml = prefixed("car1/");
+  xml.replace(xml.find("<link name=\"car1/base_link\"/>"), 0,
+              "<link name=\"world_base_link\"/><joint name=\"mount\" type=\"fixed\">"
+              "<parent link=\"world_base_link\"/><child link=\"car1/base_link\"/></joint>");
+  const ModelNames n = findModelNames(xml, AckermannJointNames());
+  EXPECT_EQ(n.base_link, "car1/base_link");
+}
+
+TEST(ModelNames, MissingAndAmbiguousNamesNameTheParameterAndWhatWasLookedFor) {
+  std::string xml = urdf("ackermann_cylinders");
+  // Two candidates for the right rear wheel, none for the left hinge.
+  xml.replace(xml.find("\"right_rear_wheel_joint\""), 24, "\"a_right_rear_wheel_joint\"");
+  xml.replace(xml.find("</robot>"), 0,
+              "<link name=\"x\"/><joint name=\"b/right_rear_wheel_joint\" type=\"continuous\">"
+              "<parent link=\"base_link\"/><child link=\"x\"/></joint>");
+  xml.replace(xml.find("\"left_steering_hinge_joint\""), 27, "\"front_left_steer\"");
+  const ModelNames n = findModelNames(xml, AckermannJointNames());
+  ASSERT_EQ(n.warnings.size(), 2u);
+  EXPECT_EQ(n.warnings[0],
+            "no joint 'left_steering_hinge_joint' or a name ending in '/left_steering_hinge_joint' "
+            "or '_left_steering_hinge_joint' in the URDF: set ~left_steering_hinge_joint to the "
+            "model's name");
+  EXPECT_EQ(n.warnings[1],
+            "several joints match 'right_rear_wheel_joint' or a name ending in "
+            "'/right_rear_wheel_joint' or '_right_rear_wheel_joint' ('a_right_rear_wheel_joint', "
+            "'b/right_rear_wheel_joint'): set ~right_rear_wheel_joint to the one to use");
+  EXPECT_EQ(n.joints.left_hinge, "left_steering_hinge_joint");  // kept as asked
+  // A name given as a parameter is looked for as given.
+  AckermannJointNames given;
+  given.left_hinge = "front_left_steer";
+  given.right_rear_wheel = "b/right_rear_wheel_joint";
+  const ModelNames m = findModelNames(xml, given);
+  EXPECT_TRUE(m.warnings.empty());
+  EXPECT_THROW(findModelNames("<robot", AckermannJointNames()), AckermannError);
+}

@@ -22,6 +22,26 @@ struct AckermannJointNames {
   std::string right_rear_wheel = "right_rear_wheel_joint";
 };
 
+/// The model's own names for the Ackermann joints and its base link, and how they were found.
+struct ModelNames {
+  AckermannJointNames joints;
+  std::string base_link;
+  std::string prefix;                 // the prefix the names share ("car1/", "car1_"), or ""
+  std::vector<std::string> found;     // one line per name found under another name than asked
+  std::vector<std::string> warnings;  // names not found or ambiguous: what was looked for
+};
+
+/// Finds each of `wanted`'s joints and `base_link` in the URDF: the exact name if the URDF has
+/// it, else the one name ending in "/<name>" or "_<name>" (how prefix:=car1 xacros write
+/// `car1/left_rear_wheel_joint` or `car1_base_link`). A base link not found by either rule is
+/// looked for with the joints' common prefix; failing that it stays as asked (geometryFromUrdf
+/// then falls back to the root link). A joint not found or matched more than once keeps the
+/// asked name, with a warning naming the parameter (~<default joint name>, e.g.
+/// ~left_rear_wheel_joint) and every name it looked for. Throws AckermannError when the XML
+/// does not parse as URDF.
+ModelNames findModelNames(const std::string& urdf_xml, const AckermannJointNames& wanted,
+                          const std::string& base_link = "base_link");
+
 /// Keys of the geometry values, in logging order: wheelbase, hinge_separation, wheel_radius,
 /// rear_track, max_steering_angle, rear_axle_x, rear_axle_y, hinge_skew_x, hinge_offset_y
 /// (also the parameter names of the nodes).

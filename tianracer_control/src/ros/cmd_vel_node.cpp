@@ -27,13 +27,34 @@ double numberParam(const ros::NodeHandle& pnh, const std::string& key, double fa
   return v;
 }
 
+// The command topic (under `ns`) of the controller of `joint` in the ros_control YAML loaded
+// under `control_ns` (a user's controllers carry their own names), else of the controller
+// named `fallback`.
+std::string commandTopic(const std::string& ns, const std::string& control_ns,
+                         const std::string& joint, const std::string& fallback) {
+  XmlRpc::XmlRpcValue controllers;
+  if (ros::NodeHandle().getParam(control_ns.empty() ? "/" : control_ns, controllers) &&
+      controllers.getType() == XmlRpc::XmlRpcValue::TypeStruct) {
+    for (auto& kv : controllers) {
+      XmlRpc::XmlRpcValue& c = kv.second;
+      if (c.getType() == XmlRpc::XmlRpcValue::TypeStruct && c.hasMember("joint") &&
+          c["joint"].getType() == XmlRpc::XmlRpcValue::TypeString &&
+          static_cast<std::string>(c["joint"]) == joint) {
+        return ns + "/" + kv.first + "/command";
+      }
+    }
+  }
+  return ns + "/" + fallback + "/command";
+}
+
 }  // namespace
 
 class CmdVelNode {
  public:
   CmdVelNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
-    const AckermannJointNames joints = loadJointNames(pnh);
-    geometry_ = loadAckermannGeometry(nh, pnh, joints);
+    const AckermannSetup setup = loadAckermannSetup(nh, pnh);
+    const AckermannJointNames& joints = setup.joints;
+    geometry_ = setup.geometry;
 
     AckermannOptions options;
     pnh.param("angular_z_is_steering_angle", options.angular_z_is_steering_angle, false);
@@ -53,17 +74,23 @@ class CmdVelNode {
 
     std::string ns = pnh.param<std::string>("robot_namespace", "/tianracer");
     if (!ns.empty() && ns.back() == '/') ns.pop_back();
+    std::string control_ns = pnh.param<std::string>("control_namespace", ns);
+    if (!control_ns.empty() && control_ns.back() == '/') control_ns.pop_back();
     const std::string cmd_vel_topic = pnh.param<std::string>("cmd_vel_topic", "cmd_vel");
     const std::string ackermann_topic =
         pnh.param<std::string>("ackermann_topic", "ackermann_cmd");
     const std::string left_steer = pnh.param<std::string>(
-        "left_steering_topic", ns + "/left_steering_hinge_position_controller/command");
+        "left_steering_topic",
+        commandTopic(ns, control_ns, joints.left_hinge, "left_steering_hinge_position_controller"));
     const std::string right_steer = pnh.param<std::string>(
-        "right_steering_topic", ns + "/right_steering_hinge_position_controller/command");
+        "right_steering_topic",
+        commandTopic(ns, control_ns, joints.right_hinge, "right_steering_hinge_position_controller"));
     const std::string left_wheel = pnh.param<std::string>(
-        "left_rear_wheel_topic", ns + "/left_rear_wheel_velocity_controller/command");
+        "left_rear_wheel_topic",
+        commandTopic(ns, control_ns, joints.left_rear_wheel, "left_rear_wheel_velocity_controller"));
     const std::string right_wheel = pnh.param<std::string>(
-        "right_rear_wheel_topic", ns + "/right_rear_wheel_velocity_controller/command");
+        "right_rear_wheel_topic",
+        commandTopic(ns, control_ns, joints.right_rear_wheel, "right_rear_wheel_velocity_controller"));
 
     ROS_INFO_STREAM("angular.z is the "
                     << (options.angular_z_is_steering_angle ? "steering angle (rad)"

@@ -30,32 +30,54 @@ AckermannJointNames loadJointNames(const ros::NodeHandle& pnh) {
   return j;
 }
 
-AckermannGeometry loadAckermannGeometry(const ros::NodeHandle& nh, const ros::NodeHandle& pnh,
-                                        const AckermannJointNames& joints) {
+AckermannSetup loadAckermannSetup(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
+  AckermannSetup setup;
+  setup.joints = loadJointNames(pnh);
+  setup.base_frame = pnh.param<std::string>("base_frame", "base_link");
   std::map<std::string, double> params;
   for (const std::string& key : geometryKeys()) {
     double v;
     if (getNumberParam(pnh, key, &v)) params[key] = v;
   }
 
+  // The URDF is read even when every geometry value is a parameter: it names the joints.
+  const std::string param_name = pnh.param<std::string>("robot_description_param",
+                                                        "robot_description");
   UrdfGeometry urdf;
   bool have_urdf = false;
-  if (params.size() < geometryKeys().size()) {
-    const std::string param_name = pnh.param<std::string>("robot_description_param",
-                                                          "robot_description");
-    const std::string base_frame = pnh.param<std::string>("base_frame", "base_link");
-    std::string key, xml;
-    if (nh.searchParam(param_name, key) && nh.getParam(key, xml)) {
-      urdf = geometryFromUrdf(xml, joints, base_frame, [](const std::string& uri) {
-        return resolveMeshUri(uri, [](const std::string& pkg) { return ros::package::getPath(pkg); });
+  std::string key, xml;
+  if (nh.searchParam(param_name, key) && nh.getParam(key, xml)) {
+    ROS_INFO_STREAM("geometry: reading " << key);
+    ModelNames names;
+    try {
+      names = findModelNames(xml, setup.joints, setup.base_frame);
+    } catch (const AckermannError& e) {
+      // Geometry given in full as parameters needs no URDF: the names are taken as given.
+      if (params.size() < geometryKeys().size()) throw;
+      ROS_WARN_STREAM("names: " << key << ": " << e.what() << "; joint names and ~base_frame as given");
+      names.joints = setup.joints;
+      names.base_link = setup.base_frame;
+    }
+    for (const std::string& f : names.found) ROS_INFO_STREAM("names: " << key << ": " << f);
+    for (const std::string& w : names.warnings) ROS_WARN_STREAM("names: " << key << ": " << w);
+    setup.joints = names.joints;
+    setup.base_frame = names.base_link;
+    setup.prefix = names.prefix;
+    if (params.size() < geometryKeys().size()) {
+      // Relative mesh paths (meshes/wheel.STL) are relative to the model file's folder.
+      const std::string model_dir = pnh.param<std::string>("model_dir", "");
+      urdf = geometryFromUrdf(xml, setup.joints, setup.base_frame, [&](const std::string& uri) {
+        const std::string path = resolveMeshUri(
+            uri, [](const std::string& pkg) { return ros::package::getPath(pkg); });
+        return !path.empty() && path[0] != '/' && !model_dir.empty() ? model_dir + "/" + path
+                                                                     : path;
       });
       have_urdf = true;
-      ROS_INFO_STREAM("geometry: reading " << key);
-    } else {
-      ROS_WARN_STREAM("geometry: no " << param_name << " parameter found from "
-                                      << nh.getNamespace()
-                                      << "; geometry from parameters and defaults only");
     }
+  } else {
+    ROS_WARN_STREAM("geometry: no " << param_name << " parameter found from "
+                                    << nh.getNamespace()
+                                    << "; joint names and geometry from parameters and defaults only");
   }
 
   const ResolvedGeometry resolved = resolveGeometry(params, have_urdf ? &urdf : nullptr);
@@ -70,7 +92,8 @@ AckermannGeometry loadAckermannGeometry(const ros::NodeHandle& nh, const ros::No
                   << " rad right; minimum turning radius " << g.wheelbase / std::tan(left)
                   << " m left, " << g.wheelbase / std::tan(right)
                   << " m right (rear axle midpoint)");
-  return resolved.geometry;
+  setup.geometry = g;
+  return setup;
 }
 
 }  // namespace tianracer_control

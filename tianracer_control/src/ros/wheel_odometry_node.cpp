@@ -43,16 +43,19 @@ CovarianceDiagonal covarianceParam(const ros::NodeHandle& pnh, const std::string
 class WheelOdometryNode {
  public:
   WheelOdometryNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
-    joints_ = loadJointNames(pnh);
-    odometry_.setGeometry(loadAckermannGeometry(nh, pnh, joints_));
+    const AckermannSetup setup = loadAckermannSetup(nh, pnh);
+    joints_ = setup.joints;
+    odometry_.setGeometry(setup.geometry);
     odometry_.reset();
 
     std::string ns = pnh.param<std::string>("robot_namespace", "/tianracer");
     if (!ns.empty() && ns.back() == '/') ns.pop_back();
     const std::string in = pnh.param<std::string>("joint_states_topic", ns + "/joint_states");
     const std::string out = pnh.param<std::string>("odom_topic", ns + "/odom");
+    // The child frame is the model's base link as the model names it (car1/base_link for a
+    // prefix:=car1 model); the odometry frame is the simulator's (its ~odom_frame).
     pnh.param<std::string>("odom_frame", odom_frame_, "odom");
-    pnh.param<std::string>("base_frame", base_frame_, "base_link");
+    base_frame_ = setup.base_frame;
     // Several cars share one TF tree through a tf_prefix found from the robot's namespace, as
     // robot_state_publisher and the gazebo_ros plugins find it (two_cars.launch).
     std::string key, tf_prefix;

@@ -13,6 +13,7 @@
 #include <tianracer_control/frames.h>
 
 #include "tianracer_sim/model/sensor_topics.h"
+#include "tianracer_sim/sensors/model_report.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/TransformStamped.h>
@@ -197,10 +198,18 @@ void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name
 
   RobotRequest request;
   std::string name = fixed_name;
+  const std::string model_ns =
+      trimSlashes(model.ext.ros_control ? model.ext.ros_control->robot_namespace : "");
   if (name.empty()) {
-    rp.param<std::string>("robot_name", name,
-                          trimSlashes(model.ext.ros_control ? model.ext.ros_control->robot_namespace
-                                                            : ""));
+    rp.param<std::string>("robot_name", name, model_ns);
+    if (!model_ns.empty() && name != model_ns) {
+      // robot_state_publisher and the control nodes of the launch files follow robot_name.
+      ROS_WARN_STREAM("robot '" << name << "': ~robot_name is '" << name << "' but the model's "
+                      << "gazebo_ros_control robotNamespace is '/" << model_ns << "': its "
+                      << "controllers and joint_states are under /" << model_ns << ", not /"
+                      << name << " (give the model its namespace, e.g. model_args:=\"robot_namespace:=/"
+                      << name << "\", or robot_name:=" << model_ns << ")");
+    }
   }
   if (name.empty()) name = model.urdf->getName();
 
@@ -328,6 +337,8 @@ void SimNode::setUpRobotIo(std::size_t index, const ros::NodeHandle& rp) {
   root.setCallbackQueue(&queue_);
   contacts_->addRobot(root, robot.id, robot.name, io.ns);
   setUpSensors(index, rp);
+  ROS_INFO_STREAM(formatModelReport(name, modelReport(robot.model, name, left_out_)));
+  left_out_.clear();
 }
 
 void SimNode::setUpSensors(size_t robot_index, const ros::NodeHandle& rp) {
@@ -341,6 +352,7 @@ void SimNode::setUpSensors(size_t robot_index, const ros::NodeHandle& rp) {
           std::find(disabled.begin(), disabled.end(), spec.name) != disabled.end()) {
         ROS_INFO("sensor '%s' (%s) on link %s disabled by ~disable_sensors", spec.name.c_str(),
                  spec.type.c_str(), link.c_str());
+        left_out_[spec.name] = "disabled by ~disable_sensors";
         continue;
       }
       setUpSensor(robot_index, spec);
@@ -353,6 +365,7 @@ void SimNode::setUpSensors(size_t robot_index, const ros::NodeHandle& rp) {
     if (std::find(disabled.begin(), disabled.end(), spec.name) != disabled.end()) {
       ROS_INFO("plugin '%s' (%s) disabled by ~disable_sensors", spec.name.c_str(),
                plugin.filename.c_str());
+      left_out_[spec.name] = "disabled by ~disable_sensors";
       continue;
     }
     setUpSensor(robot_index, spec);
@@ -412,6 +425,7 @@ void SimNode::setUpSensor(size_t robot_index, const SensorSpec& spec) {
   } catch (const std::exception& e) {
     ROS_ERROR("robot '%s': %s '%s' on link '%s' left out: %s", io.robot->name.c_str(),
               what.c_str(), spec.name.c_str(), spec.link.c_str(), e.what());
+    left_out_[spec.name] = e.what();
   }
 }
 

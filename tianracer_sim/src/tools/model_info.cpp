@@ -8,6 +8,7 @@
 #include <ros/package.h>
 
 #include "tianracer_sim/model/robot_model.h"
+#include "tianracer_sim/sensors/model_report.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
 
 int main(int argc, char** argv) {
@@ -42,7 +43,9 @@ int main(int argc, char** argv) {
   };
   try {
     const tianracer_sim::RobotModel model = tianracer_sim::loadRobotModelFile(path, options);
-    std::cout << tianracer_sim::describeRobotModel(model);
+    std::cout << tianracer_sim::describeRobotModel(model) << "\n"
+              << tianracer_sim::formatModelReport(
+                     model.urdf->getName(), tianracer_sim::modelReport(model, model.urdf->getName()));
   } catch (const std::exception& e) {
     std::cerr << "model_info: " << e.what() << "\n";
     return 1;

@@ -189,6 +189,7 @@ class SimNode : private SensorHost, private ModelSpawner {
   std::vector<std::unique_ptr<SensorPublisher>> sensors_;
   std::vector<std::size_t> sensor_robot_;  // robots_ index of each of sensors_
   std::map<std::string, int> sensors_of_kind_;  // SensorKind id -> sensors set up
+  std::map<std::string, std::string> left_out_;  // the robot being loaded: sensor -> why left out
   tf2_ros::StaticTransformBroadcaster static_tf_;
   std::vector<SensorStat> stats_;  // one per sensor, in set-up order
   ros::Publisher diagnostics_pub_;

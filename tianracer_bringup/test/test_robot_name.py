@@ -1,0 +1,60 @@
+#!/usr/bin/env python3
+"""rostest: tianracer.launch robot_name:=other. Every node follows the name: the simulator
+serves the controllers and joint_states under /other, robot_state_publisher listens to
+/other/joint_states (so the wheels are in TF), the cmd_vel node commands /other's controllers
+(so /cmd_vel drives the car) and wheel odometry reads /other/joint_states into /other/odom.
+Nothing is left under /tianracer.
+"""
+import math
+import os
+import sys
+import unittest
+
+import rospy
+import rostest
+from nav_msgs.msg import Odometry
+from sensor_msgs.msg import JointState
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import tf_check  # noqa: E402
+
+
+class RobotName(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('test_robot_name')
+        cls.tf = tf_check.TfRecorder()
+        cls.truth = tf_check.truth('/other')
+        cls.joints = tf_check.Latest('/other/joint_states', JointState)
+        cls.odom = tf_check.Latest('/other/odom', Odometry)
+        ok = tf_check.wall_wait(lambda: cls.truth.msg is not None and cls.joints.msg is not None
+                                and cls.odom.msg is not None, 90.0)
+        assert ok, 'no ground truth, joint_states or odom under /other'
+        tf_check.sim_sleep(1.0)
+
+    def test_a_wheels_in_tf(self):
+        for link in tf_check.urdf_links():
+            chain = self.tf.chain(link, 'odom')
+            self.assertIsNotNone(chain, '%s does not chain up to odom (parents: %s)' %
+                                 (link, self.tf.parent))
+        for wheel in ('left_rear_wheel', 'right_rear_wheel', 'left_front_wheel',
+                      'right_front_wheel'):
+            self.assertEqual(self.tf.publishers[wheel], {'/robot_state_publisher'}, wheel)
+        self.assertEqual(self.odom.msg.child_frame_id, 'base_link')
+
+    def test_b_cmd_vel_drives_the_car(self):
+        p0 = self.truth.msg.pose.pose
+        tf_check.drive('/cmd_vel', 0.5, 0.0, 2.0)
+        p1 = self.truth.msg.pose.pose
+        moved = math.hypot(p1.position.x - p0.position.x, p1.position.y - p0.position.y)
+        rospy.loginfo('drove %.3f m', moved)
+        self.assertGreater(moved, 0.7)  # 1 m less what the start from rest costs
+        self.assertGreater(self.odom.msg.pose.pose.position.x, 0.7)
+
+    def test_c_nothing_under_the_default_name(self):
+        topics = [t for t, _ in rospy.get_published_topics()]
+        self.assertEqual([t for t in topics if t.startswith('/tianracer/')], [])
+
+
+if __name__ == '__main__':
+    rostest.rosrun('tianracer_bringup', 'robot_name', RobotName)

@@ -1,0 +1,170 @@
+#include "tianracer_sim/sensors/model_report.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+
+#include "tianracer_sim/model/sensor_topics.h"
+#include "tianracer_sim/sensors/sensor_registry.h"
+
+namespace tianracer_sim {
+namespace {
+
+std::string fmt(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%g", v);
+  return buf;
+}
+
+std::string baseName(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+// Differences every instance of a type has, whatever its parameters (README, Known
+// differences and limits).
+std::vector<std::string> typeDifferences(const SensorSpec& s) {
+  std::vector<std::string> out;
+  if (s.type == "gpu_ray") out.push_back("ray-cast on the CPU (Embree), exactly as type ray");
+  if (s.type == "ray" || s.type == "gpu_ray") {
+    out.push_back("rays start at the sensor: a surface nearer than the minimum range reads -inf "
+                  "(Gazebo starts them at the minimum range)");
+  }
+  if (s.type == "camera" || s.type == "depth" || s.type == "multicamera") {
+    out.push_back("images are stamped in <frameName>_optical_frame (z forward), not the plain "
+                  "frame");
+  }
+  return out;
+}
+
+// Fills status, topics and notes of a sensor or plugin the registry may simulate.
+void simulate(const RobotModel& model, const SensorSpec& s, const std::string& robot_name,
+              const LeftOut& left_out, ReportRow* row) {
+  const auto out = left_out.find(s.name);
+  if (out != left_out.end()) {
+    row->status = ReportRow::Status::kLeftOut;
+    row->notes.push_back(out->second);
+    return;
+  }
+  if (!s.error.empty()) {
+    row->status = ReportRow::Status::kLeftOut;
+    row->notes.push_back(s.error);
+    return;
+  }
+  if (!s.link.empty() && !model.urdf->getLink(s.link)) {
+    row->status = ReportRow::Status::kLeftOut;
+    row->notes.push_back("link '" + s.link + "' is not a link of the model");
+    return;
+  }
+  const SensorKind* kind = findSensorKind(s);
+  if (!kind) {
+    row->status = ReportRow::Status::kLeftOut;
+    row->notes.push_back("sensor type '" + s.type + "' is not simulated");
+    return;
+  }
+  std::vector<std::string> warnings = typeDifferences(s);
+  try {
+    const std::vector<SensorTopic> topics = kind->topics(s, robot_name, [&](const std::string& w) {
+      if (std::find(warnings.begin(), warnings.end(), w) == warnings.end()) warnings.push_back(w);
+    });
+    for (const SensorTopic& t : topics) {
+      row->topics.push_back(t.topic + " " + t.msg_type + " @ " + fmt(t.rate) + " Hz");
+    }
+    if (topics.empty()) row->topics.push_back("(no gazebo_ros plugin: nothing published)");
+  } catch (const std::exception& e) {
+    row->status = ReportRow::Status::kLeftOut;
+    row->notes.assign(1, e.what());
+    return;
+  }
+  row->notes = warnings;
+  row->status = warnings.empty() ? ReportRow::Status::kSimulated : ReportRow::Status::kDifferences;
+}
+
+const char* statusText(ReportRow::Status s) {
+  switch (s) {
+    case ReportRow::Status::kSimulated: return "simulated";
+    case ReportRow::Status::kDifferences: return "simulated, with differences";
+    case ReportRow::Status::kLeftOut: return "left out";
+  }
+  return "";
+}
+
+}  // namespace
+
+std::vector<ReportRow> modelReport(const RobotModel& model, const std::string& robot_name,
+                                   const LeftOut& left_out) {
+  std::vector<ReportRow> rows;
+  for (const PluginSpec& p : model.ext.model_plugins) {
+    ReportRow row;
+    row.kind = "plugin";
+    row.name = p.name;
+    row.type = baseName(p.filename);
+    const SensorSpec as_sensor = modelPluginSensor(p);
+    row.link = as_sensor.link;
+    if (row.type == "libgazebo_ros_control.so" && model.ext.ros_control) {
+      const std::string ns = model.ext.ros_control->robot_namespace.empty()
+                                 ? "/" + robot_name
+                                 : resolveTopic("", model.ext.ros_control->robot_namespace);
+      row.topics.push_back("runs the controllers of the YAML under " + ns);
+    } else if (row.type == "libgazebo_ros_joint_state_publisher.so" &&
+               model.ext.joint_state_publisher) {
+      const auto& jsp = *model.ext.joint_state_publisher;
+      row.topics.push_back(resolveTopic(jsp.robot_namespace, "joint_states") +
+                           " sensor_msgs/JointState @ " + fmt(jsp.update_rate) + " Hz");
+    } else if (findSensorKind(as_sensor)) {
+      simulate(model, as_sensor, robot_name, left_out, &row);
+    } else {
+      row.status = ReportRow::Status::kLeftOut;
+      row.notes.push_back("plugin '" + row.type + "' is not simulated");
+    }
+    rows.push_back(std::move(row));
+  }
+  for (const auto& [link, ext] : model.ext.links) {
+    for (const SensorSpec& s : ext.sensors) {
+      ReportRow row;
+      row.kind = "sensor";
+      row.name = s.name;
+      row.type = s.type;
+      row.link = link;
+      simulate(model, s, robot_name, left_out, &row);
+      rows.push_back(std::move(row));
+    }
+  }
+  return rows;
+}
+
+std::string formatModelReport(const std::string& robot_name, const std::vector<ReportRow>& rows) {
+  size_t simulated = 0, differences = 0, left = 0;
+  std::vector<size_t> width = {4, 4, 4, 4};  // KIND NAME TYPE LINK
+  for (const ReportRow& r : rows) {
+    simulated += r.status == ReportRow::Status::kSimulated;
+    differences += r.status == ReportRow::Status::kDifferences;
+    left += r.status == ReportRow::Status::kLeftOut;
+    width[0] = std::max(width[0], r.kind.size());
+    width[1] = std::max(width[1], r.name.size());
+    width[2] = std::max(width[2], r.type.size());
+    width[3] = std::max(width[3], std::max<size_t>(1, r.link.size()));
+  }
+  std::ostringstream out;
+  out << "robot '" << robot_name << "': " << rows.size() << " plugins and sensors: " << simulated
+      << " simulated, " << differences << " with differences, " << left << " left out\n";
+  if (rows.empty()) return out.str();
+  const auto line = [&](const std::string& a, const std::string& b, const std::string& c,
+                        const std::string& d, const std::string& e) {
+    std::string s = "  ";
+    const std::string cells[] = {a, b, c, d};
+    for (size_t i = 0; i < 4; ++i) s += cells[i] + std::string(width[i] - cells[i].size() + 2, ' ');
+    out << s << e << "\n";
+  };
+  line("KIND", "NAME", "TYPE", "LINK", "STATUS");
+  const std::string indent(2 + width[0] + 2, ' ');
+  for (const ReportRow& r : rows) {
+    line(r.kind, r.name, r.type, r.link.empty() ? "-" : r.link, statusText(r.status));
+    for (const std::string& t : r.topics) out << indent << t << "\n";
+    const char* label = r.status == ReportRow::Status::kLeftOut ? "why: " : "difference: ";
+    for (const std::string& n : r.notes) out << indent << label << n << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace tianracer_sim

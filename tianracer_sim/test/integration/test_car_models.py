@@ -1,0 +1,213 @@
+#!/usr/bin/env python3
+"""rostest: a car model written for Gazebo (test/data/models), loaded through sim.launch and
+control.launch, drives from /cmd_vel through the cmd_vel node with the geometry the node measured
+from its URDF, and publishes every sensor at its rate (sim time) with the right fields, frames
+and encodings. The private parameter ~model picks the model:
+  car_prefixed  (b): prefix:=car1 names, p3d, IMU model plugin, a bgr8 camera;
+  car_meshes    (c): a plain URDF with relative meshes and a 16-beam 3D lidar.
+A 0.5 m/s, 0.5 rad/s turn has a 1 m radius whatever the car: a wrong wheelbase from the URDF
+turns it wider or tighter, a wrong wheel radius changes the speed.
+"""
+import math
+import os
+import signal
+import socket
+import subprocess
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+import tf2_ros
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
+from sensor_msgs import point_cloud2
+from sensor_msgs.msg import CameraInfo, Image, Imu, PointCloud2, PointField
+
+from sim_node_binary import node_binary
+
+V, W = 0.5, 0.5
+
+# Per model: its namespace, base link, a wheel link, and per topic (type, rate in Hz, frame_id).
+MODELS = {
+    'car_prefixed': {
+        'ns': '/car1', 'base': 'car1/base_link', 'wheel': 'car1/left_front_wheel',
+        'topics': {
+            '/car1/p3d/odom': (Odometry, 50.0, 'world'),
+            '/car1/imu/data': (Imu, 100.0, 'car1/imu_link'),
+            '/car1/front_camera/image_raw': (Image, 15.0, 'car1/camera_link_optical_frame'),
+            '/car1/front_camera/camera_info': (CameraInfo, 15.0, 'car1/camera_link_optical_frame'),
+        },
+    },
+    'car_meshes': {
+        'ns': '/car_meshes', 'base': 'base_link', 'wheel': 'right_front_wheel',
+        'topics': {
+            '/velodyne_points': (PointCloud2, 10.0, 'velodyne'),
+        },
+    },
+}
+
+
+def mean(xs):
+    return sum(xs) / len(xs)
+
+
+class CarModelTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('test_car_models')
+        cls.name = rospy.get_param('~model')
+        cls.model = MODELS[cls.name]
+        cls.lock = threading.Lock()
+        cls.msgs = {t: [] for t in cls.model['topics']}
+        ns = cls.model['ns']
+        cls.truth, cls.odom = [], []
+        cls.subs = [rospy.Subscriber(ns + '/ground_truth/odom', Odometry,
+                                     lambda m: cls._add(cls.truth, m), queue_size=500),
+                    rospy.Subscriber(ns + '/odom', Odometry, lambda m: cls._add(cls.odom, m),
+                                     queue_size=500)]
+        for topic, (msg_type, _, _) in cls.model['topics'].items():
+            cls.subs.append(rospy.Subscriber(topic, msg_type,
+                                             lambda m, t=topic: cls._add(cls.msgs[t], m),
+                                             queue_size=500))
+        cls.cmd = rospy.Publisher('/cmd_vel', Twist, queue_size=10)
+        cls.tf_buffer = tf2_ros.Buffer()
+        cls.tf_listener = tf2_ros.TransformListener(cls.tf_buffer)
+
+    @classmethod
+    def _add(cls, store, msg):
+        with cls.lock:
+            store.append(msg)
+
+    def wait_sim(self, seconds, v=V, w=W, wall_timeout=180.0):
+        """Publishes the command while waiting `seconds` of sim time."""
+        t_end = rospy.get_time() + seconds
+        wall_end = time.time() + wall_timeout
+        msg = Twist()
+        msg.linear.x, msg.angular.z = v, w
+        while rospy.get_time() < t_end and time.time() < wall_end:
+            self.cmd.publish(msg)
+            time.sleep(0.02)
+        self.assertLess(time.time(), wall_end, 'sim time did not advance')
+
+    def wait_for(self, store, what, wall_timeout=90.0):
+        end = time.time() + wall_timeout
+        while time.time() < end:
+            with self.lock:
+                if store:
+                    return
+            time.sleep(0.05)
+        self.fail('no message on ' + what)
+
+    def test_a_drives_with_its_measured_geometry(self):
+        ns = self.model['ns']
+        self.wait_for(self.truth, ns + '/ground_truth/odom')
+        self.wait_for(self.odom, ns + '/odom')
+        self.wait_sim(4.0)  # into the steady turn
+        t0 = rospy.get_time()
+        self.wait_sim(3.0)
+        with self.lock:
+            truth = [m for m in self.truth if m.header.stamp.to_sec() >= t0]
+            odom = [m for m in self.odom if m.header.stamp.to_sec() >= t0]
+        self.assertGreater(len(truth), 50)
+        v = mean([m.twist.twist.linear.x for m in truth])
+        w = mean([m.twist.twist.angular.z for m in truth])
+        print("%s: v %.4f m/s, w %.4f rad/s, radius %.4f m" % (self.name, v, w, v / w))
+        self.assertAlmostEqual(v, V, delta=0.03 * V)
+        self.assertAlmostEqual(v / w, V / W, delta=0.03 * V / W)
+        # Wheel odometry: in the model's base link, and it sees the same turn.
+        self.assertGreater(len(odom), 20)
+        self.assertEqual(odom[-1].header.frame_id, 'odom')
+        self.assertEqual(odom[-1].child_frame_id, self.model['base'])
+        w_odom = mean([m.twist.twist.angular.z for m in odom])
+        self.assertAlmostEqual(w_odom, w, delta=0.03 * w)
+
+    def test_b_wheels_in_tf(self):
+        """robot_state_publisher listens to this robot's joint_states: its wheels are in TF."""
+        self.wait_for(self.truth, 'ground truth')
+        end = time.time() + 60.0
+        while time.time() < end:
+            if self.tf_buffer.can_transform(self.model['base'], self.model['wheel'], rospy.Time()):
+                break
+            time.sleep(0.1)
+        self.assertTrue(self.tf_buffer.can_transform(self.model['base'], self.model['wheel'],
+                                                     rospy.Time()),
+                        '%s -> %s not in TF' % (self.model['base'], self.model['wheel']))
+
+    def test_c_sensors_at_their_rates(self):
+        for topic in self.model['topics']:
+            self.wait_for(self.msgs[topic], topic)
+        t0 = rospy.get_time()
+        self.wait_sim(4.0)
+        t1 = rospy.get_time() - 0.5  # messages in flight at the end
+        for topic, (_, rate, frame) in self.model['topics'].items():
+            with self.lock:
+                msgs = [m for m in self.msgs[topic] if t0 <= m.header.stamp.to_sec() < t1]
+            n_expected = rate * (t1 - t0)
+            rospy.loginfo('%s: %d messages in %.2f s of sim time (%.1f expected)', topic,
+                          len(msgs), t1 - t0, n_expected)
+            self.assertAlmostEqual(len(msgs), n_expected, delta=0.1 * n_expected + 1, msg=topic)
+            self.assertEqual(msgs[-1].header.frame_id, frame, topic)
+            self.check(topic, msgs[-1])
+
+    def test_d_robot_name_unlike_the_models_namespace_is_named(self):
+        """robot_name:=other for a model whose gazebo_ros_control says /car1: the node says
+        where the controllers really are (a sim of its own, own master, paused)."""
+        if self.name != 'car_prefixed':
+            return
+        with socket.socket() as s:
+            s.bind(('localhost', 0))
+            port = s.getsockname()[1]
+        env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
+        master = subprocess.Popen(['rosmaster', '--core', '-p', str(port)], env=env,
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        try:
+            model = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data',
+                                 'models', 'car_prefixed.xacro')
+            node = subprocess.Popen([node_binary(), '__name:=robot_name_check', '_model:=' + model,
+                                     '_robot_name:=other', '_paused:=true',
+                                     '_disable_sensors:=camera'],
+                                    env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                    universal_newlines=True)
+            try:  # paused, it runs until interrupted
+                out, _ = node.communicate(timeout=20)
+            except subprocess.TimeoutExpired:
+                node.send_signal(signal.SIGINT)
+                out, _ = node.communicate(timeout=10)
+        finally:
+            master.terminate()
+            master.wait(timeout=10)
+        self.assertIn("~robot_name is 'other' but the model's gazebo_ros_control robotNamespace "
+                      "is '/car1'", out)
+        self.assertIn("robot 'other': 5 plugins and sensors", out)  # the start-up table
+
+    def check(self, topic, m):
+        if isinstance(m, Image):
+            self.assertEqual(m.encoding, 'bgr8')
+            self.assertEqual((m.width, m.height, m.step), (160, 120, 3 * 160))
+            self.assertEqual(len(m.data), 3 * 160 * 120)
+        elif isinstance(m, CameraInfo):
+            self.assertEqual((m.width, m.height), (160, 120))
+            # fx from the horizontal field of view: (w / 2) / tan(hfov / 2)
+            self.assertAlmostEqual(m.K[0], 80.0 / math.tan(0.6), delta=1e-3)
+        elif isinstance(m, Imu):
+            self.assertGreater(abs(m.angular_velocity.z), 0.3)  # it is turning
+        elif isinstance(m, Odometry):
+            self.assertEqual(m.child_frame_id, 'car1/base_link')
+        elif isinstance(m, PointCloud2):
+            fields = [(f.name, f.datatype) for f in m.fields]
+            self.assertEqual(fields[:4], [('x', PointField.FLOAT32), ('y', PointField.FLOAT32),
+                                          ('z', PointField.FLOAT32),
+                                          ('intensity', PointField.FLOAT32)])
+            self.assertEqual(fields[4][0], 'ring')
+            self.assertEqual(m.height * m.width * m.point_step, len(m.data))
+            # In the empty world the downward beams (rings 0-7 of 16 from -15 to +15 degrees)
+            # reach the ground, the others nothing: points only from rings 0..7.
+            rings = {p[0] for p in point_cloud2.read_points(m, field_names=('ring',))}
+            self.assertTrue(rings, 'empty cloud')
+            self.assertLessEqual(rings, set(range(8)), rings)
+
+
+if __name__ == '__main__':
+    rostest.rosrun('tianracer_sim', 'car_models', CarModelTest)

@@ -1,0 +1,84 @@
+// The start-up table: every plugin and sensor of a model, simulated, simulated with named
+// differences, or left out with the reason (golden text for test/data/urdf/report.urdf).
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "tianracer_sim/sensors/model_report.h"
+
+namespace tianracer_sim {
+namespace {
+
+// Loaded from its text under a short source name, so that the messages in the golden text
+// do not depend on where the repository lives.
+RobotModel reportModel() {
+  std::ifstream file(std::string(TEST_DATA_DIR) + "/urdf/report.urdf");
+  std::stringstream xml;
+  xml << file.rdbuf();
+  return loadRobotModel(xml.str(), "report.urdf", LoadOptions());
+}
+
+const ReportRow& rowOf(const std::vector<ReportRow>& rows, const std::string& name) {
+  for (const ReportRow& r : rows) {
+    if (r.name == name) return r;
+  }
+  throw std::runtime_error("no row " + name);
+}
+
+TEST(SensorsModelReport, GoldenTable) {
+  const RobotModel model = reportModel();
+  const std::string table = formatModelReport("report", modelReport(model, "report"));
+  const std::string golden = R"(robot 'report': 10 plugins and sensors: 3 simulated, 2 with differences, 5 left out
+  KIND    NAME                TYPE                          LINK          STATUS
+  plugin  gazebo_ros_control  libgazebo_ros_control.so      -             simulated
+          runs the controllers of the YAML under /report
+  plugin  ground_truth        libgazebo_ros_p3d.so          base_link     simulated
+          /report/p3d/odom nav_msgs/Odometry @ 50 Hz
+  plugin  imu                 libgazebo_ros_imu.so          base_link     simulated
+          /report/imu sensor_msgs/Imu @ 100 Hz
+  plugin  imu_nowhere         libgazebo_ros_imu.so          no_such_link  left out
+          why: link 'no_such_link' is not a link of the model
+  plugin  planar_move         libgazebo_ros_planar_move.so  -             left out
+          why: plugin 'libgazebo_ros_planar_move.so' is not simulated
+  sensor  front               camera                        base_link     simulated, with differences
+          /front/image_raw sensor_msgs/Image @ 15 Hz
+          /front/camera_info sensor_msgs/CameraInfo @ 15 Hz
+          difference: images are stamped in <frameName>_optical_frame (z forward), not the plain frame
+  sensor  bayer               camera                        base_link     left out
+          why: camera sensor 'bayer' on link 'base_link' (line 54): <image><format> 'BAYER_RGGB8' is a Gazebo format that is not simulated (supported: R8G8B8, B8G8R8, L8, L16); the camera is left out
+  sensor  lidar               gpu_ray                       base_link     simulated, with differences
+          /scan sensor_msgs/LaserScan @ 10 Hz
+          difference: ray-cast on the CPU (Embree), exactly as type ray
+          difference: rays start at the sensor: a surface nearer than the minimum range reads -inf (Gazebo starts them at the minimum range)
+  sensor  sonar               sonar                         base_link     left out
+          why: sensor type 'sonar' is not simulated
+  sensor  imu_bad_rate        imu                           base_link     left out
+          why: report.urdf: line 80: sensor 'imu_bad_rate' on link 'base_link': <update_rate> value '-5' must be finite and >= 0
+)";
+  EXPECT_EQ(table, golden) << table;
+}
+
+TEST(SensorsModelReport, TheNodesReasonsWin) {
+  const RobotModel model = reportModel();
+  const std::vector<ReportRow> rows =
+      modelReport(model, "report", {{"front", "disabled by ~disable_sensors"},
+                                    {"imu", "link 'base_link' has no body"}});
+  EXPECT_EQ(rowOf(rows, "front").status, ReportRow::Status::kLeftOut);
+  EXPECT_EQ(rowOf(rows, "front").notes, std::vector<std::string>{"disabled by ~disable_sensors"});
+  EXPECT_TRUE(rowOf(rows, "front").topics.empty());
+  EXPECT_EQ(rowOf(rows, "imu").status, ReportRow::Status::kLeftOut);
+  EXPECT_EQ(rowOf(rows, "lidar").status, ReportRow::Status::kDifferences);
+}
+
+TEST(SensorsModelReport, EmptyModel) {
+  LoadOptions options;
+  const RobotModel model =
+      loadRobotModelFile(std::string(TEST_DATA_DIR) + "/urdf/minimal.urdf", options);
+  EXPECT_EQ(formatModelReport("minimal", modelReport(model, "minimal")),
+            "robot 'minimal': 0 plugins and sensors: 0 simulated, 0 with differences, 0 left out\n");
+}
+
+}  // namespace
+}  // namespace tianracer_sim
