@@ -460,11 +460,9 @@ RobotExtensions parseExtensionsXml(const XMLElement* robot, const std::string& s
                            std::to_string(jsp_element->GetLineNum()) + ")");
         jsp_element = c;
         ext.joint_state_publisher = jointStatePublisher(p, source, joints, warner);
-      } else {
-        warner.warnOnce("plugin:" + p.filename,
-                        at(source, c) + "plugin '" + p.name + "': unknown plugin '" + p.filename +
-                            "' ignored");
       }
+      // Other plugins (IMU, p3d, ...) are the sensor registry's to judge, which this layer
+      // cannot see: the start-up table names each one simulated or left out.
       ext.model_plugins.push_back(std::move(p));
     }
   }

@@ -17,6 +17,7 @@ namespace {
 using ::testing::AllOf;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
+using ::testing::IsEmpty;
 
 /// A two-wheel robot with `body` spliced in after the links and joints.
 std::string robot(const std::string& body) {
@@ -211,15 +212,21 @@ TEST(Extensions, JointStatePublisherStripsWhitespaceInsideNames) {
               HasSubstr("updateRate 'nan'"));
 }
 
-TEST(Extensions, UnknownPluginWarnedOncePerFilename) {
+// Other model plugins are kept for the sensor registry and the start-up table to judge
+// (test_sensors_model_report.cpp): the parser neither drops them nor calls a simulated one
+// (libgazebo_ros_p3d.so) unknown.
+TEST(Extensions, OtherPluginsKeptWithoutWarning) {
   Parser p;
   const auto ext =
       p.parse(robot("<gazebo><plugin name='a' filename='libfoo.so'/></gazebo>"
-                    "<gazebo><plugin name='b' filename='libfoo.so'/>"
+                    "<gazebo><plugin name='b' filename='libgazebo_ros_p3d.so'>"
+                    "<bodyName>base_link</bodyName></plugin>"
                     "<plugin name='c' filename='libbar.so'/></gazebo>"));
-  EXPECT_EQ(ext.model_plugins.size(), 3u);
-  EXPECT_THAT(p.warnings, ElementsAre(HasSubstr("unknown plugin 'libfoo.so'"),
-                                      HasSubstr("unknown plugin 'libbar.so'")));
+  ASSERT_EQ(ext.model_plugins.size(), 3u);
+  EXPECT_EQ(ext.model_plugins[0].filename, "libfoo.so");
+  EXPECT_EQ(ext.model_plugins[1].filename, "libgazebo_ros_p3d.so");
+  EXPECT_EQ(ext.model_plugins[2].filename, "libbar.so");
+  EXPECT_THAT(p.warnings, IsEmpty());
 }
 
 TEST(Extensions, TransmissionFormsAndErrors) {
