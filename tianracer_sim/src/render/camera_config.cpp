@@ -8,6 +8,7 @@
 
 #include <tinyxml2.h>
 
+#include "tianracer_sim/common/text.h"
 #include "tianracer_sim/common/xml_reader.h"
 
 namespace tianracer_sim {
@@ -62,15 +63,6 @@ using tinyxml2::XMLElement;
 
 // Text directly inside an element, trimmed ("" when none).
 std::string textOf(const XMLElement* e) { return elementText(e); }
-
-uint32_t fnv1a(const std::string& s) {
-  uint32_t h = 2166136261u;
-  for (unsigned char c : s) {
-    h ^= c;
-    h *= 16777619u;
-  }
-  return h == 0 ? 1u : h;
-}
 
 class Parser {
  public:
@@ -203,7 +195,7 @@ class Parser {
       fail("<image><format> '" + f + "' is not a Gazebo image format (supported: R8G8B8, "
            "B8G8R8, L8, L16)");
     }
-    c->noise_seed = fnv1a(sensor_.name);
+    c->noise_seed = nameHash(sensor_.name);
     c->frame_name = sensor_.link;
   }
 

@@ -39,15 +39,6 @@ std::vector<std::string> splitList(const std::string& text) {
   return out;
 }
 
-uint32_t fnv1a(const std::string& s) {
-  uint32_t h = 2166136261u;
-  for (unsigned char c : s) {
-    h ^= c;
-    h *= 16777619u;
-  }
-  return h == 0 ? 1u : h;
-}
-
 class MultiCameraParser {
  public:
   MultiCameraParser(const SensorSpec& sensor, const std::string& model_name,
@@ -135,7 +126,7 @@ class MultiCameraParser {
       c.name = names[i];
       c.type = "multicamera";
       c.X_LS = sensor_.X_LS * poses[i];
-      c.noise_seed = fnv1a(specs[i].name);
+      c.noise_seed = nameHash(specs[i].name);
       if (plugin) {
         c.plugin_filename = plugin->filename;
         c.camera_name += suffixes[i];

@@ -29,11 +29,6 @@ using tinyxml2::XMLElement;
 
 std::string fmt(double v) { return formatNumber(v); }
 
-std::string baseName(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
 /// Numbers from text: NaN and inf are kept (validate() names them), garbage is an error.
 class Reader {
  public:

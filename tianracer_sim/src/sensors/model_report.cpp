@@ -4,22 +4,14 @@
 #include <cstdio>
 #include <sstream>
 
+#include "tianracer_sim/common/text.h"
 #include "tianracer_sim/model/sensor_topics.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
 
 namespace tianracer_sim {
 namespace {
 
-std::string fmt(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%g", v);
-  return buf;
-}
-
-std::string baseName(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
+std::string fmt(double v) { return formatShort(v); }
 
 // Differences every instance of a type has, whatever its parameters (README, Known
 // differences and limits).

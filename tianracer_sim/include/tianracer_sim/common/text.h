@@ -1,7 +1,10 @@
-// Text helpers shared by the sensor parsers (until one XML reader serves every parser).
+// Text helpers shared by the parsers (common/xml_reader.h), the sensor registry and the
+// start-up table.
 #ifndef TIANRACER_SIM_COMMON_TEXT_H
 #define TIANRACER_SIM_COMMON_TEXT_H
 
+#include <cstdint>
+#include <cstdio>
 #include <sstream>
 #include <string>
 
@@ -21,6 +24,30 @@ inline std::string formatNumber(double v) {
   ss.precision(10);
   ss << v;
   return ss.str();
+}
+
+/// A number as tables print it: printf's %g (6 significant digits).
+inline std::string formatShort(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%g", v);
+  return buf;
+}
+
+/// The last component of a path ("lib/libfoo.so" -> "libfoo.so").
+inline std::string baseName(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+/// A stable hash of a name (32-bit FNV-1a), never 0: the default noise seed of a sensor, so
+/// that two sensors of one model draw different noise and every run draws the same.
+inline std::uint32_t nameHash(const std::string& s) {
+  std::uint32_t h = 2166136261u;
+  for (unsigned char c : s) {
+    h ^= c;
+    h *= 16777619u;
+  }
+  return h == 0 ? 1u : h;
 }
 
 }  // namespace tianracer_sim
