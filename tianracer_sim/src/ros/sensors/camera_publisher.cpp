@@ -14,6 +14,23 @@
 #include "tianracer_sim/ros/camera_msgs.h"
 
 namespace tianracer_sim {
+
+void sendOpticalFrame(const SensorSetup& setup, const CameraConfig& camera) {
+  geometry_msgs::TransformStamped tf;
+  tf.header.frame_id = tianracer_control::resolveFrame(setup.tf_prefix, setup.spec->link);
+  tf.child_frame_id = camera.opticalFrame();
+  const Eigen::Isometry3d X_LO = camera.X_LO();
+  const Eigen::Quaterniond q(X_LO.linear());
+  tf.transform.translation.x = X_LO.translation().x();
+  tf.transform.translation.y = X_LO.translation().y();
+  tf.transform.translation.z = X_LO.translation().z();
+  tf.transform.rotation.x = q.x();
+  tf.transform.rotation.y = q.y();
+  tf.transform.rotation.z = q.z();
+  tf.transform.rotation.w = q.w();
+  setup.static_tf->sendTransform(tf);
+}
+
 namespace {
 
 namespace tc = tianracer_control;
@@ -33,20 +50,7 @@ bool prepareCamera(const SensorSetup& setup, CameraConfig* camera, ros::NodeHand
   setup.claim_topic(cam_nh->getNamespace(),
                     "robot '" + setup.robot_name + "' camera '" + setup.spec->name + "'");
 
-  // The optical frame (z forward, x right, y down) that images are stamped with.
-  geometry_msgs::TransformStamped tf;
-  tf.header.frame_id = tc::resolveFrame(setup.tf_prefix, setup.spec->link);
-  tf.child_frame_id = camera->opticalFrame();
-  const Eigen::Isometry3d X_LO = camera->X_LO();
-  const Eigen::Quaterniond q(X_LO.linear());
-  tf.transform.translation.x = X_LO.translation().x();
-  tf.transform.translation.y = X_LO.translation().y();
-  tf.transform.translation.z = X_LO.translation().z();
-  tf.transform.rotation.x = q.x();
-  tf.transform.rotation.y = q.y();
-  tf.transform.rotation.z = q.z();
-  tf.transform.rotation.w = q.w();
-  setup.static_tf->sendTransform(tf);
+  sendOpticalFrame(setup, *camera);
   return true;
 }
 

@@ -18,6 +18,11 @@ std::unique_ptr<SensorPublisher> makeImuPluginPublisher(const SensorSetup& setup
 std::unique_ptr<SensorPublisher> makeP3dPublisher(const SensorSetup& setup);
 std::unique_ptr<SensorPublisher> makeBumperPublisher(const SensorSetup& setup);
 
+struct CameraConfig;
+/// The camera's optical frame (z forward, x right, y down), which its images are stamped
+/// with, on static TF under the sensor's link (camera_publisher.cpp).
+void sendOpticalFrame(const SensorSetup& setup, const CameraConfig& camera);
+
 }  // namespace tianracer_sim
 
 #endif  // TIANRACER_SIM_SRC_ROS_SENSORS_FACTORIES_H

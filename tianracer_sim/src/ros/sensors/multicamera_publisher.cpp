@@ -98,22 +98,6 @@ class MultiCameraPublisher : public SensorPublisher {
     BorrowedImage image_msg;  // the sensor's buffer, serialised by publish() without a copy
   };
 
-  static void sendOpticalFrame(const SensorSetup& setup, const CameraConfig& c) {
-    geometry_msgs::TransformStamped tf;
-    tf.header.frame_id = tc::resolveFrame(setup.tf_prefix, setup.spec->link);
-    tf.child_frame_id = c.opticalFrame();
-    const Eigen::Isometry3d X_LO = c.X_LO();
-    const Eigen::Quaterniond q(X_LO.linear());
-    tf.transform.translation.x = X_LO.translation().x();
-    tf.transform.translation.y = X_LO.translation().y();
-    tf.transform.translation.z = X_LO.translation().z();
-    tf.transform.rotation.x = q.x();
-    tf.transform.rotation.y = q.y();
-    tf.transform.rotation.z = q.z();
-    tf.transform.rotation.w = q.w();
-    setup.static_tf->sendTransform(tf);
-  }
-
   std::size_t robot_;
   std::string link_;
   std::vector<Camera> cameras_;
