@@ -1,0 +1,90 @@
+// The sim node's status: every status period (wall time) one line on the log and a
+// /diagnostics array with the real-time factor, contacts per robot and each sensor's rate in sim
+// and in wall time (the /diagnostics row of the README's topic table).
+#include <iomanip>
+#include <sstream>
+
+#include <diagnostic_msgs/DiagnosticArray.h>
+
+#include "tianracer_sim/ros/sim_node.h"
+
+namespace tianracer_sim {
+
+void SimNode::publishStatus() {
+  const ros::WallTime now = ros::WallTime::now();
+  const double wall = (now - status_wall_).toSec();
+  if (status_period_ <= 0.0 || wall < status_period_) return;
+  const double sim = sim_->time() - status_sim_;
+  const double rtf = sim / wall;
+  std::ostringstream line;
+  line << std::fixed << std::setprecision(2) << "sim time " << sim_->time() << " s, real-time factor "
+       << rtf << (paused_ ? " (paused)" : "");
+  diagnostic_msgs::DiagnosticArray array;
+  array.header.stamp = ros::Time(sim_->time());
+  diagnostic_msgs::DiagnosticStatus sim_status;
+  sim_status.name = "tianracer_sim: simulation";
+  sim_status.hardware_id = "tianracer_sim";
+  sim_status.level = diagnostic_msgs::DiagnosticStatus::OK;
+  sim_status.message = paused_ ? "paused" : "running";
+  auto kv = [](const std::string& k, double v) {
+    diagnostic_msgs::KeyValue x;
+    x.key = k;
+    std::ostringstream o;
+    o << v;
+    x.value = o.str();
+    return x;
+  };
+  sim_status.values.push_back(kv("sim_time", sim_->time()));
+  sim_status.values.push_back(kv("real_time_factor", rtf));
+  sim_status.values.push_back(kv("target_real_time_factor", real_time_factor_));
+  for (const RobotIo& io : robots_) {
+    if (!io.robot) continue;
+    sim_status.values.push_back(kv("contacts " + io.robot->name, contacts_->count(io.robot->id)));
+  }
+  array.status.push_back(sim_status);
+  // In sim time every sensor keeps its rate by construction (rendering holds the step); what
+  // can fall behind is the wall-clock rate a consumer sees when the sim cannot keep real time.
+  for (SensorStat& stat : stats_) {
+    if (stat.name.empty()) continue;  // its robot was deleted
+    const double rate = sim > 0.0 ? stat.count / sim : 0.0;
+    const double wall_rate = stat.count / wall;
+    diagnostic_msgs::DiagnosticStatus st;
+    st.name = "tianracer_sim: " + stat.name;
+    st.hardware_id = "tianracer_sim";
+    st.values.push_back(kv("rate_hz_sim_time", rate));
+    st.values.push_back(kv("rate_hz_wall_time", wall_rate));
+    st.values.push_back(kv("target_hz", stat.target));
+    st.values.push_back(kv("published", static_cast<double>(stat.count)));
+    st.values.push_back(kv("renders_total", static_cast<double>(stat.renders)));
+    st.level = diagnostic_msgs::DiagnosticStatus::OK;
+    line << ", " << stat.name << " ";
+    if (stat.count == 0) {
+      st.message = "idle (no subscriber)";
+      line << "idle";
+    } else if (stat.skipped > 0) {
+      st.message = "subscribed part of the time";
+      line << std::setprecision(1) << rate << "/" << stat.target << " Hz (part time)";
+    } else if (rate < 0.9 * stat.target ||
+               (real_time_factor_ > 0.0 && wall_rate < 0.9 * stat.target * real_time_factor_)) {
+      st.level = diagnostic_msgs::DiagnosticStatus::WARN;
+      st.message = "behind its rate";
+      ROS_WARN("%s: %.1f Hz in sim time, %.1f Hz in wall time: behind its target %.1f Hz x "
+               "real_time_factor %g",
+               stat.name.c_str(), rate, wall_rate, stat.target, real_time_factor_);
+      line << std::setprecision(1) << rate << "/" << stat.target << " Hz (BEHIND: " << wall_rate
+           << " Hz wall)";
+    } else {
+      st.message = "ok";
+      line << std::setprecision(1) << rate << "/" << stat.target << " Hz";
+    }
+    array.status.push_back(st);
+    stat.count = 0;
+    stat.skipped = 0;
+  }
+  ROS_INFO_STREAM(line.str());
+  diagnostics_pub_.publish(array);
+  status_wall_ = now;
+  status_sim_ = sim_->time();
+}
+
+}  // namespace tianracer_sim
