@@ -1,6 +1,11 @@
 """Where the built tianracer_sim_node is, for rostests that start it themselves (with arguments
 or an environment a launch file cannot give)."""
 import os
+import signal
+import socket
+import subprocess
+import threading
+import time
 
 
 def node_binary():
@@ -9,3 +14,42 @@ def node_binary():
         if os.path.exists(path):
             return path
     raise RuntimeError('tianracer_sim_node not found on CMAKE_PREFIX_PATH')
+
+
+def startup_output(args, wanted, name, timeout=90.0):
+    """The output of tianracer_sim_node started with `args` on a private master (so that its
+    start-up messages can be read apart from the rostest's sim): read until every string of
+    `wanted` has appeared, or for at most `timeout` s of a loaded machine's wall time, then
+    interrupted. The node should be paused (it runs until interrupted)."""
+    with socket.socket() as s:
+        s.bind(('localhost', 0))
+        port = s.getsockname()[1]
+    # Line-buffered stdout: INFO lines arrive as they are logged, not when the node exits.
+    env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port,
+               ROSCONSOLE_STDOUT_LINE_BUFFERED='1')
+    master = subprocess.Popen(['rosmaster', '--core', '-p', str(port)], env=env,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        node = subprocess.Popen([node_binary(), '__name:=' + name] + list(args), env=env,
+                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                universal_newlines=True)
+        lines = []
+
+        def read():
+            for line in node.stdout:
+                lines.append(line)
+
+        reader = threading.Thread(target=read, daemon=True)
+        reader.start()
+        end = time.time() + timeout
+        while (time.time() < end and node.poll() is None and
+               not all(any(w in l for l in list(lines)) for w in wanted)):
+            time.sleep(0.2)
+        if node.poll() is None:
+            node.send_signal(signal.SIGINT)
+        node.wait(timeout=20)
+        reader.join(timeout=10)
+        return ''.join(lines)
+    finally:
+        master.terminate()
+        master.wait(timeout=10)

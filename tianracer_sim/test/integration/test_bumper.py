@@ -6,9 +6,6 @@ contact points at the box's face, normals pushing the car back and a force that 
 Everything in sim time. A bumper whose frameName is no link, and a contact sensor without the
 plugin, are left out with a message."""
 import os
-import signal
-import socket
-import subprocess
 import threading
 import time
 import unittest
@@ -18,7 +15,7 @@ import rostest
 from gazebo_msgs.msg import ContactsState
 from std_msgs.msg import Float64
 
-from sim_node_binary import node_binary
+from sim_node_binary import startup_output
 
 WHEEL_RADIUS = 0.032
 COMMANDS = ['/tianracer/left_rear_wheel_velocity_controller/command',
@@ -82,27 +79,12 @@ class BumperTest(unittest.TestCase):
     def test_b_bad_sensors_messages(self):
         """What the node says about them: the same model in a sim of its own (own master), so
         that its start-up output can be read."""
-        with socket.socket() as s:
-            s.bind(('localhost', 0))
-            port = s.getsockname()[1]
-        env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
-        master = subprocess.Popen(['rosmaster', '--core', '-p', str(port)], env=env,
-                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        try:
-            model = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data', 'urdf',
-                                 'tianracer_bumper.xacro')
-            node = subprocess.Popen([node_binary(), '__name:=bumper_bad_input', '_model:=' + model,
-                                     '_paused:=true', '_disable_sensors:=camera depth ray'],
-                                    env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                    universal_newlines=True)
-            try:  # paused, it runs until interrupted
-                out, _ = node.communicate(timeout=15)
-            except subprocess.TimeoutExpired:
-                node.send_signal(signal.SIGINT)
-                out, _ = node.communicate(timeout=10)
-        finally:
-            master.terminate()
-            master.wait(timeout=10)
+        model = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data', 'urdf',
+                             'tianracer_bumper.xacro')
+        out = startup_output(['_model:=' + model, '_paused:=true',
+                              '_disable_sensors:=camera depth ray'],
+                             ["'nowhere'", 'no libgazebo_ros_bumper plugin', "contact sensor 'bumper'"],
+                             'bumper_bad_input')
         bad = [l for l in out.splitlines() if 'bad_frame_bumper' in l and "'nowhere'" in l
                and 'neither world nor a link' in l and 'left out' in l]
         self.assertTrue(bad, out)

@@ -15,8 +15,6 @@ driven from /cmd_vel through tianracer_control's cmd_vel node.
 """
 import math
 import os
-import signal
-import socket
 import subprocess
 import tempfile
 import threading
@@ -29,7 +27,7 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import CameraInfo, Image, Imu, JointState, LaserScan
 
-from sim_node_binary import node_binary
+from sim_node_binary import startup_output
 
 V, W = 0.5, 0.5
 F = 320 / (2.0 * math.tan(1.3962634 / 2.0))  # the stereo cameras' focal length (px)
@@ -178,40 +176,13 @@ class CarATest(unittest.TestCase):
             urdf = f.name
             f.write(subprocess.check_output(['xacro', MODEL, 'bad_sensors:=true'],
                                             universal_newlines=True))
-        with socket.socket() as s:
-            s.bind(('localhost', 0))
-            port = s.getsockname()[1]
-        env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
-        master = subprocess.Popen(['rosmaster', '--core', '-p', str(port)], env=env,
-                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         try:
-            node = subprocess.Popen([node_binary(), '__name:=car_a_bad_input', '_model:=' + urdf,
-                                     '_robot_name:=car_a', '_paused:=true',
-                                     '_disable_sensors:=ray imu'],
-                                    env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                    universal_newlines=True)
-            # Paused, it runs until interrupted: read until both errors are there (stderr,
-            # unbuffered; the INFO lines on stdout come when it exits), for at most 90 s of a
-            # loaded machine's wall time.
-            lines = []
-
-            def read():
-                for line in node.stdout:
-                    lines.append(line)
-
-            reader = threading.Thread(target=read, daemon=True)
-            reader.start()
-            wanted = ["has 1 <camera>", "two cameras are named 'left'"]
-            end = time.time() + 90.0
-            while time.time() < end and not all(any(w in l for l in list(lines)) for w in wanted):
-                time.sleep(0.2)
-            node.send_signal(signal.SIGINT)
-            node.wait(timeout=20)
-            reader.join(timeout=10)
-            out = ''.join(lines)
+            out = startup_output(['_model:=' + urdf, '_robot_name:=car_a', '_paused:=true',
+                                  '_disable_sensors:=ray imu'],
+                                 ['has 1 <camera>', "two cameras are named 'left'",
+                                  "multicamera 'stereo_camera' camera 'right'"],
+                                 'car_a_bad_input')
         finally:
-            master.terminate()
-            master.wait(timeout=10)
             os.unlink(urdf)
         expected = [('one_camera', 'has 1 <camera>'), ('same_names', "two cameras are named 'left'")]
         for name, value in expected:

@@ -10,9 +10,6 @@ turns it wider or tighter, a wrong wheel radius changes the speed.
 """
 import math
 import os
-import signal
-import socket
-import subprocess
 import threading
 import time
 import unittest
@@ -25,7 +22,7 @@ from nav_msgs.msg import Odometry
 from sensor_msgs import point_cloud2
 from sensor_msgs.msg import CameraInfo, Image, Imu, PointCloud2, PointField
 
-from sim_node_binary import node_binary
+from sim_node_binary import startup_output
 
 V, W = 0.5, 0.5
 
@@ -156,28 +153,12 @@ class CarModelTest(unittest.TestCase):
         where the controllers really are (a sim of its own, own master, paused)."""
         if self.name != 'car_prefixed':
             return
-        with socket.socket() as s:
-            s.bind(('localhost', 0))
-            port = s.getsockname()[1]
-        env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
-        master = subprocess.Popen(['rosmaster', '--core', '-p', str(port)], env=env,
-                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        try:
-            model = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data',
-                                 'models', 'car_prefixed.xacro')
-            node = subprocess.Popen([node_binary(), '__name:=robot_name_check', '_model:=' + model,
-                                     '_robot_name:=other', '_paused:=true',
-                                     '_disable_sensors:=camera'],
-                                    env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                    universal_newlines=True)
-            try:  # paused, it runs until interrupted
-                out, _ = node.communicate(timeout=20)
-            except subprocess.TimeoutExpired:
-                node.send_signal(signal.SIGINT)
-                out, _ = node.communicate(timeout=10)
-        finally:
-            master.terminate()
-            master.wait(timeout=10)
+        model = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data',
+                             'models', 'car_prefixed.xacro')
+        out = startup_output(['_model:=' + model, '_robot_name:=other', '_paused:=true',
+                              '_disable_sensors:=camera'],
+                             ['~robot_name is', "robot 'other': 5 plugins and sensors"],
+                             'robot_name_check')
         self.assertIn("~robot_name is 'other' but the model's gazebo_ros_control robotNamespace "
                       "is '/car1'", out)
         self.assertIn("robot 'other': 5 plugins and sensors", out)  # the start-up table

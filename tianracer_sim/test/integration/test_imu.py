@@ -9,9 +9,6 @@ force is v_x * w (centripetal), and the orientation's yaw is the truth's. Everyt
 """
 import math
 import os
-import signal
-import socket
-import subprocess
 import threading
 import time
 import unittest
@@ -23,7 +20,7 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu
 from std_srvs.srv import Empty
 
-from sim_node_binary import node_binary
+from sim_node_binary import startup_output
 
 V, W = 0.5, 0.5
 
@@ -165,27 +162,12 @@ class ImuTest(unittest.TestCase):
     def test_c_bad_imu_messages(self):
         """What the node says about them: the same model in a sim of its own (own master), so
         that its start-up output can be read."""
-        with socket.socket() as s:
-            s.bind(('localhost', 0))
-            port = s.getsockname()[1]
-        env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
-        master = subprocess.Popen(['rosmaster', '--core', '-p', str(port)], env=env,
-                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        try:
-            model = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data', 'urdf',
-                                 'tianracer_imu.xacro')
-            node = subprocess.Popen([node_binary(), '__name:=imu_bad_input', '_model:=' + model,
-                                     '_paused:=true', '_disable_sensors:=camera depth ray'],
-                                    env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                    universal_newlines=True)
-            try:  # paused, it runs until interrupted
-                out, _ = node.communicate(timeout=15)
-            except subprocess.TimeoutExpired:
-                node.send_signal(signal.SIGINT)
-                out, _ = node.communicate(timeout=10)
-        finally:
-            master.terminate()
-            master.wait(timeout=10)
+        model = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data', 'urdf',
+                             'tianracer_imu.xacro')
+        out = startup_output(['_model:=' + model, '_paused:=true',
+                              '_disable_sensors:=camera depth ray'],
+                             ["'laplace'", "'-5'", 'no_such_link', "IMU 'imu_sensor'"],
+                             'imu_bad_input')
         expected = [('imu_bad_noise', "'laplace'"), ('imu_bad_rate', "'-5'"),
                     ('imu_nowhere', 'no_such_link')]
         for name, value in expected:
