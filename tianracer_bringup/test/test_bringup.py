@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""rostest (issue 7): tianracer.launch end to end.
+"""rostest: tianracer.launch end to end.
 
 - The TF tree is complete: every link of robot_description, the lidar's frame and both
   cameras' optical frames chain up to odom, and odom to world; no frame has two publishers or

@@ -1,5 +1,5 @@
 """The headless demo (README's run command) on a short lap: it completes, and the files it
-writes are valid PNG and CSV (issue 7). The demo starts its own ROS master."""
+writes are valid PNG and CSV. The demo starts its own ROS master."""
 import csv
 import os
 import shutil

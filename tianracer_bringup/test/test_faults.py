@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""rostest (issue 9): faults from the ROS side while the car drives, through tianracer.launch
+"""rostest: faults from the ROS side while the car drives, through tianracer.launch
 (empty world, every sensor). In every case the simulator keeps stepping and what it publishes
 stays sane.
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""rostest (issue 7): two_cars.launch.
+"""rostest: two_cars.launch.
 
 - Two disjoint topic sets: what the simulator and each car's nodes publish and subscribe for
   car 2 is car 1's set moved under /tianracer_02 (/tianracer/x -> /tianracer_02/x,
