@@ -19,14 +19,11 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Float64
 from std_srvs.srv import Empty
+from tianracer_bringup.ros_session import yaw_from_quaternion as yaw_of
 
 CMD_NODE = '/cmd_vel_node'
 WHEEL_TOPIC = '/tianracer/left_rear_wheel_velocity_controller/command'
 STEER_TOPIC = '/tianracer/left_steering_hinge_position_controller/command'
-
-
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
 def wrap(a):
