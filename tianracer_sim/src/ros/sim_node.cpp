@@ -337,12 +337,10 @@ void SimNode::setUpRobotIo(std::size_t index, const ros::NodeHandle& rp) {
   root.setCallbackQueue(&queue_);
   contacts_->addRobot(root, robot.id, robot.name, io.ns);
   setUpSensors(index, rp);
-  // A table that leaves something out is a warning: the user's model does less here than in Gazebo.
+  // A table that leaves something out is a warning (the user's model does less here than in
+  // Gazebo), unless the user left it out with ~disable_sensors.
   const std::vector<ReportRow> report = modelReport(robot.model, name, left_out_);
-  const bool left_out = std::any_of(report.begin(), report.end(), [](const ReportRow& r) {
-    return r.status == ReportRow::Status::kLeftOut;
-  });
-  if (left_out) {
+  if (leavesOutUnasked(report)) {
     ROS_WARN_STREAM(formatModelReport(name, report));
   } else {
     ROS_INFO_STREAM(formatModelReport(name, report));
@@ -361,7 +359,7 @@ void SimNode::setUpSensors(size_t robot_index, const ros::NodeHandle& rp) {
           std::find(disabled.begin(), disabled.end(), spec.name) != disabled.end()) {
         ROS_INFO("sensor '%s' (%s) on link %s disabled by ~disable_sensors", spec.name.c_str(),
                  spec.type.c_str(), link.c_str());
-        left_out_[spec.name] = "disabled by ~disable_sensors";
+        left_out_[spec.name] = kDisabledBySensorList;
         continue;
       }
       setUpSensor(robot_index, spec);
@@ -374,7 +372,7 @@ void SimNode::setUpSensors(size_t robot_index, const ros::NodeHandle& rp) {
     if (std::find(disabled.begin(), disabled.end(), spec.name) != disabled.end()) {
       ROS_INFO("plugin '%s' (%s) disabled by ~disable_sensors", spec.name.c_str(),
                plugin.filename.c_str());
-      left_out_[spec.name] = "disabled by ~disable_sensors";
+      left_out_[spec.name] = kDisabledBySensorList;
       continue;
     }
     setUpSensor(robot_index, spec);

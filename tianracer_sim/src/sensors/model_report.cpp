@@ -159,4 +159,13 @@ std::string formatModelReport(const std::string& robot_name, const std::vector<R
   return out.str();
 }
 
+const char kDisabledBySensorList[] = "disabled by ~disable_sensors";
+
+bool leavesOutUnasked(const std::vector<ReportRow>& rows) {
+  return std::any_of(rows.begin(), rows.end(), [](const ReportRow& r) {
+    return r.status == ReportRow::Status::kLeftOut &&
+           std::find(r.notes.begin(), r.notes.end(), kDisabledBySensorList) == r.notes.end();
+  });
+}
+
 }  // namespace tianracer_sim

@@ -72,6 +72,30 @@ TEST(SensorsModelReport, TheNodesReasonsWin) {
   EXPECT_EQ(rowOf(rows, "lidar").status, ReportRow::Status::kDifferences);
 }
 
+// The node logs the table as a warning only when the model does less than in Gazebo for a
+// reason the user did not choose.
+TEST(SensorsModelReport, WarnsOnlyForWhatTheUserDidNotLeaveOut) {
+  LoadOptions options;
+  const RobotModel minimal =
+      loadRobotModelFile(std::string(TEST_DATA_DIR) + "/urdf/minimal.urdf", options);
+  EXPECT_FALSE(leavesOutUnasked(modelReport(minimal, "minimal")));
+  // report.urdf leaves out an unknown plugin, an unknown sensor type, a Bayer camera, ...
+  const RobotModel model = reportModel();
+  EXPECT_TRUE(leavesOutUnasked(modelReport(model, "report")));
+  // Only what the user switched off: no warning.
+  ReportRow off;
+  off.kind = "sensor";
+  off.name = "front";
+  off.status = ReportRow::Status::kLeftOut;
+  off.notes = {kDisabledBySensorList};
+  ReportRow simulated;
+  simulated.name = "lidar";
+  EXPECT_FALSE(leavesOutUnasked({simulated, off}));
+  ReportRow failed = off;
+  failed.notes = {"link 'base_link' has no body"};
+  EXPECT_TRUE(leavesOutUnasked({simulated, off, failed}));
+}
+
 TEST(SensorsModelReport, EmptyModel) {
   LoadOptions options;
   const RobotModel model =

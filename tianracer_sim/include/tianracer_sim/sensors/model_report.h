@@ -42,6 +42,13 @@ std::vector<ReportRow> modelReport(const RobotModel& model, const std::string& r
 ///             topic / difference / reason lines under their row
 std::string formatModelReport(const std::string& robot_name, const std::vector<ReportRow>& rows);
 
+/// Why a sensor the user switched off with ~disable_sensors is left out.
+extern const char kDisabledBySensorList[];
+
+/// Whether the table is a warning: something is left out that the user did not switch off
+/// (the model does less here than in Gazebo).
+bool leavesOutUnasked(const std::vector<ReportRow>& rows);
+
 }  // namespace tianracer_sim
 
 #endif  // TIANRACER_SIM_SENSORS_MODEL_REPORT_H
