@@ -27,7 +27,7 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import CameraInfo, Image, Imu, JointState, LaserScan
 
-from sim_node_binary import startup_output
+from sim_node_binary import drive_for, startup_output
 
 V, W = 0.5, 0.5
 F = 320 / (2.0 * math.tan(1.3962634 / 2.0))  # the stereo cameras' focal length (px)
@@ -81,14 +81,8 @@ class CarATest(unittest.TestCase):
 
     def drive(self, seconds, v, w, wall_timeout=240.0):
         """Publishes the command while waiting `seconds` of sim time."""
-        t_end = rospy.get_time() + seconds
-        wall_end = time.time() + wall_timeout
-        msg = Twist()
-        msg.linear.x, msg.angular.z = v, w
-        while rospy.get_time() < t_end and time.time() < wall_end:
-            self.cmd.publish(msg)
-            time.sleep(0.02)
-        self.assertLess(time.time(), wall_end, 'sim time did not advance')
+        self.assertTrue(drive_for(self.cmd, seconds, v, w, wall_timeout),
+                        'sim time did not advance')
 
     def test_a_sensors_at_their_rates_with_their_fields(self):
         self.wait_for_all()

@@ -22,7 +22,7 @@ from nav_msgs.msg import Odometry
 from sensor_msgs import point_cloud2
 from sensor_msgs.msg import CameraInfo, Image, Imu, PointCloud2, PointField
 
-from sim_node_binary import startup_output
+from sim_node_binary import drive_for, startup_output
 
 V, W = 0.5, 0.5
 
@@ -79,14 +79,8 @@ class CarModelTest(unittest.TestCase):
 
     def wait_sim(self, seconds, v=V, w=W, wall_timeout=180.0):
         """Publishes the command while waiting `seconds` of sim time."""
-        t_end = rospy.get_time() + seconds
-        wall_end = time.time() + wall_timeout
-        msg = Twist()
-        msg.linear.x, msg.angular.z = v, w
-        while rospy.get_time() < t_end and time.time() < wall_end:
-            self.cmd.publish(msg)
-            time.sleep(0.02)
-        self.assertLess(time.time(), wall_end, 'sim time did not advance')
+        self.assertTrue(drive_for(self.cmd, seconds, v, w, wall_timeout),
+                        'sim time did not advance')
 
     def wait_for(self, store, what, wall_timeout=90.0):
         end = time.time() + wall_timeout

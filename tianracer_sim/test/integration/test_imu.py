@@ -20,7 +20,7 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu
 from std_srvs.srv import Empty
 
-from sim_node_binary import startup_output
+from sim_node_binary import drive_for, startup_output
 
 V, W = 0.5, 0.5
 
@@ -55,14 +55,8 @@ class ImuTest(unittest.TestCase):
 
     def wait_sim(self, seconds, wall_timeout=120.0):
         """Publishes the turn command while waiting `seconds` of sim time."""
-        t_end = rospy.get_time() + seconds
-        wall_end = time.time() + wall_timeout
-        msg = Twist()
-        msg.linear.x, msg.angular.z = V, W
-        while rospy.get_time() < t_end and time.time() < wall_end:
-            self.cmd.publish(msg)
-            time.sleep(0.02)
-        self.assertLess(time.time(), wall_end, 'sim time did not advance')
+        self.assertTrue(drive_for(self.cmd, seconds, V, W, wall_timeout),
+                        'sim time did not advance')
 
     def wait_for(self, store, wall_timeout=60.0):
         end = time.time() + wall_timeout
