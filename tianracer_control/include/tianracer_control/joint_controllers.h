@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "tianracer_control/diagnostic.h"  // WarningSink
 #include "tianracer_control/joint_handle.h"
 #include "tianracer_control/pid.h"
 
@@ -22,9 +23,6 @@ class ControllerError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
-
-/// Receives non-fatal configuration warnings (unknown keys, suspicious gains).
-using WarningSink = std::function<void(const std::string&)>;
 
 /// The pid/ keys as written in the YAML; unset = absent. Converted and checked by toPidGains().
 struct PidParams {

@@ -63,8 +63,8 @@ std::string attributeText(const XMLElement* e, const char* name) {
 }
 
 XmlReader::XmlReader(std::string source, WarningSink warn, Raise raise, Locate locate)
-    : source_(std::move(source)), warn_(std::move(warn)), raise_(std::move(raise)),
-      locate_(std::move(locate)) {}
+    : source_(std::move(source)), raise_(std::move(raise)), locate_(std::move(locate)),
+      warn_(std::move(warn)) {}
 
 std::string XmlReader::at(const XMLElement* e) const {
   if (locate_) return locate_(e);
@@ -84,9 +84,7 @@ void XmlReader::warn(const XMLElement* e, const std::string& message) {
 }
 
 void XmlReader::warnOnce(const std::string& key, const std::string& message) {
-  if (!keys_.insert(key).second) return;
-  if (!messages_.insert(message).second) return;
-  if (warn_) warn_(message);
+  warn_(key, message);
 }
 
 void XmlReader::unsupported(const XMLElement* e, const std::string& why) {

@@ -12,6 +12,7 @@
 
 #include <tianracer_control/frames.h>
 
+#include "tianracer_sim/common/diagnostic.h"
 #include "tianracer_sim/model/sensor_topics.h"
 #include "tianracer_sim/sensors/model_report.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
@@ -69,8 +70,8 @@ std::vector<std::string> getNameList(const ros::NodeHandle& pnh, const std::stri
 }  // namespace
 
 void SimNode::warnOnce(const std::string& text) {
-  static std::set<std::string> seen;
-  if (seen.insert(text).second) ROS_WARN_STREAM(text);
+  static WarnOnce once([](const std::string& w) { ROS_WARN_STREAM(w); });
+  once(text);
 }
 
 SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : nh_(nh), pnh_(pnh) {

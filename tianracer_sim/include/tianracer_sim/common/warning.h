@@ -1,17 +1,8 @@
-// The one warning callback type of the ROS-free libraries: parsers and the renderer report each
-// warning once through it, the node logs what arrives.
+// WarningSink and WarnOnce, now part of the one diagnostic policy (common/diagnostic.h). Kept so
+// that existing includes build; new code includes common/diagnostic.h.
 #ifndef TIANRACER_SIM_COMMON_WARNING_H
 #define TIANRACER_SIM_COMMON_WARNING_H
 
-#include <functional>
-#include <string>
-
-namespace tianracer_sim {
-
-/// Receives each warning once (unknown tag, unknown plugin, defaulted value, skipped visual...).
-/// May be empty: warnings are then dropped.
-using WarningSink = std::function<void(const std::string&)>;
-
-}  // namespace tianracer_sim
+#include "tianracer_sim/common/diagnostic.h"
 
 #endif  // TIANRACER_SIM_COMMON_WARNING_H

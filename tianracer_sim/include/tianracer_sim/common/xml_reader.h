@@ -14,7 +14,7 @@
 #include <tinyxml2.h>
 
 #include "tianracer_sim/common/text.h"
-#include "tianracer_sim/common/warning.h"
+#include "tianracer_sim/common/diagnostic.h"
 
 namespace tianracer_sim {
 
@@ -86,11 +86,9 @@ class XmlReader {
 
  private:
   std::string source_;
-  WarningSink warn_;
   Raise raise_;
   Locate locate_;
-  std::set<std::string> keys_;
-  std::set<std::string> messages_;
+  WarnOnce warn_;
 };
 
 }  // namespace tianracer_sim
