@@ -3,14 +3,12 @@
 #ifndef TIANRACER_CONTROL_ACKERMANN_H
 #define TIANRACER_CONTROL_ACKERMANN_H
 
-#include <stdexcept>
+#include "tianracer_control/diagnostic.h"
 
 namespace tianracer_control {
 
-class AckermannError : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
-};
+/// Steering geometry that cannot be used (a parameter, a URDF, a mesh); names the value.
+using AckermannError = InputError;
 
 /// The car's steering geometry. Defaults: the seed tianracer URDF.
 struct AckermannGeometry {

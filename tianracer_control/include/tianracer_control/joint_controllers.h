@@ -12,17 +12,14 @@
 #include <string>
 #include <vector>
 
-#include "tianracer_control/diagnostic.h"  // WarningSink
+#include "tianracer_control/diagnostic.h"  // InputError, WarningSink
 #include "tianracer_control/joint_handle.h"
 #include "tianracer_control/pid.h"
 
 namespace tianracer_control {
 
 /// A configuration error; the message starts with "controller '<name>': ".
-class ControllerError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+using ControllerError = InputError;
 
 /// The pid/ keys as written in the YAML; unset = absent. Converted and checked by toPidGains().
 struct PidParams {

@@ -1,7 +1,6 @@
 #include "tianracer_sim/sensors/bumper.h"
 
 #include "tianracer_sim/common/text.h"
-#include "tianracer_sim/lidar/ray_sensor.h"  // SensorError
 
 namespace tianracer_sim {
 

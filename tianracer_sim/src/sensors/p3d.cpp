@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "tianracer_sim/lidar/ray_sensor.h"  // SensorError
 
 namespace tianracer_sim {
 

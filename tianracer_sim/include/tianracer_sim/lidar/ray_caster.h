@@ -27,15 +27,13 @@
 
 #include <Eigen/Geometry>
 
+#include "tianracer_sim/common/diagnostic.h"
 #include "tianracer_sim/scene/scene.h"
 
 namespace tianracer_sim {
 
 /// Embree failures and collision items that cannot be built (a mesh that does not load...).
-class RayCasterError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+using RayCasterError = InputError;
 
 enum class PrimitiveMode { kHybrid, kAnalytic, kTessellated };
 

@@ -12,16 +12,10 @@
 
 #include <Eigen/Geometry>
 
-#include "tianracer_sim/model/robot_model.h"  // SensorSpec, WarningSink
+#include "tianracer_sim/model/robot_model.h"  // SensorSpec, SensorError, WarningSink
 #include "tianracer_sim/model/sensor_topics.h"
 
 namespace tianracer_sim {
-
-/// A sensor description that cannot be used; the message names the sensor, element and value.
-class SensorError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 /// <ray><noise>: type "gaussian" (SDF's default) or "none".
 struct RayNoise {

@@ -15,13 +15,12 @@
 
 #include <Eigen/Core>
 
+#include "tianracer_sim/common/diagnostic.h"
+
 namespace tianracer_sim {
 
 /// A mesh file that is missing, unreadable, empty or has no triangles. The message names the path.
-class MeshError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+using MeshError = InputError;
 
 /// A material of a mesh file (COLLADA <effect>, OBJ .mtl), as assimp reads it.
 struct MeshMaterial {

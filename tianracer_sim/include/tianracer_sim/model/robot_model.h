@@ -14,16 +14,12 @@
 #include <urdf_model/model.h>
 #include <urdf_world/types.h>  // urdf::ModelInterfaceSharedPtr
 
-#include "tianracer_sim/common/warning.h"
+#include "tianracer_sim/common/diagnostic.h"
 
 namespace tianracer_sim {
 
 /// Errors in a model file; the message names the file, element and value.
-class ModelError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
+using ModelError = InputError;
 
 /// A <plugin> element: filename, name and its child elements as text (whitespace trimmed).
 struct PluginSpec {
@@ -49,6 +45,9 @@ struct SensorSpec {
   /// message names the file, line, sensor and value. The robot loads; the sensor is left out.
   std::string error;
 };
+
+/// A sensor description that cannot be used; the message names the sensor, element and value.
+using SensorError = InputError;
 
 /// <gazebo reference="link"> surface, material and sensors. Unset optionals mean "Gazebo's default".
 struct LinkExtension {

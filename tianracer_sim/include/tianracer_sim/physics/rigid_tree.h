@@ -13,15 +13,18 @@
 #include <Eigen/Geometry>
 #include <urdf_model/model.h>
 
+#include "tianracer_sim/common/diagnostic.h"
 #include "tianracer_sim/geometry/shape.h"
 #include "tianracer_sim/physics/mass_properties.h"
 
 namespace tianracer_sim {
 
 /// Errors while building or driving the physics (names the robot, link or joint and the value).
-class PhysicsError : public std::runtime_error {
+/// Its own type because addModelToPhysics (sim/world_physics.cpp) places physics errors at their
+/// model's line and lets mesh errors through as they are.
+class PhysicsError : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 /// One <collision> element, placed in its body's frame.

@@ -19,10 +19,7 @@ namespace tianracer_sim {
 
 /// A camera sensor's configuration is invalid. The message names the sensor, the element and
 /// the value (e.g. "camera sensor 'camera1' (line 12): <image><width> 0 out of range 1..8192").
-class CameraError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+using CameraError = InputError;
 
 /// <image><format>: R8G8B8 (alias RGB_INT8) -> rgb8, B8G8R8 (BGR_INT8) -> bgr8, L8 (L_INT8) ->
 /// mono8, L16 (L_INT16) -> mono16. Mono images are the Rec. 601 luma of the rendered colour,

@@ -8,13 +8,12 @@
 #include <string>
 #include <vector>
 
+#include "tianracer_sim/common/diagnostic.h"
+
 namespace tianracer_sim {
 
 /// An image file that is missing or cannot be decoded; the message names the file and why.
-class ImageFileError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+using ImageFileError = InputError;
 
 /// 8-bit RGBA pixels, rows top to bottom (as the file stores them).
 struct RgbaImage {

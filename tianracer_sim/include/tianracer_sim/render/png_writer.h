@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "tianracer_sim/common/diagnostic.h"
+
 namespace tianracer_sim {
 
-class PngError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+/// A PNG that cannot be written; the message names the path.
+using PngError = InputError;
 
 /// Writes an 8-bit image with 1 (grey) or 3 (RGB) channels, rows top to bottom. Throws
 /// PngError naming the path when it cannot be written.

@@ -18,10 +18,7 @@
 namespace tianracer_sim {
 
 /// No GL context (OSMesa missing or failing), a shader that does not compile, bad intrinsics.
-class RenderError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+using RenderError = InputError;
 
 class Renderer {
  public:

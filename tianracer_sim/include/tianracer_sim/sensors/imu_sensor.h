@@ -30,7 +30,6 @@
 
 #include <Eigen/Geometry>
 
-#include "tianracer_sim/lidar/ray_sensor.h"  // SensorError
 #include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/model/sensor_topics.h"
 

@@ -34,10 +34,7 @@ namespace tianracer_sim {
 
 /// A world file that cannot be used. The message starts with "<file>:<line>: " where a line is
 /// known, and names the element, model, link or URI at fault.
-class WorldError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+using WorldError = InputError;
 
 /// <physics>; defaults are SDF's.
 struct PhysicsSettings {
