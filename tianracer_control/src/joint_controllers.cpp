@@ -18,10 +18,6 @@ constexpr char kPositionPosition[] = "position_controllers/JointPositionControll
 
 std::string prefix(const std::string& controller) { return "controller '" + controller + "': "; }
 
-std::string lineSuffix(int line) {
-  return line > 0 ? " (line " + std::to_string(line) + ")" : std::string();
-}
-
 double clampSymmetric(double x, double limit) {
   return limit > 0.0 ? std::min(std::max(x, -limit), limit) : x;
 }
@@ -219,8 +215,8 @@ void warnUnknownKeys(const ControllerSpec& spec, bool uses_joint, bool uses_pid,
   }
   for (const std::string& key : spec.keys) {
     if (allowed.count(key) == 0) {
-      warn(prefix(spec.name) + "key '" + key + "' is not used by " + spec.type + ", ignored" +
-           lineSuffix(spec.line));
+      warn(formatLocation("", spec.line) + prefix(spec.name) + "key '" + key +
+           "' is not used by " + spec.type + ", ignored");
     }
   }
 }
@@ -230,10 +226,9 @@ void warnUnknownKeys(const ControllerSpec& spec, bool uses_joint, bool uses_pid,
 std::unique_ptr<Controller> makeController(const ControllerSpec& spec,
                                            std::map<std::string, JointHandle*>& joints,
                                            const WarningSink& warn) {
-  const std::string pre = prefix(spec.name);
-  const std::string at = lineSuffix(spec.line);
-  if (spec.name.empty()) throw ControllerError(pre + "the controller name is empty" + at);
-  if (spec.type.empty()) throw ControllerError(pre + "no type given (parameter 'type')" + at);
+  const std::string pre = formatLocation("", spec.line) + prefix(spec.name);
+  if (spec.name.empty()) throw ControllerError(pre + "the controller name is empty");
+  if (spec.type.empty()) throw ControllerError(pre + "no type given (parameter 'type')");
 
   using Iface = JointHandle::Interface;
   struct TypeInfo {
@@ -251,11 +246,11 @@ std::unique_ptr<Controller> makeController(const ControllerSpec& spec,
   if (spec.type == kJointState) {
     warnUnknownKeys(spec, false, false, true, warn);
     if (!spec.publish_rate) {
-      throw ControllerError(pre + "publish_rate is missing (" + spec.type + ")" + at);
+      throw ControllerError(pre + "publish_rate is missing (" + spec.type + ")");
     }
     if (!(*spec.publish_rate > 0.0) || !std::isfinite(*spec.publish_rate)) {
       std::ostringstream os;
-      os << pre << "publish_rate must be a positive number, got " << *spec.publish_rate << at;
+      os << pre << "publish_rate must be a positive number, got " << *spec.publish_rate;
       throw ControllerError(os.str());
     }
     return std::make_unique<JointStateController>(spec.name, *spec.publish_rate);
@@ -265,32 +260,32 @@ std::unique_ptr<Controller> makeController(const ControllerSpec& spec,
   if (type_it == single_joint.end()) {
     std::string known;
     for (const std::string& t : knownControllerTypes()) known += (known.empty() ? "" : ", ") + t;
-    throw ControllerError(pre + "unknown type '" + spec.type + "'" + at + " (known types: " +
+    throw ControllerError(pre + "unknown type '" + spec.type + "' (known types: " +
                           known + ")");
   }
   const TypeInfo& info = type_it->second;
   warnUnknownKeys(spec, true, info.pid, false, warn);
 
   if (spec.joint.empty()) {
-    throw ControllerError(pre + "no joint given (parameter 'joint' of " + spec.type + ")" + at);
+    throw ControllerError(pre + "no joint given (parameter 'joint' of " + spec.type + ")");
   }
   const auto joint_it = joints.find(spec.joint);
   if (joint_it == joints.end() || joint_it->second == nullptr) {
     std::string names;
     for (const auto& kv : joints) names += (names.empty() ? "" : ", ") + kv.first;
     throw ControllerError(pre + "joint '" + spec.joint + "' not found among the joints with a " +
-                          "transmission (" + (names.empty() ? "none" : names) + ")" + at);
+                          "transmission (" + (names.empty() ? "none" : names) + ")");
   }
   JointHandle* joint = joint_it->second;
   if (joint->interface != info.iface) {
     throw ControllerError(pre + spec.type + " needs " + describe(info.iface) +
                           " but the transmission of joint '" + spec.joint + "' gives " +
-                          describe(joint->interface) + at);
+                          describe(joint->interface));
   }
 
   if (spec.type == kEffortPosition || spec.type == kEffortVelocity) {
     if (!spec.pid || !spec.pid->p) {
-      throw ControllerError(pre + "pid/p is missing (" + spec.type + " needs pid gains)" + at);
+      throw ControllerError(pre + "pid/p is missing (" + spec.type + " needs pid gains)");
     }
     const PidGains gains = toPidGains(spec.name, *spec.pid, warn);
     if (spec.type == kEffortPosition) {

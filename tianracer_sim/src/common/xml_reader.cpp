@@ -1,11 +1,11 @@
 #include "tianracer_sim/common/xml_reader.h"
 #include "tianracer_sim/common/sdf_pose.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
-#include <stdexcept>
 
 namespace tianracer_sim {
 
@@ -62,20 +62,26 @@ std::string attributeText(const XMLElement* e, const char* name) {
   return v ? trimText(v) : std::string();
 }
 
-XmlReader::XmlReader(std::string source, WarningSink warn, Raise raise, Locate locate)
-    : source_(std::move(source)), raise_(std::move(raise)), locate_(std::move(locate)),
-      warn_(std::move(warn)) {}
+XmlReader::XmlReader(std::string source, WarningSink warn)
+    : source_(std::move(source)), warn_(std::move(warn)) {}
+
+XmlReader XmlReader::copyOf(std::string source, int line, std::string context, WarningSink warn) {
+  XmlReader r(std::move(source), std::move(warn));
+  r.copy_line_ = std::max(line, 0);
+  r.context_ = std::move(context);
+  return r;
+}
+
+SourceLocation XmlReader::where(const XMLElement* e) const {
+  return {source_, copy_line_ >= 0 ? copy_line_ : lineOf(e), e ? e->Name() : ""};
+}
 
 std::string XmlReader::at(const XMLElement* e) const {
-  if (locate_) return locate_(e);
-  return source_ + ":" + std::to_string(lineOf(e)) + ": ";
+  return formatLocation(where(e)) + context_;
 }
 
 void XmlReader::fail(const XMLElement* e, const std::string& message) const {
-  const std::string full = at(e) + message;
-  if (raise_) raise_(full);
-  // A Raise that returns is a programming error; still never continue with a bad value.
-  throw std::runtime_error(full);
+  throw InputError(where(e), context_ + message);
 }
 
 void XmlReader::warn(const XMLElement* e, const std::string& message) {

@@ -41,10 +41,7 @@ class ConfigReader {
  public:
   ConfigReader(const SensorSpec& spec, const WarningSink& warn)
       : spec_(spec), warn_(warn), what_("sensor '" + spec.name + "'"),
-        xml_(spec.name, warn, [](const std::string& m) { throw SensorError(m); },
-             [this](const XMLElement* e) {
-               return what_ + (e ? " (line " + std::to_string(e->GetLineNum()) + ")" : "") + ": ";
-             }) {}
+        xml_(XmlReader::copyOf(spec.source, spec.line, what_ + ": ", warn)) {}
 
   RaySensorConfig read();
 

@@ -20,13 +20,11 @@ using tinyxml2::XMLElement;
 namespace model_internal {
 
 std::string at(const std::string& source, const XMLElement* e) {
-  if (e == nullptr || e->GetLineNum() <= 0) return source + ": ";
-  return source + ": line " + std::to_string(e->GetLineNum()) + ": ";
+  return formatLocation(source, lineOf(e));
 }
 
 XmlReader modelReader(const std::string& source, WarningSink warn) {
-  return XmlReader(source, std::move(warn), [](const std::string& m) { throw ModelError(m); },
-                   [source](const XMLElement* e) { return at(source, e); });
+  return XmlReader(source, std::move(warn));
 }
 
 const XMLElement* parseRobotXml(tinyxml2::XMLDocument& doc, const std::string& text,
@@ -37,8 +35,8 @@ const XMLElement* parseRobotXml(tinyxml2::XMLDocument& doc, const std::string& t
     std::string detail = doc.ErrorStr() ? doc.ErrorStr() : "";
     const auto colon = detail.find(": ");
     detail = colon == std::string::npos ? "" : detail.substr(colon + 2);
-    std::string msg = source + ": XML error at line " + std::to_string(doc.ErrorLineNum()) +
-                      ": " + (doc.ErrorName() ? doc.ErrorName() : "unknown error");
+    std::string msg = formatLocation(source, doc.ErrorLineNum()) + "XML error: " +
+                      (doc.ErrorName() ? doc.ErrorName() : "unknown error");
     if (!detail.empty()) msg += " (" + detail + ")";
     throw ModelError(msg);
   }
@@ -105,6 +103,7 @@ PluginSpec parsePlugin(const XMLElement* e, const std::string& source) {
   p.name = attr(e, "name");
   p.filename = trimText(attr(e, "filename"));
   p.line = e->GetLineNum();
+  p.source = source;
   if (p.filename.empty())
     throw ModelError(mi::at(source, e) + "plugin '" + p.name + "' has no filename");
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement())
@@ -118,6 +117,7 @@ SensorSpec parseSensor(const XMLElement* e, const std::string& link, const std::
   s.type = trimText(attr(e, "type"));
   s.link = link;
   s.line = e->GetLineNum();
+  s.source = source;
   const std::string what = "sensor '" + s.name + "' on link '" + link + "'";
   if (s.name.empty())
     throw ModelError(mi::at(source, e) + "sensor on link '" + link + "' has no name");
@@ -200,8 +200,8 @@ void checkKnownParams(const PluginSpec& p, const std::set<std::string>& known,
   for (const auto& kv : p.params) {
     if (known.count(kv.first)) continue;
     warner.warnOnce("plugin-param:" + p.filename + ":" + kv.first,
-                    source + ": line " + std::to_string(p.line) + ": plugin '" + p.name + "' (" +
-                        p.filename + "): unknown parameter <" + kv.first + "> ignored");
+                    formatLocation(source, p.line) + "plugin '" + p.name + "' (" + p.filename +
+                        "): unknown parameter <" + kv.first + "> ignored");
   }
 }
 
@@ -210,8 +210,8 @@ RosControlSpec rosControl(const PluginSpec& p, const std::string& source, XmlRea
                    {"robotNamespace", "robotParam", "controlPeriod", "robotSimType",
                     "legacyModeNS", "eStopTopic"},
                    source, warner);
-  const std::string where = source + ": line " + std::to_string(p.line) + ": plugin '" + p.name +
-                            "' (" + p.filename + "): ";
+  const std::string where =
+      formatLocation(source, p.line) + "plugin '" + p.name + "' (" + p.filename + "): ";
   RosControlSpec r;
   auto it = p.params.find("robotNamespace");
   if (it != p.params.end()) r.robot_namespace = it->second;
@@ -236,8 +236,8 @@ JointStatePublisherSpec jointStatePublisher(const PluginSpec& p, const std::stri
                                             const std::map<std::string, int>& joints,
                                             XmlReader& warner) {
   checkKnownParams(p, {"jointName", "updateRate", "robotNamespace", "alwaysOn"}, source, warner);
-  const std::string where = source + ": line " + std::to_string(p.line) + ": plugin '" + p.name +
-                            "' (" + p.filename + "): ";
+  const std::string where =
+      formatLocation(source, p.line) + "plugin '" + p.name + "' (" + p.filename + "): ";
   JointStatePublisherSpec s;
   auto it = p.params.find("jointName");
   if (it == p.params.end()) throw ModelError(where + "no <jointName>");

@@ -14,13 +14,13 @@
 namespace tianracer_sim {
 namespace model_internal {
 
-/// The model loader's reader: warnings once, ModelErrors, places as "<source>: line N: ".
+/// The model loader's reader: warnings once, ModelErrors, places as "<source>:<line>: ".
 XmlReader modelReader(const std::string& source, WarningSink warn);
 
-/// "<source>: line N: " for an element (line omitted when unknown).
+/// "<source>:<line>: " for an element ("<source>: " when its line is unknown).
 std::string at(const std::string& source, const tinyxml2::XMLElement* e);
 
-/// Parses `text` into a document; throws ModelError "<source>: XML error at line N: ..." on a
+/// Parses `text` into a document; throws ModelError "<source>:<line>: XML error: ..." on a
 /// syntax error, "<source>: robot_description is empty" for empty input, and requires <robot>.
 const tinyxml2::XMLElement* parseRobotXml(tinyxml2::XMLDocument& doc, const std::string& text,
                                           const std::string& source);

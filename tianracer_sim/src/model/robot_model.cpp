@@ -136,9 +136,9 @@ void checkStructure(const XMLElement* robot, const std::string& source) {
       if (cur == kv.first) {
         std::string path;
         for (size_t i = 0; i < chain.size(); ++i) path += (i ? " -> '" : "'") + chain[i] + "'";
-        throw ModelError(source + ": joint loop: " + path + " (joint '" + it->second.joint +
-                         "', line " + std::to_string(it->second.element->GetLineNum()) +
-                         "): a URDF must be a tree");
+        throw ModelError(formatLocation(source, it->second.element->GetLineNum()) +
+                         "joint loop: " + path + " (joint '" + it->second.joint +
+                         "'): a URDF must be a tree");
       }
     }
   }

@@ -127,6 +127,7 @@ SensorSpec modelPluginSensor(const PluginSpec& plugin) {
     s.link.erase(s.link.find_last_not_of(" \t\r\n") + 1);
   }
   s.plugins.push_back(plugin);
+  s.source = plugin.source;
   s.line = plugin.line;
   return s;
 }

@@ -33,7 +33,7 @@ std::vector<std::string> rosExportedModelPaths();
 class Parser : public XmlReader {
  public:
   Parser(std::string source, std::string base_dir, const WorldLoadOptions& options)
-      : XmlReader(source, options.warn, [](const std::string& m) { throw WorldError(m); }),
+      : XmlReader(source, options.warn),
         source_(std::move(source)), base_dir_(std::move(base_dir)), options_(options) {}
 
   WorldDescription parse(const std::string& xml);

@@ -51,7 +51,7 @@ class SimBadInput(unittest.TestCase):
         self.assert_fails(['/robot_description', 'is empty'])
 
     def test_urdf_syntax_error_names_the_line(self):
-        self.assert_fails(['invalid_syntax.urdf', 'line'],
+        self.assert_fails(['invalid_syntax.urdf:4: XML error'],
                           '_model:=' + os.path.join(DATA, 'invalid_syntax.urdf'))
 
     def test_missing_mesh_names_link_and_path(self):

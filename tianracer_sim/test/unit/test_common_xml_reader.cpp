@@ -18,10 +18,6 @@ using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using tinyxml2::XMLElement;
 
-struct TestError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
 // One document; `el(name)` finds the first element of that name anywhere in it.
 class XmlReaderTest : public ::testing::Test {
  protected:
@@ -36,12 +32,12 @@ class XmlReaderTest : public ::testing::Test {
       if (const XMLElement* f = find(c, name)) return f;
     return nullptr;
   }
-  // The message of the TestError `f` throws ("" when it throws none).
+  // The message of the InputError `f` throws ("" when it throws none).
   template <class F>
   static std::string error(F f) {
     try {
       f();
-    } catch (const TestError& e) {
+    } catch (const InputError& e) {
       return e.what();
     }
     return "";
@@ -49,8 +45,7 @@ class XmlReaderTest : public ::testing::Test {
 
   std::vector<std::string> warnings_;
   tinyxml2::XMLDocument doc_;
-  XmlReader reader_{"room.world", [this](const std::string& w) { warnings_.push_back(w); },
-                    [](const std::string& m) { throw TestError(m); }};
+  XmlReader reader_{"room.world", [this](const std::string& w) { warnings_.push_back(w); }};
 };
 
 TEST(XmlText, ParseNumberTakesTheWholeStringOnly) {
@@ -188,20 +183,30 @@ TEST_F(XmlReaderTest, WarningsAreForwardedOnce) {
   EXPECT_THAT(warnings_, ElementsAre("room.world:1: odd", "placed elsewhere", "first text"));
 }
 
-TEST_F(XmlReaderTest, AnEmptySinkDropsWarningsAndAPlaceFunctionNamesThePlace) {
+TEST_F(XmlReaderTest, AnEmptySinkDropsWarningsAndACopyIsPlacedWhereItsElementStands) {
+  // A <sensor> printed back out of a model file: its own line numbers are not the file's.
   load("<sensor>\n<samples>many</samples></sensor>");
-  XmlReader quiet("x", {}, [](const std::string& m) { throw TestError(m); },
-                  [](const XMLElement* e) { return "sensor 'lidar' (line " + std::to_string(lineOf(e)) + "): "; });
+  XmlReader quiet = XmlReader::copyOf("car.urdf", 40, "sensor 'lidar': ", {});
   quiet.unsupported(el("samples"));  // no sink: nothing to call, nothing breaks
-  EXPECT_EQ(quiet.at(el("samples")), "sensor 'lidar' (line 2): ");
+  EXPECT_EQ(quiet.at(el("samples")), "car.urdf:40: sensor 'lidar': ");
   EXPECT_EQ(error([&] { quiet.integer(el("samples"), ""); }),
-            "sensor 'lidar' (line 2): <samples> 'many' is not an integer");
+            "car.urdf:40: sensor 'lidar': <samples> 'many' is not an integer");
+  // Unknown file and line: the context alone.
+  EXPECT_EQ(XmlReader::copyOf("", 0, "sensor 'lidar': ", {}).at(el("samples")), "sensor 'lidar': ");
 }
 
-TEST_F(XmlReaderTest, ARaiseThatReturnsStillStopsTheParse) {
-  load("<a>x</a>");
-  XmlReader careless("f", {}, [](const std::string&) {});
-  EXPECT_THROW(careless.number(el("a"), "a"), std::runtime_error);
+TEST_F(XmlReaderTest, FailuresRaiseTheOneErrorTypeWithFileLineAndElement) {
+  load("<a>\n<b>x</b></a>");
+  try {
+    reader_.number(el("b"), "thing");
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().file, "room.world");
+    EXPECT_EQ(e.where().line, 2);
+    EXPECT_EQ(e.where().element, "b");
+    EXPECT_EQ(e.message(), "thing: <b> 'x' is not a list of numbers");
+    EXPECT_STREQ(e.what(), "room.world:2: thing: <b> 'x' is not a list of numbers");
+  }
 }
 
 }  // namespace

@@ -47,6 +47,8 @@ SensorSpec spec(const std::string& xml, bool with_plugin = true) {
   s.X_LS.translation().z() = 0.0124;
   s.update_rate = 40;
   s.xml = xml;
+  s.source = "test.urdf";  // where the <sensor> stands: the place of the reader's messages
+  s.line = 12;
   if (with_plugin) {
     PluginSpec p;
     p.name = "gazebo_ros_hokuyo_controller";
@@ -146,7 +148,7 @@ TEST(RaySensorConfig, BadValuesNameSensorAndValue) {
   EXPECT_EQ(with("<samples>1081</samples>", "<samples>-5</samples>"),
             "sensor 'hokuyo_sensor': <samples> must be > 0 (got -5)");
   EXPECT_NE(with("<samples>1081</samples>", "<samples>many</samples>")
-                .find("sensor 'hokuyo_sensor' (line 8): <samples> 'many' is not an integer"),
+                .find("test.urdf:12: sensor 'hokuyo_sensor': <samples> 'many' is not an integer"),
             std::string::npos);
   EXPECT_EQ(with("<min_angle>-2.3561944902</min_angle>", "<min_angle>3</min_angle>"),
             "sensor 'hokuyo_sensor': <min_angle> 3 > <max_angle> 2.35619449");

@@ -82,7 +82,7 @@ TEST(Extensions, SurfaceValuesInBothForms) {
 TEST(Extensions, BadSurfaceValuesNameElementAndValue) {
   Parser p;
   EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><mu1>slippery</mu1></gazebo>")),
-              HasSubstr("test.urdf: line 5: <gazebo reference='wheel'>: <mu1> value 'slippery' "
+              HasSubstr("test.urdf:5: <gazebo reference='wheel'>: <mu1> value 'slippery' "
                         "is not a number"));
   EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><kp value='-1'/></gazebo>")),
               HasSubstr("<kp> value '-1' must be finite and >= 0"));
@@ -278,8 +278,8 @@ TEST(Extensions, SyntaxAndEmptyInput) {
   Parser p;
   EXPECT_EQ(p.error(""), "test.urdf: robot_description is empty");
   EXPECT_THAT(p.error("<robot>\n<gazebo>\n</robot>"),
-              AllOf(HasSubstr("test.urdf: XML error at line 2"), HasSubstr("MISMATCHED")));
-  EXPECT_THAT(p.error("not xml at all"), HasSubstr("test.urdf: XML error at line 1"));
+              AllOf(HasSubstr("test.urdf:2: XML error: "), HasSubstr("MISMATCHED")));
+  EXPECT_THAT(p.error("not xml at all"), HasSubstr("test.urdf:1: XML error: "));
 }
 
 std::string readFile(const std::string& path) {

@@ -55,7 +55,7 @@ TEST(SensorsModelReport, GoldenTable) {
   sensor  sonar               sonar                         base_link     left out
           why: sensor type 'sonar' is not simulated
   sensor  imu_bad_rate        imu                           base_link     left out
-          why: report.urdf: line 80: sensor 'imu_bad_rate' on link 'base_link': <update_rate> value '-5' must be finite and >= 0
+          why: report.urdf:80: sensor 'imu_bad_rate' on link 'base_link': <update_rate> value '-5' must be finite and >= 0
 )";
   EXPECT_EQ(table, golden) << table;
 }

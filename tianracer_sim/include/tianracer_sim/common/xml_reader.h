@@ -1,10 +1,9 @@
-// The one XML reader of the parsers (URDF <gazebo> tags, SDF worlds, <sensor> blocks): text,
-// numbers, vectors, poses, warn-once and the unknown-element report, every message prefixed with
-// the place it came from. Each parser keeps its own error type: the reader raises through it.
+// The one XML reader of the parsers (URDF <gazebo> tags, SDF worlds, <sensor> blocks, materials):
+// text, numbers, vectors, poses, warn-once and the unknown-element report, every message prefixed
+// with the place it came from ("<file>:<line>: ", common/diagnostic.h). Failures raise InputError.
 #ifndef TIANRACER_SIM_COMMON_XML_READER_H
 #define TIANRACER_SIM_COMMON_XML_READER_H
 
-#include <functional>
 #include <optional>
 #include <set>
 #include <string>
@@ -38,21 +37,25 @@ std::string attributeText(const tinyxml2::XMLElement* e, const char* name);
 /// `e`'s line in its document (0 when unknown).
 inline int lineOf(const tinyxml2::XMLElement* e) { return e ? e->GetLineNum() : 0; }
 
-/// Reads values out of the elements of one document named `source`, the way the SDF world
-/// parser always has: a bad value raises "<source>:<line>: <what>: <tag> '<text>' is not ...".
+/// Reads values out of the elements of one document named `source`: a bad value raises
+/// InputError "<source>:<line>: <what>: <tag> '<text>' is not ...".
 class XmlReader {
  public:
-  /// Throws the caller's error type with the message (must not return).
-  using Raise = std::function<void(const std::string& message)>;
-  /// The prefix naming an element's place; default "<source>:<line>: ".
-  using Locate = std::function<std::string(const tinyxml2::XMLElement*)>;
-
-  XmlReader(std::string source, WarningSink warn, Raise raise, Locate locate = {});
+  /// A reader of a document of its own (a URDF, a world, a model file): each element is placed
+  /// at its own line.
+  XmlReader(std::string source, WarningSink warn);
+  /// A reader of a printed copy of one element of `source` that stands at `line` there (the
+  /// <sensor> blocks a SensorSpec keeps): the copy's line numbers are not the file's, so every
+  /// place is that line, and every message goes on with `context` ("sensor 'lidar': ").
+  static XmlReader copyOf(std::string source, int line, std::string context, WarningSink warn);
 
   const std::string& source() const { return source_; }
-  /// The place of `e` (its file and line), as every message starts.
+  /// The file, line and name of `e` (line 0 and no name for nullptr).
+  SourceLocation where(const tinyxml2::XMLElement* e) const;
+  /// The place of `e` as every message starts: "<source>:<line>: " and the context.
   std::string at(const tinyxml2::XMLElement* e) const;
 
+  /// Throws InputError(where(e), context + message).
   [[noreturn]] void fail(const tinyxml2::XMLElement* e, const std::string& message) const;
   /// Forwards at(e) + message, once per distinct message.
   void warn(const tinyxml2::XMLElement* e, const std::string& message);
@@ -86,8 +89,8 @@ class XmlReader {
 
  private:
   std::string source_;
-  Raise raise_;
-  Locate locate_;
+  int copy_line_ = -1;  // >= 0: a printed copy standing at this line of source_
+  std::string context_;
   WarnOnce warn_;
 };
 

@@ -26,6 +26,7 @@ struct PluginSpec {
   std::string name;
   std::string filename;
   std::map<std::string, std::string> params;
+  std::string source;  // the model file (or parameter) it was read from
   int line = 0;
 };
 
@@ -40,7 +41,8 @@ struct SensorSpec {
   bool always_on = true;
   std::string xml;  // the <sensor> element, printed back
   std::vector<PluginSpec> plugins;
-  int line = 0;
+  std::string source;  // the model file (or parameter) it was read from; with `line`, the place
+  int line = 0;        // of every message about the sensor
   /// Set when the sensor's own tags (<update_rate>, <pose>, <always_on>) are invalid: the
   /// message names the file, line, sensor and value. The robot loads; the sensor is left out.
   std::string error;
