@@ -62,13 +62,12 @@ std::string attributeText(const XMLElement* e, const char* name) {
   return v ? trimText(v) : std::string();
 }
 
-XmlReader::XmlReader(std::string source, WarningSink warn)
-    : source_(std::move(source)), warn_(std::move(warn)) {}
+XmlReader::XmlReader(std::string source, WarningSink warn, std::string context)
+    : source_(std::move(source)), context_(std::move(context)), warn_(std::move(warn)) {}
 
 XmlReader XmlReader::copyOf(std::string source, int line, std::string context, WarningSink warn) {
-  XmlReader r(std::move(source), std::move(warn));
+  XmlReader r(std::move(source), std::move(warn), std::move(context));
   r.copy_line_ = std::max(line, 0);
-  r.context_ = std::move(context);
   return r;
 }
 

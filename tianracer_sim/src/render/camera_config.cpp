@@ -66,18 +66,20 @@ std::string textOf(const XMLElement* e) { return elementText(e); }
 
 class Parser {
  public:
-  Parser(const SensorSpec& sensor, const WarningSink& warn) : sensor_(sensor), warn_(warn) {
-    std::ostringstream os;
-    os << sensor.type << " sensor '" << sensor.name << "'";
-    if (!sensor.link.empty()) os << " on link '" << sensor.link << "'";
-    if (sensor.line > 0) os << " (line " << sensor.line << ")";
-    where_ = os.str();
+  // The <sensor> is read from its printed copy (SensorSpec::xml): every message is placed at the
+  // sensor's line of the model file, then names the sensor.
+  Parser(const SensorSpec& sensor, const WarningSink& warn)
+      : sensor_(sensor),
+        xml_(XmlReader::copyOf(sensor.source, sensor.line, context(sensor), warn)) {}
+
+  static std::string context(const SensorSpec& sensor) {
+    std::string c = sensor.type + " sensor '" + sensor.name + "'";
+    if (!sensor.link.empty()) c += " on link '" + sensor.link + "'";
+    return c + ": ";
   }
 
-  [[noreturn]] void fail(const std::string& what) const { throw CameraError(where_ + ": " + what); }
-  void warn(const std::string& what) const {
-    if (warn_) warn_(where_ + ": " + what);
-  }
+  [[noreturn]] void fail(const std::string& what) const { xml_.fail(nullptr, what); }
+  void warn(const std::string& what) { xml_.warn(nullptr, what); }
 
   double number(const std::string& element, const std::string& text) const {
     const auto v = parseNumber(text);
@@ -260,7 +262,7 @@ class Parser {
     }
   }
 
-  void warnUnused(const PluginSpec& p, const std::set<std::string>& used) const {
+  void warnUnused(const PluginSpec& p, const std::set<std::string>& used) {
     for (const auto& kv : p.params) {
       if (!used.count(kv.first)) {
         warn("plugin " + p.filename + ": unknown parameter <" + kv.first + "> ignored");
@@ -272,8 +274,7 @@ class Parser {
 
  private:
   const SensorSpec& sensor_;
-  const WarningSink& warn_;
-  std::string where_;
+  XmlReader xml_;
 };
 
 const std::vector<std::string> kCameraPlugins = {"libgazebo_ros_camera.so"};

@@ -9,6 +9,7 @@
 #include <tinyxml2.h>
 
 #include "tianracer_sim/common/text.h"
+#include "tianracer_sim/common/xml_reader.h"
 
 namespace tianracer_sim {
 namespace {
@@ -43,18 +44,19 @@ class MultiCameraParser {
  public:
   MultiCameraParser(const SensorSpec& sensor, const std::string& model_name,
                     const WarningSink& warn)
-      : sensor_(sensor), model_name_(model_name), warn_(warn) {
-    std::ostringstream os;
-    os << "robot '" << model_name << "': multicamera sensor '" << sensor.name << "'";
-    if (!sensor.link.empty()) os << " on link '" << sensor.link << "'";
-    if (sensor.line > 0) os << " (line " << sensor.line << ")";
-    where_ = os.str();
+      : sensor_(sensor), model_name_(model_name), warn_(warn),
+        xml_(XmlReader::copyOf(sensor.source, sensor.line, context(sensor, model_name), warn)) {}
+
+  // Read from the <sensor>'s printed copy (SensorSpec::xml): every message is placed at the
+  // sensor's line of the model file, then names the robot and the sensor.
+  static std::string context(const SensorSpec& sensor, const std::string& model_name) {
+    std::string c = "robot '" + model_name + "': multicamera sensor '" + sensor.name + "'";
+    if (!sensor.link.empty()) c += " on link '" + sensor.link + "'";
+    return c + ": ";
   }
 
-  [[noreturn]] void fail(const std::string& what) const { throw CameraError(where_ + ": " + what); }
-  void warn(const std::string& what) const {
-    if (warn_) warn_(where_ + ": " + what);
-  }
+  [[noreturn]] void fail(const std::string& what) const { xml_.fail(nullptr, what); }
+  void warn(const std::string& what) { xml_.warn(nullptr, what); }
 
   MultiCameraConfig parse() {
     MultiCameraConfig m;
@@ -121,7 +123,7 @@ class MultiCameraParser {
       try {
         c = parseCameraConfig(specs[i], warn_);
       } catch (const CameraError& e) {
-        throw CameraError("robot '" + model_name_ + "': " + e.what());
+        throw CameraError(e.where(), "robot '" + model_name_ + "': " + e.message());
       }
       c.name = names[i];
       c.type = "multicamera";
@@ -182,7 +184,7 @@ class MultiCameraParser {
 
   void readPlugin(const PluginSpec& p, const std::vector<std::string>& names,
                   std::vector<std::string>* suffixes, std::vector<std::string>* frames,
-                  double* hack_baseline) const {
+                  double* hack_baseline) {
     const std::size_t n = names.size();
     const auto get = [&](const std::string& key, std::string* out) {
       const auto it = p.params.find(key);
@@ -233,8 +235,8 @@ class MultiCameraParser {
 
   const SensorSpec& sensor_;
   std::string model_name_;
-  const WarningSink& warn_;
-  std::string where_;
+  const WarningSink& warn_;  // for the cameras' own parsers
+  XmlReader xml_;
 };
 
 }  // namespace

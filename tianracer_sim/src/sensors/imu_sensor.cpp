@@ -16,7 +16,6 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <set>
 #include <sstream>
 
 #include <tinyxml2.h>
@@ -29,63 +28,51 @@ using tinyxml2::XMLElement;
 
 std::string fmt(double v) { return formatNumber(v); }
 
-/// Numbers from text: NaN and inf are kept (validate() names them), garbage is an error.
-class Reader {
- public:
-  Reader(std::string what, const WarningSink& warn) : what_(std::move(what)), warn_(warn) {}
+// The reader reads a printed copy of the <sensor> (SensorSpec::xml), so its messages are placed
+// at the sensor's line of the model file (nullptr: no element of its own).
+// Numbers from text (plugin parameters, elements): NaN and inf are kept (validate() names
+// them), garbage is an error.
+double number(const XmlReader& r, const std::string& name, const std::string& text,
+              const XMLElement* e = nullptr) {
+  const auto v = parseNumber(text);
+  if (!v) r.fail(e, name + " '" + trimText(text) + "' is not a number");
+  return *v;
+}
+double number(const XmlReader& r, const XMLElement* e) {
+  return number(r, "<" + std::string(e->Name()) + ">", e->GetText() ? e->GetText() : "", e);
+}
+Eigen::Vector3d vector3(const XmlReader& r, const std::string& name, const std::string& text) {
+  std::istringstream in(text);
+  std::vector<double> v;
+  for (std::string tok; in >> tok;) v.push_back(number(r, name, tok));
+  if (v.size() != 3) r.fail(nullptr, name + " '" + trimText(text) + "' is not 3 numbers");
+  return Eigen::Vector3d(v[0], v[1], v[2]);
+}
+bool boolean(const XmlReader& r, const std::string& name, const std::string& text) {
+  const auto b = parseBool(text);
+  if (!b) r.fail(nullptr, name + " '" + trimText(text) + "' is not a boolean (true/false/1/0)");
+  return *b;
+}
 
-  [[noreturn]] void fail(const std::string& msg) const { throw SensorError(what_ + ": " + msg); }
-  void warn(const std::string& msg) {
-    if (warn_ && warned_.insert(msg).second) warn_(what_ + ": " + msg);
-  }
-  double number(const std::string& name, const std::string& text) const {
-    const auto v = parseNumber(text);
-    if (!v) fail(name + " '" + trimText(text) + "' is not a number");
-    return *v;
-  }
-  double number(const XMLElement* e) const {
-    return number("<" + std::string(e->Name()) + "> (line " + std::to_string(e->GetLineNum()) + ")",
-                  e->GetText() ? e->GetText() : "");
-  }
-  Eigen::Vector3d vector3(const std::string& name, const std::string& text) const {
-    std::istringstream in(text);
-    std::vector<double> v;
-    for (std::string tok; in >> tok;) v.push_back(number(name, tok));
-    if (v.size() != 3) fail(name + " '" + trimText(text) + "' is not 3 numbers");
-    return Eigen::Vector3d(v[0], v[1], v[2]);
-  }
-  bool boolean(const std::string& name, const std::string& text) const {
-    const auto b = parseBool(text);
-    if (!b) fail(name + " '" + trimText(text) + "' is not a boolean (true/false/1/0)");
-    return *b;
-  }
-  const std::string& what() const { return what_; }
-
- private:
-  std::string what_;
-  const WarningSink& warn_;
-  std::set<std::string> warned_;
-};
-
-void readNoise(Reader& r, const XMLElement* noise, ImuAxisNoise* n, const std::string& where) {
+void readNoise(XmlReader& r, const XMLElement* noise, ImuAxisNoise* n, const std::string& where) {
   n->type = "gaussian";  // SDF's default
   if (const char* type = noise->Attribute("type")) n->type = trimText(type);
   for (const XMLElement* k = noise->FirstChildElement(); k; k = k->NextSiblingElement()) {
     const std::string key = k->Name();
     if (key == "type") n->type = trimText(k->GetText() ? k->GetText() : "");
-    else if (key == "mean") n->mean = r.number(k);
-    else if (key == "stddev") n->stddev = r.number(k);
-    else if (key == "bias_mean") n->bias_mean = r.number(k);
-    else if (key == "bias_stddev") n->bias_stddev = r.number(k);
-    else if (key == "precision") n->precision = r.number(k);
-    else r.warn(where + "<noise><" + key + "> is not supported, ignored");
+    else if (key == "mean") n->mean = number(r, k);
+    else if (key == "stddev") n->stddev = number(r, k);
+    else if (key == "bias_mean") n->bias_mean = number(r, k);
+    else if (key == "bias_stddev") n->bias_stddev = number(r, k);
+    else if (key == "precision") n->precision = number(r, k);
+    else r.warn(nullptr, where + "<noise><" + key + "> is not supported, ignored");
   }
   if (n->type != "none" && n->type != "gaussian" && n->type != "gaussian_quantized")
-    r.fail(where + "<noise> type '" + n->type +
+    r.fail(nullptr, where + "<noise> type '" + n->type +
            "' is not supported (none, gaussian, gaussian_quantized)");
 }
 
-void readImu(Reader& r, const XMLElement* imu, ImuConfig& c) {
+void readImu(XmlReader& r, const XMLElement* imu, ImuConfig& c) {
   for (const XMLElement* e = imu->FirstChildElement(); e; e = e->NextSiblingElement()) {
     const std::string tag = e->Name();
     if (tag == "angular_velocity" || tag == "linear_acceleration") {
@@ -94,7 +81,7 @@ void readImu(Reader& r, const XMLElement* imu, ImuConfig& c) {
         const std::string axis = a->Name();
         const int i = axis == "x" ? 0 : axis == "y" ? 1 : axis == "z" ? 2 : -1;
         if (i < 0) {
-          r.warn("<" + tag + "><" + axis + "> is not supported, ignored");
+          r.warn(nullptr, "<" + tag + "><" + axis + "> is not supported, ignored");
           continue;
         }
         if (const XMLElement* noise = a->FirstChildElement("noise"))
@@ -108,27 +95,27 @@ void readImu(Reader& r, const XMLElement* imu, ImuConfig& c) {
         const std::string key = k->Name();
         if (key == "type") continue;
         if (key != "rate" && key != "accel") {
-          r.warn("<imu><noise><" + key + "> is not supported, ignored");
+          r.warn(nullptr, "<imu><noise><" + key + "> is not supported, ignored");
           continue;
         }
         ImuAxisNoise n;
         readNoise(r, k, &n, "<imu><noise><" + key + ">");
         n.type = type;
         if (type != "none" && type != "gaussian" && type != "gaussian_quantized")
-          r.fail("<imu><noise> type '" + type +
+          r.fail(nullptr, "<imu><noise> type '" + type +
                  "' is not supported (none, gaussian, gaussian_quantized)");
         (key == "rate" ? c.rate_noise : c.accel_noise).fill(n);
       }
     } else if (tag == "orientation_reference_frame" || tag == "enable_orientation" ||
                tag == "topic") {
-      r.warn("<imu><" + tag + "> is not supported, ignored");
+      r.warn(nullptr, "<imu><" + tag + "> is not supported, ignored");
     } else {
-      r.warn("<imu><" + tag + "> is not supported, ignored");
+      r.warn(nullptr, "<imu><" + tag + "> is not supported, ignored");
     }
   }
 }
 
-void readSensorPlugin(Reader& r, const PluginSpec& p, const std::string& model_name,
+void readSensorPlugin(XmlReader& r, const PluginSpec& p, const std::string& model_name,
                       ImuConfig& c) {
   c.has_plugin = true;
   c.plugin_filename = p.filename;
@@ -142,17 +129,17 @@ void readSensorPlugin(Reader& r, const PluginSpec& p, const std::string& model_n
     else if (key == "topicName") c.topic_name = trimText(value);
     else if (key == "frameName") c.frame_name = trimText(value);
     else if (key == "bodyName") {}  // not read by the plugin either
-    else if (key == "updateRateHZ") c.plugin_rate = r.number(name, value);
-    else if (key == "gaussianNoise") c.gaussian_noise = r.number(name, value);
-    else if (key == "xyzOffset") c.xyz_offset = r.vector3(name, value);
-    else if (key == "rpyOffset") c.rpy_offset = r.vector3(name, value);
+    else if (key == "updateRateHZ") c.plugin_rate = number(r, name, value);
+    else if (key == "gaussianNoise") c.gaussian_noise = number(r, name, value);
+    else if (key == "xyzOffset") c.xyz_offset = vector3(r, name, value);
+    else if (key == "rpyOffset") c.rpy_offset = vector3(r, name, value);
     else if (key == "initialOrientationAsReference")
-      c.initial_orientation_as_reference = r.boolean(name, value);
-    else r.warn(name + " is not a parameter of the plugin, ignored");
+      c.initial_orientation_as_reference = boolean(r, name, value);
+    else r.warn(nullptr, name + " is not a parameter of the plugin, ignored");
   }
   if (c.frame_name.empty()) {
-    r.warn(baseName(p.filename) + " has no <frameName> (Gazebo does not load it): frame '" +
-           c.link + "' used");
+    r.warn(nullptr, baseName(p.filename) + " has no <frameName> (Gazebo does not load it): " +
+                        "frame '" + c.link + "' used");
     c.frame_name = c.link;
   }
 }
@@ -166,10 +153,11 @@ double ImuConfig::publishRate() const {
 
 ImuConfig parseImuSensorConfig(const SensorSpec& spec, const std::string& model_name,
                                const WarningSink& warn) {
-  Reader r("IMU sensor '" + spec.name + "' on link '" + spec.link + "' of model '" +
-               model_name + "'",
-           warn);
-  if (spec.type != "imu") r.fail("type '" + spec.type + "' is not an IMU");
+  XmlReader r = XmlReader::copyOf(spec.source, spec.line,
+                                  "IMU sensor '" + spec.name + "' on link '" + spec.link +
+                                      "' of model '" + model_name + "': ",
+                                  warn);
+  if (spec.type != "imu") r.fail(nullptr, "type '" + spec.type + "' is not an IMU");
   ImuConfig c;
   c.name = spec.name;
   c.link = spec.link;
@@ -177,27 +165,27 @@ ImuConfig parseImuSensorConfig(const SensorSpec& spec, const std::string& model_
   c.update_rate = spec.update_rate;
   tinyxml2::XMLDocument doc;
   if (doc.Parse(spec.xml.data(), spec.xml.size()) != tinyxml2::XML_SUCCESS)
-    r.fail("malformed sensor XML: " + std::string(doc.ErrorStr() ? doc.ErrorStr() : ""));
+    r.fail(nullptr, "malformed sensor XML: " + std::string(doc.ErrorStr() ? doc.ErrorStr() : ""));
   const XMLElement* sensor = doc.RootElement();
-  if (!sensor) r.fail("empty sensor XML");
+  if (!sensor) r.fail(nullptr, "empty sensor XML");
   for (const XMLElement* e = sensor->FirstChildElement(); e; e = e->NextSiblingElement()) {
     const std::string tag = e->Name();
     if (tag == "imu") {
       readImu(r, e, c);
     } else if (tag == "update_rate") {
       // The model loader keeps the number; NaN and negative values are named here.
-      c.update_rate = r.number(e);
+      c.update_rate = number(r, e);
     } else if (tag == "pose" || tag == "always_on" || tag == "plugin" || tag == "visualize" ||
                tag == "topic") {
     } else {
-      r.warn("<" + tag + "> is not supported, ignored");
+      r.warn(nullptr, "<" + tag + "> is not supported, ignored");
     }
   }
   for (const PluginSpec& p : spec.plugins) {
     if (baseName(p.filename) == "libgazebo_ros_imu_sensor.so") {
       readSensorPlugin(r, p, model_name, c);
     } else {
-      r.warn("plugin '" + p.filename + "' is not supported on an IMU sensor, ignored");
+      r.warn(nullptr, "plugin '" + p.filename + "' is not supported on an IMU sensor, ignored");
     }
   }
   validate(c);
@@ -206,8 +194,10 @@ ImuConfig parseImuSensorConfig(const SensorSpec& spec, const std::string& model_
 
 ImuConfig parseImuPluginConfig(const SensorSpec& spec, const std::string& model_name,
                                const WarningSink& warn) {
-  Reader r("IMU plugin '" + spec.name + "' of model '" + model_name + "'", warn);
-  if (spec.plugins.size() != 1) r.fail("expected one plugin");
+  XmlReader r = XmlReader::copyOf(spec.source, spec.line,
+                                  "IMU plugin '" + spec.name + "' of model '" + model_name + "': ",
+                                  warn);
+  if (spec.plugins.size() != 1) r.fail(nullptr, "expected one plugin");
   const PluginSpec& p = spec.plugins.front();
   ImuConfig c;
   c.name = spec.name;
@@ -223,14 +213,15 @@ ImuConfig parseImuPluginConfig(const SensorSpec& spec, const std::string& model_
     else if (key == "serviceName") c.service_name = trimText(value);
     else if (key == "bodyName") c.link = trimText(value);
     else if (key == "frameName") c.frame_name = trimText(value);
-    else if (key == "updateRate") c.plugin_rate = r.number(name, value);
-    else if (key == "gaussianNoise") c.gaussian_noise = r.number(name, value);
-    else if (key == "xyzOffset") c.xyz_offset = r.vector3(name, value);
-    else if (key == "rpyOffset") c.rpy_offset = r.vector3(name, value);
+    else if (key == "updateRate") c.plugin_rate = number(r, name, value);
+    else if (key == "gaussianNoise") c.gaussian_noise = number(r, name, value);
+    else if (key == "xyzOffset") c.xyz_offset = vector3(r, name, value);
+    else if (key == "rpyOffset") c.rpy_offset = vector3(r, name, value);
     else if (key == "alwaysOn") {}
-    else r.warn(name + " is not a parameter of libgazebo_ros_imu, ignored");
+    else r.warn(nullptr, name + " is not a parameter of libgazebo_ros_imu, ignored");
   }
-  if (c.link.empty()) r.fail("<bodyName> is missing (Gazebo does not load the plugin without it)");
+  if (c.link.empty())
+    r.fail(nullptr, "<bodyName> is missing (Gazebo does not load the plugin without it)");
   if (c.frame_name.empty()) c.frame_name = c.link;
   validate(c);
   return c;

@@ -9,7 +9,6 @@
 
 #include "tianracer_sim/scene/materials.h"
 #include "tianracer_sim/scene/ogre_material.h"
-#include "tianracer_sim/world/world.h"  // WorldError
 
 namespace tianracer_sim {
 namespace {
@@ -27,36 +26,29 @@ std::string joinPath(const std::string& a, const std::string& b) {
   return (fs::path(a) / b).lexically_normal().string();
 }
 
-class Reader {
+class MaterialParser {
  public:
-  explicit Reader(const SdfMaterialContext& ctx) : ctx_(ctx) {}
+  // Messages read "<source>:<line>: <what>: ...".
+  explicit MaterialParser(const SdfMaterialContext& ctx)
+      : ctx_(ctx), xml_(ctx.source, ctx.warn, ctx.what + ": ") {}
 
-  std::string at(const XMLElement* e) const {
-    return ctx_.source + ":" + std::to_string(e ? e->GetLineNum() : 0) + ": " + ctx_.what + ": ";
-  }
-  void warn(const XMLElement* e, const std::string& msg) const {
-    if (ctx_.warn) ctx_.warn(at(e) + msg);
-  }
-  void unsupported(const XMLElement* e) const {
-    const XMLElement* parent = e->Parent() ? e->Parent()->ToElement() : nullptr;
-    warn(e, "<" + std::string(e->Name()) + ">" +
-                (parent ? " in <" + std::string(parent->Name()) + ">" : std::string()) +
-                " is not supported, ignored");
-  }
+  void warn(const XMLElement* e, const std::string& msg) { xml_.warn(e, msg); }
+  void unsupported(const XMLElement* e) { xml_.unsupported(e); }
 
+  // One message for every bad colour (not XmlReader::color's "not a list of numbers").
   Eigen::Vector4f color(const XMLElement* e) const {
     std::vector<double> v = parseNumbers(elementText(e)).value_or(std::vector<double>(99));
     if (!std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); })) v.resize(99);
     if (v.size() != 3 && v.size() != 4) {
-      throw WorldError(at(e) + "<" + e->Name() + "> '" + elementText(e) +
-                       "' is not a colour \"r g b [a]\"");
+      xml_.fail(e, "<" + std::string(e->Name()) + "> '" + elementText(e) +
+                   "' is not a colour \"r g b [a]\"");
     }
     return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]),
             v.size() == 4 ? static_cast<float>(v[3]) : 1.0f};
   }
 
   // Resolves a texture URI (albedo_map) or warns and returns "".
-  std::string texture(const XMLElement* e, const std::string& uri) const {
+  std::string texture(const XMLElement* e, const std::string& uri) {
     std::vector<std::string> tried;
     const std::string path = resolveMaterialUri(uri, ctx_, &tried);
     if (path.empty()) {
@@ -67,7 +59,7 @@ class Reader {
     return path;
   }
 
-  void script(const XMLElement* e, Material* m) const {
+  void script(const XMLElement* e, Material* m) {
     std::vector<std::string> folders;
     std::string name;
     const XMLElement* name_e = e;
@@ -125,15 +117,13 @@ class Reader {
       }
       if (!p.empty()) msg += " " + p;
     }
-    if (ctx_.warn) {
-      ctx_.warn(ogre->file + ":" + std::to_string(ogre->line) + ": material " + name +
-                ": texture '" + ogre->texture + "' not found (tried" + msg + ") for " +
-                ctx_.what + " (" + ctx_.source + ":" + std::to_string(name_e->GetLineNum()) +
-                "); the diffuse colour is drawn instead");
-    }
+    xml_.warn(formatLocation(ogre->file, ogre->line) + "material " + name + ": texture '" +
+              ogre->texture + "' not found (tried" + msg + ") for " + ctx_.what + " (" +
+              ctx_.source + ":" + std::to_string(name_e->GetLineNum()) +
+              "); the diffuse colour is drawn instead");
   }
 
-  void pbr(const XMLElement* e, Material* m) const {
+  void pbr(const XMLElement* e, Material* m) {
     for (const XMLElement* w = e->FirstChildElement(); w; w = w->NextSiblingElement()) {
       const std::string workflow = w->Name();
       if (workflow != "metal" && workflow != "specular") {
@@ -158,6 +148,7 @@ class Reader {
 
  private:
   const SdfMaterialContext& ctx_;
+  XmlReader xml_;
 };
 
 }  // namespace
@@ -190,7 +181,7 @@ std::string resolveMaterialUri(const std::string& uri, const SdfMaterialContext&
 }
 
 Material parseSdfMaterial(const XMLElement* e, const SdfMaterialContext& ctx) {
-  Reader r(ctx);
+  MaterialParser r(ctx);
   Material m;
   // A script sets the base colours (and texture); explicit colours override them, as in Gazebo.
   for (const XMLElement* c = e->FirstChildElement("script"); c; c = c->NextSiblingElement("script")) {

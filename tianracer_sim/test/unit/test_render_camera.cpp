@@ -36,6 +36,7 @@ SensorSpec specFromXml(const std::string& xml, const std::string& link) {
   spec.type = root->Attribute("type");
   spec.link = link;
   spec.xml = xml;
+  spec.source = "car.urdf";
   spec.line = 7;
   if (const auto* rate = root->FirstChildElement("update_rate")) {
     spec.update_rate = std::stod(rate->GetText());
@@ -196,6 +197,10 @@ void expectError(const SensorSpec& spec, const std::vector<std::string>& needles
 TEST(RenderCameraConfig, ValidationErrors) {
   const SensorSpec seed = seedCamera();
   expectError(edited(seed, "<width>800", "<width>0"), {"<image><width> 0", "1..8192"});
+  // Placed at the <sensor>'s line of its model file, then the sensor.
+  expectError(edited(seed, "<width>800", "<width>0"),
+              {"car.urdf:7: camera sensor 'camera1' on link 'camera': <image><width> 0 out of "
+               "range"});
   expectError(edited(seed, "<width>800", "<width>-3"), {"<image><width> -3"});
   expectError(edited(seed, "<width>800", "<width>8193"), {"<image><width> 8193"});
   expectError(edited(seed, "<height>800", "<height>0"), {"<image><height> 0"});

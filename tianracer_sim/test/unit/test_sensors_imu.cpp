@@ -271,7 +271,9 @@ TEST(SensorsImu, BadInput) {
     parseImuSensorConfig(imuSpec("<imu><linear_acceleration><x><noise type='laplace'>"
                                  "</noise></x></linear_acceleration></imu>"),
                          "car");
-  }, {"IMU sensor 'imu_sensor'", "model 'car'", "<linear_acceleration><x><noise>", "'laplace'"});
+  }, {"IMU sensor 'imu_sensor'", "model 'car'", "<linear_acceleration><x><noise>", "'laplace'",
+       // placed at the <sensor>'s line of its model file, then the sensor
+       "test.urdf:1: IMU sensor 'imu_sensor' on link 'base' of model 'car': "});
   expectError([] {
     parseImuSensorConfig(imuSpec("<imu><noise><type>pink</type><rate><stddev>1</stddev></rate>"
                                  "</noise></imu>"),

@@ -37,6 +37,7 @@ SensorSpec specFromXml(const std::string& xml) {
   spec.type = root->Attribute("type");
   spec.link = "stereo_link";
   spec.xml = xml;
+  spec.source = "car.urdf";
   spec.line = 12;
   spec.update_rate = std::stod(root->FirstChildElement("update_rate")->GetText());
   spec.X_LS.translation() = Eigen::Vector3d(0.1, 0, 0.05);  // the file's sensor <pose>
@@ -188,6 +189,9 @@ TEST(SensorsMultiCamera, OneCameraIsAnError) {
   EXPECT_NE(err.find("robot 'car_a'"), std::string::npos) << err;
   EXPECT_NE(err.find("multicamera sensor 'stereo_camera'"), std::string::npos) << err;
   EXPECT_NE(err.find("has 1 <camera>"), std::string::npos) << err;
+  // Placed at the <sensor>'s line of its model file, before the robot and the sensor.
+  EXPECT_EQ(err.rfind("car.urdf:12: robot 'car_a': multicamera sensor 'stereo_camera' on link "
+                      "'stereo_link': ", 0), 0u) << err;
   // The registry (model_info, the node) reports it the same way.
   EXPECT_THROW(sensorTopics(specFromXml(xml.substr(0, b) + xml.substr(e)), "car_a"), CameraError);
 }
@@ -197,6 +201,13 @@ TEST(SensorsMultiCamera, TwoCamerasWithTheSameNameIsAnError) {
   EXPECT_NE(err.find("robot 'car_a'"), std::string::npos) << err;
   EXPECT_NE(err.find("multicamera sensor 'stereo_camera'"), std::string::npos) << err;
   EXPECT_NE(err.find("two cameras are named 'left'"), std::string::npos) << err;
+}
+
+TEST(SensorsMultiCamera, ACameraErrorKeepsTheSensorsPlaceInFront) {
+  const std::string err = errorOf(edited("<width>320</width>", "<width>0</width>"));
+  EXPECT_EQ(err.rfind("car.urdf:12: robot 'car_a': multicamera sensor 'stereo_camera/", 0), 0u)
+      << err;
+  EXPECT_NE(err.find("<image><width> 0 out of range"), std::string::npos) << err;
 }
 
 TEST(SensorsMultiCamera, OtherBadInput) {

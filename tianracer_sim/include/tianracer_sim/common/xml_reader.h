@@ -42,8 +42,8 @@ inline int lineOf(const tinyxml2::XMLElement* e) { return e ? e->GetLineNum() : 
 class XmlReader {
  public:
   /// A reader of a document of its own (a URDF, a world, a model file): each element is placed
-  /// at its own line.
-  XmlReader(std::string source, WarningSink warn);
+  /// at its own line, and every message goes on with `context` (e.g. "model 'm' visual 'v': ").
+  XmlReader(std::string source, WarningSink warn, std::string context = "");
   /// A reader of a printed copy of one element of `source` that stands at `line` there (the
   /// <sensor> blocks a SensorSpec keeps): the copy's line numbers are not the file's, so every
   /// place is that line, and every message goes on with `context` ("sensor 'lidar': ").

@@ -18,7 +18,8 @@
 namespace tianracer_sim {
 
 /// A camera sensor's configuration is invalid. The message names the sensor, the element and
-/// the value (e.g. "camera sensor 'camera1' (line 12): <image><width> 0 out of range 1..8192").
+/// the value, placed at the <sensor>'s line of its model file (e.g. "car.urdf:12: camera sensor
+/// 'camera1' on link 'camera': <image><width> 0 out of range 1..8192").
 using CameraError = InputError;
 
 /// <image><format>: R8G8B8 (alias RGB_INT8) -> rgb8, B8G8R8 (BGR_INT8) -> bgr8, L8 (L_INT8) ->
