@@ -93,14 +93,11 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
 
   ros::NodeHandle gazebo("/gazebo");
   gazebo.setCallbackQueue(&queue_);
-  services_.push_back(gazebo.advertiseService("pause_physics", &SimNode::onPause, this));
-  services_.push_back(gazebo.advertiseService("unpause_physics", &SimNode::onUnpause, this));
-  services_.push_back(gazebo.advertiseService("reset_simulation", &SimNode::onResetSimulation, this));
-  services_.push_back(gazebo.advertiseService("reset_world", &SimNode::onResetWorld, this));
   GazeboInterface::Options gazebo_options;
   gazebo_options.states_rate = getDouble(pnh_, "gazebo_states_rate", gazebo_options.states_rate);
-  gazebo_ = std::make_unique<GazeboInterface>(gazebo, sim_->simulation(), sim_->world(),
-                                             gazebo_options, static_cast<ModelSpawner*>(this));
+  gazebo_ = std::make_unique<GazeboInterface>(gazebo, *sim_, gazebo_options,
+                                             static_cast<ModelSpawner*>(this),
+                                             [this] { afterReset(); });
 
   ROS_INFO("tianracer_sim: step %.4f s, real_time_factor %g%s, %s", sim_->dt(), real_time_factor_,
            real_time_factor_ == 0.0 ? " (as fast as possible)" : "",
@@ -183,32 +180,15 @@ void SimNode::run() {
   }
 }
 
-bool SimNode::onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  sim_->setPaused(true);
-  return true;
-}
-
-bool SimNode::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  sim_->setPaused(false);
-  return true;
-}
-
-bool SimNode::onResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  for (const auto& robot : robots_) robot->clearCommands();
-  sim_->resetSimulation();
-  gazebo_->onReset();
+void SimNode::afterReset() {
   const double t = sim_->time();
+  for (const auto& robot : robots_) {
+    robot->clearCommands();  // what came before the reset is not applied after it
+    robot->restart(t);
+  }
   clock_schedule_.restart(t);
-  for (const auto& robot : robots_) robot->restart(t);
   pacing_reset_ = true;
   publishClock();
-  return true;
-}
-
-bool SimNode::onResetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  sim_->resetWorld();
-  gazebo_->onReset();
-  return true;
 }
 
 }  // namespace tianracer_sim

@@ -49,7 +49,6 @@
 
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
-#include <std_srvs/Empty.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
 #include "tianracer_sim/ros/contact_publisher.h"
@@ -98,10 +97,8 @@ class SimNode : private ModelSpawner {
   void publishClock();
   void publishStatus();  // sim_node_status.cpp
 
-  bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
-  bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
-  bool onResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
-  bool onResetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  /// After reset_simulation (GazeboInterface): the node's schedules restart, /clock goes back.
+  void afterReset();
 
   ros::NodeHandle nh_, pnh_;
   ros::CallbackQueue queue_;  // commands and services run between steps, in this thread
@@ -120,7 +117,6 @@ class SimNode : private ModelSpawner {
   double status_period_ = 5.0;  // wall seconds between status reports
   ros::WallTime status_wall_;
   double status_sim_ = 0.0;
-  std::vector<ros::ServiceServer> services_;
   std::unique_ptr<Lockstep> lockstep_;       // null unless ~lockstep/ names topics
   std::unique_ptr<GazeboInterface> gazebo_;  // gazebo_msgs topics and services
 };
