@@ -70,12 +70,11 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   if (!several) {
     loadRobot(pnh_, "");
   } else if (robot_names.empty()) {
-    throw std::runtime_error("parameter " + pnh_.resolveName("robots") +
-                             " lists no robot: name the robots to spawn, or leave it unset for "
-                             "one robot from the node's own parameters");
-  } else {
-    for (const std::string& name : robot_names) loadRobot(ros::NodeHandle(pnh_, name), name);
+    // As `gzserver x.world`: the world runs alone until robots are spawned.
+    ROS_INFO("no robot at start (%s is empty): robots arrive through "
+             "/gazebo/spawn_urdf_model", pnh_.resolveName("robots").c_str());
   }
+  for (const std::string& name : robot_names) loadRobot(ros::NodeHandle(pnh_, name), name);
 
   std::vector<std::string> command_topics;
   for (const auto& robot : robots_) {

@@ -41,7 +41,8 @@ void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name
     std::string urdf;
     if (!nh_.getParam(param, urdf)) {
       throw ModelError("parameter " + nh_.resolveName(param) +
-                       " is not set: load the URDF (e.g. with xacro) or give ~model");
+                       " is not set: load the URDF (e.g. with xacro), give ~model, or set "
+                       "~robots to an empty list for the world alone");
     }
     if (urdf.find_first_not_of(" \t\r\n") == std::string::npos) {
       throw ModelError("parameter " + nh_.resolveName(param) + " (robot_description) is empty");

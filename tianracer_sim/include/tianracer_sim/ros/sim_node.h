@@ -8,7 +8,8 @@
 //   robots           names of several robots to spawn (list or space-separated string); each
 //                    robot's parameters below (model ... disable_sensors, control_namespace)
 //                    are then read from ~<name>/ and its robot_name is <name>. Unset: one
-//                    robot from the parameters in ~ itself.
+//                    robot from the parameters in ~ itself. Empty ([] or ""): the world
+//                    alone, as `gzserver x.world`; robots arrive through spawn_urdf_model.
 //   model            xacro/URDF file; when empty, the URDF is read from robot_param
 //   model_dir        folder that relative mesh URIs of robot_param's URDF resolve against
 //                    (sim.launch sets it to the model file's folder)
