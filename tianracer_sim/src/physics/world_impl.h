@@ -37,14 +37,23 @@ struct RobotState {
   std::vector<std::string> link_names;
   Eigen::Isometry3d spawn = Eigen::Isometry3d::Identity();
 
-  std::unique_ptr<btMultiBody> mb;
+  /// One multibody per tree of the RigidTree (a robot: one). Body b is link body_link[b] of
+  /// parts[body_part[b]] (-1: that part's base); joint i moves body joint_body[i].
+  struct Part {
+    std::unique_ptr<btMultiBody> mb;
+    int root = 0;  // body index of its base
+  };
+  std::vector<Part> parts;
+  std::vector<int> body_part, body_link, joint_body;
   std::vector<Eigen::Isometry3d> X_BC;  // per body: COM principal frame C in body frame B
   std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;  // per body, may be null
   std::vector<std::unique_ptr<ColliderSurfaces>> surfaces;
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<OwnedShape>> meshes;  // triangle storage of concave meshes
+  /// Per joint; in the solve only for a joint with position limits, near one of them (see
+  /// applyCommands).
   std::vector<std::unique_ptr<btMultiBodyJointLimitConstraint>> limits;
-  std::vector<int> limit_joint;       // joint index of each limit
-  std::vector<bool> limit_in_world;   // added only near the limit (see applyCommands)
+  std::vector<bool> limit_in_world;
   std::vector<std::unique_ptr<btMultiBodyJointMotor>> motors;  // per joint
   std::vector<bool> motor_in_world;
   std::vector<Command> commands;
@@ -62,6 +71,12 @@ struct RobotState {
   PhysicsRobot handle{this};
 
   explicit RobotState() = default;
+  btMultiBody* mbOfBody(int b) const { return parts[body_part[b]].mb.get(); }
+  btMultiBody* mbOfJoint(int i) const { return mbOfBody(joint_body[i]); }
+  /// Joint i's link index within its multibody.
+  int linkOfJoint(int i) const { return body_link[joint_body[i]]; }
+  /// The single multibody whose base is body 0 and whose links are bodies 1.. (robots).
+  bool singleTree() const { return parts.size() == 1; }
   int bodyOf(const std::string& link) const {
     auto it = tree.links.find(link);
     if (it == tree.links.end()) {
@@ -71,6 +86,10 @@ struct RobotState {
   }
   /// World pose of body b's COM frame C (Bullet's frame for that body).
   btTransform comFrame(int b) const;
+  /// World pose of body b's frame B.
+  Eigen::Isometry3d bodyPose(int b) const;
+  /// Velocity of the point p_W fixed to body b, and b's angular velocity (world frame).
+  Twist bodyTwistAt(int b, const Eigen::Vector3d& p_W) const;
   void syncColliders();
 };
 

@@ -98,6 +98,8 @@ struct JointInfo {
   double effort_limit = 0.0;    // URDF <limit effort>; 0 = none
   double velocity_limit = 0.0;  // URDF <limit velocity>; 0 = none
   double damping = 0.0, friction = 0.0;
+  /// A spring: tau = -spring_stiffness (q - spring_reference) (SDF <dynamics>).
+  double spring_stiffness = 0.0, spring_reference = 0.0;
   double motor_effort = 0.0;    // torque cap of velocity targets by default (limit or default)
 };
 
