@@ -126,6 +126,18 @@ void MultiBodyWorld::pruneWheelManifolds() {
   }
 }
 
+bool WorldModelFilter::needBroadphaseCollision(btBroadphaseProxy* p0, btBroadphaseProxy* p1) const {
+  if (!(p0->m_collisionFilterGroup & p1->m_collisionFilterMask) ||
+      !(p1->m_collisionFilterGroup & p0->m_collisionFilterMask)) {
+    return false;
+  }
+  const auto* o0 = static_cast<const btCollisionObject*>(p0->m_clientObject);
+  const auto* o1 = static_cast<const btCollisionObject*>(p1->m_clientObject);
+  if (o0 == nullptr || o1 == nullptr) return true;
+  if (o0->getUserIndex() > -2 || o0->getUserIndex() != o1->getUserIndex()) return true;
+  return o0->getUserIndex3() == 1 || o1->getUserIndex3() == 1;
+}
+
 /// Bullet scales each friction direction's components in the object's frame, which turns the
 /// cone into an ellipse with semi-axes mu1 N along fdir1 and mu2 N across (cone coefficient
 /// max(mu1, mu2)). Per object and per object axis: fdir1 is snapped to the nearest axis of the

@@ -79,7 +79,11 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
     mb->setLinearDamping(0.0);
     mb->setAngularDamping(0.0);
     mb->setMaxCoordinateVelocity(1e4);
-    mb->setHasSelfCollision(false);
+    // Links of a robot never collide with each other (Gazebo's URDF import sets no
+    // self_collide); a world model's may (WorldModelFilter).
+    bool self_collide = false;
+    for (int b = part.root; b < end; ++b) self_collide = self_collide || tree.bodies[b].self_collide;
+    mb->setHasSelfCollision(r->world_model && self_collide);
     mb->setCanSleep(false);
     mb->setUseGyroTerm(true);
     world->addMultiBody(mb);
@@ -118,12 +122,16 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
     auto surfaces = std::make_unique<ColliderSurfaces>();
     const Eigen::Isometry3d X_CB = r->X_BC[b].inverse();
     bool all_wheels = true;
+    // A world model's bodies welded to the world are static (ODE gives them no body).
+    const bool welded = r->world_model && b == 0 && tree.fixed_base;
     for (const CollisionGeometry& g : body.collisions) {
       Eigen::Isometry3d X_BS;
       bool is_wheel = false;
-      std::unique_ptr<btCollisionShape> shape =
-          makeLinkShape(body, g, options.collision_margin, options.wheel_shape,
-                        "robot '" + r->name + "' link '" + g.link + "'", &X_BS, &is_wheel);
+      std::unique_ptr<btCollisionShape> shape = makeLinkShape(
+          body, g, options.collision_margin,
+          r->world_model ? WheelShape::kMeshHull : options.wheel_shape,  // no tyres on models
+          (r->world_model ? "model '" : "robot '") + r->name + "' link '" + g.link + "'", &X_BS,
+          &is_wheel);
       all_wheels = all_wheels && is_wheel;
       compound->addChildShape(toBt(Eigen::Isometry3d(X_CB * X_BS)), shape.get());
       const Eigen::Matrix3d R_CL = X_CB.linear() * body.X_BL.at(g.link).linear();
@@ -131,11 +139,12 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
           toSurface(surface_of(g, collision_index++), R_CL, options.contact_max_vel));
       r->shapes.push_back(std::move(shape));
     }
-    surfaces->body = true;
+    surfaces->body = !welded;
     auto col = std::make_unique<btMultiBodyLinkCollider>(r->mbOfBody(b), r->body_link[b]);
     col->setCollisionShape(compound.get());
     setAnisotropy(col.get(), *surfaces);
-    col->setCollisionFlags(col->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+    col->setCollisionFlags(col->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK |
+                           (welded ? btCollisionObject::CF_STATIC_OBJECT : 0));
     col->setActivationState(DISABLE_DEACTIVATION);
     col->setFriction(surfaces->children[0].mu1);
     col->setRestitution(0.0);
@@ -144,6 +153,7 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
     col->setUserPointer(surfaces.get());
     col->setUserIndex(r->user_index);
     col->setUserIndex2(b);
+    if (r->world_model && body.self_collide) col->setUserIndex3(1);
     if (all_wheels) {
       // A rolling wheel's manifold keeps up to 3 stale points behind the contact (rising off
       // the ground, 0.01-1 mm up) which Bullet would solve as speculative contacts: 4x the rows
@@ -152,8 +162,13 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
       col->setContactProcessingThreshold(0.0);
       surfaces->wheel = true;
     }
-    world->addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter,
-                              btBroadphaseProxy::AllFilter);
+    if (welded) {
+      world->addCollisionObject(col.get(), btBroadphaseProxy::StaticFilter,
+                                btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter);
+    } else {
+      world->addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter,
+                                btBroadphaseProxy::AllFilter);
+    }
     if (r->body_link[b] < 0) {
       r->mbOfBody(b)->setBaseCollider(col.get());
     } else {

@@ -151,7 +151,7 @@ std::unique_ptr<btCollisionShape> makeLinkShape(const TreeBody& body, const Coll
     }
   }
   *is_wheel = fit.is_wheel && wheel_shape != WheelShape::kMeshHull;
-  if (fit.is_wheel) {
+  if (*is_wheel) {
     X_BS->linear() = rotationYTo(body.axis_B);
     X_BS->translation() = fit.center;
     const double R = fit.radius, W = fit.width;

@@ -57,6 +57,7 @@ PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
 
   // Process-wide in Bullet; the function is stateless (surfaces hang off the objects).
   gContactAddedCallback = &onContactAdded;
+  broadphase->getOverlappingPairCache()->setOverlapFilterCallback(&model_filter);
 
   if (options.ground_plane) {
     StaticShape g;
@@ -157,23 +158,31 @@ RobotId PhysicsWorld::addRobot(RigidTree tree, const LinkSurfaces& surfaces,
 }
 
 int PhysicsWorld::addFreeBody(RigidTree tree, const std::vector<SurfaceParams>& surfaces,
-                              const Eigen::Isometry3d& X_WB, const std::string& name) {
+                              const Eigen::Isometry3d& X_WM, const std::string& name) {
   const std::string what = "free body '" + name + "'";
   if (freeBodyIndex(name) >= 0) throw PhysicsError(what + " already exists");
-  if (!X_WB.matrix().allFinite()) throw PhysicsError(what + ": non-finite pose");
-  if (tree.bodies.size() != 1) throw PhysicsError(what + ": must be one body (links merged)");
-  const MassProperties& m = tree.bodies[0].mass;
-  if (!(m.mass > 0.0) || !std::isfinite(m.mass)) {
-    throw PhysicsError(what + ": mass must be positive, got " + std::to_string(m.mass));
+  if (!X_WM.matrix().allFinite()) throw PhysicsError(what + ": non-finite pose");
+  if (tree.bodies.empty()) throw PhysicsError(what + ": no bodies");
+  for (std::size_t b = 0; b < tree.bodies.size(); ++b) {
+    if (b == 0 && tree.fixed_base) continue;
+    const MassProperties& m = tree.bodies[b].mass;
+    const std::string body = what + " body '" + tree.bodies[b].link + "'";
+    if (!(m.mass > 0.0) || !std::isfinite(m.mass)) {
+      throw PhysicsError(body + ": mass must be positive, got " + std::to_string(m.mass));
+    }
+    if (!isPhysicalInertia(m.inertia)) throw PhysicsError(body + ": inertia is not physical");
   }
-  if (!isPhysicalInertia(m.inertia)) throw PhysicsError(what + ": inertia is not physical");
-  tree.fixed_base = false;
+  if (tree.canonical_body < 0 || tree.canonical_body >= static_cast<int>(tree.bodies.size())) {
+    throw PhysicsError(what + ": canonical body " + std::to_string(tree.canonical_body) +
+                       " out of range");
+  }
   auto r = std::make_unique<RobotState>();
   r->id = static_cast<int>(impl_->free_bodies.size());
   r->user_index = -2 - r->id;
+  r->world_model = true;
   r->name = name;
   r->tree = std::move(tree);
-  r->spawn = X_WB;
+  r->spawn = X_WM;
   static const SurfaceParams kDefault;
   impl_->add(std::move(r),
              [&surfaces](const CollisionGeometry&, int k) -> const SurfaceParams& {
@@ -233,26 +242,30 @@ void PhysicsWorld::removeRobot(RobotId id) {
 void PhysicsWorld::step() {
   for (auto& r : impl_->robots)
     if (r) impl_->applyCommands(r.get());
-  // A free body has no joints: only an external wrench (apply_body_wrench) acts through it.
+  // A free body without joints: only an external wrench (apply_body_wrench) acts through it.
   for (auto& b : impl_->free_bodies) {
-    if (b && b->has_ext_wrench) impl_->applyCommands(b.get());
+    if (b && (b->has_ext_wrench || !b->joints.empty())) impl_->applyCommands(b.get());
   }
   // maxSubSteps = 0: exactly one internal step of dt (no accumulator, no interpolation).
   impl_->world->stepSimulation(impl_->options.dt, 0, impl_->options.dt);
   ++impl_->steps;
-  const double inv_dt = 1.0 / impl_->options.dt;
-  for (auto& r : impl_->robots) {
-    if (!r) continue;
-    for (std::size_t i = 0; i < r->joints.size(); ++i) {
-      const RobotState::Command& c = r->commands[i];
-      if (c.mode == RobotState::Mode::kEffort) {
-        r->applied_effort[i] = c.effort;
-      } else if (c.mode == RobotState::Mode::kVelocity) {
-        btMultiBodyJointMotor* m = r->motors[i].get();
-        r->applied_effort[i] = m->getNumRows() > 0 ? m->getAppliedImpulse(0) * inv_dt : 0.0;
-      } else {
-        r->applied_effort[i] = 0.0;
-      }
+  for (auto& r : impl_->robots)
+    if (r) impl_->readEfforts(r.get());
+  for (auto& b : impl_->free_bodies)
+    if (b && !b->joints.empty()) impl_->readEfforts(b.get());
+}
+
+void PhysicsWorld::Impl::readEfforts(RobotState* r) {
+  const double inv_dt = 1.0 / options.dt;
+  for (std::size_t i = 0; i < r->joints.size(); ++i) {
+    const RobotState::Command& c = r->commands[i];
+    if (c.mode == RobotState::Mode::kEffort) {
+      r->applied_effort[i] = c.effort;
+    } else if (c.mode == RobotState::Mode::kVelocity) {
+      btMultiBodyJointMotor* m = r->motors[i].get();
+      r->applied_effort[i] = m->getNumRows() > 0 ? m->getAppliedImpulse(0) * inv_dt : 0.0;
+    } else {
+      r->applied_effort[i] = 0.0;
     }
   }
 }

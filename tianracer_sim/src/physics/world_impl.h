@@ -30,6 +30,7 @@ struct RobotState {
   PhysicsWorld::Impl* world = nullptr;
   RobotId id = -1;          // robots: robot id; free bodies: free body index
   int user_index = -1;      // btCollisionObject::getUserIndex() of its colliders
+  bool world_model = false;  // a free body (PhysicsWorld::addFreeBody)
   std::string name;
   RigidTree tree;
   std::vector<JointInfo> joints;
@@ -95,6 +96,9 @@ struct RobotState {
 
 struct PhysicsWorld::Impl {
   PhysicsOptions options;
+  /// Which bodies of one world model collide with each other (addFreeBody); outlives the
+  /// broadphase that points to it.
+  WorldModelFilter model_filter;
   std::unique_ptr<btDefaultCollisionConfiguration> config;
   std::unique_ptr<btCollisionDispatcher> dispatcher;
   std::unique_ptr<btDbvtBroadphase> broadphase;
@@ -129,6 +133,8 @@ struct PhysicsWorld::Impl {
   /// Takes everything of r out of the Bullet world (constraints, colliders, multibody).
   void removeFromWorld(RobotState* r);
   void applyCommands(RobotState* r);
+  /// After a step: the effort each joint applied (jointEffort).
+  void readEfforts(RobotState* r);
 };
 
 }  // namespace tianracer_sim

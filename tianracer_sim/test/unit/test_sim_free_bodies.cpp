@@ -1,6 +1,6 @@
 // Free rigid bodies from a world's dynamic models: free fall and landing, sliding friction,
 // contact softness from <contact><ode>, merged links, reset, determinism and the scene poses
-// sensors see.
+// sensors see. Joints, separate links and bad mass properties: test_sim_world_models.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -168,20 +168,6 @@ TEST(FreeBodies, LinksJoinedByAFixedJointMoveAsOneBody) {
   EXPECT_NEAR(X_bottom.translation().x(), 1.0, 1e-3);
 }
 
-TEST(FreeBodies, OtherJointsAndUnjoinedLinksAreWarnedAndHeldFixed) {
-  const std::string model = R"(<model name='door'>
-    <link name='frame'><collision name='c'><geometry><box><size>0.1 0.1 1</size></box></geometry></collision></link>
-    <link name='leaf'><collision name='c'><geometry><box><size>0.5 0.02 1</size></box></geometry></collision></link>
-    <link name='loose'><collision name='c'><geometry><sphere><radius>0.1</radius></sphere></geometry></collision></link>
-    <joint name='hinge' type='revolute'><parent>frame</parent><child>leaf</child><axis><xyz>0 0 1</xyz></axis></joint>
-  </model>)";
-  FreeWorld w(model);
-  ASSERT_EQ(w.warnings.size(), 2u);
-  EXPECT_NE(w.warnings[0].find("joint 'hinge' (revolute) is held fixed"), std::string::npos);
-  EXPECT_NE(w.warnings[1].find("link 'loose' is joined to 'frame' by no joint"), std::string::npos);
-  EXPECT_NE(w.warnings[0].find("test.world:"), std::string::npos);
-}
-
 TEST(FreeBodies, WithoutCollisionItIsWarnedAbout) {
   FreeWorld w("<model name='ghost'><pose>0 0 1 0 0 0</pose><link name='l'><visual name='v'><geometry>"
               "<sphere><radius>0.1</radius></sphere></geometry></visual></link></model>");
@@ -246,36 +232,6 @@ TEST(FreeBodies, ManyBoxesStepBitIdentically) {
   const std::vector<double> a = run(), b = run();
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << i;
-}
-
-TEST(FreeBodies, BadMassOrInertiaNamesFileLineAndValue) {
-  auto error = [](const std::string& link_xml) {
-    try {
-      loadWorldString("<sdf version='1.6'><world name='w'>\n<model name='m'>\n" + link_xml +
-                          "</model></world></sdf>",
-                      "bad.world", ".");
-    } catch (const WorldError& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
-  std::string e = error("<link name='l'><inertial><mass>0</mass></inertial></link>");
-  EXPECT_NE(e.find("bad.world:3:"), std::string::npos) << e;
-  EXPECT_NE(e.find("<mass> must be > 0 (got 0)"), std::string::npos) << e;
-  e = error("<link name='l'><inertial><mass>-2</mass></inertial></link>");
-  EXPECT_NE(e.find("(got -2)"), std::string::npos) << e;
-  e = error("<link name='l'>\n<inertial><mass>1</mass><inertia><ixx>-0.1</ixx><iyy>1</iyy>"
-            "<izz>1</izz></inertia></inertial></link>");
-  EXPECT_NE(e.find("bad.world:4: model 'm' link 'l': inertia (ixx iyy izz ixy ixz iyz) = (-0.1 1 1"),
-            std::string::npos)
-      << e;
-  e = error("<link name='l'><inertial><mass>1</mass><inertia><ixx>0</ixx><iyy>0</iyy>"
-            "<izz>0</izz></inertia></inertial></link>");
-  EXPECT_NE(e.find("is not positive definite"), std::string::npos) << e;
-  // A static model may carry any inertia: it never moves.
-  EXPECT_EQ(error("<static>true</static><link name='l'><inertial><mass>1</mass><inertia><ixx>0"
-                  "</ixx></inertia></inertial></link>"),
-            "");
 }
 
 // The shipped obstacle world: its cones and boxes are free bodies that start at rest where the

@@ -57,6 +57,9 @@ struct TreeBody {
   /// A spring towards spring_reference: tau = -spring_stiffness (q - spring_reference)
   /// (SDF <dynamics>; URDF has none).
   double spring_stiffness = 0.0, spring_reference = 0.0;
+  /// World models: collides with the other bodies of its model (SDF <self_collide>; joined
+  /// bodies never collide).
+  bool self_collide = false;
 };
 
 /// A robot is one tree. A world model may be a forest: every body with parent == -1 roots a

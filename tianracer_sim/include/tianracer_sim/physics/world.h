@@ -188,7 +188,7 @@ class PhysicsRobot {
 /// Where a ray/contact hit lands: btCollisionObject user indices set by the world.
 /// getUserIndex() = robot id (-1 for static shapes and the ground, -2 - index for free bodies),
 /// getUserIndex2() = body index in the robot's RigidTree (static: index of addStaticShape,
-/// ground: -1).
+/// ground: -1), getUserIndex3() = 1 for a free body's self-colliding body.
 
 class PhysicsWorld {
  public:
@@ -207,12 +207,17 @@ class PhysicsWorld {
   /// Takes a static body out of the world (delete_model). Indices of the others stay.
   void removeStaticShape(int index);
 
-  /// Adds a free rigid body (a world's dynamic model): a rigid tree of one body (its links
-  /// merged) with its frame at X_WB, surfaces[k] for its k-th collision (missing: defaults).
-  /// Meshes collide as convex hulls. It is handled like a robot without joints (pose, twist,
-  /// reset to X_WB, link poses, contacts). Throws PhysicsError / MeshError naming the body.
+  /// Adds a world's dynamic model (a "free body"): its RigidTree, possibly a forest (links
+  /// that no joint joins are separate bodies; a tree whose root is fixed to the world, as
+  /// bodies[0] with fixed_base, is a fixed-base multibody), with every root's frame at X_WM
+  /// and surfaces[k] for its k-th collision in body order (missing: defaults). It is handled
+  /// like a robot (pose of its model frame, twist, reset to X_WM, joints, link poses,
+  /// contacts), except: no wheel fitting; the bodies fixed to the world are static colliders
+  /// (ODE gives them no body); its bodies collide with each other only where one of them
+  /// self-collides (TreeBody::self_collide; joined bodies never). Every moving body needs a
+  /// positive mass and a physical inertia. Throws PhysicsError / MeshError naming the body.
   int addFreeBody(RigidTree tree, const std::vector<SurfaceParams>& surfaces,
-                  const Eigen::Isometry3d& X_WB, const std::string& name);
+                  const Eigen::Isometry3d& X_WM, const std::string& name);
   /// Free bodies ever added, removed ones included (their indices are never reused).
   int freeBodyCount() const;
   /// False for an index out of range or of a removed body.
