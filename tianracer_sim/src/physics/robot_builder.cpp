@@ -127,11 +127,14 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
     for (const CollisionGeometry& g : body.collisions) {
       Eigen::Isometry3d X_BS;
       bool is_wheel = false;
+      std::unique_ptr<OwnedShape> mesh;
       std::unique_ptr<btCollisionShape> shape = makeLinkShape(
           body, g, options.collision_margin,
           r->world_model ? WheelShape::kMeshHull : options.wheel_shape,  // no tyres on models
+          r->world_model,  // a world model's meshes are concave, as in Gazebo
           (r->world_model ? "model '" : "robot '") + r->name + "' link '" + g.link + "'", &X_BS,
-          &is_wheel);
+          &is_wheel, &mesh);
+      if (mesh) r->meshes.push_back(std::move(mesh));
       all_wheels = all_wheels && is_wheel;
       compound->addChildShape(toBt(Eigen::Isometry3d(X_CB * X_BS)), shape.get());
       const Eigen::Matrix3d R_CL = X_CB.linear() * body.X_BL.at(g.link).linear();

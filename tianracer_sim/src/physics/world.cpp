@@ -28,6 +28,8 @@ PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
   }
   config = std::make_unique<btDefaultCollisionConfiguration>();
   dispatcher = std::make_unique<btCollisionDispatcher>(config.get());
+  // Concave meshes of world models (btGImpactMeshShape) against everything.
+  btGImpactCollisionAlgorithm::registerAlgorithm(dispatcher.get());
   broadphase = std::make_unique<btDbvtBroadphase>();
   solver = std::make_unique<btMultiBodyConstraintSolver>();
   auto mbw = std::make_unique<MultiBodyWorld>(dispatcher.get(), broadphase.get(), solver.get(),
