@@ -33,6 +33,26 @@ Twist RobotState::bodyTwistAt(int b, const Eigen::Vector3d& p_W) const {
   return t;
 }
 
+void RobotState::wake() {
+  if (!world_model) return;  // robots never sleep
+  for (const Part& part : parts) {
+    if (!part.mb->getCanSleep()) continue;
+    const btCollisionObject* base = part.mb->getBaseCollider();
+    if (base != nullptr && base->getActivationState() == ISLAND_SLEEPING) {
+      // Bullet adds gravity at the start of a step and clears forces at its end only for
+      // bodies awake then: one that fell asleep within the step keeps that step's gravity,
+      // which the next step's would double. (Woken by a contact instead, Bullet skips that
+      // step's gravity and uses the kept one.)
+      part.mb->clearForcesAndTorques();
+    }
+    part.mb->wakeUp();
+  }
+  for (auto& c : colliders) {
+    // activate() leaves DISABLE_DEACTIVATION (never sleeps) alone.
+    if (c && !c->isStaticObject()) c->activate(true);
+  }
+}
+
 void RobotState::syncColliders() {
   for (const Part& part : parts) {
     part.mb->forwardKinematics(scratch_q, scratch_p);
@@ -68,6 +88,9 @@ void PhysicsWorld::Impl::applyCommands(RobotState* r) {
     }
   }
   if (r->has_ext_wrench) {
+    // A body asleep would keep the force unapplied (Bullet clears no forces of a sleeping
+    // multibody): a wrench keeps it awake.
+    if (r->world_model) r->wake();
     for (std::size_t b = 0; b < r->ext_force.size(); ++b) {
       const btVector3 f = toBt(r->ext_force[b]), t = toBt(r->ext_torque[b]);
       btMultiBody* mb = r->mbOfBody(static_cast<int>(b));
@@ -155,6 +178,7 @@ void PhysicsRobot::setJointEffort(int i, double tau) {
   auto& c = s_->commands[i];
   c.mode = RobotState::Mode::kEffort;
   c.effort = tau;
+  s_->wake();
 }
 
 void PhysicsRobot::setJointVelocityTarget(int i, double omega, double max_effort) {
@@ -169,6 +193,7 @@ void PhysicsRobot::setJointVelocityTarget(int i, double omega, double max_effort
   c.mode = RobotState::Mode::kVelocity;
   c.velocity = omega;
   c.max_effort = max_effort < 0.0 ? s_->joints[i].motor_effort : max_effort;
+  s_->wake();
 }
 
 void PhysicsRobot::clearJointCommand(int i) {
@@ -185,6 +210,7 @@ void PhysicsRobot::setJointState(int i, double position, double velocity) {
   s_->mbOfJoint(i)->setJointPos(s_->linkOfJoint(i), position);
   s_->mbOfJoint(i)->setJointVel(s_->linkOfJoint(i), velocity);
   s_->syncColliders();
+  s_->wake();
 }
 
 std::uint64_t PhysicsRobot::rejectedCommands() const { return s_->rejected; }
@@ -234,6 +260,7 @@ void PhysicsRobot::setBasePose(const Eigen::Isometry3d& X_WB) {
     }
   }
   s_->syncColliders();
+  s_->wake();
 }
 
 void PhysicsRobot::setBaseTwist(const Twist& twist) {
@@ -249,6 +276,7 @@ void PhysicsRobot::setBaseTwist(const Twist& twist) {
     part.mb->setBaseVel(toBt(Eigen::Vector3d(twist.linear + twist.angular.cross(p_com - p_origin))));
     part.mb->setBaseOmega(toBt(twist.angular));
   }
+  s_->wake();
 }
 
 void PhysicsRobot::resetToSpawn() {
@@ -271,6 +299,7 @@ void PhysicsRobot::resetToSpawn() {
   std::fill(s_->ext_torque.begin(), s_->ext_torque.end(), Eigen::Vector3d::Zero());
   s_->has_ext_wrench = false;
   s_->syncColliders();
+  s_->wake();
   // Forget contacts (and their warm-start impulses) of the old pose.
   auto* w = s_->world->world.get();
   for (auto& c : s_->colliders) {
@@ -311,7 +340,40 @@ void PhysicsRobot::setExternalWrench(const std::string& link, const Eigen::Vecto
   for (std::size_t k = 0; k < s_->ext_force.size(); ++k) {
     if (!s_->ext_force[k].isZero(0.0) || !s_->ext_torque[k].isZero(0.0)) s_->has_ext_wrench = true;
   }
+  s_->wake();
 }
+
+void PhysicsRobot::allowSleep(bool allow) {
+  const PhysicsOptions& o = s_->world->options;
+  allow = allow && s_->world_model && o.sleep_time > 0.0;
+  for (const RobotState::Part& part : s_->parts) {
+    // Gazebo: links of a model with joints never auto-disable.
+    const bool can = allow && part.mb->getNumLinks() == 0 && !part.mb->hasFixedBase();
+    part.mb->setCanSleep(can);
+    part.mb->setSleepThreshold(o.sleep_speed * o.sleep_speed);
+    part.mb->setSleepTimeout(o.sleep_time);
+    part.mb->wakeUp();
+  }
+  for (std::size_t b = 0; b < s_->colliders.size(); ++b) {
+    btCollisionObject* c = s_->colliders[b].get();
+    if (c == nullptr || c->isStaticObject()) continue;
+    c->forceActivationState(s_->mbOfBody(static_cast<int>(b))->getCanSleep() ? ACTIVE_TAG
+                                                                             : DISABLE_DEACTIVATION);
+  }
+}
+
+bool PhysicsRobot::asleep() const {
+  bool any = false;
+  for (const RobotState::Part& part : s_->parts) {
+    if (!part.mb->getCanSleep()) continue;
+    const btCollisionObject* c = part.mb->getBaseCollider();
+    if (c == nullptr || c->getActivationState() != ISLAND_SLEEPING) return false;
+    any = true;
+  }
+  return any;
+}
+
+void PhysicsRobot::wake() { s_->wake(); }
 
 int PhysicsRobot::contactCount(const std::string& link, double max_distance) const {
   const int b = s_->bodyOf(link);

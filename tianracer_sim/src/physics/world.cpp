@@ -26,6 +26,12 @@ PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
                        std::to_string(options.contact_max_vel) + " and " +
                        std::to_string(options.contact_max_correcting_vel));
   }
+  if (!(options.sleep_speed >= 0.0) || !std::isfinite(options.sleep_speed) ||
+      !(options.sleep_time >= 0.0) || !std::isfinite(options.sleep_time)) {
+    throw PhysicsError("physics: sleep_speed and sleep_time must be finite and >= 0, got " +
+                       std::to_string(options.sleep_speed) + " and " +
+                       std::to_string(options.sleep_time));
+  }
   config = std::make_unique<btDefaultCollisionConfiguration>();
   dispatcher = std::make_unique<btCollisionDispatcher>(config.get());
   // Concave meshes of world models (btGImpactMeshShape) against everything.
@@ -215,8 +221,24 @@ int PhysicsWorld::freeBodyIndex(const std::string& name) const {
   return -1;
 }
 
+void PhysicsWorld::Impl::wakeTouching(const btCollisionObject* o) {
+  for (int m = 0; m < dispatcher->getNumManifolds(); ++m) {
+    const btPersistentManifold* pm = dispatcher->getManifoldByIndexInternal(m);
+    if (pm->getBody0() != o && pm->getBody1() != o) continue;
+    const btCollisionObject* other = pm->getBody0() == o ? pm->getBody1() : pm->getBody0();
+    const int i = -2 - other->getUserIndex();
+    if (i >= 0 && i < static_cast<int>(free_bodies.size()) && free_bodies[i]) free_bodies[i]->wake();
+  }
+}
+
+void PhysicsWorld::Impl::wakeTouching(const RobotState* r) {
+  for (const auto& c : r->colliders)
+    if (c) wakeTouching(c.get());
+}
+
 void PhysicsWorld::removeFreeBody(int index) {
   if (!hasFreeBody(index)) throw PhysicsError("no free body with index " + std::to_string(index));
+  impl_->wakeTouching(impl_->free_bodies[index].get());  // what rested on it falls
   impl_->removeFromWorld(impl_->free_bodies[index].get());
   impl_->free_bodies[index].reset();
 }
@@ -231,12 +253,14 @@ void PhysicsWorld::removeStaticShape(int index) {
   if (index < 0 || index >= static_cast<int>(impl_->statics.size()) || !impl_->statics[index]) {
     throw PhysicsError("no static shape with index " + std::to_string(index));
   }
+  impl_->wakeTouching(impl_->statics[index]->object.get());  // what rested on it falls
   impl_->world->removeCollisionObject(impl_->statics[index]->object.get());
   impl_->statics[index].reset();
 }
 
 void PhysicsWorld::removeRobot(RobotId id) {
   if (!hasRobot(id)) throw PhysicsError("no robot with id " + std::to_string(id));
+  impl_->wakeTouching(impl_->robots[id].get());  // what rested on it falls
   impl_->removeFromWorld(impl_->robots[id].get());
   impl_->robots[id].reset();
 }

@@ -92,6 +92,8 @@ struct RobotState {
   /// Velocity of the point p_W fixed to body b, and b's angular velocity (world frame).
   Twist bodyTwistAt(int b, const Eigen::Vector3d& p_W) const;
   void syncColliders();
+  /// Wakes every tree that sleeps (a call moved or pushed it).
+  void wake();
 };
 
 struct PhysicsWorld::Impl {
@@ -133,6 +135,9 @@ struct PhysicsWorld::Impl {
   /// Takes everything of r out of the Bullet world (constraints, colliders, multibody).
   void removeFromWorld(RobotState* r);
   void applyCommands(RobotState* r);
+  /// Wakes the free bodies in contact with o, or with any body of r (o or r is being removed).
+  void wakeTouching(const btCollisionObject* o);
+  void wakeTouching(const RobotState* r);
   /// After a step: the effort each joint applied (jointEffort).
   void readEfforts(RobotState* r);
 };

@@ -308,6 +308,11 @@ WorldModelBodies addModelToPhysics(const WorldDescription& world, const ModelDes
       added.shapes = static_cast<int>(surfaces.size());
       try {
         added.free_body = physics->addFreeBody(std::move(tree), surfaces, model.X_WM, model.name);
+        // Gazebo auto-disables the links of a resting model without joints (ODELink.cc, Init;
+        // SDF <allow_auto_disable>, default true). A model with sensors must not sleep
+        // either: whoever gives world models sensors calls allowSleep(false).
+        physics->freeBody(added.free_body)
+            .allowSleep(model.allow_auto_disable && model.joints.empty());
       } catch (const PhysicsError& e) {
         throw PhysicsError(at(world, model.line) + e.what());
       }

@@ -70,6 +70,14 @@ struct PhysicsOptions {
   /// contact_max_correcting_vel: ODE's world cap over all contacts (Gazebo's default).
   double contact_max_vel = 0.1;
   double contact_max_correcting_vel = 100.0;
+  /// Sleeping (free bodies that allow it, PhysicsRobot::allowSleep): a body whose speeds stay
+  /// below sleep_speed (|v|^2 + |w|^2 < sleep_speed^2, in m/s and rad/s) for sleep_time (s)
+  /// is put to sleep: its velocities are zeroed and it costs no solver rows, no narrowphase
+  /// and no AABB update until something touches it or moves it. sleep_time 0: never.
+  /// Gazebo's ODE auto-disables after 1 s below 0.1 m/s and 0.1 rad/s (ODEPhysics.cc); we
+  /// wait as long but for ten times slower motion, so that a slow slide or tilt is not frozen.
+  double sleep_speed = 0.01;
+  double sleep_time = 1.0;
 };
 
 /// Surface of each URDF link of a robot, by link name; links not listed get SurfaceParams{}.
@@ -113,7 +121,8 @@ class PhysicsWorld;
 struct RobotState;
 
 /// One robot in a PhysicsWorld. Joint indices follow joints(); link names are URDF links.
-/// Obtained from PhysicsWorld::robot(); valid as long as the world.
+/// Obtained from PhysicsWorld::robot(); valid as long as the world. Every call that moves it
+/// or pushes it (poses, twists, joint states, wrenches, commands, reset) wakes it.
 class PhysicsRobot {
  public:
   const std::string& name() const;
@@ -162,6 +171,16 @@ class PhysicsRobot {
   void setExternalWrench(const std::string& link, const Eigen::Vector3d& force_W,
                          const Eigen::Vector3d& torque_W);
 
+  /// Free bodies: lets its trees without joints sleep once at rest (PhysicsOptions::sleep_*),
+  /// or keeps them awake (the default). Gazebo auto-disables the links of a model that has no
+  /// joints and no sensors (ODELink.cc, Init) unless <allow_auto_disable> is false. Robots
+  /// never sleep.
+  void allowSleep(bool allow);
+  /// True when every tree of it that may sleep is asleep (false for one that may not).
+  bool asleep() const;
+  /// Wakes it (its sleep timer restarts).
+  void wake();
+
   /// Contact points of the link's body with anything, at distance <= max_distance (m), from
   /// the last step's contact manifolds.
   int contactCount(const std::string& link, double max_distance = 1e-3) const;
@@ -204,7 +223,8 @@ class PhysicsWorld {
                    const Eigen::Isometry3d& X_WB_spawn, const std::string& name);
   /// Adds a static body; returns its index.
   int addStaticShape(const StaticShape& shape);
-  /// Takes a static body out of the world (delete_model). Indices of the others stay.
+  /// Takes a static body out of the world (delete_model); the free bodies touching it wake.
+  /// Indices of the others stay.
   void removeStaticShape(int index);
 
   /// Adds a world's dynamic model (a "free body"): its RigidTree, possibly a forest (links
@@ -225,7 +245,7 @@ class PhysicsWorld {
   PhysicsRobot& freeBody(int index);
   const PhysicsRobot& freeBody(int index) const;
   /// Takes the free body out of the world (delete_model); its handle becomes invalid, the
-  /// other bodies keep their indices.
+  /// other bodies keep their indices, those touching it wake.
   void removeFreeBody(int index);
   /// -1 when no free body has that name.
   int freeBodyIndex(const std::string& name) const;
@@ -244,7 +264,7 @@ class PhysicsWorld {
   /// False for an id out of range or of a removed robot.
   bool hasRobot(RobotId id) const;
   /// Takes everything of the robot out of the world (delete_model); its handle becomes
-  /// invalid, the other robots keep their ids.
+  /// invalid, the other robots keep their ids, free bodies touching it wake.
   void removeRobot(RobotId id);
   PhysicsRobot& robot(RobotId id);
   const PhysicsRobot& robot(RobotId id) const;

@@ -43,7 +43,8 @@ RigidTree worldModelTree(const WorldDescription& world, const ModelDescription& 
                          std::vector<SurfaceParams>* surfaces, const WarningSink& warn);
 
 /// Adds the world's models: static ones (isHeldStatic) as static shapes, dynamic ones as free
-/// bodies named after the model (worldModelTree). A dynamic model whose mass properties are
+/// bodies named after the model (worldModelTree), which may sleep at rest when the model has
+/// no joints and allows it (<allow_auto_disable>). A dynamic model whose mass properties are
 /// bad is warned about and added as a static one: the rest of the world loads. Returns the
 /// number of collision shapes added. Throws PhysicsError / MeshError naming the model.
 int addWorldToPhysics(const WorldDescription& world, PhysicsWorld* physics,
