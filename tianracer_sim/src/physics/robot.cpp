@@ -213,6 +213,50 @@ void PhysicsRobot::setJointState(int i, double position, double velocity) {
   s_->wake();
 }
 
+namespace {
+std::string jointWhat(const RobotState* s, int i) {
+  return (s->world_model ? "model '" : "robot '") + s->name + "' joint '" + s->joints[i].name + "'";
+}
+}  // namespace
+
+void PhysicsRobot::setJointDamping(int i, double damping) {
+  checkJoint(s_, i);
+  if (!(damping >= 0.0) || !std::isfinite(damping)) {
+    throw PhysicsError(jointWhat(s_, i) + ": damping must be finite and >= 0, got " +
+                       std::to_string(damping));
+  }
+  s_->joints[i].damping = damping;
+  s_->wake();
+}
+
+void PhysicsRobot::setJointFriction(int i, double friction) {
+  checkJoint(s_, i);
+  if (!(friction >= 0.0) || !std::isfinite(friction)) {
+    throw PhysicsError(jointWhat(s_, i) + ": friction must be finite and >= 0, got " +
+                       std::to_string(friction));
+  }
+  s_->joints[i].friction = friction;
+  s_->wake();
+}
+
+void PhysicsRobot::setJointLimits(int i, double lower, double upper) {
+  checkJoint(s_, i);
+  JointInfo& j = s_->joints[i];
+  if (j.type == JointType::kContinuous) {
+    throw PhysicsError(jointWhat(s_, i) + " is continuous: it has no position limits");
+  }
+  if (!std::isfinite(lower) || !std::isfinite(upper) || !(lower <= upper)) {
+    throw PhysicsError(jointWhat(s_, i) + ": limits must be finite with lower <= upper, got " +
+                       std::to_string(lower) + " .. " + std::to_string(upper));
+  }
+  j.has_position_limits = true;
+  j.lower = lower;
+  j.upper = upper;
+  s_->limits[i]->setLowerBound(lower);
+  s_->limits[i]->setUpperBound(upper);
+  s_->wake();
+}
+
 std::uint64_t PhysicsRobot::rejectedCommands() const { return s_->rejected; }
 
 // The model frame M: X_WM = X_WB X_BM with B the canonical body's frame (robots: body 0, X_BM

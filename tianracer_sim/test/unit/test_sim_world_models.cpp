@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -200,6 +201,78 @@ TEST(WorldModels, PendulumSwingsWithTheSmallAnglePeriod) {
   EXPECT_TRUE(p.linkPose("bob").isApprox(w.desc.models[0].X_WM * w.desc.models[0].links[0].X_ML, 1e-12));
 }
 
+/// A disc spinning about a vertical axis hinged to the world (gravity does no work on it).
+std::string turntable(const std::string& dynamics) {
+  return "<model name='turntable'><pose>0 0 1 0 0 0</pose><link name='disc'><inertial><mass>2"
+         "</mass><inertia><ixx>0.3</ixx><iyy>0.3</iyy><izz>0.5</izz></inertia></inertial>"
+         "<collision name='c'><geometry><cylinder><radius>0.5</radius><length>0.05</length>"
+         "</cylinder></geometry></collision></link>"
+         "<joint name='spin' type='continuous'><parent>world</parent><child>disc</child>"
+         "<axis><xyz>0 0 1</xyz><dynamics>" + dynamics + "</dynamics></axis></joint></model>";
+}
+
+// What get/set_joint_properties need from the core: names, positions and rates per world
+// model, and damping, friction, limits and a velocity with a force cap to set.
+TEST(WorldModels, JointPropertiesCanBeReadAndSet) {
+  ModelWorld w(pendulum(1.0, 1e-3, 0.5));
+  PhysicsRobot& p = w.model("pendulum");
+  const int pivot = p.jointIndex("pivot");
+  ASSERT_EQ(pivot, 0);
+  EXPECT_EQ(p.jointIndex("nothing"), -1);
+  p.setJointState(pivot, 0.3, 0.0);
+  w.run(0.2);
+  EXPECT_LT(p.jointPosition(pivot), 0.3);
+  EXPECT_LT(p.jointVelocity(pivot), 0.0);
+  // Limits (hiStop/loStop), set mid-swing outside them: the joint is brought back within
+  // 0.5 s and then swings within +-0.1 rad.
+  const double q_set = p.jointPosition(pivot);
+  p.setJointLimits(pivot, -0.1, 0.1);
+  EXPECT_TRUE(p.joints()[pivot].has_position_limits);
+  w.run(0.5);
+  double qmin = 0.0, qmax = 0.0;
+  for (int k = 0; k < 2000; ++k) {
+    w.physics.step();
+    qmin = std::min(qmin, p.jointPosition(pivot));
+    qmax = std::max(qmax, p.jointPosition(pivot));
+  }
+  std::cout << "[set_joint_properties] limits +-0.1 rad set at " << q_set << " rad: from 0.5 s on "
+            << qmin << " .. " << qmax << "\n";
+  EXPECT_GT(qmin, -0.1 - 1e-3);
+  EXPECT_LT(qmax, 0.1 + 1e-3);
+  // Damping: the swing dies out.
+  p.setJointDamping(pivot, 2.0);
+  EXPECT_EQ(p.joints()[pivot].damping, 2.0);
+  w.run(5.0);
+  EXPECT_LT(std::abs(p.jointVelocity(pivot)), 1e-3);
+  // A velocity with a force cap (vel, fmax): it turns at 0.2 rad/s, up to the limit.
+  p.setJointLimits(pivot, -1.0, 1.0);
+  p.setJointVelocityTarget(pivot, 0.2, 20.0);
+  w.run(1.0);
+  EXPECT_NEAR(p.jointVelocity(pivot), 0.2, 1e-3);
+  EXPECT_NEAR(p.jointEffort(pivot), 9.8 * 1.0 * 0.5 * std::sin(p.jointPosition(pivot)) + 2.0 * 0.2, 0.05);
+  p.clearJointCommand(pivot);
+  p.setJointFriction(pivot, 100.0);  // holds it against gravity
+  w.run(0.5);
+  const double held = p.jointPosition(pivot);
+  w.run(1.0);
+  EXPECT_NEAR(p.jointPosition(pivot), held, 1e-3);
+  // Bad values change nothing.
+  EXPECT_THROW(p.setJointDamping(pivot, -1.0), PhysicsError);
+  EXPECT_THROW(p.setJointFriction(pivot, std::nan("")), PhysicsError);
+  EXPECT_THROW(p.setJointLimits(pivot, 1.0, -1.0), PhysicsError);
+  try {
+    p.setJointLimits(pivot, 0.0, std::numeric_limits<double>::infinity());
+    ADD_FAILURE();
+  } catch (const PhysicsError& e) {
+    EXPECT_STREQ(e.what(), "model 'pendulum' joint 'pivot': limits must be finite with lower <= upper, "
+                           "got 0.000000 .. inf");
+  }
+  EXPECT_EQ(p.joints()[pivot].damping, 2.0);
+  EXPECT_EQ(p.joints()[pivot].lower, -1.0);
+  ModelWorld t(turntable(""));
+  EXPECT_THROW(t.model("turntable").setJointLimits(0, -1, 1), PhysicsError);  // continuous
+}
+
 TEST(WorldModels, PrismaticJointStaysWithinItsLimits) {
   // A 2 kg carriage on a vertical rail, limits -0.2 .. 0.1 m: gravity takes it to the lower
   // limit, then 60 N upwards to the upper one.
@@ -241,16 +314,6 @@ TEST(WorldModels, PrismaticJointStaysWithinItsLimits) {
   EXPECT_LT(qmax, 0.1 + 2e-3);
   // The carriage's world pose follows the joint: the rail is vertical through the model origin.
   EXPECT_NEAR(lift.linkPose("carriage").translation().z(), 1.0 + q_high, 1e-9);
-}
-
-/// A disc spinning about a vertical axis hinged to the world (gravity does no work on it).
-std::string turntable(const std::string& dynamics) {
-  return "<model name='turntable'><pose>0 0 1 0 0 0</pose><link name='disc'><inertial><mass>2"
-         "</mass><inertia><ixx>0.3</ixx><iyy>0.3</iyy><izz>0.5</izz></inertia></inertial>"
-         "<collision name='c'><geometry><cylinder><radius>0.5</radius><length>0.05</length>"
-         "</cylinder></geometry></collision></link>"
-         "<joint name='spin' type='continuous'><parent>world</parent><child>disc</child>"
-         "<axis><xyz>0 0 1</xyz><dynamics>" + dynamics + "</dynamics></axis></joint></model>";
 }
 
 TEST(WorldModels, JointDampingDecaysExponentially) {

@@ -147,6 +147,14 @@ class PhysicsRobot {
   void clearJointCommand(int i);
   /// Teleports one joint (set model state); velocities of other bodies are unchanged.
   void setJointState(int i, double position, double velocity);
+  /// Joint properties as Gazebo's Joint::SetDamping / SetParam("friction") /
+  /// SetLower/UpperLimit (what set_joint_properties changes; a velocity with fmax is
+  /// setJointVelocityTarget): damping and friction >= 0 and finite; limits lower <= upper,
+  /// finite, on a revolute or prismatic joint. Anything else throws PhysicsError naming the
+  /// robot, joint and value, and changes nothing.
+  void setJointDamping(int i, double damping);
+  void setJointFriction(int i, double friction);
+  void setJointLimits(int i, double lower, double upper);
   /// Count of rejected (NaN/inf) commands since creation.
   std::uint64_t rejectedCommands() const;
 
