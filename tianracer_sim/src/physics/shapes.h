@@ -1,5 +1,5 @@
 // Internal: Bullet collision shapes for static shapes and robot links (primitives, convex hulls
-// of meshes, fitted wheels, triangle meshes).
+// of meshes, fitted wheels, triangle meshes static and moving).
 #ifndef TIANRACER_SIM_PHYSICS_SHAPES_H
 #define TIANRACER_SIM_PHYSICS_SHAPES_H
 

@@ -1,9 +1,10 @@
-// PhysicsWorld: N robots (rigid trees with per-link surfaces) and static shapes in a Bullet
-// btMultiBodyDynamicsWorld, stepped at a fixed dt. ROS-free; Bullet stays out of this header.
-// How it maps Gazebo/ODE (joints, friction, contact softness, penetration recovery, tyres,
-// collision shapes) and every approximation made: docs/physics.md. The contact law itself is
-// in contact_law.h. Same inputs, same calls: bit-identical outputs (no sleeping, no threads, a
-// fixed number of solver iterations).
+// PhysicsWorld: N robots (rigid trees with per-link surfaces), world models (free bodies) and
+// static shapes in a Bullet btMultiBodyDynamicsWorld, stepped at a fixed dt. ROS-free; Bullet
+// stays out of this header. How it maps Gazebo/ODE (joints, friction, contact softness,
+// penetration recovery, tyres, collision shapes, world models, sleeping) and every
+// approximation made: docs/physics.md. The contact law itself is in contact_law.h. Same
+// inputs, same calls: bit-identical outputs (no threads, a fixed number of solver iterations,
+// sleeping decided by the state alone).
 #ifndef TIANRACER_SIM_PHYSICS_WORLD_H
 #define TIANRACER_SIM_PHYSICS_WORLD_H
 
@@ -238,7 +239,8 @@ class PhysicsWorld {
   /// Adds a world's dynamic model (a "free body"): its RigidTree, possibly a forest (links
   /// that no joint joins are separate bodies; a tree whose root is fixed to the world, as
   /// bodies[0] with fixed_base, is a fixed-base multibody), with every root's frame at X_WM
-  /// and surfaces[k] for its k-th collision in body order (missing: defaults). It is handled
+  /// and surfaces[k] for its k-th collision in body order (missing: defaults). Its meshes keep
+  /// their triangles (concave, btGImpactMeshShape; a robot's are hulls). It is handled
   /// like a robot (pose of its model frame, twist, reset to X_WM, joints, link poses,
   /// contacts), except: no wheel fitting; the bodies fixed to the world are static colliders
   /// (ODE gives them no body); its bodies collide with each other only where one of them
