@@ -49,8 +49,8 @@ struct RobotState {
   std::vector<Eigen::Isometry3d> X_BC;  // per body: COM principal frame C in body frame B
   std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;  // per body, may be null
   std::vector<std::unique_ptr<ColliderSurfaces>> surfaces;
+  std::vector<std::unique_ptr<OwnedShape>> meshes;  // triangles of concave meshes: outlive shapes
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
-  std::vector<std::unique_ptr<OwnedShape>> meshes;  // triangle storage of concave meshes
   /// Per joint; in the solve only for a joint with position limits, near one of them (see
   /// applyCommands).
   std::vector<std::unique_ptr<btMultiBodyJointLimitConstraint>> limits;
