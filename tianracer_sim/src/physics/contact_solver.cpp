@@ -26,15 +26,34 @@ constexpr int kFreshContact = 1 << 20;
 
 }  // namespace
 
+namespace {
+
+/// The surface index of a contact on an object: its compound child (the wrapper right below
+/// the object's own), whatever a mesh below it reported as index (a triangle); 0 for an
+/// object that is not a compound (one surface).
+int surfaceIndex(const btCollisionObjectWrapper* w) {
+  const btCollisionObjectWrapper* child = nullptr;
+  for (; w->m_parent != nullptr; w = w->m_parent) child = w;
+  if (child == nullptr || w->getCollisionShape()->getShapeType() != COMPOUND_SHAPE_PROXYTYPE) return 0;
+  return child->m_index;
+}
+
+}  // namespace
+
 bool onContactAdded(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, int /*part0*/,
-                    int index0, const btCollisionObjectWrapper* w1, int /*part1*/, int index1) {
+                    int /*index0*/, const btCollisionObjectWrapper* w1, int /*part1*/,
+                    int /*index1*/) {
   const btCollisionObject* o0 = w0->getCollisionObject();
   const btCollisionObject* o1 = w1->getCollisionObject();
   const auto* c0 = static_cast<const ColliderSurfaces*>(o0->getUserPointer());
   const auto* c1 = static_cast<const ColliderSurfaces*>(o1->getUserPointer());
   if (c0 == nullptr || c1 == nullptr) return false;
-  const Surface& s0 = c0->at(index0);
-  const Surface& s1 = c1->at(index1);
+  // Bullet's index is a triangle's for a mesh (also a GImpact mesh inside a compound): the
+  // point keeps the surface's instead, for capCorrection.
+  cp.m_index0 = surfaceIndex(w0);
+  cp.m_index1 = surfaceIndex(w1);
+  const Surface& s0 = c0->at(cp.m_index0);
+  const Surface& s1 = c1->at(cp.m_index1);
 
   cp.m_combinedRestitution = 0.0;
   cp.m_combinedRollingFriction = 0.0;
@@ -124,6 +143,18 @@ void MultiBodyWorld::pruneWheelManifolds() {
     pm->clearManifold();
     pm->addManifoldPoint(keep);
   }
+}
+
+bool WorldModelFilter::needBroadphaseCollision(btBroadphaseProxy* p0, btBroadphaseProxy* p1) const {
+  if (!(p0->m_collisionFilterGroup & p1->m_collisionFilterMask) ||
+      !(p1->m_collisionFilterGroup & p0->m_collisionFilterMask)) {
+    return false;
+  }
+  const auto* o0 = static_cast<const btCollisionObject*>(p0->m_clientObject);
+  const auto* o1 = static_cast<const btCollisionObject*>(p1->m_clientObject);
+  if (o0 == nullptr || o1 == nullptr) return true;
+  if (o0->getUserIndex() > -2 || o0->getUserIndex() != o1->getUserIndex()) return true;
+  return o0->getUserIndex3() == 1 || o1->getUserIndex3() == 1;
 }
 
 /// Bullet scales each friction direction's components in the object's frame, which turns the

@@ -30,6 +30,14 @@ class MultiBodyWorld : public btMultiBodyDynamicsWorld {
   void pruneWheelManifolds();
 };
 
+/// The broadphase's pair filter: the collision groups and masks as Bullet's default, and two
+/// bodies of one world model (user index <= -2, the same) only when either self-collides
+/// (user index 3; SDF <self_collide>, Gazebo's rule). Bodies joined by a joint are in one
+/// multibody, where Bullet keeps them apart.
+struct WorldModelFilter : public btOverlapFilterCallback {
+  bool needBroadphaseCollision(btBroadphaseProxy* p0, btBroadphaseProxy* p1) const override;
+};
+
 /// mu1 != mu2: Bullet's anisotropic friction on the object (see docs/physics.md, Friction).
 void setAnisotropy(btCollisionObject* object, const ColliderSurfaces& surfaces);
 

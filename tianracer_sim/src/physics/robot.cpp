@@ -8,15 +8,56 @@
 namespace tianracer_sim {
 
 btTransform RobotState::comFrame(int b) const {
-  if (b == 0) return mb->getBaseWorldTransform();
+  btMultiBody* mb = mbOfBody(b);
+  const int link = body_link[b];
+  if (link < 0) return mb->getBaseWorldTransform();
   mb->forwardKinematics(scratch_q, scratch_p);
-  const btQuaternion& q = scratch_q[b];
-  return btTransform(q.inverse(), scratch_p[b]);
+  const btQuaternion& q = scratch_q[link + 1];
+  return btTransform(q.inverse(), scratch_p[link + 1]);
+}
+
+Eigen::Isometry3d RobotState::bodyPose(int b) const {
+  return toEigen(comFrame(b)) * X_BC[b].inverse();
+}
+
+Twist RobotState::bodyTwistAt(int b, const Eigen::Vector3d& p_W) const {
+  // Bullet gives each body's COM velocity and angular velocity in the body's COM frame.
+  btMultiBody* mb = mbOfBody(b);
+  mb->compTreeLinkVelocities(&scratch_w[0], &scratch_v[0]);
+  const int k = body_link[b] + 1;
+  const btTransform X_WC = comFrame(b);
+  Twist t;
+  t.angular = toEigen(X_WC.getBasis() * scratch_w[k]);
+  const Eigen::Vector3d v_com = toEigen(X_WC.getBasis() * scratch_v[k]);
+  t.linear = v_com + t.angular.cross(p_W - toEigen(X_WC.getOrigin()));
+  return t;
+}
+
+void RobotState::wake() {
+  if (!world_model) return;  // robots never sleep
+  for (const Part& part : parts) {
+    if (!part.mb->getCanSleep()) continue;
+    const btCollisionObject* base = part.mb->getBaseCollider();
+    if (base != nullptr && base->getActivationState() == ISLAND_SLEEPING) {
+      // Bullet adds gravity at the start of a step and clears forces at its end only for
+      // bodies awake then: one that fell asleep within the step keeps that step's gravity,
+      // which the next step's would double. (Woken by a contact instead, Bullet skips that
+      // step's gravity and uses the kept one.)
+      part.mb->clearForcesAndTorques();
+    }
+    part.mb->wakeUp();
+  }
+  for (auto& c : colliders) {
+    // activate() leaves DISABLE_DEACTIVATION (never sleeps) alone.
+    if (c && !c->isStaticObject()) c->activate(true);
+  }
 }
 
 void RobotState::syncColliders() {
-  mb->forwardKinematics(scratch_q, scratch_p);
-  mb->updateCollisionObjectWorldTransforms(scratch_q, scratch_p);
+  for (const Part& part : parts) {
+    part.mb->forwardKinematics(scratch_q, scratch_p);
+    part.mb->updateCollisionObjectWorldTransforms(scratch_q, scratch_p);
+  }
   for (auto& c : colliders) {
     if (c) world->world->updateSingleAabb(c.get());
   }
@@ -28,11 +69,15 @@ void PhysicsWorld::Impl::applyCommands(RobotState* r) {
   // solve only while the joint is within 0.05 rad (or two steps of travel) of either end, so it
   // cannot be crossed unseen.
   for (std::size_t k = 0; k < r->limits.size(); ++k) {
-    const JointInfo& j = r->joints[r->limit_joint[k]];
-    const int link = r->limit_joint[k];
-    const double q = r->mb->getJointPos(link);
-    const double margin = 0.05 + 2.0 * std::abs(r->mb->getJointVel(link)) * dt;
-    const bool near = q - j.lower < margin || j.upper - q < margin;
+    const JointInfo& j = r->joints[k];
+    const btMultiBody* mb = r->mbOfJoint(static_cast<int>(k));
+    const int link = r->linkOfJoint(static_cast<int>(k));
+    bool near = false;
+    if (j.has_position_limits) {
+      const double q = mb->getJointPos(link);
+      const double margin = 0.05 + 2.0 * std::abs(mb->getJointVel(link)) * dt;
+      near = q - j.lower < margin || j.upper - q < margin;
+    }
     if (near != r->limit_in_world[k]) {
       if (near) {
         world->addMultiBodyConstraint(r->limits[k].get());
@@ -43,24 +88,31 @@ void PhysicsWorld::Impl::applyCommands(RobotState* r) {
     }
   }
   if (r->has_ext_wrench) {
+    // A body asleep would keep the force unapplied (Bullet clears no forces of a sleeping
+    // multibody): a wrench keeps it awake.
+    if (r->world_model) r->wake();
     for (std::size_t b = 0; b < r->ext_force.size(); ++b) {
       const btVector3 f = toBt(r->ext_force[b]), t = toBt(r->ext_torque[b]);
-      if (b == 0) {
-        r->mb->addBaseForce(f);
-        r->mb->addBaseTorque(t);
+      btMultiBody* mb = r->mbOfBody(static_cast<int>(b));
+      const int link = r->body_link[b];
+      if (link < 0) {
+        mb->addBaseForce(f);
+        mb->addBaseTorque(t);
       } else {
-        r->mb->addLinkForce(static_cast<int>(b) - 1, f);
-        r->mb->addLinkTorque(static_cast<int>(b) - 1, t);
+        mb->addLinkForce(link, f);
+        mb->addLinkTorque(link, t);
       }
     }
   }
   for (std::size_t i = 0; i < r->joints.size(); ++i) {
     const JointInfo& j = r->joints[i];
     const RobotState::Command& c = r->commands[i];
-    const int link = static_cast<int>(i);
+    btMultiBody* mb = r->mbOfJoint(static_cast<int>(i));
+    const int link = r->linkOfJoint(static_cast<int>(i));
     double tau = c.mode == RobotState::Mode::kEffort ? c.effort : 0.0;
-    if (j.damping > 0.0) tau -= j.damping * r->mb->getJointVel(link);
-    if (tau != 0.0) r->mb->addJointTorque(link, tau);
+    if (j.damping > 0.0) tau -= j.damping * mb->getJointVel(link);
+    if (j.spring_stiffness != 0.0) tau -= j.spring_stiffness * (mb->getJointPos(link) - j.spring_reference);
+    if (tau != 0.0) mb->addJointTorque(link, tau);
 
     btMultiBodyJointMotor* motor = r->motors[i].get();
     double target = 0.0, max_impulse = 0.0;
@@ -103,11 +155,11 @@ void checkJoint(const RobotState* s, int i) {
 
 double PhysicsRobot::jointPosition(int i) const {
   checkJoint(s_, i);
-  return s_->mb->getJointPos(i);
+  return s_->mbOfJoint(i)->getJointPos(s_->linkOfJoint(i));
 }
 double PhysicsRobot::jointVelocity(int i) const {
   checkJoint(s_, i);
-  return s_->mb->getJointVel(i);
+  return s_->mbOfJoint(i)->getJointVel(s_->linkOfJoint(i));
 }
 double PhysicsRobot::jointEffort(int i) const {
   checkJoint(s_, i);
@@ -126,6 +178,7 @@ void PhysicsRobot::setJointEffort(int i, double tau) {
   auto& c = s_->commands[i];
   c.mode = RobotState::Mode::kEffort;
   c.effort = tau;
+  s_->wake();
 }
 
 void PhysicsRobot::setJointVelocityTarget(int i, double omega, double max_effort) {
@@ -140,6 +193,7 @@ void PhysicsRobot::setJointVelocityTarget(int i, double omega, double max_effort
   c.mode = RobotState::Mode::kVelocity;
   c.velocity = omega;
   c.max_effort = max_effort < 0.0 ? s_->joints[i].motor_effort : max_effort;
+  s_->wake();
 }
 
 void PhysicsRobot::clearJointCommand(int i) {
@@ -153,26 +207,82 @@ void PhysicsRobot::setJointState(int i, double position, double velocity) {
     ++s_->rejected;
     return;
   }
-  s_->mb->setJointPos(i, position);
-  s_->mb->setJointVel(i, velocity);
+  s_->mbOfJoint(i)->setJointPos(s_->linkOfJoint(i), position);
+  s_->mbOfJoint(i)->setJointVel(s_->linkOfJoint(i), velocity);
   s_->syncColliders();
+  s_->wake();
+}
+
+namespace {
+std::string jointWhat(const RobotState* s, int i) {
+  return (s->world_model ? "model '" : "robot '") + s->name + "' joint '" + s->joints[i].name + "'";
+}
+}  // namespace
+
+void PhysicsRobot::setJointDamping(int i, double damping) {
+  checkJoint(s_, i);
+  if (!(damping >= 0.0) || !std::isfinite(damping)) {
+    throw PhysicsError(jointWhat(s_, i) + ": damping must be finite and >= 0, got " +
+                       std::to_string(damping));
+  }
+  s_->joints[i].damping = damping;
+  s_->wake();
+}
+
+void PhysicsRobot::setJointFriction(int i, double friction) {
+  checkJoint(s_, i);
+  if (!(friction >= 0.0) || !std::isfinite(friction)) {
+    throw PhysicsError(jointWhat(s_, i) + ": friction must be finite and >= 0, got " +
+                       std::to_string(friction));
+  }
+  s_->joints[i].friction = friction;
+  s_->wake();
+}
+
+void PhysicsRobot::setJointLimits(int i, double lower, double upper) {
+  checkJoint(s_, i);
+  JointInfo& j = s_->joints[i];
+  if (j.type == JointType::kContinuous) {
+    throw PhysicsError(jointWhat(s_, i) + " is continuous: it has no position limits");
+  }
+  if (!std::isfinite(lower) || !std::isfinite(upper) || !(lower <= upper)) {
+    throw PhysicsError(jointWhat(s_, i) + ": limits must be finite with lower <= upper, got " +
+                       std::to_string(lower) + " .. " + std::to_string(upper));
+  }
+  j.has_position_limits = true;
+  j.lower = lower;
+  j.upper = upper;
+  s_->limits[i]->setLowerBound(lower);
+  s_->limits[i]->setUpperBound(upper);
+  s_->wake();
 }
 
 std::uint64_t PhysicsRobot::rejectedCommands() const { return s_->rejected; }
 
+// The model frame M: X_WM = X_WB X_BM with B the canonical body's frame (robots: body 0, X_BM
+// identity, computed exactly as X_WC X_BC^-1 of the base).
 Eigen::Isometry3d PhysicsRobot::basePose() const {
-  return toEigen(s_->mb->getBaseWorldTransform()) * s_->X_BC[0].inverse();
+  const RigidTree& tree = s_->tree;
+  if (tree.canonical_body == 0 && s_->singleTree()) {
+    return toEigen(s_->parts[0].mb->getBaseWorldTransform()) * s_->X_BC[0].inverse();
+  }
+  return s_->bodyPose(tree.canonical_body) * tree.X_BM;
 }
 
 Twist PhysicsRobot::baseTwist() const {
-  Twist t;
-  t.angular = toEigen(s_->mb->getBaseOmega());
-  const Eigen::Vector3d v_com = toEigen(s_->mb->getBaseVel());
-  const btTransform X_WC = s_->mb->getBaseWorldTransform();
-  const Eigen::Vector3d p_com = toEigen(X_WC.getOrigin());
-  const Eigen::Vector3d p_origin = basePose().translation();
-  t.linear = v_com + t.angular.cross(p_origin - p_com);
-  return t;
+  const RigidTree& tree = s_->tree;
+  if (tree.canonical_body == 0 && s_->singleTree()) {
+    const btMultiBody* mb = s_->parts[0].mb.get();
+    Twist t;
+    t.angular = toEigen(mb->getBaseOmega());
+    const Eigen::Vector3d v_com = toEigen(mb->getBaseVel());
+    const btTransform X_WC = mb->getBaseWorldTransform();
+    const Eigen::Vector3d p_com = toEigen(X_WC.getOrigin());
+    const Eigen::Vector3d p_origin = basePose().translation();
+    t.linear = v_com + t.angular.cross(p_origin - p_com);
+    return t;
+  }
+  return s_->bodyTwistAt(tree.canonical_body, basePose().translation());
 }
 
 void PhysicsRobot::setBasePose(const Eigen::Isometry3d& X_WB) {
@@ -182,8 +292,19 @@ void PhysicsRobot::setBasePose(const Eigen::Isometry3d& X_WB) {
   }
   Eigen::Isometry3d X = X_WB;
   X.linear() = Eigen::Quaterniond(X_WB.rotation()).normalized().toRotationMatrix();
-  s_->mb->setBaseWorldTransform(toBt(Eigen::Isometry3d(X * s_->X_BC[0])));
+  if (s_->tree.canonical_body == 0 && s_->singleTree()) {
+    s_->parts[0].mb->setBaseWorldTransform(toBt(Eigen::Isometry3d(X * s_->X_BC[0])));
+  } else {
+    // Every tree moves with the model frame, keeping its pose relative to it (Gazebo's
+    // Model::SetWorldPose moves each link so).
+    const Eigen::Isometry3d X_MW = basePose().inverse();
+    for (const RobotState::Part& part : s_->parts) {
+      const Eigen::Isometry3d X_WC = toEigen(part.mb->getBaseWorldTransform());
+      part.mb->setBaseWorldTransform(toBt(Eigen::Isometry3d(X * (X_MW * X_WC))));
+    }
+  }
   s_->syncColliders();
+  s_->wake();
 }
 
 void PhysicsRobot::setBaseTwist(const Twist& twist) {
@@ -191,28 +312,38 @@ void PhysicsRobot::setBaseTwist(const Twist& twist) {
     ++s_->rejected;
     return;
   }
-  const Eigen::Vector3d p_com = toEigen(s_->mb->getBaseWorldTransform().getOrigin());
+  // The rigid velocity field of the model frame at each tree's base COM (joint rates kept).
   const Eigen::Vector3d p_origin = basePose().translation();
-  s_->mb->setBaseVel(toBt(Eigen::Vector3d(twist.linear + twist.angular.cross(p_com - p_origin))));
-  s_->mb->setBaseOmega(toBt(twist.angular));
+  for (const RobotState::Part& part : s_->parts) {
+    if (part.mb->hasFixedBase()) continue;
+    const Eigen::Vector3d p_com = toEigen(part.mb->getBaseWorldTransform().getOrigin());
+    part.mb->setBaseVel(toBt(Eigen::Vector3d(twist.linear + twist.angular.cross(p_com - p_origin))));
+    part.mb->setBaseOmega(toBt(twist.angular));
+  }
+  s_->wake();
 }
 
 void PhysicsRobot::resetToSpawn() {
   for (std::size_t i = 0; i < s_->joints.size(); ++i) {
-    s_->mb->setJointPos(static_cast<int>(i), 0.0);
-    s_->mb->setJointVel(static_cast<int>(i), 0.0);
+    btMultiBody* mb = s_->mbOfJoint(static_cast<int>(i));
+    mb->setJointPos(s_->linkOfJoint(static_cast<int>(i)), 0.0);
+    mb->setJointVel(s_->linkOfJoint(static_cast<int>(i)), 0.0);
     s_->commands[i] = RobotState::Command();
     s_->applied_effort[i] = 0.0;
   }
-  s_->mb->setBaseWorldTransform(toBt(Eigen::Isometry3d(s_->spawn * s_->X_BC[0])));
-  s_->mb->setBaseVel(btVector3(0, 0, 0));
-  s_->mb->setBaseOmega(btVector3(0, 0, 0));
-  s_->mb->clearForcesAndTorques();
-  s_->mb->clearConstraintForces();
+  // Every tree's root frame is the spawn frame at spawn (rigid_tree.h).
+  for (const RobotState::Part& part : s_->parts) {
+    part.mb->setBaseWorldTransform(toBt(Eigen::Isometry3d(s_->spawn * s_->X_BC[part.root])));
+    part.mb->setBaseVel(btVector3(0, 0, 0));
+    part.mb->setBaseOmega(btVector3(0, 0, 0));
+    part.mb->clearForcesAndTorques();
+    part.mb->clearConstraintForces();
+  }
   std::fill(s_->ext_force.begin(), s_->ext_force.end(), Eigen::Vector3d::Zero());
   std::fill(s_->ext_torque.begin(), s_->ext_torque.end(), Eigen::Vector3d::Zero());
   s_->has_ext_wrench = false;
   s_->syncColliders();
+  s_->wake();
   // Forget contacts (and their warm-start impulses) of the old pose.
   auto* w = s_->world->world.get();
   for (auto& c : s_->colliders) {
@@ -237,14 +368,7 @@ Eigen::Isometry3d PhysicsRobot::linkPose(const std::string& link) const {
 
 Twist PhysicsRobot::linkTwist(const std::string& link) const {
   const int b = s_->bodyOf(link);
-  // Bullet gives each body's COM velocity and angular velocity in the body's COM frame.
-  s_->mb->compTreeLinkVelocities(&s_->scratch_w[0], &s_->scratch_v[0]);
-  const btTransform X_WC = s_->comFrame(b);
-  Twist t;
-  t.angular = toEigen(X_WC.getBasis() * s_->scratch_w[b]);
-  const Eigen::Vector3d v_com = toEigen(X_WC.getBasis() * s_->scratch_v[b]);
-  t.linear = v_com + t.angular.cross(linkPose(link).translation() - toEigen(X_WC.getOrigin()));
-  return t;
+  return s_->bodyTwistAt(b, linkPose(link).translation());
 }
 
 void PhysicsRobot::setExternalWrench(const std::string& link, const Eigen::Vector3d& force_W,
@@ -260,7 +384,40 @@ void PhysicsRobot::setExternalWrench(const std::string& link, const Eigen::Vecto
   for (std::size_t k = 0; k < s_->ext_force.size(); ++k) {
     if (!s_->ext_force[k].isZero(0.0) || !s_->ext_torque[k].isZero(0.0)) s_->has_ext_wrench = true;
   }
+  s_->wake();
 }
+
+void PhysicsRobot::allowSleep(bool allow) {
+  const PhysicsOptions& o = s_->world->options;
+  allow = allow && s_->world_model && o.sleep_time > 0.0;
+  for (const RobotState::Part& part : s_->parts) {
+    // Gazebo: links of a model with joints never auto-disable.
+    const bool can = allow && part.mb->getNumLinks() == 0 && !part.mb->hasFixedBase();
+    part.mb->setCanSleep(can);
+    part.mb->setSleepThreshold(o.sleep_speed * o.sleep_speed);
+    part.mb->setSleepTimeout(o.sleep_time);
+    part.mb->wakeUp();
+  }
+  for (std::size_t b = 0; b < s_->colliders.size(); ++b) {
+    btCollisionObject* c = s_->colliders[b].get();
+    if (c == nullptr || c->isStaticObject()) continue;
+    c->forceActivationState(s_->mbOfBody(static_cast<int>(b))->getCanSleep() ? ACTIVE_TAG
+                                                                             : DISABLE_DEACTIVATION);
+  }
+}
+
+bool PhysicsRobot::asleep() const {
+  bool any = false;
+  for (const RobotState::Part& part : s_->parts) {
+    if (!part.mb->getCanSleep()) continue;
+    const btCollisionObject* c = part.mb->getBaseCollider();
+    if (c == nullptr || c->getActivationState() != ISLAND_SLEEPING) return false;
+    any = true;
+  }
+  return any;
+}
+
+void PhysicsRobot::wake() { s_->wake(); }
 
 int PhysicsRobot::contactCount(const std::string& link, double max_distance) const {
   const int b = s_->bodyOf(link);
@@ -297,18 +454,21 @@ double PhysicsRobot::contactNormalForce(const std::string& link) const {
 }
 
 double PhysicsRobot::kineticEnergy() const {
-  const btMultiBody& mb = *s_->mb;
-  const int n = mb.getNumLinks();
-  btAlignedObjectArray<btVector3> omega, vel;
-  omega.resize(n + 1);
-  vel.resize(n + 1);
-  mb.compTreeLinkVelocities(&omega[0], &vel[0]);
   auto body = [&](double m, const btVector3& I, const btVector3& w, const btVector3& v) {
     return 0.5 * m * v.length2() + 0.5 * (I.x() * w.x() * w.x() + I.y() * w.y() * w.y() +
                                           I.z() * w.z() * w.z());
   };
-  double e = body(mb.getBaseMass(), mb.getBaseInertia(), omega[0], vel[0]);
-  for (int i = 0; i < n; ++i) e += body(mb.getLinkMass(i), mb.getLinkInertia(i), omega[i + 1], vel[i + 1]);
+  double e = 0.0;
+  for (const RobotState::Part& part : s_->parts) {
+    const btMultiBody& mb = *part.mb;
+    const int n = mb.getNumLinks();
+    btAlignedObjectArray<btVector3> omega, vel;
+    omega.resize(n + 1);
+    vel.resize(n + 1);
+    mb.compTreeLinkVelocities(&omega[0], &vel[0]);
+    e += body(mb.getBaseMass(), mb.getBaseInertia(), omega[0], vel[0]);
+    for (int i = 0; i < n; ++i) e += body(mb.getLinkMass(i), mb.getLinkInertia(i), omega[i + 1], vel[i + 1]);
+  }
   return e;
 }
 

@@ -8,7 +8,6 @@ namespace tianracer_sim {
 void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) {
   const RigidTree& tree = r->tree;
   const int nb = static_cast<int>(tree.bodies.size());
-  const int nlinks = nb - 1;
 
   // Principal COM frames.
   std::vector<Eigen::Vector3d> moments(nb);
@@ -25,37 +24,70 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
     }
   }
 
-  const TreeBody& root = tree.bodies[0];
-  r->mb = std::make_unique<btMultiBody>(nlinks, tree.fixed_base ? 0.0 : root.mass.mass,
-                                        toBt(moments[0]), tree.fixed_base, false);
-  r->mb->setBaseName(nullptr);
-  for (int b = 1; b < nb; ++b) {
+  // One multibody per tree: parts[k] has its base at a body with parent == -1 and the
+  // bodies after it (up to the next root) as links.
+  r->body_part.assign(nb, 0);
+  r->body_link.assign(nb, -1);
+  for (int b = 0; b < nb; ++b) {
     const TreeBody& body = tree.bodies[b];
-    const int link = b - 1, parent_link = body.parent - 1;
-    const Eigen::Isometry3d X_PcB = r->X_BC[body.parent].inverse() * body.X_PB;  // joint in Pc
-    const Eigen::Isometry3d X_CcB = r->X_BC[b].inverse();                         // joint in Cc
-    const btQuaternion rot_parent_to_this =
-        toBtQuat(X_CcB.linear() * X_PcB.linear().transpose());
-    const btVector3 axis_C = toBt(Eigen::Vector3d(X_CcB.linear() * body.axis_B));
-    const btVector3 parent_com_to_pivot = toBt(Eigen::Vector3d(X_PcB.translation()));
-    const btVector3 pivot_to_com = toBt(Eigen::Vector3d(-X_CcB.translation()));
-    if (body.joint_type == TreeJointType::kPrismatic) {
-      r->mb->setupPrismatic(link, body.mass.mass, toBt(moments[b]), parent_link,
-                            rot_parent_to_this, axis_C, parent_com_to_pivot, pivot_to_com, true);
-    } else {
-      r->mb->setupRevolute(link, body.mass.mass, toBt(moments[b]), parent_link,
-                           rot_parent_to_this, axis_C, parent_com_to_pivot, pivot_to_com, true);
+    if (body.parent < 0) {
+      RobotState::Part part;
+      part.root = b;
+      r->parts.push_back(std::move(part));
+    } else if (body.parent >= b || body.parent < r->parts.back().root) {
+      throw PhysicsError("robot '" + r->name + "': body '" + body.link +
+                         "' does not follow its parent in its tree");
     }
+    r->body_part[b] = static_cast<int>(r->parts.size()) - 1;
+    r->body_link[b] = b - r->parts.back().root - 1;
   }
-  r->mb->finalizeMultiDof();
-  // Gazebo/ODE have no velocity damping and no speed cap.
-  r->mb->setLinearDamping(0.0);
-  r->mb->setAngularDamping(0.0);
-  r->mb->setMaxCoordinateVelocity(1e4);
-  r->mb->setHasSelfCollision(false);
-  r->mb->setCanSleep(false);
-  r->mb->setUseGyroTerm(true);
-  world->addMultiBody(r->mb.get());
+  if (r->parts.empty() || r->parts[0].root != 0) {
+    throw PhysicsError("robot '" + r->name + "': body 0 is not a root");
+  }
+  std::size_t max_bodies = 0;
+  for (std::size_t k = 0; k < r->parts.size(); ++k) {
+    RobotState::Part& part = r->parts[k];
+    const int end = k + 1 < r->parts.size() ? r->parts[k + 1].root : nb;
+    const int nlinks = end - part.root - 1;
+    max_bodies = std::max(max_bodies, static_cast<std::size_t>(nlinks + 1));
+    const TreeBody& root = tree.bodies[part.root];
+    const bool fixed = part.root == 0 && tree.fixed_base;
+    part.mb = std::make_unique<btMultiBody>(nlinks, fixed ? 0.0 : root.mass.mass,
+                                            toBt(moments[part.root]), fixed, false);
+    btMultiBody* mb = part.mb.get();
+    mb->setBaseName(nullptr);
+    for (int b = part.root + 1; b < end; ++b) {
+      const TreeBody& body = tree.bodies[b];
+      const int link = r->body_link[b], parent_link = r->body_link[body.parent];
+      const Eigen::Isometry3d X_PcB = r->X_BC[body.parent].inverse() * body.X_PB;  // joint in Pc
+      const Eigen::Isometry3d X_CcB = r->X_BC[b].inverse();                         // joint in Cc
+      const btQuaternion rot_parent_to_this =
+          toBtQuat(X_CcB.linear() * X_PcB.linear().transpose());
+      const btVector3 axis_C = toBt(Eigen::Vector3d(X_CcB.linear() * body.axis_B));
+      const btVector3 parent_com_to_pivot = toBt(Eigen::Vector3d(X_PcB.translation()));
+      const btVector3 pivot_to_com = toBt(Eigen::Vector3d(-X_CcB.translation()));
+      if (body.joint_type == TreeJointType::kPrismatic) {
+        mb->setupPrismatic(link, body.mass.mass, toBt(moments[b]), parent_link,
+                           rot_parent_to_this, axis_C, parent_com_to_pivot, pivot_to_com, true);
+      } else {
+        mb->setupRevolute(link, body.mass.mass, toBt(moments[b]), parent_link,
+                          rot_parent_to_this, axis_C, parent_com_to_pivot, pivot_to_com, true);
+      }
+    }
+    mb->finalizeMultiDof();
+    // Gazebo/ODE have no velocity damping and no speed cap.
+    mb->setLinearDamping(0.0);
+    mb->setAngularDamping(0.0);
+    mb->setMaxCoordinateVelocity(1e4);
+    // Links of a robot never collide with each other (Gazebo's URDF import sets no
+    // self_collide); a world model's may (WorldModelFilter).
+    bool self_collide = false;
+    for (int b = part.root; b < end; ++b) self_collide = self_collide || tree.bodies[b].self_collide;
+    mb->setHasSelfCollision(r->world_model && self_collide);
+    mb->setCanSleep(false);
+    mb->setUseGyroTerm(true);
+    world->addMultiBody(mb);
+  }
 
   // Colliders, one per body with collisions: a compound in the COM frame.
   r->colliders.resize(nb);
@@ -69,17 +101,17 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
       auto sphere = std::make_unique<btSphereShape>(1e-3);
       auto surfaces = std::make_unique<ColliderSurfaces>();
       surfaces->children.emplace_back();
-      auto col = std::make_unique<btMultiBodyLinkCollider>(r->mb.get(), b - 1);
+      auto col = std::make_unique<btMultiBodyLinkCollider>(r->mbOfBody(b), r->body_link[b]);
       col->setCollisionShape(sphere.get());
       col->setActivationState(DISABLE_DEACTIVATION);
       col->setUserPointer(surfaces.get());
       col->setUserIndex(r->user_index);
       col->setUserIndex2(b);
       world->addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter, 0);
-      if (b == 0) {
-        r->mb->setBaseCollider(col.get());
+      if (r->body_link[b] < 0) {
+        r->mbOfBody(b)->setBaseCollider(col.get());
       } else {
-        r->mb->getLink(b - 1).m_collider = col.get();
+        r->mbOfBody(b)->getLink(r->body_link[b]).m_collider = col.get();
       }
       r->shapes.push_back(std::move(sphere));
       r->surfaces.push_back(std::move(surfaces));
@@ -90,12 +122,19 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
     auto surfaces = std::make_unique<ColliderSurfaces>();
     const Eigen::Isometry3d X_CB = r->X_BC[b].inverse();
     bool all_wheels = true;
+    // A world model's bodies welded to the world are static (ODE gives them no body).
+    const bool welded = r->world_model && b == 0 && tree.fixed_base;
     for (const CollisionGeometry& g : body.collisions) {
       Eigen::Isometry3d X_BS;
       bool is_wheel = false;
-      std::unique_ptr<btCollisionShape> shape =
-          makeLinkShape(body, g, options.collision_margin, options.wheel_shape,
-                        "robot '" + r->name + "' link '" + g.link + "'", &X_BS, &is_wheel);
+      std::unique_ptr<OwnedShape> mesh;
+      std::unique_ptr<btCollisionShape> shape = makeLinkShape(
+          body, g, options.collision_margin,
+          r->world_model ? WheelShape::kMeshHull : options.wheel_shape,  // no tyres on models
+          r->world_model,  // a world model's meshes are concave, as in Gazebo
+          (r->world_model ? "model '" : "robot '") + r->name + "' link '" + g.link + "'", &X_BS,
+          &is_wheel, &mesh);
+      if (mesh) r->meshes.push_back(std::move(mesh));
       all_wheels = all_wheels && is_wheel;
       compound->addChildShape(toBt(Eigen::Isometry3d(X_CB * X_BS)), shape.get());
       const Eigen::Matrix3d R_CL = X_CB.linear() * body.X_BL.at(g.link).linear();
@@ -103,11 +142,12 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
           toSurface(surface_of(g, collision_index++), R_CL, options.contact_max_vel));
       r->shapes.push_back(std::move(shape));
     }
-    surfaces->body = true;
-    auto col = std::make_unique<btMultiBodyLinkCollider>(r->mb.get(), b - 1);
+    surfaces->body = !welded;
+    auto col = std::make_unique<btMultiBodyLinkCollider>(r->mbOfBody(b), r->body_link[b]);
     col->setCollisionShape(compound.get());
     setAnisotropy(col.get(), *surfaces);
-    col->setCollisionFlags(col->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+    col->setCollisionFlags(col->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK |
+                           (welded ? btCollisionObject::CF_STATIC_OBJECT : 0));
     col->setActivationState(DISABLE_DEACTIVATION);
     col->setFriction(surfaces->children[0].mu1);
     col->setRestitution(0.0);
@@ -116,6 +156,7 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
     col->setUserPointer(surfaces.get());
     col->setUserIndex(r->user_index);
     col->setUserIndex2(b);
+    if (r->world_model && body.self_collide) col->setUserIndex3(1);
     if (all_wheels) {
       // A rolling wheel's manifold keeps up to 3 stale points behind the contact (rising off
       // the ground, 0.01-1 mm up) which Bullet would solve as speculative contacts: 4x the rows
@@ -124,12 +165,17 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
       col->setContactProcessingThreshold(0.0);
       surfaces->wheel = true;
     }
-    world->addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter,
-                              btBroadphaseProxy::AllFilter);
-    if (b == 0) {
-      r->mb->setBaseCollider(col.get());
+    if (welded) {
+      world->addCollisionObject(col.get(), btBroadphaseProxy::StaticFilter,
+                                btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter);
     } else {
-      r->mb->getLink(b - 1).m_collider = col.get();
+      world->addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter,
+                                btBroadphaseProxy::AllFilter);
+    }
+    if (r->body_link[b] < 0) {
+      r->mbOfBody(b)->setBaseCollider(col.get());
+    } else {
+      r->mbOfBody(b)->getLink(r->body_link[b]).m_collider = col.get();
     }
     r->shapes.push_back(std::move(compound));
     r->surfaces.push_back(std::move(surfaces));
@@ -154,6 +200,9 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
   // Joints: info, limits, motors (added to the world when first used).
   for (int b = 1; b < nb; ++b) {
     const TreeBody& body = tree.bodies[b];
+    if (body.parent < 0) continue;  // the root of another tree
+    btMultiBody* mb = r->mbOfBody(b);
+    const int link = r->body_link[b];
     JointInfo j;
     j.name = body.joint;
     j.type = body.joint_type == TreeJointType::kRevolute
@@ -170,17 +219,18 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
     j.velocity_limit = body.velocity_limit;
     j.damping = body.damping;
     j.friction = body.friction;
+    j.spring_stiffness = body.spring_stiffness;
+    j.spring_reference = body.spring_reference;
     j.motor_effort = body.effort_limit > 0.0 ? body.effort_limit : options.default_motor_effort;
     r->joint_index[j.name] = static_cast<int>(r->joints.size());
     r->joints.push_back(j);
-    if (j.has_position_limits) {
-      auto lim = std::make_unique<btMultiBodyJointLimitConstraint>(r->mb.get(), b - 1, j.lower, j.upper);
-      lim->finalizeMultiDof();
-      r->limits.push_back(std::move(lim));
-      r->limit_joint.push_back(static_cast<int>(r->joints.size()) - 1);
-      r->limit_in_world.push_back(false);
-    }
-    r->motors.push_back(std::make_unique<btMultiBodyJointMotor>(r->mb.get(), b - 1, 0.0, 0.0));
+    r->joint_body.push_back(b);
+    // Always built (limits can be set later); joins the solve only near a limit.
+    auto lim = std::make_unique<btMultiBodyJointLimitConstraint>(mb, link, j.lower, j.upper);
+    lim->finalizeMultiDof();
+    r->limits.push_back(std::move(lim));
+    r->limit_in_world.push_back(false);
+    r->motors.push_back(std::make_unique<btMultiBodyJointMotor>(mb, link, 0.0, 0.0));
     r->motors.back()->finalizeMultiDof();  // allocates the row data read by jointEffort()
     r->motor_in_world.push_back(false);
   }
@@ -189,10 +239,10 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
   for (const TreeBody& body : tree.bodies) {
     for (const auto& l : body.merged_links) r->link_names.push_back(l);
   }
-  r->scratch_q.resize(nb);
-  r->scratch_p.resize(nb);
-  r->scratch_w.resize(nb);
-  r->scratch_v.resize(nb);
+  r->scratch_q.resize(static_cast<int>(max_bodies));
+  r->scratch_p.resize(static_cast<int>(max_bodies));
+  r->scratch_w.resize(static_cast<int>(max_bodies));
+  r->scratch_v.resize(static_cast<int>(max_bodies));
   r->ext_force.assign(nb, Eigen::Vector3d::Zero());
   r->ext_torque.assign(nb, Eigen::Vector3d::Zero());
 }
@@ -207,7 +257,9 @@ void PhysicsWorld::Impl::removeFromWorld(RobotState* r) {
   for (auto& c : r->colliders) {
     if (c) world->removeCollisionObject(c.get());
   }
-  if (r->mb) world->removeMultiBody(r->mb.get());
+  for (auto& part : r->parts) {
+    if (part.mb) world->removeMultiBody(part.mb.get());
+  }
 }
 
 }  // namespace tianracer_sim

@@ -92,6 +92,22 @@ std::unique_ptr<btCollisionShape> makePrimitive(const Shape& s, double margin,
   return nullptr;
 }
 
+namespace {
+
+/// The mesh's triangles copied into `out` (Bullet's triangle shapes point into them).
+void storeTriangles(const TriangleMesh& mesh, OwnedShape* out) {
+  out->mesh_vertices.reserve(mesh.vertices.size() * 3);
+  for (const auto& v : mesh.vertices) {
+    out->mesh_vertices.insert(out->mesh_vertices.end(), {v.x(), v.y(), v.z()});
+  }
+  out->mesh_indices.assign(mesh.indices.begin(), mesh.indices.end());
+  out->mesh_interface = std::make_unique<btTriangleIndexVertexArray>(
+      static_cast<int>(mesh.triangleCount()), out->mesh_indices.data(), 3 * sizeof(int),
+      static_cast<int>(mesh.vertices.size()), out->mesh_vertices.data(), 3 * sizeof(btScalar));
+}
+
+}  // namespace
+
 void makeStaticShape(const StaticShape& st, double margin, OwnedShape* out) {
   const std::string what = "static shape '" + st.name + "'";
   const Shape& s = st.shape;
@@ -108,14 +124,7 @@ void makeStaticShape(const StaticShape& st, double margin, OwnedShape* out) {
       return;
     case ShapeType::kMesh: {
       const auto mesh = MeshCache::global().get(s.mesh_path, s.scale);
-      out->mesh_vertices.reserve(mesh->vertices.size() * 3);
-      for (const auto& v : mesh->vertices) {
-        out->mesh_vertices.insert(out->mesh_vertices.end(), {v.x(), v.y(), v.z()});
-      }
-      out->mesh_indices.assign(mesh->indices.begin(), mesh->indices.end());
-      out->mesh_interface = std::make_unique<btTriangleIndexVertexArray>(
-          static_cast<int>(mesh->triangleCount()), out->mesh_indices.data(), 3 * sizeof(int),
-          static_cast<int>(mesh->vertices.size()), out->mesh_vertices.data(), 3 * sizeof(btScalar));
+      storeTriangles(*mesh, out);
       out->shape = std::make_unique<btBvhTriangleMeshShape>(out->mesh_interface.get(), true);
       return;
     }
@@ -125,9 +134,24 @@ void makeStaticShape(const StaticShape& st, double margin, OwnedShape* out) {
 
 std::unique_ptr<btCollisionShape> makeLinkShape(const TreeBody& body, const CollisionGeometry& g,
                                                 double margin, WheelShape wheel_shape,
-                                                const std::string& what, Eigen::Isometry3d* X_BS,
-                                                bool* is_wheel) {
+                                                bool concave, const std::string& what,
+                                                Eigen::Isometry3d* X_BS, bool* is_wheel,
+                                                std::unique_ptr<OwnedShape>* mesh_out) {
   *X_BS = g.X_BG;
+  *is_wheel = false;
+  if (g.shape.type == ShapeType::kMesh && concave) {
+    // The exact triangles in the geometry frame. No margin: the surface is where the mesh
+    // says (a margin would lift everything resting on it by that much), as ODE's trimesh
+    // and our static meshes (btBvhTriangleMeshShape) have none.
+    const auto mesh = MeshCache::global().get(g.shape.mesh_path, g.shape.scale);
+    auto owned = std::make_unique<OwnedShape>();
+    storeTriangles(*mesh, owned.get());
+    auto gimpact = std::make_unique<btGImpactMeshShape>(owned->mesh_interface.get());
+    gimpact->setMargin(0.0);
+    gimpact->updateBound();
+    *mesh_out = std::move(owned);
+    return gimpact;
+  }
 
   // Wheels: a round mesh (or a cylinder along the axis) on a continuous joint's child link.
   const bool wheel_joint = body.parent >= 0 && body.joint_type == TreeJointType::kContinuous;
@@ -151,7 +175,7 @@ std::unique_ptr<btCollisionShape> makeLinkShape(const TreeBody& body, const Coll
     }
   }
   *is_wheel = fit.is_wheel && wheel_shape != WheelShape::kMeshHull;
-  if (fit.is_wheel) {
+  if (*is_wheel) {
     X_BS->linear() = rotationYTo(body.axis_B);
     X_BS->translation() = fit.center;
     const double R = fit.radius, W = fit.width;

@@ -1,5 +1,5 @@
 // Internal: Bullet collision shapes for static shapes and robot links (primitives, convex hulls
-// of meshes, fitted wheels, triangle meshes).
+// of meshes, fitted wheels, triangle meshes static and moving).
 #ifndef TIANRACER_SIM_PHYSICS_SHAPES_H
 #define TIANRACER_SIM_PHYSICS_SHAPES_H
 
@@ -42,11 +42,14 @@ void makeStaticShape(const StaticShape& s, double margin, OwnedShape* out);
 
 /// The shape of one collision of a robot body, placed at X_BS in the body frame. A mesh (or a
 /// cylinder along the axis) on the child of a continuous joint that fits a wheel gets
-/// `wheel_shape` (*is_wheel set unless that is kMeshHull); other meshes become hulls.
+/// `wheel_shape` (*is_wheel set unless that is kMeshHull); other meshes become hulls, or with
+/// `concave` (world models) keep their triangles: a btGImpactMeshShape with no margin (as ODE's
+/// trimesh in Gazebo), its triangles in the geometry frame and stored in *mesh.
 std::unique_ptr<btCollisionShape> makeLinkShape(const TreeBody& body, const CollisionGeometry& g,
                                                 double margin, WheelShape wheel_shape,
-                                                const std::string& what, Eigen::Isometry3d* X_BS,
-                                                bool* is_wheel);
+                                                bool concave, const std::string& what,
+                                                Eigen::Isometry3d* X_BS, bool* is_wheel,
+                                                std::unique_ptr<OwnedShape>* mesh);
 
 }  // namespace tianracer_sim
 

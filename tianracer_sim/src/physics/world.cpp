@@ -26,8 +26,16 @@ PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
                        std::to_string(options.contact_max_vel) + " and " +
                        std::to_string(options.contact_max_correcting_vel));
   }
+  if (!(options.sleep_speed >= 0.0) || !std::isfinite(options.sleep_speed) ||
+      !(options.sleep_time >= 0.0) || !std::isfinite(options.sleep_time)) {
+    throw PhysicsError("physics: sleep_speed and sleep_time must be finite and >= 0, got " +
+                       std::to_string(options.sleep_speed) + " and " +
+                       std::to_string(options.sleep_time));
+  }
   config = std::make_unique<btDefaultCollisionConfiguration>();
   dispatcher = std::make_unique<btCollisionDispatcher>(config.get());
+  // Concave meshes of world models (btGImpactMeshShape) against everything.
+  btGImpactCollisionAlgorithm::registerAlgorithm(dispatcher.get());
   broadphase = std::make_unique<btDbvtBroadphase>();
   solver = std::make_unique<btMultiBodyConstraintSolver>();
   auto mbw = std::make_unique<MultiBodyWorld>(dispatcher.get(), broadphase.get(), solver.get(),
@@ -57,6 +65,7 @@ PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
 
   // Process-wide in Bullet; the function is stateless (surfaces hang off the objects).
   gContactAddedCallback = &onContactAdded;
+  broadphase->getOverlappingPairCache()->setOverlapFilterCallback(&model_filter);
 
   if (options.ground_plane) {
     StaticShape g;
@@ -157,23 +166,31 @@ RobotId PhysicsWorld::addRobot(RigidTree tree, const LinkSurfaces& surfaces,
 }
 
 int PhysicsWorld::addFreeBody(RigidTree tree, const std::vector<SurfaceParams>& surfaces,
-                              const Eigen::Isometry3d& X_WB, const std::string& name) {
+                              const Eigen::Isometry3d& X_WM, const std::string& name) {
   const std::string what = "free body '" + name + "'";
   if (freeBodyIndex(name) >= 0) throw PhysicsError(what + " already exists");
-  if (!X_WB.matrix().allFinite()) throw PhysicsError(what + ": non-finite pose");
-  if (tree.bodies.size() != 1) throw PhysicsError(what + ": must be one body (links merged)");
-  const MassProperties& m = tree.bodies[0].mass;
-  if (!(m.mass > 0.0) || !std::isfinite(m.mass)) {
-    throw PhysicsError(what + ": mass must be positive, got " + std::to_string(m.mass));
+  if (!X_WM.matrix().allFinite()) throw PhysicsError(what + ": non-finite pose");
+  if (tree.bodies.empty()) throw PhysicsError(what + ": no bodies");
+  for (std::size_t b = 0; b < tree.bodies.size(); ++b) {
+    if (b == 0 && tree.fixed_base) continue;
+    const MassProperties& m = tree.bodies[b].mass;
+    const std::string body = what + " body '" + tree.bodies[b].link + "'";
+    if (!(m.mass > 0.0) || !std::isfinite(m.mass)) {
+      throw PhysicsError(body + ": mass must be positive, got " + std::to_string(m.mass));
+    }
+    if (!isPhysicalInertia(m.inertia)) throw PhysicsError(body + ": inertia is not physical");
   }
-  if (!isPhysicalInertia(m.inertia)) throw PhysicsError(what + ": inertia is not physical");
-  tree.fixed_base = false;
+  if (tree.canonical_body < 0 || tree.canonical_body >= static_cast<int>(tree.bodies.size())) {
+    throw PhysicsError(what + ": canonical body " + std::to_string(tree.canonical_body) +
+                       " out of range");
+  }
   auto r = std::make_unique<RobotState>();
   r->id = static_cast<int>(impl_->free_bodies.size());
   r->user_index = -2 - r->id;
+  r->world_model = true;
   r->name = name;
   r->tree = std::move(tree);
-  r->spawn = X_WB;
+  r->spawn = X_WM;
   static const SurfaceParams kDefault;
   impl_->add(std::move(r),
              [&surfaces](const CollisionGeometry&, int k) -> const SurfaceParams& {
@@ -204,8 +221,24 @@ int PhysicsWorld::freeBodyIndex(const std::string& name) const {
   return -1;
 }
 
+void PhysicsWorld::Impl::wakeTouching(const btCollisionObject* o) {
+  for (int m = 0; m < dispatcher->getNumManifolds(); ++m) {
+    const btPersistentManifold* pm = dispatcher->getManifoldByIndexInternal(m);
+    if (pm->getBody0() != o && pm->getBody1() != o) continue;
+    const btCollisionObject* other = pm->getBody0() == o ? pm->getBody1() : pm->getBody0();
+    const int i = -2 - other->getUserIndex();
+    if (i >= 0 && i < static_cast<int>(free_bodies.size()) && free_bodies[i]) free_bodies[i]->wake();
+  }
+}
+
+void PhysicsWorld::Impl::wakeTouching(const RobotState* r) {
+  for (const auto& c : r->colliders)
+    if (c) wakeTouching(c.get());
+}
+
 void PhysicsWorld::removeFreeBody(int index) {
   if (!hasFreeBody(index)) throw PhysicsError("no free body with index " + std::to_string(index));
+  impl_->wakeTouching(impl_->free_bodies[index].get());  // what rested on it falls
   impl_->removeFromWorld(impl_->free_bodies[index].get());
   impl_->free_bodies[index].reset();
 }
@@ -220,12 +253,14 @@ void PhysicsWorld::removeStaticShape(int index) {
   if (index < 0 || index >= static_cast<int>(impl_->statics.size()) || !impl_->statics[index]) {
     throw PhysicsError("no static shape with index " + std::to_string(index));
   }
+  impl_->wakeTouching(impl_->statics[index]->object.get());  // what rested on it falls
   impl_->world->removeCollisionObject(impl_->statics[index]->object.get());
   impl_->statics[index].reset();
 }
 
 void PhysicsWorld::removeRobot(RobotId id) {
   if (!hasRobot(id)) throw PhysicsError("no robot with id " + std::to_string(id));
+  impl_->wakeTouching(impl_->robots[id].get());  // what rested on it falls
   impl_->removeFromWorld(impl_->robots[id].get());
   impl_->robots[id].reset();
 }
@@ -233,26 +268,30 @@ void PhysicsWorld::removeRobot(RobotId id) {
 void PhysicsWorld::step() {
   for (auto& r : impl_->robots)
     if (r) impl_->applyCommands(r.get());
-  // A free body has no joints: only an external wrench (apply_body_wrench) acts through it.
+  // A free body without joints: only an external wrench (apply_body_wrench) acts through it.
   for (auto& b : impl_->free_bodies) {
-    if (b && b->has_ext_wrench) impl_->applyCommands(b.get());
+    if (b && (b->has_ext_wrench || !b->joints.empty())) impl_->applyCommands(b.get());
   }
   // maxSubSteps = 0: exactly one internal step of dt (no accumulator, no interpolation).
   impl_->world->stepSimulation(impl_->options.dt, 0, impl_->options.dt);
   ++impl_->steps;
-  const double inv_dt = 1.0 / impl_->options.dt;
-  for (auto& r : impl_->robots) {
-    if (!r) continue;
-    for (std::size_t i = 0; i < r->joints.size(); ++i) {
-      const RobotState::Command& c = r->commands[i];
-      if (c.mode == RobotState::Mode::kEffort) {
-        r->applied_effort[i] = c.effort;
-      } else if (c.mode == RobotState::Mode::kVelocity) {
-        btMultiBodyJointMotor* m = r->motors[i].get();
-        r->applied_effort[i] = m->getNumRows() > 0 ? m->getAppliedImpulse(0) * inv_dt : 0.0;
-      } else {
-        r->applied_effort[i] = 0.0;
-      }
+  for (auto& r : impl_->robots)
+    if (r) impl_->readEfforts(r.get());
+  for (auto& b : impl_->free_bodies)
+    if (b && !b->joints.empty()) impl_->readEfforts(b.get());
+}
+
+void PhysicsWorld::Impl::readEfforts(RobotState* r) {
+  const double inv_dt = 1.0 / options.dt;
+  for (std::size_t i = 0; i < r->joints.size(); ++i) {
+    const RobotState::Command& c = r->commands[i];
+    if (c.mode == RobotState::Mode::kEffort) {
+      r->applied_effort[i] = c.effort;
+    } else if (c.mode == RobotState::Mode::kVelocity) {
+      btMultiBodyJointMotor* m = r->motors[i].get();
+      r->applied_effort[i] = m->getNumRows() > 0 ? m->getAppliedImpulse(0) * inv_dt : 0.0;
+    } else {
+      r->applied_effort[i] = 0.0;
     }
   }
 }

@@ -30,6 +30,7 @@ struct RobotState {
   PhysicsWorld::Impl* world = nullptr;
   RobotId id = -1;          // robots: robot id; free bodies: free body index
   int user_index = -1;      // btCollisionObject::getUserIndex() of its colliders
+  bool world_model = false;  // a free body (PhysicsWorld::addFreeBody)
   std::string name;
   RigidTree tree;
   std::vector<JointInfo> joints;
@@ -37,14 +38,23 @@ struct RobotState {
   std::vector<std::string> link_names;
   Eigen::Isometry3d spawn = Eigen::Isometry3d::Identity();
 
-  std::unique_ptr<btMultiBody> mb;
+  /// One multibody per tree of the RigidTree (a robot: one). Body b is link body_link[b] of
+  /// parts[body_part[b]] (-1: that part's base); joint i moves body joint_body[i].
+  struct Part {
+    std::unique_ptr<btMultiBody> mb;
+    int root = 0;  // body index of its base
+  };
+  std::vector<Part> parts;
+  std::vector<int> body_part, body_link, joint_body;
   std::vector<Eigen::Isometry3d> X_BC;  // per body: COM principal frame C in body frame B
   std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;  // per body, may be null
   std::vector<std::unique_ptr<ColliderSurfaces>> surfaces;
+  std::vector<std::unique_ptr<OwnedShape>> meshes;  // triangles of concave meshes: outlive shapes
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  /// Per joint; in the solve only for a joint with position limits, near one of them (see
+  /// applyCommands).
   std::vector<std::unique_ptr<btMultiBodyJointLimitConstraint>> limits;
-  std::vector<int> limit_joint;       // joint index of each limit
-  std::vector<bool> limit_in_world;   // added only near the limit (see applyCommands)
+  std::vector<bool> limit_in_world;
   std::vector<std::unique_ptr<btMultiBodyJointMotor>> motors;  // per joint
   std::vector<bool> motor_in_world;
   std::vector<Command> commands;
@@ -62,6 +72,12 @@ struct RobotState {
   PhysicsRobot handle{this};
 
   explicit RobotState() = default;
+  btMultiBody* mbOfBody(int b) const { return parts[body_part[b]].mb.get(); }
+  btMultiBody* mbOfJoint(int i) const { return mbOfBody(joint_body[i]); }
+  /// Joint i's link index within its multibody.
+  int linkOfJoint(int i) const { return body_link[joint_body[i]]; }
+  /// The single multibody whose base is body 0 and whose links are bodies 1.. (robots).
+  bool singleTree() const { return parts.size() == 1; }
   int bodyOf(const std::string& link) const {
     auto it = tree.links.find(link);
     if (it == tree.links.end()) {
@@ -71,11 +87,20 @@ struct RobotState {
   }
   /// World pose of body b's COM frame C (Bullet's frame for that body).
   btTransform comFrame(int b) const;
+  /// World pose of body b's frame B.
+  Eigen::Isometry3d bodyPose(int b) const;
+  /// Velocity of the point p_W fixed to body b, and b's angular velocity (world frame).
+  Twist bodyTwistAt(int b, const Eigen::Vector3d& p_W) const;
   void syncColliders();
+  /// Wakes every tree that sleeps (a call moved or pushed it).
+  void wake();
 };
 
 struct PhysicsWorld::Impl {
   PhysicsOptions options;
+  /// Which bodies of one world model collide with each other (addFreeBody); outlives the
+  /// broadphase that points to it.
+  WorldModelFilter model_filter;
   std::unique_ptr<btDefaultCollisionConfiguration> config;
   std::unique_ptr<btCollisionDispatcher> dispatcher;
   std::unique_ptr<btDbvtBroadphase> broadphase;
@@ -110,6 +135,11 @@ struct PhysicsWorld::Impl {
   /// Takes everything of r out of the Bullet world (constraints, colliders, multibody).
   void removeFromWorld(RobotState* r);
   void applyCommands(RobotState* r);
+  /// Wakes the free bodies in contact with o, or with any body of r (o or r is being removed).
+  void wakeTouching(const btCollisionObject* o);
+  void wakeTouching(const RobotState* r);
+  /// After a step: the effort each joint applied (jointEffort).
+  void readEfforts(RobotState* r);
 };
 
 }  // namespace tianracer_sim

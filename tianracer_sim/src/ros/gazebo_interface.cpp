@@ -628,11 +628,8 @@ void GazeboInterface::rebuildStateMessages() {
     const int free = sim_.physics().freeBodyIndex(m.name);
     const PhysicsRobot* body = free >= 0 ? &sim_.physics().freeBody(free) : nullptr;
     add_model(m.name, body, m.X_WM);
-    // A free body's links are merged into one body: one entry, named after its first link.
-    for (const LinkDescription& l : m.links) {
-      add_link(m.name + "::" + l.name, body, l.name, m.X_WM * l.X_ML);
-      if (body) break;
-    }
+    // Every link, as Gazebo lists a world model's links (each moves on its own).
+    for (const LinkDescription& l : m.links) add_link(m.name + "::" + l.name, body, l.name, m.X_WM * l.X_ML);
   }
   for (const auto& robot : sim_.robots()) {
     const PhysicsRobot* body = &sim_.physics().robot(robot->id);

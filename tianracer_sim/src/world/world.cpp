@@ -191,6 +191,7 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
   if (m.name.empty()) fail(e, "<model> has no name");
   const std::string what = "model '" + m.name + "'";
   std::set<std::string> link_names;
+  std::vector<std::size_t> axes_in_model_frame;  // joints whose <axis> is in the model frame
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
     if (tag == "static") {
@@ -201,8 +202,12 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
       LinkDescription l = parseLink(c, m.name);
       if (!link_names.insert(l.name).second) fail(c, what + ": duplicate link name '" + l.name + "'");
       m.links.push_back(std::move(l));
+    } else if (tag == "allow_auto_disable") {
+      m.allow_auto_disable = boolean(c, what);
     } else if (tag == "joint") {
-      m.joints.push_back(parseJoint(c, m.name));
+      bool in_model_frame = false;
+      m.joints.push_back(parseJoint(c, m.name, &in_model_frame));
+      if (in_model_frame) axes_in_model_frame.push_back(m.joints.size() - 1);
     } else if (tag == "include" || tag == "model") {
       // A nested model: its links (and joints) join this model as "<sub>::<link>".
       ModelDescription sub;
@@ -225,30 +230,37 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
     }
   }
   if (m.links.empty()) warn(e, what + " has no <link>: nothing to simulate or see");
-  for (const JointDescription& j : m.joints) {
-    for (const std::string* end : {&j.parent, &j.child}) {
-      if (*end != "world" && !link_names.count(*end))
-        throw WorldError(source_ + ":" + std::to_string(j.line) + ": " + what + " joint '" +
-                         j.name + "': no link '" + *end + "' in the model");
+  auto linkOf = [&](const std::string& name) -> const LinkDescription* {
+    for (const LinkDescription& l : m.links)
+      if (l.name == name) return &l;
+    return nullptr;
+  };
+  // An axis in the model frame, turned into the joint frame: R_MJ^T axis_M, R_MJ = R_MC R_CJ.
+  for (const std::size_t k : axes_in_model_frame) {
+    JointDescription& j = m.joints[k];
+    if (const LinkDescription* child = linkOf(j.child)) {
+      j.axis = (child->X_ML.linear() * j.X_CJ.linear()).transpose() * j.axis;
     }
   }
-  if (!m.is_static) {
-    // A free body needs a mass and an inertia it can be divided by (mass is checked > 0 when
-    // read; inertia here, where a dynamic model makes it matter).
-    for (const LinkDescription& l : m.links) {
-      const InertialDescription& in = l.inertial;
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(in.inertia);
-      if (!in.inertia.allFinite() || !(eig.eigenvalues().minCoeff() > 0.0)) {
-        const Eigen::Matrix3d& I = in.inertia;
-        std::ostringstream os;
-        os << source_ << ":" << (in.line > 0 ? in.line : l.line) << ": " << what << " link '"
-           << l.name << "': inertia (ixx iyy izz ixy ixz iyz) = (" << I(0, 0) << " " << I(1, 1)
-           << " " << I(2, 2) << " " << I(0, 1) << " " << I(0, 2) << " " << I(1, 2)
-           << ") is not positive definite; a dynamic model needs a positive inertia";
-        throw WorldError(os.str());
+  // A joint naming no link of the model is left out; the rest of the model loads (its links
+  // then move as the remaining joints say).
+  std::vector<JointDescription> joints;
+  for (JointDescription& j : m.joints) {
+    bool ok = true;
+    for (const std::string* end : {&j.parent, &j.child}) {
+      if (ok && *end != "world" && !link_names.count(*end)) {
+        warn(source_ + ":" + std::to_string(j.line) + ": " + what + " joint '" + j.name +
+             "': no link '" + *end + "' in the model (links: " + [&] {
+               std::string names;
+               for (const LinkDescription& l : m.links) names += (names.empty() ? "" : ", ") + l.name;
+               return names;
+             }() + "); the joint is left out");
+        ok = false;
       }
     }
+    if (ok) joints.push_back(std::move(j));
   }
+  m.joints = std::move(joints);
   return m;
 }
 
@@ -264,6 +276,8 @@ LinkDescription Parser::parseLink(const XMLElement* e, const std::string& model)
       l.X_ML = pose(c, what);
     } else if (tag == "inertial") {
       l.inertial = parseInertial(c, what);
+    } else if (tag == "self_collide") {
+      l.self_collide = boolean(c, what);
     } else if (tag == "collision" || tag == "visual") {
       const std::string name = c->Attribute("name") ? c->Attribute("name") : "";
       const std::string cwhat = what + " " + tag + " '" + name + "'";
@@ -307,7 +321,8 @@ InertialDescription Parser::parseInertial(const XMLElement* e, const std::string
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
     if (tag == "mass") {
-      in.mass = positive(c, what + " <inertial>");
+      // Checked where it matters, for a link that moves (sim/world_physics.h).
+      in.mass = number(c, what + " <inertial>");
     } else if (tag == "pose") {
       in.X_LI = pose(c, what + " <inertial>");
     } else if (tag == "inertia") {
@@ -476,19 +491,67 @@ Friction Parser::parseSurface(const XMLElement* e, const std::string& what,
   return f;
 }
 
-JointDescription Parser::parseJoint(const XMLElement* e, const std::string& model) {
+JointDescription Parser::parseJoint(const XMLElement* e, const std::string& model,
+                                    bool* axis_in_model_frame) {
   JointDescription j;
   j.name = e->Attribute("name") ? trimText(e->Attribute("name")) : "";
   j.type = e->Attribute("type") ? trimText(e->Attribute("type")) : "";
   j.line = e->GetLineNum();
+  *axis_in_model_frame = false;
   const std::string what = "model '" + model + "' joint '" + j.name + "'";
   if (j.type.empty()) fail(e, what + " has no type");
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
-    if (tag == "parent") j.parent = text(c);
-    else if (tag == "child") j.child = text(c);
-    else if (tag == "pose" || tag == "axis" || tag == "physics") continue;  // joint held fixed
-    else unsupported(c);
+    if (tag == "parent") {
+      j.parent = text(c);
+    } else if (tag == "child") {
+      j.child = text(c);
+    } else if (tag == "pose") {
+      j.X_CJ = pose(c, what);
+    } else if (tag == "axis") {
+      // SDF 1.5-1.7 <axis> (sdformat's joint.sdf): xyz in the joint frame unless
+      // use_parent_model_frame (1.5, 1.6) or expressed_in="__model__" (1.7) says the model's.
+      const std::string awhat = what + " <axis>";
+      for (const XMLElement* a = c->FirstChildElement(); a; a = a->NextSiblingElement()) {
+        const std::string atag = a->Name();
+        if (atag == "xyz") {
+          j.axis = vector3(a, awhat);
+          if (!(j.axis.norm() > 0.0)) fail(a, awhat + ": <xyz> must not be zero");
+          j.axis.normalize();
+          if (const char* in = a->Attribute("expressed_in")) {
+            const std::string frame = trimText(in);
+            if (frame == "__model__") *axis_in_model_frame = true;
+            else if (!frame.empty() && frame != j.name)
+              warn(a, awhat + ": <xyz expressed_in='" + frame +
+                          "'> is not supported; taken in the joint frame");
+          }
+        } else if (atag == "use_parent_model_frame") {
+          *axis_in_model_frame = boolean(a, awhat);
+        } else if (atag == "limit") {
+          for (const XMLElement* l = a->FirstChildElement(); l; l = l->NextSiblingElement()) {
+            const std::string ltag = l->Name();
+            if (ltag == "lower") j.lower = number(l, awhat + " <limit>");
+            else if (ltag == "upper") j.upper = number(l, awhat + " <limit>");
+            else if (ltag == "effort") j.effort = number(l, awhat + " <limit>");
+            else if (ltag == "velocity") j.velocity = number(l, awhat + " <limit>");
+            else unsupported(l);
+          }
+        } else if (atag == "dynamics") {
+          for (const XMLElement* d = a->FirstChildElement(); d; d = d->NextSiblingElement()) {
+            const std::string dtag = d->Name();
+            if (dtag == "damping") j.damping = nonNegative(d, awhat + " <dynamics>");
+            else if (dtag == "friction") j.friction = nonNegative(d, awhat + " <dynamics>");
+            else if (dtag == "spring_reference") j.spring_reference = number(d, awhat + " <dynamics>");
+            else if (dtag == "spring_stiffness") j.spring_stiffness = nonNegative(d, awhat + " <dynamics>");
+            else unsupported(d);
+          }
+        } else {
+          unsupported(a);
+        }
+      }
+    } else {
+      unsupported(c);
+    }
   }
   if (j.parent.empty() || j.child.empty()) fail(e, what + " needs <parent> and <child>");
   return j;

@@ -71,7 +71,9 @@ class Parser : public XmlReader {
   void applyState(const XMLElement* e, WorldDescription& world, std::set<std::string>& names);
   static void mergeSubModel(ModelDescription* m, const ModelDescription& sub,
                             const Eigen::Isometry3d& X_MS);
-  JointDescription parseJoint(const XMLElement* e, const std::string& model);
+  /// *axis_in_model_frame: the <axis> is given in the model frame (parseModel turns it).
+  JointDescription parseJoint(const XMLElement* e, const std::string& model,
+                              bool* axis_in_model_frame);
   std::string resolveMesh(const XMLElement* e, const std::string& uri, const std::string& what);
 
   std::string source_;

@@ -1,6 +1,6 @@
 // Free rigid bodies from a world's dynamic models: free fall and landing, sliding friction,
 // contact softness from <contact><ode>, merged links, reset, determinism and the scene poses
-// sensors see.
+// sensors see. Joints, separate links and bad mass properties: test_sim_world_models.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -168,20 +168,6 @@ TEST(FreeBodies, LinksJoinedByAFixedJointMoveAsOneBody) {
   EXPECT_NEAR(X_bottom.translation().x(), 1.0, 1e-3);
 }
 
-TEST(FreeBodies, OtherJointsAndUnjoinedLinksAreWarnedAndHeldFixed) {
-  const std::string model = R"(<model name='door'>
-    <link name='frame'><collision name='c'><geometry><box><size>0.1 0.1 1</size></box></geometry></collision></link>
-    <link name='leaf'><collision name='c'><geometry><box><size>0.5 0.02 1</size></box></geometry></collision></link>
-    <link name='loose'><collision name='c'><geometry><sphere><radius>0.1</radius></sphere></geometry></collision></link>
-    <joint name='hinge' type='revolute'><parent>frame</parent><child>leaf</child><axis><xyz>0 0 1</xyz></axis></joint>
-  </model>)";
-  FreeWorld w(model);
-  ASSERT_EQ(w.warnings.size(), 2u);
-  EXPECT_NE(w.warnings[0].find("joint 'hinge' (revolute) is held fixed"), std::string::npos);
-  EXPECT_NE(w.warnings[1].find("link 'loose' is joined to 'frame' by no joint"), std::string::npos);
-  EXPECT_NE(w.warnings[0].find("test.world:"), std::string::npos);
-}
-
 TEST(FreeBodies, WithoutCollisionItIsWarnedAbout) {
   FreeWorld w("<model name='ghost'><pose>0 0 1 0 0 0</pose><link name='l'><visual name='v'><geometry>"
               "<sphere><radius>0.1</radius></sphere></geometry></visual></link></model>");
@@ -248,36 +234,6 @@ TEST(FreeBodies, ManyBoxesStepBitIdentically) {
   for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << i;
 }
 
-TEST(FreeBodies, BadMassOrInertiaNamesFileLineAndValue) {
-  auto error = [](const std::string& link_xml) {
-    try {
-      loadWorldString("<sdf version='1.6'><world name='w'>\n<model name='m'>\n" + link_xml +
-                          "</model></world></sdf>",
-                      "bad.world", ".");
-    } catch (const WorldError& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
-  std::string e = error("<link name='l'><inertial><mass>0</mass></inertial></link>");
-  EXPECT_NE(e.find("bad.world:3:"), std::string::npos) << e;
-  EXPECT_NE(e.find("<mass> must be > 0 (got 0)"), std::string::npos) << e;
-  e = error("<link name='l'><inertial><mass>-2</mass></inertial></link>");
-  EXPECT_NE(e.find("(got -2)"), std::string::npos) << e;
-  e = error("<link name='l'>\n<inertial><mass>1</mass><inertia><ixx>-0.1</ixx><iyy>1</iyy>"
-            "<izz>1</izz></inertia></inertial></link>");
-  EXPECT_NE(e.find("bad.world:4: model 'm' link 'l': inertia (ixx iyy izz ixy ixz iyz) = (-0.1 1 1"),
-            std::string::npos)
-      << e;
-  e = error("<link name='l'><inertial><mass>1</mass><inertia><ixx>0</ixx><iyy>0</iyy>"
-            "<izz>0</izz></inertia></inertial></link>");
-  EXPECT_NE(e.find("is not positive definite"), std::string::npos) << e;
-  // A static model may carry any inertia: it never moves.
-  EXPECT_EQ(error("<static>true</static><link name='l'><inertial><mass>1</mass><inertia><ixx>0"
-                  "</ixx></inertia></inertial></link>"),
-            "");
-}
-
 // The shipped obstacle world: its cones and boxes are free bodies that start at rest where the
 // file puts them (no overlap to push apart) and stay upright until something hits them.
 TEST(FreeBodies, ShippedObstacleWorldSettlesInPlace) {
@@ -296,6 +252,155 @@ TEST(FreeBodies, ShippedObstacleWorldSettlesInPlace) {
     EXPECT_GT(X.linear()(2, 2), 0.9999) << b.name();
     EXPECT_LT(b.baseTwist().linear.norm(), 1e-3) << b.name();
   }
+}
+
+}  // namespace
+}  // namespace tianracer_sim
+
+// --- Sleeping (PhysicsOptions::sleep_*, Gazebo's auto-disable) --------------------------------
+
+namespace tianracer_sim {
+namespace {
+
+TEST(Sleeping, RestingBodyFallsAsleepWithItsVelocityZeroed) {
+  FreeWorld w(boxModel("crate", Eigen::Vector3d(0.2, 0.2, 0.2), 1.0, "0 0 0.4 0.05 0 0"));
+  FreeWorld awake(boxModel("crate", Eigen::Vector3d(0.2, 0.2, 0.2), 1.0, "0 0 0.4 0.05 0 0"));
+  awake.physics.freeBody(0).allowSleep(false);
+  PhysicsRobot& box = w.physics.freeBody(0);
+  double fell_asleep = -1.0, last_fast = 0.0;
+  for (int k = 0; k < 4000; ++k) {
+    w.physics.step();
+    awake.physics.step();
+    const Twist v = box.baseTwist();
+    if (v.linear.squaredNorm() + v.angular.squaredNorm() >=
+        std::pow(w.physics.options().sleep_speed, 2)) {
+      last_fast = w.physics.time();
+    }
+    if (fell_asleep < 0.0 && box.asleep()) fell_asleep = w.physics.time();
+    // Until it sleeps it moves exactly as a body that may not.
+    if (fell_asleep < 0.0) {
+      ASSERT_TRUE(box.basePose().isApprox(awake.physics.freeBody(0).basePose(), 0.0)) << k;
+    }
+  }
+  const Eigen::Vector3d p_sleep = box.basePose().translation();
+  const Eigen::Vector3d p_awake = awake.physics.freeBody(0).basePose().translation();
+  std::cout << "[sleeping] slower than " << w.physics.options().sleep_speed << " from "
+            << last_fast << " s, asleep at " << fell_asleep << " s; rests at z " << p_sleep.z()
+            << " (never sleeping: " << p_awake.z() << ", " << (p_sleep - p_awake).norm() * 1e6
+            << " um apart)\n";
+  ASSERT_GT(fell_asleep, 0.0);
+  EXPECT_NEAR(fell_asleep - last_fast, w.physics.options().sleep_time, 0.01);
+  EXPECT_EQ(box.baseTwist().linear.norm(), 0.0);
+  EXPECT_EQ(box.baseTwist().angular.norm(), 0.0);
+  EXPECT_LT((p_sleep - p_awake).norm(), 1e-5);
+  EXPECT_FALSE(awake.physics.freeBody(0).asleep());
+  // Asleep, it stays exactly where it is.
+  const Eigen::Isometry3d X = box.basePose();
+  for (int k = 0; k < 1000; ++k) w.physics.step();
+  EXPECT_TRUE(box.basePose().isApprox(X, 0.0));
+  EXPECT_TRUE(box.asleep());
+}
+
+TEST(Sleeping, SleepingBodyWakesWhenTouched) {
+  // "still" sleeps on the ground; "runner" slides into it along x.
+  FreeWorld w(boxModel("still", Eigen::Vector3d(0.2, 0.2, 0.2), 1.0, "0 0 0.1 0 0 0", friction(0.3)) +
+              boxModel("runner", Eigen::Vector3d(0.2, 0.2, 0.2), 1.0, "-0.6 0 0.1 0 0 0", friction(0.3)));
+  PhysicsRobot& still = w.physics.freeBody(w.physics.freeBodyIndex("still"));
+  PhysicsRobot& runner = w.physics.freeBody(w.physics.freeBodyIndex("runner"));
+  for (int k = 0; k < 1500; ++k) w.physics.step();
+  ASSERT_TRUE(still.asleep());
+  ASSERT_TRUE(runner.asleep());
+  const Eigen::Vector3d p0 = still.basePose().translation();
+  runner.setBaseTwist({Eigen::Vector3d(2.0, 0, 0), Eigen::Vector3d::Zero()});
+  EXPECT_FALSE(runner.asleep());
+  double woke = -1.0;
+  const double t0 = w.physics.time();
+  for (int k = 0; k < 1000; ++k) {
+    w.physics.step();
+    if (woke < 0.0 && !still.asleep() && still.baseTwist().linear.x() > 0.0) woke = w.physics.time() - t0;
+  }
+  const double moved = still.basePose().translation().x() - p0.x();
+  std::cout << "[sleeping] hit by a box at 2 m/s: moving " << woke << " s after the push, pushed "
+            << moved << " m\n";
+  EXPECT_GT(woke, 0.0);
+  EXPECT_GT(moved, 0.05);
+}
+
+TEST(Sleeping, SetModelStateAndWrenchesWakeIt) {
+  FreeWorld w(boxModel("crate", Eigen::Vector3d(0.2, 0.2, 0.2), 1.0, "0 0 0.1 0 0 0"));
+  FreeWorld awake(boxModel("crate", Eigen::Vector3d(0.2, 0.2, 0.2), 1.0, "0 0 0.1 0 0 0"));
+  awake.physics.freeBody(0).allowSleep(false);
+  PhysicsRobot& box = w.physics.freeBody(0);
+  PhysicsRobot& twin = awake.physics.freeBody(0);
+  auto sleep = [&] {
+    for (int k = 0; k < 3000 && !box.asleep(); ++k) {
+      w.physics.step();
+      awake.physics.step();
+    }
+    ASSERT_TRUE(box.asleep());
+  };
+  sleep();
+  // A twist alone (set_model_state with only a velocity): it slides as the twin that never
+  // slept.
+  const double y0 = box.basePose().translation().y(), y0_twin = twin.basePose().translation().y();
+  box.setBaseTwist({Eigen::Vector3d(0, 1, 0), Eigen::Vector3d::Zero()});
+  twin.setBaseTwist({Eigen::Vector3d(0, 1, 0), Eigen::Vector3d::Zero()});
+  EXPECT_FALSE(box.asleep());
+  for (int k = 0; k < 300; ++k) {
+    w.physics.step();
+    awake.physics.step();
+  }
+  const double slid = box.basePose().translation().y() - y0;
+  const double slid_twin = twin.basePose().translation().y() - y0_twin;
+  std::cout << "[sleeping] woken by a twist of 1 m/s: slid " << slid << " m (never asleep: "
+            << slid_twin << " m)\n";
+  EXPECT_GT(slid, 0.02);
+  EXPECT_NEAR(slid, slid_twin, 1e-12);
+  sleep();
+  // set_model_state: lifted 0.5 m, it falls again.
+  Eigen::Isometry3d X = box.basePose();
+  X.translation().z() += 0.5;
+  box.setBasePose(X);
+  EXPECT_FALSE(box.asleep());
+  for (int k = 0; k < 200; ++k) w.physics.step();
+  EXPECT_LT(box.basePose().translation().z(), 0.6 - 0.1);
+  sleep();
+  // apply_body_wrench: 20 N sideways (> mu m g = 9.8 N).
+  const double x0 = box.basePose().translation().x();
+  box.setExternalWrench("link", Eigen::Vector3d(20, 0, 0), Eigen::Vector3d::Zero());
+  for (int k = 0; k < 300; ++k) w.physics.step();
+  box.setExternalWrench("link", Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+  EXPECT_GT(box.basePose().translation().x() - x0, 0.1);
+  // reset_world
+  sleep();
+  box.resetToSpawn();
+  EXPECT_FALSE(box.asleep());
+}
+
+TEST(Sleeping, OnlyJointlessModelsThatAllowItSleep) {
+  // <allow_auto_disable>false</allow_auto_disable>, or any joint (Gazebo's rule): never.
+  std::string no_sleep = boxModel("a", Eigen::Vector3d(0.2, 0.2, 0.2), 1.0, "0 0 0.1 0 0 0");
+  no_sleep.insert(no_sleep.find("<link"), "<allow_auto_disable>false</allow_auto_disable>");
+  const std::string jointed =
+      "<model name='b'><pose>1 0 0.1 0 0 0</pose><link name='l1'><inertial><mass>1</mass>"
+      "<inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia></inertial>"
+      "<collision name='c'><geometry><box><size>0.2 0.2 0.2</size></box></geometry></collision>"
+      "</link><link name='l2'><pose>0 0 0.2 0 0 0</pose><inertial><mass>1</mass><inertia><ixx>0.01"
+      "</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia></inertial><collision name='c'><geometry><box>"
+      "<size>0.2 0.2 0.2</size></box></geometry></collision></link><joint name='j' type='fixed'>"
+      "<parent>l1</parent><child>l2</child></joint></model>";
+  FreeWorld w(no_sleep + jointed + boxModel("c", Eigen::Vector3d(0.2, 0.2, 0.2), 1.0, "2 0 0.1 0 0 0"));
+  for (int k = 0; k < 3000; ++k) w.physics.step();
+  EXPECT_FALSE(w.physics.freeBody(w.physics.freeBodyIndex("a")).asleep());
+  EXPECT_FALSE(w.physics.freeBody(w.physics.freeBodyIndex("b")).asleep());
+  EXPECT_TRUE(w.physics.freeBody(w.physics.freeBodyIndex("c")).asleep());
+  // sleep_time 0: nothing sleeps.
+  PhysicsOptions o = physicsOptionsFor(w.desc);
+  o.sleep_time = 0.0;
+  PhysicsWorld never(o);
+  addWorldToPhysics(w.desc, &never, {});
+  for (int k = 0; k < 3000; ++k) never.step();
+  EXPECT_FALSE(never.freeBody(never.freeBodyIndex("c")).asleep());
 }
 
 }  // namespace

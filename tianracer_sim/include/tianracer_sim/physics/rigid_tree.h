@@ -57,13 +57,29 @@ struct TreeBody {
   double effort_limit = 0.0;    // 0 = none given
   double velocity_limit = 0.0;  // 0 = none given
   double damping = 0.0, friction = 0.0;
+  /// A spring towards spring_reference: tau = -spring_stiffness (q - spring_reference)
+  /// (SDF <dynamics>; URDF has none).
+  double spring_stiffness = 0.0, spring_reference = 0.0;
+  /// World models: collides with the other bodies of its model (SDF <self_collide>; joined
+  /// bodies never collide).
+  bool self_collide = false;
 };
 
+/// A robot is one tree. A world model may be a forest: every body with parent == -1 roots a
+/// tree of its own (links of the model that no joint joins), simulated as a separate
+/// multibody. Each tree's bodies are contiguous, its root first; a parent always precedes its
+/// children. Every root's frame B is the same frame at spawn (the robot's or model's spawn
+/// pose), so one spawn pose places them all.
 struct RigidTree {
-  std::vector<TreeBody> bodies;  // bodies[0] is the root; a parent always precedes its children
-  bool fixed_base = false;       // root link named "world" (URDF convention)
+  std::vector<TreeBody> bodies;  // bodies[0] is the (first) root
+  bool fixed_base = false;       // bodies[0] is fixed to the world (URDF: root link "world")
   /// Every URDF link -> (body index, pose of the link in that body's frame).
   std::map<std::string, std::pair<int, Eigen::Isometry3d>> links;
+  /// The frame whose pose PhysicsRobot::basePose() reports: X_BM in the frame of body
+  /// canonical_body (a robot: body 0 itself; a world model: its model frame, which moves with
+  /// its canonical link as in Gazebo).
+  int canonical_body = 0;
+  Eigen::Isometry3d X_BM = Eigen::Isometry3d::Identity();
 };
 
 /// A URDF <geometry> as a Shape; a mesh's path is resolve_mesh(its URI). False for an unknown

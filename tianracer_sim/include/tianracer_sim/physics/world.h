@@ -1,9 +1,10 @@
-// PhysicsWorld: N robots (rigid trees with per-link surfaces) and static shapes in a Bullet
-// btMultiBodyDynamicsWorld, stepped at a fixed dt. ROS-free; Bullet stays out of this header.
-// How it maps Gazebo/ODE (joints, friction, contact softness, penetration recovery, tyres,
-// collision shapes) and every approximation made: docs/physics.md. The contact law itself is
-// in contact_law.h. Same inputs, same calls: bit-identical outputs (no sleeping, no threads, a
-// fixed number of solver iterations).
+// PhysicsWorld: N robots (rigid trees with per-link surfaces), world models (free bodies) and
+// static shapes in a Bullet btMultiBodyDynamicsWorld, stepped at a fixed dt. ROS-free; Bullet
+// stays out of this header. How it maps Gazebo/ODE (joints, friction, contact softness,
+// penetration recovery, tyres, collision shapes, world models, sleeping) and every
+// approximation made: docs/physics.md. The contact law itself is in contact_law.h. Same
+// inputs, same calls: bit-identical outputs (no threads, a fixed number of solver iterations,
+// sleeping decided by the state alone).
 #ifndef TIANRACER_SIM_PHYSICS_WORLD_H
 #define TIANRACER_SIM_PHYSICS_WORLD_H
 
@@ -70,6 +71,14 @@ struct PhysicsOptions {
   /// contact_max_correcting_vel: ODE's world cap over all contacts (Gazebo's default).
   double contact_max_vel = 0.1;
   double contact_max_correcting_vel = 100.0;
+  /// Sleeping (free bodies that allow it, PhysicsRobot::allowSleep): a body whose speeds stay
+  /// below sleep_speed (|v|^2 + |w|^2 < sleep_speed^2, in m/s and rad/s) for sleep_time (s)
+  /// is put to sleep: its velocities are zeroed and it costs no solver rows, no narrowphase
+  /// and no AABB update until something touches it or moves it. sleep_time 0: never.
+  /// Gazebo's ODE auto-disables after 1 s below 0.1 m/s and 0.1 rad/s (ODEPhysics.cc); we
+  /// wait as long but for ten times slower motion, so that a slow slide or tilt is not frozen.
+  double sleep_speed = 0.01;
+  double sleep_time = 1.0;
 };
 
 /// Surface of each URDF link of a robot, by link name; links not listed get SurfaceParams{}.
@@ -98,6 +107,8 @@ struct JointInfo {
   double effort_limit = 0.0;    // URDF <limit effort>; 0 = none
   double velocity_limit = 0.0;  // URDF <limit velocity>; 0 = none
   double damping = 0.0, friction = 0.0;
+  /// A spring: tau = -spring_stiffness (q - spring_reference) (SDF <dynamics>).
+  double spring_stiffness = 0.0, spring_reference = 0.0;
   double motor_effort = 0.0;    // torque cap of velocity targets by default (limit or default)
 };
 
@@ -111,7 +122,8 @@ class PhysicsWorld;
 struct RobotState;
 
 /// One robot in a PhysicsWorld. Joint indices follow joints(); link names are URDF links.
-/// Obtained from PhysicsWorld::robot(); valid as long as the world.
+/// Obtained from PhysicsWorld::robot(); valid as long as the world. Every call that moves it
+/// or pushes it (poses, twists, joint states, wrenches, commands, reset) wakes it.
 class PhysicsRobot {
  public:
   const std::string& name() const;
@@ -136,6 +148,14 @@ class PhysicsRobot {
   void clearJointCommand(int i);
   /// Teleports one joint (set model state); velocities of other bodies are unchanged.
   void setJointState(int i, double position, double velocity);
+  /// Joint properties as Gazebo's Joint::SetDamping / SetParam("friction") /
+  /// SetLower/UpperLimit (what set_joint_properties changes; a velocity with fmax is
+  /// setJointVelocityTarget): damping and friction >= 0 and finite; limits lower <= upper,
+  /// finite, on a revolute or prismatic joint. Anything else throws PhysicsError naming the
+  /// robot, joint and value, and changes nothing.
+  void setJointDamping(int i, double damping);
+  void setJointFriction(int i, double friction);
+  void setJointLimits(int i, double lower, double upper);
   /// Count of rejected (NaN/inf) commands since creation.
   std::uint64_t rejectedCommands() const;
 
@@ -159,6 +179,16 @@ class PhysicsRobot {
   /// it). Non-finite values are rejected and counted. Throws PhysicsError for an unknown link.
   void setExternalWrench(const std::string& link, const Eigen::Vector3d& force_W,
                          const Eigen::Vector3d& torque_W);
+
+  /// Free bodies: lets its trees without joints sleep once at rest (PhysicsOptions::sleep_*),
+  /// or keeps them awake (the default). Gazebo auto-disables the links of a model that has no
+  /// joints and no sensors (ODELink.cc, Init) unless <allow_auto_disable> is false. Robots
+  /// never sleep.
+  void allowSleep(bool allow);
+  /// True when every tree of it that may sleep is asleep (false for one that may not).
+  bool asleep() const;
+  /// Wakes it (its sleep timer restarts).
+  void wake();
 
   /// Contact points of the link's body with anything, at distance <= max_distance (m), from
   /// the last step's contact manifolds.
@@ -186,7 +216,7 @@ class PhysicsRobot {
 /// Where a ray/contact hit lands: btCollisionObject user indices set by the world.
 /// getUserIndex() = robot id (-1 for static shapes and the ground, -2 - index for free bodies),
 /// getUserIndex2() = body index in the robot's RigidTree (static: index of addStaticShape,
-/// ground: -1).
+/// ground: -1), getUserIndex3() = 1 for a free body's self-colliding body.
 
 class PhysicsWorld {
  public:
@@ -202,15 +232,22 @@ class PhysicsWorld {
                    const Eigen::Isometry3d& X_WB_spawn, const std::string& name);
   /// Adds a static body; returns its index.
   int addStaticShape(const StaticShape& shape);
-  /// Takes a static body out of the world (delete_model). Indices of the others stay.
+  /// Takes a static body out of the world (delete_model); the free bodies touching it wake.
+  /// Indices of the others stay.
   void removeStaticShape(int index);
 
-  /// Adds a free rigid body (a world's dynamic model): a rigid tree of one body (its links
-  /// merged) with its frame at X_WB, surfaces[k] for its k-th collision (missing: defaults).
-  /// Meshes collide as convex hulls. It is handled like a robot without joints (pose, twist,
-  /// reset to X_WB, link poses, contacts). Throws PhysicsError / MeshError naming the body.
+  /// Adds a world's dynamic model (a "free body"): its RigidTree, possibly a forest (links
+  /// that no joint joins are separate bodies; a tree whose root is fixed to the world, as
+  /// bodies[0] with fixed_base, is a fixed-base multibody), with every root's frame at X_WM
+  /// and surfaces[k] for its k-th collision in body order (missing: defaults). Its meshes keep
+  /// their triangles (concave, btGImpactMeshShape; a robot's are hulls). It is handled
+  /// like a robot (pose of its model frame, twist, reset to X_WM, joints, link poses,
+  /// contacts), except: no wheel fitting; the bodies fixed to the world are static colliders
+  /// (ODE gives them no body); its bodies collide with each other only where one of them
+  /// self-collides (TreeBody::self_collide; joined bodies never). Every moving body needs a
+  /// positive mass and a physical inertia. Throws PhysicsError / MeshError naming the body.
   int addFreeBody(RigidTree tree, const std::vector<SurfaceParams>& surfaces,
-                  const Eigen::Isometry3d& X_WB, const std::string& name);
+                  const Eigen::Isometry3d& X_WM, const std::string& name);
   /// Free bodies ever added, removed ones included (their indices are never reused).
   int freeBodyCount() const;
   /// False for an index out of range or of a removed body.
@@ -218,7 +255,7 @@ class PhysicsWorld {
   PhysicsRobot& freeBody(int index);
   const PhysicsRobot& freeBody(int index) const;
   /// Takes the free body out of the world (delete_model); its handle becomes invalid, the
-  /// other bodies keep their indices.
+  /// other bodies keep their indices, those touching it wake.
   void removeFreeBody(int index);
   /// -1 when no free body has that name.
   int freeBodyIndex(const std::string& name) const;
@@ -237,7 +274,7 @@ class PhysicsWorld {
   /// False for an id out of range or of a removed robot.
   bool hasRobot(RobotId id) const;
   /// Takes everything of the robot out of the world (delete_model); its handle becomes
-  /// invalid, the other robots keep their ids.
+  /// invalid, the other robots keep their ids, free bodies touching it wake.
   void removeRobot(RobotId id);
   PhysicsRobot& robot(RobotId id);
   const PhysicsRobot& robot(RobotId id) const;

@@ -1,6 +1,6 @@
 // A loaded world (SDF subset) into the physics: physics settings, the ground plane, static
-// models as static shapes and dynamic models as free rigid bodies; and the free bodies' poses
-// back into the Scene that sensors see.
+// models as static shapes and dynamic models as free bodies (their links and joints as Gazebo
+// simulates them); and the free bodies' link poses back into the Scene that sensors see.
 #ifndef TIANRACER_SIM_SIM_WORLD_PHYSICS_H
 #define TIANRACER_SIM_SIM_WORLD_PHYSICS_H
 
@@ -20,16 +20,33 @@ PhysicsOptions physicsOptionsFor(const WorldDescription& world, PhysicsOptions b
 /// kp/kd/max_vel/min_depth (unset: SurfaceParams' defaults).
 SurfaceParams surfaceOf(const CollisionDescription& c);
 
-/// A dynamic model as one rigid body in the model frame: its links merged (mass properties
-/// combined, Gazebo's fixed-joint reduction), every collision with its surface (`surfaces`
-/// in the order of the tree's collisions). Joints other than fixed, and links joined by no
-/// joint, are held fixed too: each is warned once. Plane collisions are skipped (warned).
-RigidTree freeBodyTree(const WorldDescription& world, const ModelDescription& model,
-                       std::vector<SurfaceParams>* surfaces, const WarningSink& warn);
+/// True for a model that never moves: <static>, no links, or every link welded to the world
+/// through fixed joints (Gazebo).
+bool isHeldStatic(const ModelDescription& model);
 
-/// Adds the world's models: static ones (and models fixed to "world" by a joint) as static
-/// shapes, dynamic ones as free bodies named after the model. Returns the number of collision
-/// shapes added. Throws PhysicsError / MeshError naming the model.
+/// A dynamic world model as Gazebo simulates it, as a RigidTree in the model frame:
+///  - links joined by fixed joints are one body (mass properties combined);
+///  - revolute, continuous and prismatic joints are simulated, with <limit> (lower/upper,
+///    effort, velocity) and <dynamics> (damping, friction, spring); a movable child's body
+///    frame is its joint frame (child link frame times the joint's <pose>); other joint types
+///    (ball, universal, ...) are held fixed (warned);
+///  - links that no joint joins are separate bodies: each tree of the model is a multibody of
+///    its own; the links joined to "world" form a fixed-base tree, which comes first;
+///  - a joint that would give a link a second parent or close a loop is left out (warned);
+///  - the model frame follows the canonical (first) link (RigidTree::canonical_body, X_BM);
+///  - every collision with its surface (`surfaces`, in the tree's body order); plane
+///    collisions are left out (warned).
+/// Throws PhysicsError naming file, line, model, link and value when a link that moves has a
+/// mass <= 0 or an inertia that is not positive definite, or its body's inertia is not
+/// physical.
+RigidTree worldModelTree(const WorldDescription& world, const ModelDescription& model,
+                         std::vector<SurfaceParams>* surfaces, const WarningSink& warn);
+
+/// Adds the world's models: static ones (isHeldStatic) as static shapes, dynamic ones as free
+/// bodies named after the model (worldModelTree), which may sleep at rest when the model has
+/// no joints and allows it (<allow_auto_disable>). A dynamic model whose mass properties are
+/// bad is warned about and added as a static one: the rest of the world loads. Returns the
+/// number of collision shapes added. Throws PhysicsError / MeshError naming the model.
 int addWorldToPhysics(const WorldDescription& world, PhysicsWorld* physics,
                       const WarningSink& warn);
 
@@ -49,7 +66,8 @@ WorldModelBodies addModelToPhysics(const WorldDescription& world, const ModelDes
 void removeModelFromPhysics(const WorldModelBodies& bodies, PhysicsWorld* physics);
 
 /// Moves every non-static scene body "<model>::<link>" whose model is a free body of `physics`
-/// to that link's pose (robots' bodies are left alone). Call before sensing.
+/// to that link's pose (each link of a model moves on its own; robots' bodies are left alone).
+/// Call before sensing.
 void updateFreeBodyScene(const PhysicsWorld& physics, Scene* scene);
 
 }  // namespace tianracer_sim

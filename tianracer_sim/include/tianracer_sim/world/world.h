@@ -86,23 +86,39 @@ struct LinkDescription {
   std::string name;
   Eigen::Isometry3d X_ML = Eigen::Isometry3d::Identity();  // link in its model
   InertialDescription inertial;                            // used for dynamic models only
+  /// <self_collide>: collides with the model's other links (Gazebo: a pair collides when
+  /// either link says so and no joint joins them).
+  bool self_collide = false;
   std::vector<CollisionDescription> collisions;
   std::vector<VisualDescription> visuals;
   int line = 0;
 };
 
-/// <joint> of a model: a dynamic model's links move as one rigid body (joined by fixed joints;
-/// other joint types are warned about and held fixed).
+/// <joint> of a model (sim/world_physics.h simulates fixed, revolute, continuous and
+/// prismatic ones; other types are held fixed). Defaults are SDF's.
 struct JointDescription {
   std::string name;
   std::string type;  // "fixed", "revolute", ...
-  std::string parent, child;
+  std::string parent, child;  // link names, or "world"
+  /// The joint frame J in the child link's frame (<pose>, SDF: relative to the child link).
+  Eigen::Isometry3d X_CJ = Eigen::Isometry3d::Identity();
+  /// <axis><xyz>, unit, in the joint frame J (an axis given in the model frame, by
+  /// <use_parent_model_frame> or expressed_in="__model__", is turned into J when the model is
+  /// read).
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  /// <axis><limit>: lower/upper (rad or m; SDF's +-1e16 = none), effort and velocity (< 0 =
+  /// none).
+  double lower = -1e16, upper = 1e16, effort = -1.0, velocity = -1.0;
+  /// <axis><dynamics>.
+  double damping = 0.0, friction = 0.0, spring_reference = 0.0, spring_stiffness = 0.0;
   int line = 0;
 };
 
 struct ModelDescription {
   std::string name;
   bool is_static = false;
+  /// <allow_auto_disable>: a resting dynamic model may be put to sleep (Gazebo's default).
+  bool allow_auto_disable = true;
   Eigen::Isometry3d X_WM = Eigen::Isometry3d::Identity();
   std::vector<LinkDescription> links;
   std::vector<JointDescription> joints;
