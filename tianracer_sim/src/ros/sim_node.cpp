@@ -701,6 +701,9 @@ void SimNode::run() {
 
 bool SimNode::onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   paused_ = true;
+  // /clock is throttled (~clock_rate): the paused time goes out once more, so that every
+  // node's clock reaches it and a client can wait for exactly that time.
+  publishClock();
   return true;
 }
 
