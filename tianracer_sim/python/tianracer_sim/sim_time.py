@@ -292,9 +292,11 @@ def messages_received(node, topic):
 
 
 def messages_sent(node, topic, subscriber=None):
-    """How many messages `node` has written on `topic` to `subscriber` (this process by
-    default), from its getBusStats: every one of them reaches the subscriber, whose queue
-    permitting. (A message a publisher's full queue dropped is not written.)"""
+    """How many messages `node` has sent on `topic` to `subscriber` (this process by default),
+    from its getBusStats: roscpp counts a message when it queues it for the subscriber, rospy
+    when it writes it; a message a full publisher queue then drops is counted all the same.
+    So the count is what the node published; it is what the subscriber receives only while
+    the subscriber keeps up with the queue."""
     proxy = _node(node)
     subscriber = subscriber or rospy.get_name()
     _, _, info = proxy.getBusInfo(rospy.get_name())

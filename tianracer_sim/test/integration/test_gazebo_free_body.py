@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """rostest: the Gazebo interface on a free box (free_box.world's 'crate', 0.5 kg): it is in
 model_states and link_states where the physics has it, set_model_state moves it, and
-apply_body_wrench moves it by F t^2/(2m) (lifted 3 m, so that only gravity, vertical, acts
+apply_body_wrench moves it by F t^2/(2m) (lifted 10 m, so that only gravity, vertical, acts
 besides the force). Sim time; wall time only bounds the waits."""
 import unittest
 
@@ -81,7 +81,8 @@ class GazeboFreeBody(unittest.TestCase):
     def test_b_apply_body_wrench_moves_the_box(self):
         F, T = 1.0, 0.4
         self.paused()
-        r = self.set_model_state(ModelState(BOX, Pose(Point(0.8, 0.0, 3.0),
+        # 10 m up: still falling after 1.3 s, however late after 0.5 s the pause comes.
+        r = self.set_model_state(ModelState(BOX, Pose(Point(0.8, 0.0, 10.0),
                                                       Quaternion(0, 0, 0, 1)), Twist(), ''))
         self.assertTrue(r.success, r.status_message)
         x0 = self.get_model_state(BOX, '').pose.position.x

@@ -13,7 +13,10 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 from std_srvs.srv import Empty
-from tianracer_sim.sim_time import Paused, Stream, clock_stamp, sim_sleep, wait_connected
+from tianracer_sim.sim_time import (Paused, Stream, clock_stamp, messages_received,
+                                    published_rate, sim_sleep, wait_connected, wait_for)
+
+SIM = '/tianracer_sim'
 
 SEED_JOINTS = {'left_rear_wheel_joint', 'right_rear_wheel_joint', 'left_steering_hinge_joint',
                'right_steering_hinge_joint', 'right_front_wheel_joint', 'left_front_wheel_joint'}
@@ -58,9 +61,8 @@ class SimBasics(unittest.TestCase):
             self.assertEqual(len(m.position), 6)
             self.assertEqual(len(m.velocity), 6)
             self.assertTrue(all(math.isfinite(x) for x in m.position + m.velocity))
-        stamps = [m.header.stamp.to_sec() for m in msgs]
-        rate = (len(stamps) - 1) / (stamps[-1] - stamps[0])
-        rospy.loginfo('joint_states rate %.2f Hz (sim time), %d messages', rate, len(stamps))
+        rate = published_rate(msgs)  # what the sim published (header.seq counts it)
+        rospy.loginfo('joint_states rate %.2f Hz (sim time), %d messages', rate, len(msgs))
         self.assertAlmostEqual(rate, 50.0, delta=5.0)
 
     def test_3_wheel_commands_move_the_car_forward(self):
@@ -68,10 +70,17 @@ class SimBasics(unittest.TestCase):
                                 Float64, queue_size=1, latch=True) for s in ('left', 'right')]
         for p in pubs:
             wait_connected(p)
-        t0 = rospy.get_time()
-        x0 = self.truth_at(t0).pose.pose.position.x
-        for p in pubs:
-            p.publish(Float64(0.5 / 0.032))
+        # The commands apply from a known sim time: sent with the physics paused, read by the
+        # sim (its getBusStats) before it steps on.
+        with Paused() as paused:
+            t0 = paused.t
+            read = [messages_received(SIM, p.resolved_name) for p in pubs]
+            for p in pubs:
+                p.publish(Float64(0.5 / 0.032))
+            wait_for(lambda: all(messages_received(SIM, p.resolved_name) > n
+                                 for p, n in zip(pubs, read)), 'the sim reading the commands')
+            x0 = self.truth.first(lambda s, m: s > t0 - 0.021, 'the ground truth at the pause',
+                                  max(0, self.truth.count() - 10))[2].pose.pose.position.x
         end = self.truth_at(t0 + 2.0).pose.pose.position
         rospy.loginfo('ground truth moved from x %.3f to %.3f (y %.3f)', x0, end.x, end.y)
         self.assertGreater(end.x - x0, 0.5)  # about 0.5 m/s for ~2 s, after spin-up
