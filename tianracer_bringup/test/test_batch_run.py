@@ -23,8 +23,11 @@ def batch(scenario, out, *extra):
     return p.returncode, p.stdout.decode(errors='replace')
 
 
-def rows_of(out):
-    with open(os.path.join(out, 'results.csv')) as f:
+def rows_of(out, log=''):
+    path = os.path.join(out, 'results.csv')
+    if not os.path.exists(path):
+        raise AssertionError('the batch wrote no %s; its output ends:\n%s' % (path, log[-3000:]))
+    with open(path) as f:
         return list(csv.DictReader(f))
 
 
@@ -64,7 +67,7 @@ class TestBatch(unittest.TestCase):
         for out in outs:
             code, log = batch('four_runs.yaml', out)
             self.assertEqual(code, 0, log)
-            rows = rows_of(out)
+            rows = rows_of(out, log)
             self.assertEqual(len(rows), 4, log)
             for name in ('report.md', 'paths_empty.png', 'metrics_vs_driver_args_speed.png',
                          'metrics_vs_spawn_x.png'):
@@ -93,7 +96,7 @@ class TestBatch(unittest.TestCase):
         out = os.path.join(self.tmp, 'failures')
         code, log = batch('failures.yaml', out)
         self.assertEqual(code, 1, log)
-        rows = rows_of(out)
+        rows = rows_of(out, log)
         self.assertEqual(len(rows), 3, log)
         good, broken, hung = rows
         self.assertEqual(good['status'], 'ok', good)
@@ -115,7 +118,7 @@ class TestBatch(unittest.TestCase):
         out = os.path.join(self.tmp, 'wall')
         code, log = batch('wall_ahead.yaml', out)
         self.assertEqual(code, 1, log)  # the run ran, and missed no_collision
-        row, = rows_of(out)
+        row, = rows_of(out, log)
         self.assertEqual(row['status'], 'ok', row)
         self.assertEqual(row['completed'], 'False', row)
         self.assertEqual(row['first_collision_with'], 'box_front::link', row)
