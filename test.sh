@@ -1,9 +1,25 @@
 #!/usr/bin/env bash
 # The test command: installs what is missing, builds, runs every test (gtest, rostest, launch
 # checks) and ends with a line 'N passed, N failed'. Exits non-zero on any failure.
+#   ./test.sh            the suite
+#   ./test.sh --load[=N] the suite with N CPU hogs alongside (stress-ng; default one per core),
+#                        from the build of the tests to the last test: the load check
 set -uo pipefail
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 WS="$REPO/.build"
+
+HOGS=0
+for arg in "$@"; do
+  case "$arg" in
+    --load) HOGS="$(nproc)" ;;
+    --load=*) HOGS="${arg#--load=}" ;;
+    *) echo "usage: $0 [--load[=N]]" >&2; exit 2 ;;
+  esac
+done
+if ! [[ "$HOGS" =~ ^[0-9]+$ ]]; then
+  echo "ERROR [test] --load=N: N must be a number of CPU hogs, got '$HOGS'" >&2
+  exit 2
+fi
 
 bash "$REPO/scripts/setup.sh" || exit 1
 
@@ -18,13 +34,30 @@ source "$WS/devel/setup.bash"
 set -u
 
 rm -rf "$WS/build/test_results"
+if ((HOGS > 0)); then
+  command -v stress-ng >/dev/null || { echo "ERROR [test] --load needs stress-ng (scripts/setup.sh installs it)" >&2; exit 1; }
+  # Busy loops on every core, as on a machine shared with other work; ended with this script.
+  stress-ng --cpu "$HOGS" --cpu-method loop --timeout 0 >/dev/null 2>&1 &
+  hog=$!
+  trap 'kill "$hog" 2>/dev/null; wait "$hog" 2>/dev/null' EXIT
+  echo "==> [test] load check: $HOGS CPU hog(s) alongside (stress-ng --cpu $HOGS, pid $hog)"
+fi
 echo "==> [test] building and running all tests (log: $WS/logs/test.log)"
 start=$(date +%s)
-# catkin_make run_tests exits 0 even when tests fail: the verdict comes from the result files.
+# The test executables first (timed apart: on a fresh clone compiling them is much of the time).
 catkin_make -C "$WS" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 -j"$(nproc)" \
-  run_tests >"$WS/logs/test.log" 2>&1
+  tests >"$WS/logs/test.log" 2>&1
 build_rc=$?
-echo "==> [test] ran in $(( $(date +%s) - start )) s"
+built=$(date +%s)
+# catkin_make run_tests exits 0 even when tests fail: the verdict comes from the result files.
+if ((build_rc == 0)); then
+  catkin_make -C "$WS" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 -j"$(nproc)" \
+    run_tests >>"$WS/logs/test.log" 2>&1
+  build_rc=$?
+fi
+end=$(date +%s)
+echo "==> [test] ran in $((end - start)) s (tests built in $((built - start)) s, run in $((end - built)) s;" \
+  "load average at the end: $(cut -d' ' -f1-3 /proc/loadavg))"
 
 # The verdict comes from the result files: every test case counted once, failures named.
 if ((build_rc != 0)); then

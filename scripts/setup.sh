@@ -27,6 +27,8 @@ APT_PACKAGES=(
   # and the benchmark's PyBullet virtual environment
   joint-state-publisher joint-state-publisher-gui rviz xvfb xauth imagemagick python3-venv
   python3-matplotlib python3-tqdm
+  # the CPU hog of the load check (./test.sh --load)
+  stress-ng
 )
 # xacro: the ROS 1 one (2.x is the ROS 2 one, TOOLCHAIN.md); ray: scenario batches (`batch`)
 PIP_PACKAGES=(xacro==1.13.3 ray==2.60.0)

@@ -2,13 +2,14 @@
 odometry, the cmd_vel node's wheel commands, /rosout), a /cmd_vel publisher, the geometry read
 from robot_description the way tianracer_control reads it, and a least squares circle fit.
 
-Everything is measured in sim time: samples carry the sim's stamps, and waits are
-rospy.sleep() on /clock. Wall time only bounds how long a wait may take, so that a wedged sim
-fails the test instead of hanging it.
+Everything is measured in sim time: samples carry the sim's stamps (wheel and steering
+commands the sim time they were received at), and waits are on sim time and on stamps
+(tianracer_sim.sim_time): the samples of a span are complete once one stamped after it has
+arrived. Wall time only bounds how long a wait may take, so that a wedged sim fails the test
+instead of hanging it.
 """
 import math
 import threading
-import time
 import unittest
 import xml.etree.ElementTree as ET
 
@@ -20,6 +21,8 @@ from rosgraph_msgs.msg import Log
 from std_msgs.msg import Float64
 from std_srvs.srv import Empty
 from tianracer_bringup.ros_session import yaw_from_quaternion as yaw_of
+from tianracer_sim.sim_time import (Paused, lossless, messages_received, sim_sleep,
+                                    wait_connected, wait_for)
 
 CMD_NODE = '/cmd_vel_node'
 WHEEL_TOPIC = '/tianracer/left_rear_wheel_velocity_controller/command'
@@ -154,12 +157,13 @@ class Harness(object):
         self.wheel_cmd = []    # (receive sim time, rad/s) of the cmd_vel node's left rear command
         self.steer_cmd = []    # (receive sim time, rad) of its left steering hinge command
         self.rosout = []       # rosgraph_msgs/Log from the cmd_vel node
-        rospy.Subscriber('/tianracer/ground_truth/odom', Odometry, self._on_truth,
-                         queue_size=200)
-        rospy.Subscriber('/tianracer/odom', Odometry, self._on_odom, queue_size=200)
-        rospy.Subscriber(WHEEL_TOPIC, Float64, self._on_wheel, queue_size=200)
-        rospy.Subscriber(STEER_TOPIC, Float64, self._on_steer, queue_size=200)
-        rospy.Subscriber('/rosout', Log, self._on_rosout, queue_size=200)
+        # Every message that reaches this process (sim_time.lossless).
+        for topic, cls, cb in (('/tianracer/ground_truth/odom', Odometry, self._on_truth),
+                               ('/tianracer/odom', Odometry, self._on_odom),
+                               (WHEEL_TOPIC, Float64, self._on_wheel),
+                               (STEER_TOPIC, Float64, self._on_steer),
+                               ('/rosout', Log, self._on_rosout)):
+            lossless(rospy.Subscriber(topic, cls, cb))
         self.pub = rospy.Publisher('/cmd_vel', Twist, queue_size=10)
         self._cmd = None       # Twist being repeated, or None
         self._last_pub = None  # sim time of the last /cmd_vel published
@@ -192,35 +196,42 @@ class Harness(object):
     # waiting
     def wait_ready(self, wall_timeout=60.0):
         """Until the sim, both control nodes and our /cmd_vel link are up."""
-        end = time.time() + wall_timeout
-        while time.time() < end and not rospy.is_shutdown():
+        def ready():
             with self.lock:
-                ok = self.truth and self.odom and self.wheel_cmd
-            if ok and self.pub.get_num_connections() > 0:
-                return True
-            time.sleep(0.05)
-        return False
+                return self.truth and self.odom and self.wheel_cmd
+        try:
+            wait_for(ready, 'ground truth, wheel odometry and cmd_vel_node output',
+                     wall_timeout)
+            wait_connected(self.pub, wall_timeout)
+        except AssertionError:
+            return False
+        return True
 
     def wait_sim(self, seconds, wall_timeout=None):
         """Sleeps `seconds` of sim time; fails rather than hang if the sim stops."""
         if wall_timeout is None:
             wall_timeout = 30.0 + 5.0 * seconds
-        target = rospy.get_time() + seconds
-        end = time.time() + wall_timeout
-        while rospy.get_time() < target:
-            if time.time() > end or rospy.is_shutdown():
-                raise AssertionError('sim time stalled: %.3f s of %.3f s passed in %.0f s wall'
-                                     % (seconds - (target - rospy.get_time()), seconds,
-                                        wall_timeout))
-            rospy.sleep(min(0.05, max(target - rospy.get_time(), 0.001)))
+        sim_sleep(seconds, wall_timeout)
 
     def wait_until(self, predicate, sim_timeout):
+        """Until predicate() holds, or ground truth stamped `sim_timeout` s from now has
+        arrived without it (so a late subscriber does not run out of sim time)."""
         target = rospy.get_time() + sim_timeout
-        while rospy.get_time() < target:
-            if predicate():
-                return True
-            self.wait_sim(0.02)
-        return predicate()
+        return wait_for(lambda: predicate() or self.latest_truth().t >= target,
+                        'ground truth stamped %.3f' % target) and predicate()
+
+    def wait_truth(self, t):
+        """Until a ground truth sample stamped t or later has arrived: those of any span
+        ending at t are complete."""
+        wait_for(lambda: self.latest_truth().t >= t - 1e-9, 'ground truth stamped %.3f' % t)
+
+    def wait_commands(self, t):
+        """Until a wheel command received at sim time t or later has arrived (cmd_vel_node
+        sends one every tick)."""
+        def arrived():
+            with self.lock:
+                return self.wheel_cmd and self.wheel_cmd[-1][0] >= t
+        wait_for(arrived, 'a wheel command received at %.3f' % t)
 
     # commanding
     def drive(self, v, w):
@@ -278,14 +289,18 @@ class Harness(object):
             return self.odom[-1]
 
     def truth_between(self, t0, t1):
+        """Ground truth stamped t0..t1 (all of it: waits for a sample stamped t1 or later)."""
+        self.wait_truth(t1)
         with self.lock:
             return [s for s in self.truth if t0 <= s.t <= t1]
 
     def wheel_cmds_between(self, t0, t1):
+        self.wait_commands(t1)
         with self.lock:
             return [c for c in self.wheel_cmd if t0 <= c[0] <= t1]
 
     def steer_cmds_between(self, t0, t1):
+        self.wait_commands(t1)
         with self.lock:
             return [c for c in self.steer_cmd if t0 <= c[0] <= t1]
 
@@ -369,12 +384,12 @@ class AckermannTestCase(unittest.TestCase):
 
     def send_paused(self, v, w):
         """Publishes one Twist with the physics paused, so that it reaches cmd_vel_node at a
-        known sim time however loaded the machine is (the wall sleeps are message delivery, not
-        measurement). Returns that sim time."""
-        self.pause()
-        rospy.rostime.wallsleep(0.3)  # in-flight /clock
-        self.h.publish_once(v, w)
-        t = rospy.get_time()
-        rospy.rostime.wallsleep(0.5)
-        self.unpause()
-        return t
+        known sim time however loaded the machine is: the paused time, which every clock has
+        reached (sim_time.Paused); unpaused once cmd_vel_node has read the Twist. Returns that
+        sim time."""
+        with Paused() as paused:
+            n = messages_received(CMD_NODE, '/cmd_vel')
+            self.h.publish_once(v, w)
+            wait_for(lambda: messages_received(CMD_NODE, '/cmd_vel') > n,
+                     'cmd_vel_node reading the Twist')
+        return paused.t

@@ -14,11 +14,11 @@ time; see test_ackermann_drive.py for how they are taken.
 import math
 import os
 import subprocess
-import time
 
 import rospkg
 import rospy
 import rostest
+from tianracer_sim.sim_time import wait_for
 
 from ackermann_harness import AckermannTestCase, path_length, relative_pose, wrap
 
@@ -39,19 +39,18 @@ class AckermannFigureEight(AckermannTestCase):
         driver = os.path.join(rospkg.RosPack().get_path('tianracer_control'), 'scripts',
                               'scripted_driver')
         cmd = [driver, '__name:=scripted_driver_fig8', '_manoeuvre:=figure_eight',
-               '_speed:=%g' % speed, '_radius:=%.6f' % radius, '_wait_for_subscriber:=10']
+               '_speed:=%g' % speed, '_radius:=%.6f' % radius, '_wait_for_subscriber:=60']
         rospy.loginfo('running %s', ' '.join(cmd))
         t_start = rospy.get_time()
         proc = subprocess.Popen(cmd)
-        # The driver waits in sim time; this bounds it in wall time (20 s of sim at >= 0.5x).
-        deadline = time.time() + 90.0
-        while proc.poll() is None and time.time() < deadline:
-            time.sleep(0.1)
-        if proc.poll() is None:
-            proc.kill()
-            proc.wait()
-            self.fail('scripted_driver did not finish a %.0f s figure-eight within 90 s wall'
-                      % (distance_cmd / speed))
+        # The driver waits in sim time; this bounds it in wall time.
+        try:
+            wait_for(lambda: proc.poll() is not None, 'scripted_driver to finish a %.0f s '
+                     'figure-eight' % (distance_cmd / speed), poll=0.1)
+        finally:
+            if proc.poll() is None:
+                proc.kill()
+                proc.wait()
         self.assertEqual(proc.returncode, 0, 'scripted_driver exited %d' % proc.returncode)
         h.stop_and_settle()
         g1, o1 = h.latest_truth(), h.latest_odom()

@@ -9,7 +9,6 @@ The tests run in name order on one car, each from rest where the previous one le
 """
 import math
 import threading
-import time
 
 import rosnode
 import rospy
@@ -17,6 +16,7 @@ import rostest
 from ackermann_msgs.msg import AckermannDrive, AckermannDriveStamped
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Float64
+from tianracer_sim.sim_time import wait_connected
 
 from ackermann_harness import CMD_NODE, AckermannTestCase, fit_circle
 
@@ -81,10 +81,11 @@ class AckermannStream(object):
                 pass
 
     def wait_connected(self, wall_timeout=30.0):
-        limit = time.time() + wall_timeout
-        while self.pub.get_num_connections() == 0 and time.time() < limit:
-            time.sleep(0.05)
-        return self.pub.get_num_connections() > 0
+        try:
+            wait_connected(self.pub, wall_timeout)
+        except AssertionError:
+            return False
+        return True
 
 
 class AckermannInput(AckermannTestCase):
@@ -270,9 +271,7 @@ class AckermannInput(AckermannTestCase):
         h = self.h
         n_log = self.log_count()
         pub = rospy.Publisher(TOPIC, Float64, queue_size=10)
-        limit = time.time() + 30.0
-        while pub.get_num_connections() == 0 and time.time() < limit:
-            time.sleep(0.05)
+        wait_connected(pub, 30.0)
         for _ in range(3):
             pub.publish(Float64(1.0))
             h.wait_sim(0.1)

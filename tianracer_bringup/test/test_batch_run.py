@@ -11,6 +11,7 @@ from tianracer_bringup.run import TOKEN_VAR
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, 'test_batch_data')
+DURATION = 5.0  # sim seconds of each run of four_runs.yaml
 
 
 def batch(scenario, out, *extra):
@@ -22,8 +23,11 @@ def batch(scenario, out, *extra):
     return p.returncode, p.stdout.decode(errors='replace')
 
 
-def rows_of(out):
-    with open(os.path.join(out, 'results.csv')) as f:
+def rows_of(out, log=''):
+    path = os.path.join(out, 'results.csv')
+    if not os.path.exists(path):
+        raise AssertionError('the batch wrote no %s; its output ends:\n%s' % (path, log[-3000:]))
+    with open(path) as f:
         return list(csv.DictReader(f))
 
 
@@ -63,7 +67,7 @@ class TestBatch(unittest.TestCase):
         for out in outs:
             code, log = batch('four_runs.yaml', out)
             self.assertEqual(code, 0, log)
-            rows = rows_of(out)
+            rows = rows_of(out, log)
             self.assertEqual(len(rows), 4, log)
             for name in ('report.md', 'paths_empty.png', 'metrics_vs_driver_args_speed.png',
                          'metrics_vs_spawn_x.png'):
@@ -71,10 +75,11 @@ class TestBatch(unittest.TestCase):
             for r in rows:
                 self.assertEqual(r['status'], 'ok', r)
                 self.assertEqual(r['completed'], 'True', r)
-                self.assertAlmostEqual(float(r['sim_time']), 10.0, delta=0.05)
-                # 10 s at the commanded speed, less the start
-                self.assertGreater(float(r['distance']), 0.7 * 10 * float(r['driver.args.speed']), r)
-                self.assertLess(float(r['distance']), 10 * float(r['driver.args.speed']), r)
+                self.assertAlmostEqual(float(r['sim_time']), DURATION, delta=0.05)
+                # the duration at the commanded speed, less the start
+                self.assertGreater(float(r['distance']),
+                                   0.7 * DURATION * float(r['driver.args.speed']), r)
+                self.assertLess(float(r['distance']), DURATION * float(r['driver.args.speed']), r)
                 self.assertEqual(r['leftover_processes'], '0')
             results.append(rows)
         self.assertEqual(batch_processes(self.tmp), [])
@@ -91,7 +96,7 @@ class TestBatch(unittest.TestCase):
         out = os.path.join(self.tmp, 'failures')
         code, log = batch('failures.yaml', out)
         self.assertEqual(code, 1, log)
-        rows = rows_of(out)
+        rows = rows_of(out, log)
         self.assertEqual(len(rows), 3, log)
         good, broken, hung = rows
         self.assertEqual(good['status'], 'ok', good)
@@ -113,7 +118,7 @@ class TestBatch(unittest.TestCase):
         out = os.path.join(self.tmp, 'wall')
         code, log = batch('wall_ahead.yaml', out)
         self.assertEqual(code, 1, log)  # the run ran, and missed no_collision
-        row, = rows_of(out)
+        row, = rows_of(out, log)
         self.assertEqual(row['status'], 'ok', row)
         self.assertEqual(row['completed'], 'False', row)
         self.assertEqual(row['first_collision_with'], 'box_front::link', row)

@@ -16,6 +16,7 @@ import unittest
 import rospy
 import rostest
 from sensor_msgs.msg import CameraInfo
+from tianracer_sim.sim_time import Stream, sim_sleep
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import tf_check  # noqa: E402
@@ -28,18 +29,16 @@ class Bringup(unittest.TestCase):
         cls.tf = tf_check.TfRecorder()
         cls.truth = tf_check.truth('/tianracer')
         cls.scan = tf_check.scans('/scan')
-        cls.camera_info = tf_check.Latest('/rrbot/camera1/camera_info', CameraInfo)
-        cls.depth_info = tf_check.Latest('/real_sense/depth/camera_info', CameraInfo)
-        ok = tf_check.wall_wait(lambda: cls.truth.msg is not None and cls.scan.msg is not None
-                                and cls.camera_info.msg is not None
-                                and cls.depth_info.msg is not None, 90.0)
-        assert ok, 'no ground truth, scan or camera_info from tianracer.launch'
-        tf_check.sim_sleep(1.0)  # every node's TF at least once
+        cls.camera_info = Stream('/rrbot/camera1/camera_info', CameraInfo)
+        cls.depth_info = Stream('/real_sense/depth/camera_info', CameraInfo)
+        for stream in (cls.truth, cls.scan, cls.camera_info, cls.depth_info):
+            stream.wait_count(1)
+        sim_sleep(1.0)  # every node's TF at least once
 
     def test_a_tf_tree_complete_without_duplicates(self):
-        frames = tf_check.urdf_links() + [self.scan.msg.header.frame_id,
-                                          self.camera_info.msg.header.frame_id,
-                                          self.depth_info.msg.header.frame_id]
+        frames = tf_check.urdf_links() + [self.scan.latest().header.frame_id,
+                                          self.camera_info.latest().header.frame_id,
+                                          self.depth_info.latest().header.frame_id]
         self.assertIn('camera_optical_frame', frames)
         self.assertIn('real_sense_optical_frame', frames)
         for frame in frames:
@@ -57,16 +56,15 @@ class Bringup(unittest.TestCase):
         self.assertEqual(self.tf.publishers['lidar'], {'/robot_state_publisher'})
 
     def test_b_cmd_vel_drives_the_car(self):
-        p0 = self.truth.msg.pose.pose
-        t0 = rospy.get_time()
-        tf_check.drive('/cmd_vel', 0.5, 0.1, 3.0)
-        p1 = self.truth.msg.pose.pose
+        t0, t1 = tf_check.drive('/cmd_vel', 0.5, 0.1, 3.0)
+        p0 = self.truth.first_stamped(t0).pose.pose
+        p1 = self.truth.first_stamped(t1).pose.pose
         yaw0, yaw1 = tf_check.yaw_of(p0.orientation), tf_check.yaw_of(p1.orientation)
         dx, dy = p1.position.x - p0.position.x, p1.position.y - p0.position.y
         forward = math.cos(yaw0) * dx + math.sin(yaw0) * dy
         left = -math.sin(yaw0) * dx + math.cos(yaw0) * dy
         turned = math.atan2(math.sin(yaw1 - yaw0), math.cos(yaw1 - yaw0))
-        elapsed = rospy.get_time() - t0
+        elapsed = t1 - t0
         rospy.loginfo('drove %.3f s: forward %.3f m, left %.3f m, turned %.3f rad', elapsed,
                       forward, left, turned)
         # An arc of radius v / w = 5 m over 0.3 rad: 1.48 m ahead, 0.22 m to the left, less

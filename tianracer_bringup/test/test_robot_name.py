@@ -14,6 +14,7 @@ import rospy
 import rostest
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import JointState
+from tianracer_sim.sim_time import Stream, sim_sleep
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import tf_check  # noqa: E402
@@ -25,12 +26,11 @@ class RobotName(unittest.TestCase):
         rospy.init_node('test_robot_name')
         cls.tf = tf_check.TfRecorder()
         cls.truth = tf_check.truth('/other')
-        cls.joints = tf_check.Latest('/other/joint_states', JointState)
-        cls.odom = tf_check.Latest('/other/odom', Odometry)
-        ok = tf_check.wall_wait(lambda: cls.truth.msg is not None and cls.joints.msg is not None
-                                and cls.odom.msg is not None, 90.0)
-        assert ok, 'no ground truth, joint_states or odom under /other'
-        tf_check.sim_sleep(1.0)
+        cls.joints = Stream('/other/joint_states', JointState)
+        cls.odom = Stream('/other/odom', Odometry)
+        for stream in (cls.truth, cls.joints, cls.odom):
+            stream.wait_count(1)
+        sim_sleep(1.0)
 
     def test_a_wheels_in_tf(self):
         for link in tf_check.urdf_links():
@@ -40,16 +40,16 @@ class RobotName(unittest.TestCase):
         for wheel in ('left_rear_wheel', 'right_rear_wheel', 'left_front_wheel',
                       'right_front_wheel'):
             self.assertEqual(self.tf.publishers[wheel], {'/robot_state_publisher'}, wheel)
-        self.assertEqual(self.odom.msg.child_frame_id, 'base_link')
+        self.assertEqual(self.odom.latest().child_frame_id, 'base_link')
 
     def test_b_cmd_vel_drives_the_car(self):
-        p0 = self.truth.msg.pose.pose
-        tf_check.drive('/cmd_vel', 0.5, 0.0, 2.0)
-        p1 = self.truth.msg.pose.pose
+        t0, t1 = tf_check.drive('/cmd_vel', 0.5, 0.0, 2.0)
+        p0 = self.truth.first_stamped(t0).pose.pose
+        p1 = self.truth.first_stamped(t1).pose.pose
         moved = math.hypot(p1.position.x - p0.position.x, p1.position.y - p0.position.y)
         rospy.loginfo('drove %.3f m', moved)
         self.assertGreater(moved, 0.7)  # 1 m less what the start from rest costs
-        self.assertGreater(self.odom.msg.pose.pose.position.x, 0.7)
+        self.assertGreater(self.odom.first_stamped(t1).pose.pose.position.x, 0.7)
 
     def test_c_nothing_under_the_default_name(self):
         topics = [t for t, _ in rospy.get_published_topics()]

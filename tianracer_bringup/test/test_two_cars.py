@@ -28,6 +28,7 @@ from geometry_msgs.msg import Pose, Twist
 from sensor_msgs.msg import Image
 from gazebo_msgs.msg import ModelState
 from gazebo_msgs.srv import SetModelState
+from tianracer_sim.sim_time import Stream, sim_sleep
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import tf_check  # noqa: E402
@@ -53,10 +54,9 @@ class TwoCars(unittest.TestCase):
         cls.tf = tf_check.TfRecorder()
         cls.truth1, cls.truth2 = tf_check.truth('/tianracer'), tf_check.truth(CAR2)
         cls.scan1, cls.scan2 = tf_check.scans('/scan'), tf_check.scans(CAR2 + '/scan')
-        ok = tf_check.wall_wait(lambda: all(x.msg is not None for x in (
-            cls.truth1, cls.truth2, cls.scan1, cls.scan2)), 90.0)
-        assert ok, 'no ground truth or scans from both cars'
-        tf_check.sim_sleep(1.0)
+        for stream in (cls.truth1, cls.truth2, cls.scan1, cls.scan2):
+            stream.wait_count(1)
+        sim_sleep(1.0)
 
     def topics(self):
         """(published, subscribed) topic sets of car 1 and car 2, from the master."""
@@ -93,19 +93,21 @@ class TwoCars(unittest.TestCase):
         for link in links1:
             self.assertIsNotNone(self.tf.chain(link, 'odom'), link)
             self.assertIsNotNone(self.tf.chain('tianracer_02/' + link, 'tianracer_02/odom'), link)
-        self.assertEqual(self.scan1.msg.header.frame_id, 'lidar')
-        self.assertEqual(self.scan2.msg.header.frame_id, 'tianracer_02/lidar')
-        self.assertEqual(self.truth2.msg.child_frame_id, 'tianracer_02/base_link')
+        self.assertEqual(self.scan1.latest().header.frame_id, 'lidar')
+        self.assertEqual(self.scan2.latest().header.frame_id, 'tianracer_02/lidar')
+        self.assertEqual(self.truth2.latest().child_frame_id, 'tianracer_02/base_link')
         self.assertEqual(self.tf.chain('tianracer_02/odom', 'world'), ['tianracer_02/odom', 'world'])
         self.assertEqual(self.tf.duplicates(), {})
 
     def test_c_each_lidar_sees_the_other_car(self):
-        start = len(self.scan1.all), len(self.scan2.all)
-        tf_check.sim_sleep(0.5)  # 20 scans each
-        left1 = [tf_check.beam(s, 90) for s in self.scan1.all[start[0]:]]
-        right2 = [tf_check.beam(s, -90) for s in self.scan2.all[start[1]:]]
+        t = rospy.get_time()
+        for scans in (self.scan1, self.scan2):
+            scans.first_stamped(t + 0.5)  # 20 scans each
+        left1 = [tf_check.beam(s, 90) for s in self.scan1.between(t, t + 0.5)]
+        right2 = [tf_check.beam(s, -90) for s in self.scan2.between(t, t + 0.5)]
         self.assertGreaterEqual(min(len(left1), len(right2)), 10)
-        p1, p2 = self.truth1.msg.pose.pose.position, self.truth2.msg.pose.pose.position
+        p1 = self.truth1.first_stamped(t).pose.pose.position
+        p2 = self.truth2.first_stamped(t).pose.pose.position
         gap = math.hypot(p2.x - p1.x, p2.y - p1.y)
         self.assertAlmostEqual(gap, 0.4, delta=0.01)
         # The other lidar head's surface: the gap less its radius; the wall would be 0.7 m.
@@ -114,10 +116,10 @@ class TwoCars(unittest.TestCase):
         self.assertAlmostEqual(float(np.mean(right2)), gap - 0.021, delta=0.01)
 
     def test_d_second_cmd_vel_drives_only_the_second_car(self):
-        a1, a2 = self.truth1.msg.pose.pose.position, self.truth2.msg.pose.pose.position
-        tf_check.drive(CAR2 + '/cmd_vel', 0.5, 0.0, 2.0)
-        tf_check.sim_sleep(0.5)
-        b1, b2 = self.truth1.msg.pose.pose.position, self.truth2.msg.pose.pose.position
+        t0, t1 = tf_check.drive(CAR2 + '/cmd_vel', 0.5, 0.0, 2.0)
+        a1, a2 = [x.first_stamped(t0).pose.pose.position for x in (self.truth1, self.truth2)]
+        b1, b2 = [x.first_stamped(t1 + 0.5).pose.pose.position
+                  for x in (self.truth1, self.truth2)]
         self.assertGreater(b2.x - a2.x, 0.6)
         self.assertLess(math.hypot(b1.x - a1.x, b1.y - a1.y), 0.005)
 
@@ -125,10 +127,11 @@ class TwoCars(unittest.TestCase):
         """Centre pixel (m, NaN outside the camera's range) of a depth frame rendered after
         now."""
         t = rospy.get_time()
-        while True:
-            msg = rospy.wait_for_message('/real_sense/depth/image_raw', Image, timeout=60)
-            if msg.header.stamp.to_sec() > t:
-                break
+        frames = Stream('/real_sense/depth/image_raw', Image, buff_size=1 << 24)
+        try:
+            msg = frames.first_stamped(t + 1e-6)
+        finally:
+            frames.unregister()
         depth = np.frombuffer(msg.data, dtype='<f4').reshape(msg.height, msg.width)
         return float(depth[msg.height // 2, msg.width // 2])
 
@@ -136,13 +139,13 @@ class TwoCars(unittest.TestCase):
         before = self.centre_depth()
         rospy.wait_for_service('/gazebo/set_model_state', timeout=30)
         set_state = rospy.ServiceProxy('/gazebo/set_model_state', SetModelState)
-        p1 = self.truth1.msg.pose.pose
+        p1 = self.truth1.latest().pose.pose
         pose = Pose()
         pose.position.x, pose.position.y, pose.position.z = p1.position.x + 1.0, p1.position.y, \
             p1.position.z
         pose.orientation = p1.orientation
         self.assertTrue(set_state(ModelState('tianracer_02', pose, Twist(), 'world')).success)
-        tf_check.sim_sleep(0.3)
+        sim_sleep(0.3)
         after = self.centre_depth()
         # Car 1's depth camera sits 0.199 m ahead of its base_link, 0.052 m up. At that height
         # the centre ray passes over car 2's low tail and ends on the back of car 2's own depth

@@ -1,9 +1,8 @@
 """What the bringup rostests read from the ROS graph: TF with who published each frame,
-ground truth, scans, and /cmd_vel driving. Waits are in sim time (rospy.sleep on /clock),
-bounded in wall time so that a wedged sim fails instead of hanging."""
+ground truth, scans, and /cmd_vel driving. Waits are on what the sim guarantees, in sim time
+(tianracer_sim.sim_time)."""
 import math
 import threading
-import time
 import xml.etree.ElementTree as ET
 
 import rospy
@@ -13,24 +12,10 @@ from sensor_msgs.msg import LaserScan
 from tf2_msgs.msg import TFMessage
 
 from tianracer_bringup.ros_session import yaw_from_quaternion
+from tianracer_sim.sim_time import Stream, drive_twist, lossless
 
 
 yaw_of = yaw_from_quaternion
-
-
-def wall_wait(predicate, wall_timeout):
-    end = time.time() + wall_timeout
-    while time.time() < end and not rospy.is_shutdown():
-        if predicate():
-            return True
-        time.sleep(0.05)
-    return predicate()
-
-
-def sim_sleep(seconds, wall_timeout=120.0):
-    """Sleep `seconds` of sim time; False when the sim clock did not get there in time."""
-    target = rospy.get_time() + seconds
-    return wall_wait(lambda: rospy.get_time() >= target, wall_timeout)
 
 
 class TfRecorder(object):
@@ -42,9 +27,8 @@ class TfRecorder(object):
         self.parent = {}
         self.publishers = {}
         self.dynamic, self.static = set(), set()
-        rospy.Subscriber('/tf', TFMessage, self._on_tf, callback_args=False, queue_size=1000)
-        rospy.Subscriber('/tf_static', TFMessage, self._on_tf, callback_args=True,
-                         queue_size=1000)
+        lossless(rospy.Subscriber('/tf', TFMessage, self._on_tf, callback_args=False))
+        lossless(rospy.Subscriber('/tf_static', TFMessage, self._on_tf, callback_args=True))
 
     def _on_tf(self, msg, static):
         caller = msg._connection_header.get('callerid', '?')
@@ -84,27 +68,12 @@ def urdf_links(param='/robot_description'):
     return sorted(link.get('name') for link in root.findall('link'))
 
 
-class Latest(object):
-    """The latest message and a count, from a topic."""
-
-    def __init__(self, topic, cls):
-        self.msg, self.count, self.all = None, 0, []
-        self.lock = threading.Lock()
-        rospy.Subscriber(topic, cls, self._cb, queue_size=100)
-
-    def _cb(self, msg):
-        with self.lock:
-            self.msg = msg
-            self.count += 1
-            self.all.append(msg)
-
-
 def truth(ns):
-    return Latest('%s/ground_truth/odom' % ns, Odometry)
+    return Stream('%s/ground_truth/odom' % ns, Odometry)
 
 
 def scans(topic):
-    return Latest(topic, LaserScan)
+    return Stream(topic, LaserScan)
 
 
 def beam(scan, degrees):
@@ -113,15 +82,9 @@ def beam(scan, degrees):
 
 
 def drive(topic, linear, angular, seconds):
-    """Publishes the Twist at 20 Hz (sim time) for `seconds` of sim time, then a stop."""
+    """Drives with Twist(linear, angular) on `topic` (once connected) for `seconds` of sim
+    time, then publishes a stop. Returns (sim time at the start, at the stop)."""
     pub = rospy.Publisher(topic, Twist, queue_size=10)
-    wall_wait(lambda: pub.get_num_connections() > 0, 30.0)
-    cmd = Twist()
-    cmd.linear.x, cmd.angular.z = linear, angular
-    end = rospy.get_time() + seconds
-    wall_end = time.time() + 120.0
-    while rospy.get_time() < end and time.time() < wall_end and not rospy.is_shutdown():
-        pub.publish(cmd)
-        sim_sleep(0.05)
+    start = drive_twist(pub, seconds, linear, angular)
     pub.publish(Twist())
-    return pub
+    return start, rospy.get_time()

@@ -150,14 +150,20 @@ void SimNode::run() {
   status_sim_ = sim_->time();
   ros::WallTime wall0 = ros::WallTime::now();
   double sim0 = sim_->time();
+  bool paused_clock = false;  // the paused time went out on /clock
   while (ros::ok()) {
     queue_.callAvailable(ros::WallDuration(0.0));
     if (sim_->paused()) {
+      // /clock is throttled (~clock_rate): on pausing, the paused time goes out once more, so
+      // that every node's clock reaches it and a client can wait for exactly that time.
+      if (!paused_clock) publishClock();
+      paused_clock = true;
       queue_.callAvailable(ros::WallDuration(0.01));
       publishStatus();
       pacing_reset_ = true;
       continue;
     }
+    paused_clock = false;
     if (pacing_reset_) {
       wall0 = ros::WallTime::now();
       sim0 = sim_->time();

@@ -1,6 +1,6 @@
 """Shared by the rostests: where the built tianracer_sim_node is (for tests that start it
-themselves, with arguments or an environment a launch file cannot give), reading its start-up
-output, and driving the car while sim time passes."""
+themselves, with arguments or an environment a launch file cannot give), and reading its
+start-up output. (Waiting on the running sim: tianracer_sim.sim_time.)"""
 import os
 import signal
 import socket
@@ -54,18 +54,3 @@ def startup_output(args, wanted, name, timeout=90.0):
     finally:
         master.terminate()
         master.wait(timeout=10)
-
-
-def drive_for(pub, seconds, v, w, wall_timeout):
-    """Publishes Twist(linear.x v, angular.z w) on `pub` every 20 ms of wall time while `seconds`
-    of sim time pass. False when sim time did not get there within `wall_timeout` s of wall time."""
-    import rospy
-    from geometry_msgs.msg import Twist
-    t_end = rospy.get_time() + seconds
-    wall_end = time.time() + wall_timeout
-    msg = Twist()
-    msg.linear.x, msg.angular.z = v, w
-    while rospy.get_time() < t_end and time.time() < wall_end:
-        pub.publish(msg)
-        time.sleep(0.02)
-    return time.time() < wall_end

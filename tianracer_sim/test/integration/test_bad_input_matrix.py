@@ -12,7 +12,6 @@ Sim time throughout; wall time only bounds a wait so that a wedged sim fails ins
 import math
 import sys
 import threading
-import time
 import unittest
 
 import rosnode
@@ -27,6 +26,7 @@ from std_srvs.srv import Empty
 
 from gazebo_msgs.msg import ModelState
 from gazebo_msgs.srv import GetModelState, SetModelState
+from tianracer_sim.sim_time import lossless, sim_sleep, wait_connected, wait_for
 
 NS = '/tianracer'
 MODEL = 'tianracer'
@@ -51,27 +51,31 @@ def up_of(q):
 
 
 class Monitor(object):
-    """Counts the messages of each published topic and keeps the first non-finite value of each
-    (scan ranges may be +-inf, REP 117, but never NaN)."""
+    """Counts the messages of each published topic (every one that reaches this process), keeps
+    the latest stamp of each and the first non-finite value of each (scan ranges may be +-inf,
+    REP 117, but never NaN)."""
 
     def __init__(self):
         self.lock = threading.Lock()
         self.count = {}
+        self.stamp = {}
         self.bad = {}
         self.clock = 0.0
         self.truth = None
         self.rosout = []
         self.published_by_us = 0  # joint_states we inject ourselves are not the sim's
-        rospy.Subscriber('/clock', Clock, self.on_clock, queue_size=100)
-        rospy.Subscriber(NS + '/joint_states', JointState, self.on_js, queue_size=1000)
-        rospy.Subscriber(NS + '/ground_truth/odom', Odometry, self.on_truth, queue_size=1000)
-        rospy.Subscriber(NS + '/odom', Odometry, self.on_odom, queue_size=1000)
-        rospy.Subscriber('/scan', LaserScan, self.on_scan, queue_size=100)
-        rospy.Subscriber('/rosout', Log, self.on_log, queue_size=1000)
+        for topic, cls, cb in (('/clock', Clock, self.on_clock),
+                               (NS + '/joint_states', JointState, self.on_js),
+                               (NS + '/ground_truth/odom', Odometry, self.on_truth),
+                               (NS + '/odom', Odometry, self.on_odom),
+                               ('/scan', LaserScan, self.on_scan),
+                               ('/rosout', Log, self.on_log)):
+            lossless(rospy.Subscriber(topic, cls, cb))
 
-    def seen(self, topic, ok, what):
+    def seen(self, topic, ok, what, stamp):
         with self.lock:
             self.count[topic] = self.count.get(topic, 0) + 1
+            self.stamp[topic] = stamp.to_sec()
             if not ok and topic not in self.bad:
                 self.bad[topic] = what
 
@@ -82,19 +86,20 @@ class Monitor(object):
     def on_js(self, m):
         if m._connection_header.get('callerid') != SIM_NODE:
             return  # our own bad joint_states (test_e)
-        self.seen('joint_states', finite(*(m.position + m.velocity + m.effort)), str(m))
+        self.seen('joint_states', finite(*(m.position + m.velocity + m.effort)), str(m),
+                  m.header.stamp)
 
     def on_truth(self, m):
         self.truth = m
-        self.seen('ground_truth/odom', finite(*odom_values(m)), str(m.pose))
+        self.seen('ground_truth/odom', finite(*odom_values(m)), str(m.pose), m.header.stamp)
 
     def on_odom(self, m):
-        self.seen('odom', finite(*odom_values(m)), str(m.pose))
+        self.seen('odom', finite(*odom_values(m)), str(m.pose), m.header.stamp)
 
     def on_scan(self, m):
         ok = not any(math.isnan(r) for r in m.ranges + m.intensities) and finite(
             m.angle_min, m.angle_max, m.angle_increment, m.range_min, m.range_max)
-        self.seen('scan', ok, 'NaN in ranges or intensities')
+        self.seen('scan', ok, 'NaN in ranges or intensities', m.header.stamp)
 
     def on_log(self, m):
         with self.lock:
@@ -119,28 +124,24 @@ class MatrixCase(unittest.TestCase):
             lambda name, pose, twist, frame: set_state(ModelState(name, pose, twist, frame)))
         cls.get_state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
         cls.reset_world = rospy.ServiceProxy('/gazebo/reset_world', Empty)
-        deadline = time.time() + 60
-        while cls.mon.truth is None and time.time() < deadline:
-            time.sleep(0.1)
+        wait_for(lambda: cls.mon.truth is not None, 'ground truth')
 
     def wait_sim(self, seconds):
-        """Waits `seconds` of sim time; fails if the clock stalls for 20 s of wall time."""
-        t_end = self.mon.snapshot()[2] + seconds
-        deadline = time.time() + 20.0 + 5.0 * seconds
-        while self.mon.snapshot()[2] < t_end:
-            self.assertLess(time.time(), deadline, 'sim clock stopped')
-            time.sleep(0.01)
+        """Waits `seconds` of sim time."""
+        sim_sleep(seconds)
 
     def assert_alive_and_finite(self, context):
-        count0, _, t0 = self.mon.snapshot()
+        _, _, t0 = self.mon.snapshot()
         self.wait_sim(0.5)
-        count1, bad, t1 = self.mon.snapshot()
+        _, bad, t1 = self.mon.snapshot()
         self.assertGreater(t1, t0, context + ': the sim stopped stepping')
         self.assertTrue(rosnode.rosnode_ping(SIM_NODE, max_count=1), context + ': sim node down')
-        self.assertEqual(bad, {}, context + ': non-finite values published')
         for topic in ('joint_states', 'ground_truth/odom'):
-            self.assertGreater(count1.get(topic, 0), count0.get(topic, 0),
-                               '%s: %s stopped' % (context, topic))
+            # Published on after t0: a message stamped later arrives (however late it is read).
+            wait_for(lambda: self.mon.stamp.get(topic, -1.0) > t0,
+                     '%s: %s stamped after %.3f' % (context, topic, t0))
+        self.assertEqual(self.mon.snapshot()[1], {}, context + ': non-finite values published')
+        self.assertEqual(bad, {}, context + ': non-finite values published')
 
     def logs_since(self, n, name=None):
         with self.mon.lock:
@@ -167,10 +168,8 @@ class BadInputMatrix(MatrixCase):
         self.assertEqual(len(controllers), 4, controllers)
         pubs = {c: rospy.Publisher('%s/%s/command' % (NS, c), Float64, queue_size=10)
                 for c in controllers}
-        deadline = time.time() + 10
-        while any(p.get_num_connections() == 0 for p in pubs.values()):
-            self.assertLess(time.time(), deadline, 'command topics not subscribed')
-            time.sleep(0.05)
+        for p in pubs.values():
+            wait_connected(p)
         n = self.n_logs()
         for value in BAD_VALUES:
             for c, p in pubs.items():
@@ -188,11 +187,7 @@ class BadInputMatrix(MatrixCase):
 
     def test_b_cmd_vel(self):
         """NaN, +-inf, +-1e30 in each field of /cmd_vel (cmd_vel_node)."""
-        pub = rospy.Publisher('/cmd_vel', Twist, queue_size=10)
-        deadline = time.time() + 10
-        while pub.get_num_connections() == 0:
-            self.assertLess(time.time(), deadline, '/cmd_vel not subscribed')
-            time.sleep(0.05)
+        pub = wait_connected(rospy.Publisher('/cmd_vel', Twist, queue_size=10))
         n = self.n_logs()
         fields = ('linear.x', 'linear.y', 'linear.z', 'angular.x', 'angular.y', 'angular.z')
         for value in BAD_VALUES:
@@ -265,11 +260,7 @@ class BadInputMatrix(MatrixCase):
     def test_e_wheel_odometry_input(self):
         """NaN, inf and 1e30 in joint_states (wheel_odometry_node's input): /tianracer/odom stays
         finite."""
-        pub = rospy.Publisher(NS + '/joint_states', JointState, queue_size=10)
-        deadline = time.time() + 10
-        while pub.get_num_connections() == 0:
-            self.assertLess(time.time(), deadline, 'joint_states not subscribed')
-            time.sleep(0.05)
+        pub = wait_connected(rospy.Publisher(NS + '/joint_states', JointState, queue_size=10))
         names = ['left_rear_wheel_joint', 'right_rear_wheel_joint', 'left_steering_hinge_joint',
                  'right_steering_hinge_joint']
         for value in BAD_VALUES:

@@ -6,14 +6,13 @@ contact points at the box's face, normals pushing the car back and a force that 
 Everything in sim time. A bumper whose frameName is no link, and a contact sensor without the
 plugin, are left out with a message."""
 import os
-import threading
-import time
 import unittest
 
 import rospy
 import rostest
 from gazebo_msgs.msg import ContactsState
 from std_msgs.msg import Float64
+from tianracer_sim.sim_time import Stream, published_rate
 
 from sim_node_binary import startup_output
 
@@ -25,53 +24,41 @@ COMMANDS = ['/tianracer/left_rear_wheel_velocity_controller/command',
 class BumperTest(unittest.TestCase):
     def test_a_car_into_box(self):
         rospy.init_node('test_bumper')
-        lock = threading.Lock()
-        states = []
-
-        def on_bumper(m):
-            with lock:
-                states.append(m)
-
-        rospy.Subscriber('/tianracer/bumper', ContactsState, on_bumper, queue_size=1000)
+        bumper = Stream('/tianracer/bumper', ContactsState)
         pubs = [rospy.Publisher(t, Float64, queue_size=1, latch=True) for t in COMMANDS]
         for p in pubs:
             p.publish(Float64(1.0 / WHEEL_RADIUS))
-        deadline = time.time() + 180.0
-        while time.time() < deadline:
-            with lock:
-                hit = [m for m in states if any(s.collision2_name.startswith('box_front') for s in m.states)]
-                if hit and hit[0].header.stamp.to_sec() + 0.5 < (states[-1].header.stamp.to_sec()):
-                    break
-            time.sleep(0.1)
-        with lock:
-            self.assertTrue(states, 'nothing on /tianracer/bumper')
-            hit = [m for m in states if any(s.collision2_name.startswith('box_front') for s in m.states)]
-            self.assertTrue(hit, 'no contact with box_front within 180 s wall; last states: %s'
-                            % [s.collision2_name for s in states[-1].states])
-            first = hit[0]
-            # Published at the sensor's 50 Hz, empty while nothing touched.
-            before = [m for m in states if m.header.stamp < first.header.stamp]
-            self.assertGreater(len(before), 20)
-            self.assertTrue(all(not m.states for m in before[:10]), 'contacts before the car moved')
-            stamps = [m.header.stamp.to_sec() for m in states[:50]]
-            gaps = [b - a for a, b in zip(stamps, stamps[1:])]
-            self.assertAlmostEqual(sum(gaps) / len(gaps), 0.02, delta=0.002)
-            self.assertEqual(first.header.frame_id, 'world')
-            s = [s for s in first.states if s.collision2_name.startswith('box_front')][0]
-            self.assertEqual(s.collision1_name, 'tianracer::base_link')
-            self.assertEqual(s.collision2_name, 'box_front::link')
-            self.assertEqual(len(s.contact_positions), len(s.depths))
-            self.assertEqual(len(s.wrenches), len(s.depths))
-            for p in s.contact_positions:
-                self.assertAlmostEqual(p.x, 1.8, delta=0.02)  # the box's face
-            for n in s.contact_normals:
-                self.assertLess(n.x, -0.9)  # pushing the car back
-            # The car is stopped by the box: over the last 0.5 s the force is backwards.
-            later = [m for m in hit if m.header.stamp.to_sec() > first.header.stamp.to_sec() + 0.2]
-            forces = [st.total_wrench.force.x for m in later for st in m.states
-                      if st.collision2_name.startswith('box_front')]
-            self.assertTrue(forces)
-            self.assertLess(sum(forces) / len(forces), 0.0)
+
+        def box(m):
+            return any(s.collision2_name.startswith('box_front') for s in m.states)
+
+        # The first contact with the box, then 0.5 s of sim time of it.
+        _, t_hit, _ = bumper.first(lambda t, m: box(m), 'a contact with box_front')
+        bumper.first_stamped(t_hit + 0.5)
+        states = bumper.messages()
+        hit = [m for m in states if box(m)]
+        first = hit[0]
+        # Published at the sensor's 50 Hz, empty while nothing touched.
+        before = [m for m in states if m.header.stamp < first.header.stamp]
+        self.assertGreater(len(before), 20)
+        self.assertTrue(all(not m.states for m in before[:10]), 'contacts before the car moved')
+        self.assertAlmostEqual(published_rate(states[:50]), 50.0, delta=5.0)
+        self.assertEqual(first.header.frame_id, 'world')
+        s = [s for s in first.states if s.collision2_name.startswith('box_front')][0]
+        self.assertEqual(s.collision1_name, 'tianracer::base_link')
+        self.assertEqual(s.collision2_name, 'box_front::link')
+        self.assertEqual(len(s.contact_positions), len(s.depths))
+        self.assertEqual(len(s.wrenches), len(s.depths))
+        for p in s.contact_positions:
+            self.assertAlmostEqual(p.x, 1.8, delta=0.02)  # the box's face
+        for n in s.contact_normals:
+            self.assertLess(n.x, -0.9)  # pushing the car back
+        # The car is stopped by the box: over the last 0.5 s the force is backwards.
+        later = [m for m in hit if m.header.stamp.to_sec() > t_hit + 0.2]
+        forces = [st.total_wrench.force.x for m in later for st in m.states
+                  if st.collision2_name.startswith('box_front')]
+        self.assertTrue(forces)
+        self.assertLess(sum(forces) / len(forces), 0.0)
         published = dict(rospy.get_published_topics())
         self.assertIn('/tianracer/bumper', published)
         self.assertNotIn('/tianracer/bad_bumper', published)

@@ -17,8 +17,6 @@ import math
 import os
 import subprocess
 import tempfile
-import threading
-import time
 import unittest
 
 import rospy
@@ -26,8 +24,9 @@ import rostest
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import CameraInfo, Image, Imu, JointState, LaserScan
+from tianracer_sim.sim_time import Stream, drive_twist, published_rate
 
-from sim_node_binary import drive_for, startup_output
+from sim_node_binary import startup_output
 
 V, W = 0.5, 0.5
 F = 320 / (2.0 * math.tan(1.3962634 / 2.0))  # the stereo cameras' focal length (px)
@@ -54,46 +53,35 @@ class CarATest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('test_car_a')
-        cls.lock = threading.Lock()
-        cls.msgs = {topic: [] for topic in TOPICS}
-        for topic, (msg_type, _) in TOPICS.items():
-            rospy.Subscriber(topic, msg_type, lambda m, t=topic: cls._add(t, m), queue_size=200)
+        cls.msgs = {topic: Stream(topic, msg_type) for topic, (msg_type, _) in TOPICS.items()}
         cls.cmd = rospy.Publisher('/cmd_vel', Twist, queue_size=10)
 
-    @classmethod
-    def _add(cls, topic, msg):
-        with cls.lock:
-            cls.msgs[topic].append(msg)
+    def since(self, topic, t0, t1=None):
+        """Messages of `topic` stamped t0 (.. t1, once one stamped t1 or later has come)."""
+        if t1 is None:
+            return self.msgs[topic].between(t0, float('inf'))
+        self.msgs[topic].first_stamped(t1)
+        return self.msgs[topic].between(t0, t1)
 
-    def since(self, topic, t0):
-        with self.lock:
-            return [m for m in self.msgs[topic] if m.header.stamp.to_sec() >= t0]
+    def wait_for_all(self):
+        for stream in self.msgs.values():
+            stream.wait_count(1)
 
-    def wait_for_all(self, wall_timeout=120.0):
-        end = time.time() + wall_timeout
-        while time.time() < end:
-            with self.lock:
-                missing = [t for t, m in self.msgs.items() if not m]
-            if not missing:
-                return
-            time.sleep(0.1)
-        self.fail('no message on %s' % missing)
-
-    def drive(self, seconds, v, w, wall_timeout=240.0):
-        """Publishes the command while waiting `seconds` of sim time."""
-        self.assertTrue(drive_for(self.cmd, seconds, v, w, wall_timeout),
-                        'sim time did not advance')
+    def drive(self, seconds, v, w):
+        """Publishes the command while `seconds` of sim time pass; returns (start, end)."""
+        t0 = drive_twist(self.cmd, seconds, v, w)
+        return t0, rospy.get_time()
 
     def test_a_sensors_at_their_rates_with_their_fields(self):
         self.wait_for_all()
-        t0 = rospy.get_time()
-        self.drive(3.0, 0.0, 0.0)
+        t0, t1 = self.drive(3.0, 0.0, 0.0)
         for topic, (_, rate) in TOPICS.items():
-            msgs = self.since(topic, t0)
+            msgs = self.since(topic, t0, t1)
             self.assertGreater(len(msgs), 3 * rate * 0.5, topic)
-            stamps = [m.header.stamp.to_sec() for m in msgs]
-            measured = (len(stamps) - 1) / (stamps[-1] - stamps[0])
-            rospy.loginfo('%s: %.3f Hz (configured %.1f)', topic, measured, rate)
+            # What the sim published (header.seq counts it) per second of sim time.
+            measured = published_rate(msgs)
+            rospy.loginfo('%s: %.3f Hz (configured %.1f), %d received', topic, measured, rate,
+                          len(msgs))
             self.assertAlmostEqual(measured, rate, delta=0.02 * rate, msg=topic)
 
         scan = self.since('/car_a/scan', t0)[-1]
@@ -126,8 +114,8 @@ class CarATest(unittest.TestCase):
             self.assertAlmostEqual(info.P[3], expected_tx, delta=1e-6, msg=side)
 
         # One shutter: the left and right frames carry the same stamps.
-        left = {m.header.stamp for m in self.since('/car_a/stereo/left/image_raw', t0 + 0.5)}
-        right = {m.header.stamp for m in self.since('/car_a/stereo/right/image_raw', t0 + 0.5)}
+        left = {m.header.stamp for m in self.since('/car_a/stereo/left/image_raw', t0 + 0.5, t1)}
+        right = {m.header.stamp for m in self.since('/car_a/stereo/right/image_raw', t0 + 0.5, t1)}
         self.assertGreater(len(left & right), 0.8 * len(left))
 
         js = self.since('/car_a/joint_states', t0)[-1]
@@ -139,10 +127,9 @@ class CarATest(unittest.TestCase):
     def test_b_drives_a_left_turn_with_the_measured_geometry(self):
         self.wait_for_all()
         self.drive(4.0, V, W)  # into the steady turn
-        t0 = rospy.get_time()
-        self.drive(4.0, V, W)
-        truth = self.since('/car_a/ground_truth/odom', t0)
-        imu = self.since('/car_a/imu/data', t0)
+        t0, t1 = self.drive(4.0, V, W)
+        truth = self.since('/car_a/ground_truth/odom', t0, t1)
+        imu = self.since('/car_a/imu/data', t0, t1)
         self.assertGreater(len(truth), 100)
         vx = mean([m.twist.twist.linear.x for m in truth])
         wz = mean([m.twist.twist.angular.z for m in truth])

@@ -10,8 +10,6 @@ turns it wider or tighter, a wrong wheel radius changes the speed.
 """
 import math
 import os
-import threading
-import time
 import unittest
 
 import rospy
@@ -21,8 +19,9 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs import point_cloud2
 from sensor_msgs.msg import CameraInfo, Image, Imu, PointCloud2, PointField
+from tianracer_sim.sim_time import Stream, drive_twist, wait_for
 
-from sim_node_binary import drive_for, startup_output
+from sim_node_binary import startup_output
 
 V, W = 0.5, 0.5
 
@@ -56,51 +55,33 @@ class CarModelTest(unittest.TestCase):
         rospy.init_node('test_car_models')
         cls.name = rospy.get_param('~model')
         cls.model = MODELS[cls.name]
-        cls.lock = threading.Lock()
-        cls.msgs = {t: [] for t in cls.model['topics']}
         ns = cls.model['ns']
-        cls.truth, cls.odom = [], []
-        cls.subs = [rospy.Subscriber(ns + '/ground_truth/odom', Odometry,
-                                     lambda m: cls._add(cls.truth, m), queue_size=500),
-                    rospy.Subscriber(ns + '/odom', Odometry, lambda m: cls._add(cls.odom, m),
-                                     queue_size=500)]
-        for topic, (msg_type, _, _) in cls.model['topics'].items():
-            cls.subs.append(rospy.Subscriber(topic, msg_type,
-                                             lambda m, t=topic: cls._add(cls.msgs[t], m),
-                                             queue_size=500))
+        cls.truth = Stream(ns + '/ground_truth/odom', Odometry)
+        cls.odom = Stream(ns + '/odom', Odometry)
+        cls.msgs = {topic: Stream(topic, msg_type, buff_size=1 << 24)
+                    for topic, (msg_type, _, _) in cls.model['topics'].items()}
         cls.cmd = rospy.Publisher('/cmd_vel', Twist, queue_size=10)
         cls.tf_buffer = tf2_ros.Buffer()
         cls.tf_listener = tf2_ros.TransformListener(cls.tf_buffer)
 
-    @classmethod
-    def _add(cls, store, msg):
-        with cls.lock:
-            store.append(msg)
+    def drive(self, seconds, v=V, w=W):
+        """Publishes the command while `seconds` of sim time pass; returns (start, end)."""
+        t0 = drive_twist(self.cmd, seconds, v, w)
+        return t0, rospy.get_time()
 
-    def wait_sim(self, seconds, v=V, w=W, wall_timeout=180.0):
-        """Publishes the command while waiting `seconds` of sim time."""
-        self.assertTrue(drive_for(self.cmd, seconds, v, w, wall_timeout),
-                        'sim time did not advance')
-
-    def wait_for(self, store, what, wall_timeout=90.0):
-        end = time.time() + wall_timeout
-        while time.time() < end:
-            with self.lock:
-                if store:
-                    return
-            time.sleep(0.05)
-        self.fail('no message on ' + what)
+    @staticmethod
+    def between(stream, t0, t1):
+        """Messages stamped t0 <= stamp < t1, once one stamped t1 or later has come."""
+        stream.first_stamped(t1)
+        return [m for m in stream.between(t0, t1) if m.header.stamp.to_sec() < t1]
 
     def test_a_drives_with_its_measured_geometry(self):
-        ns = self.model['ns']
-        self.wait_for(self.truth, ns + '/ground_truth/odom')
-        self.wait_for(self.odom, ns + '/odom')
-        self.wait_sim(4.0)  # into the steady turn
-        t0 = rospy.get_time()
-        self.wait_sim(3.0)
-        with self.lock:
-            truth = [m for m in self.truth if m.header.stamp.to_sec() >= t0]
-            odom = [m for m in self.odom if m.header.stamp.to_sec() >= t0]
+        self.truth.wait_count(1)
+        self.odom.wait_count(1)
+        self.drive(4.0)  # into the steady turn
+        t0, t1 = self.drive(3.0)
+        truth = self.between(self.truth, t0, t1)
+        odom = self.between(self.odom, t0, t1)
         self.assertGreater(len(truth), 50)
         v = mean([m.twist.twist.linear.x for m in truth])
         w = mean([m.twist.twist.angular.z for m in truth])
@@ -116,29 +97,23 @@ class CarModelTest(unittest.TestCase):
 
     def test_b_wheels_in_tf(self):
         """robot_state_publisher listens to this robot's joint_states: its wheels are in TF."""
-        self.wait_for(self.truth, 'ground truth')
-        end = time.time() + 60.0
-        while time.time() < end:
-            if self.tf_buffer.can_transform(self.model['base'], self.model['wheel'], rospy.Time()):
-                break
-            time.sleep(0.1)
-        self.assertTrue(self.tf_buffer.can_transform(self.model['base'], self.model['wheel'],
-                                                     rospy.Time()),
-                        '%s -> %s not in TF' % (self.model['base'], self.model['wheel']))
+        self.truth.wait_count(1)
+        wait_for(lambda: self.tf_buffer.can_transform(self.model['base'], self.model['wheel'],
+                                                      rospy.Time()),
+                 '%s -> %s in TF' % (self.model['base'], self.model['wheel']), poll=0.1)
 
     def test_c_sensors_at_their_rates(self):
-        for topic in self.model['topics']:
-            self.wait_for(self.msgs[topic], topic)
-        t0 = rospy.get_time()
-        self.wait_sim(4.0)
-        t1 = rospy.get_time() - 0.5  # messages in flight at the end
+        for stream in self.msgs.values():
+            stream.wait_count(1)
+        t0, t1 = self.drive(4.0)
         for topic, (_, rate, frame) in self.model['topics'].items():
-            with self.lock:
-                msgs = [m for m in self.msgs[topic] if t0 <= m.header.stamp.to_sec() < t1]
+            msgs = self.between(self.msgs[topic], t0, t1)
+            # What the sim published in [t0, t1) (header.seq counts it).
+            published = msgs[-1].header.seq - msgs[0].header.seq + 1
             n_expected = rate * (t1 - t0)
-            rospy.loginfo('%s: %d messages in %.2f s of sim time (%.1f expected)', topic,
-                          len(msgs), t1 - t0, n_expected)
-            self.assertAlmostEqual(len(msgs), n_expected, delta=0.1 * n_expected + 1, msg=topic)
+            rospy.loginfo('%s: %d messages published (%d received) in %.2f s of sim time (%.1f '
+                          'expected)', topic, published, len(msgs), t1 - t0, n_expected)
+            self.assertAlmostEqual(published, n_expected, delta=0.1 * n_expected + 1, msg=topic)
             self.assertEqual(msgs[-1].header.frame_id, frame, topic)
             self.check(topic, msgs[-1])
 

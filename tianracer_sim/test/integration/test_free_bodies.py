@@ -8,18 +8,16 @@
 Sim time throughout; wall time only bounds the waits.
 """
 import math
-import threading
-import time
 import unittest
 
 import numpy as np
 import rospy
 import rostest
 from nav_msgs.msg import Odometry
-from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from std_msgs.msg import Float64
 from std_srvs.srv import Empty
+from tianracer_sim.sim_time import Stream, sim_sleep, wait_connected
 
 from gazebo_msgs.srv import GetModelState
 
@@ -54,48 +52,15 @@ class FreeBodies(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('test_free_bodies')
-        cls.lock = threading.Lock()
-        cls.clock = 0.0
-        cls.truth = None
-        cls.scans = []
-        rospy.Subscriber('/clock', Clock, cls.on_clock, queue_size=1)
-        rospy.Subscriber('/tianracer/ground_truth/odom', Odometry, cls.on_truth, queue_size=1)
-        rospy.Subscriber('/scan', LaserScan, cls.on_scan, queue_size=100)
+        cls.truth = Stream('/tianracer/ground_truth/odom', Odometry, keep=100)
+        cls.scans = Stream('/scan', LaserScan, keep=100)
         for srv in ('get_model_state', 'reset_world'):
             rospy.wait_for_service('/gazebo/' + srv, timeout=60)
         cls.get_state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
         cls.reset_world = rospy.ServiceProxy('/gazebo/reset_world', Empty)
         cls.wheels = [rospy.Publisher('/tianracer/%s_rear_wheel_velocity_controller/command' % s,
                                       Float64, queue_size=1, latch=True) for s in ('left', 'right')]
-        deadline = time.time() + 60
-        while cls.truth is None and time.time() < deadline:
-            time.sleep(0.1)
-
-    @classmethod
-    def on_clock(cls, msg):
-        with cls.lock:
-            cls.clock = msg.clock.to_sec()
-
-    @classmethod
-    def on_truth(cls, msg):
-        with cls.lock:
-            cls.truth = msg
-
-    @classmethod
-    def on_scan(cls, msg):
-        with cls.lock:
-            cls.scans.append(msg)
-
-    def wait_sim(self, seconds):
-        with self.lock:
-            t_end = self.clock + seconds
-        deadline = time.time() + 30.0 + 5.0 * seconds
-        while True:
-            with self.lock:
-                if self.clock >= t_end:
-                    return
-            self.assertLess(time.time(), deadline, 'sim clock stopped')
-            time.sleep(0.01)
+        cls.truth.wait_count(1)
 
     def box(self):
         res = self.get_state(model_name='crate', relative_entity_name='')
@@ -104,30 +69,27 @@ class FreeBodies(unittest.TestCase):
         return np.array([p.x, p.y, p.z]), rotation(res.pose.orientation)
 
     def drive(self, speed):
-        deadline = time.time() + 20
-        while any(p.get_num_connections() == 0 for p in self.wheels):
-            self.assertLess(time.time(), deadline, 'no wheel controller subscribes')
-            time.sleep(0.05)
+        for p in self.wheels:
+            wait_connected(p)
         for p in self.wheels:
             p.publish(Float64(speed / 0.032))
 
     def test_1_pushed_box_moves_and_the_lidar_sees_it_there(self):
         p0, _ = self.box()
         np.testing.assert_allclose(p0, BOX_START, atol=1e-3)
-        self.wait_sim(0.5)
+        sim_sleep(0.5)
         self.drive(0.5)
-        self.wait_sim(3.0)
+        sim_sleep(3.0)
         self.drive(0.0)
-        self.wait_sim(1.5)  # car and box come to rest
+        sim_sleep(1.5)  # car and box come to rest
         p1, R1 = self.box()
         rospy.loginfo('box pushed from %s to %s', p0, p1)
         self.assertGreater(p1[0] - p0[0], 0.3, 'the car did not push the box')
-        with self.lock:
-            self.scans.clear()
-        self.wait_sim(0.6)
-        with self.lock:
-            scans = list(self.scans)
-            truth = self.truth
+        # The scans of 0.6 s of sim time (24 at 40 Hz) with box and car at rest.
+        t = rospy.get_time()
+        self.scans.first_stamped(t + 0.6)
+        scans = self.scans.between(t, t + 0.6)
+        truth = self.truth.first_stamped(t)
         self.assertGreaterEqual(len(scans), 20)
         scans = scans[-20:]
         s = scans[0]

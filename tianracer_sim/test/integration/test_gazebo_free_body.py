@@ -1,11 +1,8 @@
 #!/usr/bin/env python3
 """rostest: the Gazebo interface on a free box (free_box.world's 'crate', 0.5 kg): it is in
 model_states and link_states where the physics has it, set_model_state moves it, and
-apply_body_wrench moves it by F t^2/(2m) (lifted 3 m, so that only gravity, vertical, acts
+apply_body_wrench moves it by F t^2/(2m) (lifted 10 m, so that only gravity, vertical, acts
 besides the force). Sim time; wall time only bounds the waits."""
-import math
-import threading
-import time
 import unittest
 
 import rospy
@@ -15,6 +12,11 @@ from gazebo_msgs.srv import (ApplyBodyWrench, GetModelProperties, GetModelState,
                              GetWorldProperties, SetModelState)
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3, Wrench
 from std_srvs.srv import Empty
+from tianracer_sim.sim_time import Paused, Stream, sim_sleep, wait_for
+
+
+def no_stamp(msg):
+    return 0.0  # ModelStates and LinkStates carry no header
 
 BOX, MASS = 'crate', 0.5
 
@@ -23,10 +25,8 @@ class GazeboFreeBody(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('test_gazebo_free_body')
-        cls.lock = threading.Lock()
-        cls.models, cls.links = [], []
-        rospy.Subscriber('/gazebo/model_states', ModelStates, cls.keep(cls.models), queue_size=50)
-        rospy.Subscriber('/gazebo/link_states', LinkStates, cls.keep(cls.links), queue_size=50)
+        cls.models = Stream('/gazebo/model_states', ModelStates, stamp=no_stamp, keep=500)
+        cls.links = Stream('/gazebo/link_states', LinkStates, stamp=no_stamp, keep=500)
         names = ['pause_physics', 'unpause_physics', 'reset_world', 'get_model_state',
                  'set_model_state', 'get_model_properties', 'get_world_properties',
                  'apply_body_wrench']
@@ -35,31 +35,15 @@ class GazeboFreeBody(unittest.TestCase):
         for n, t in zip(names, types):
             rospy.wait_for_service('/gazebo/' + n, timeout=60)
             setattr(cls, n, rospy.ServiceProxy('/gazebo/' + n, t))
-        end = time.time() + 60
-        while time.time() < end:
-            with cls.lock:
-                if cls.models and cls.links:
-                    break
-            time.sleep(0.1)
-
-    @classmethod
-    def keep(cls, store):
-        def cb(msg):
-            with cls.lock:
-                store.append(msg)
-                del store[:-100]
-        return cb
+        cls.models.wait_count(1)
+        cls.links.wait_count(1)
 
     def wait_sim(self, seconds):
-        target = rospy.get_time() + seconds
-        end = time.time() + 60
-        while rospy.get_time() < target:
-            self.assertLess(time.time(), end, 'sim time stalled')
-            time.sleep(0.01)
+        sim_sleep(seconds)
 
     def paused(self):
-        self.pause_physics()
-        time.sleep(0.3)
+        """Pauses; returns once this process's clock is at the paused time."""
+        return Paused()
 
     def test_a_the_box_is_a_moving_model(self):
         props = self.get_model_properties(BOX)
@@ -72,14 +56,26 @@ class GazeboFreeBody(unittest.TestCase):
         r = self.set_model_state(ModelState(BOX, Pose(Point(0.8, 0.0, 0.65),
                                                       Quaternion(0, 0, 0, 1)), Twist(), ''))
         self.assertTrue(r.success, r.status_message)
+        n_models, n_links = self.models.count(), self.links.count()
         self.unpause_physics()
-        self.wait_sim(0.2)
-        with self.lock:
-            m, l = self.models[-1], self.links[-1]
-        z_model = m.pose[m.name.index(BOX)].position.z
-        z_link = l.pose[l.name.index(BOX + '::link')].position.z
-        vz = m.twist[m.name.index(BOX)].linear.z
-        text = 'after 0.2 s: z %.4f (link %.4f), vz %.3f' % (z_model, z_link, vz)
+        # ModelStates and LinkStates carry no stamp: a step of the fall shows in both with the
+        # box at vz < -1.5 m/s (-g t: from 0.153 s on, until it lands at 0.32 s) and the same
+        # height. (Any such step: the sim's queues are 1 deep and may drop one of them.)
+        def falling_pair():
+            links = [l.pose[l.name.index(BOX + '::link')].position.z
+                     for l in self.links.messages(n_links)]
+            for m in self.models.messages(n_models):
+                i = m.name.index(BOX)
+                if m.twist[i].linear.z < -1.5:
+                    z = m.pose[i].position.z
+                    match = [zl for zl in links if abs(zl - z) < 1e-9]
+                    if match:
+                        return z, match[0], m.twist[i].linear.z
+            return None
+
+        z_model, z_link, vz = wait_for(falling_pair, 'a step of the fall in model_states and '
+                                       'link_states')
+        text = 'falling: z %.4f (link %.4f), vz %.3f' % (z_model, z_link, vz)
         self.assertLess(z_model, 0.65 - 0.1, text)  # falling: 0.196 m after 0.2 s
         self.assertGreater(z_model, s.pose.position.z, text)
         self.assertAlmostEqual(z_model, z_link, places=9, msg=text)
@@ -91,7 +87,8 @@ class GazeboFreeBody(unittest.TestCase):
     def test_b_apply_body_wrench_moves_the_box(self):
         F, T = 1.0, 0.4
         self.paused()
-        r = self.set_model_state(ModelState(BOX, Pose(Point(0.8, 0.0, 3.0),
+        # 10 m up: still falling after 1.3 s, however late after 0.5 s the pause comes.
+        r = self.set_model_state(ModelState(BOX, Pose(Point(0.8, 0.0, 10.0),
                                                       Quaternion(0, 0, 0, 1)), Twist(), ''))
         self.assertTrue(r.success, r.status_message)
         x0 = self.get_model_state(BOX, '').pose.position.x

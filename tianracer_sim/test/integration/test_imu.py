@@ -9,8 +9,6 @@ force is v_x * w (centripetal), and the orientation's yaw is the truth's. Everyt
 """
 import math
 import os
-import threading
-import time
 import unittest
 
 import rospy
@@ -19,8 +17,9 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu
 from std_srvs.srv import Empty
+from tianracer_sim.sim_time import Stream, drive_twist
 
-from sim_node_binary import drive_for, startup_output
+from sim_node_binary import startup_output
 
 V, W = 0.5, 0.5
 
@@ -37,49 +36,31 @@ class ImuTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('test_imu')
-        cls.lock = threading.Lock()
-        cls.truth, cls.imu, cls.imu_model, cls.p3d = [], [], [], []
-        rospy.Subscriber('/tianracer/p3d/odom', Odometry, lambda m: cls._add(cls.p3d, m),
-                         queue_size=500)
-        rospy.Subscriber('/tianracer/ground_truth/odom', Odometry,
-                         lambda m: cls._add(cls.truth, m), queue_size=500)
-        rospy.Subscriber('/tianracer/imu', Imu, lambda m: cls._add(cls.imu, m), queue_size=500)
-        rospy.Subscriber('/tianracer/imu_model', Imu, lambda m: cls._add(cls.imu_model, m),
-                         queue_size=500)
+        cls.p3d = Stream('/tianracer/p3d/odom', Odometry)
+        cls.truth = Stream('/tianracer/ground_truth/odom', Odometry)
+        cls.imu = Stream('/tianracer/imu', Imu)
+        cls.imu_model = Stream('/tianracer/imu_model', Imu)
         cls.cmd = rospy.Publisher('/cmd_vel', Twist, queue_size=10)
 
-    @classmethod
-    def _add(cls, store, msg):
-        with cls.lock:
-            store.append(msg)
+    def drive(self, seconds):
+        """Publishes the turn command while `seconds` of sim time pass; returns (start, end)."""
+        t0 = drive_twist(self.cmd, seconds, V, W)
+        return t0, rospy.get_time()
 
-    def wait_sim(self, seconds, wall_timeout=120.0):
-        """Publishes the turn command while waiting `seconds` of sim time."""
-        self.assertTrue(drive_for(self.cmd, seconds, V, W, wall_timeout),
-                        'sim time did not advance')
-
-    def wait_for(self, store, wall_timeout=60.0):
-        end = time.time() + wall_timeout
-        while time.time() < end:
-            with self.lock:
-                if store:
-                    return
-            time.sleep(0.05)
-        self.fail('no message received')
+    @staticmethod
+    def between(stream, t0, t1):
+        """Messages stamped t0..t1, once one stamped t1 or later has come."""
+        stream.first_stamped(t1)
+        return stream.between(t0, t1)
 
     def test_a_steady_turn(self):
-        self.wait_for(self.truth)
-        self.wait_for(self.imu)
-        self.wait_for(self.imu_model)
-        self.wait_sim(4.0)  # into the steady turn
-        with self.lock:
-            t0 = rospy.get_time()
-        self.wait_sim(4.0)
-        with self.lock:
-            truth = [m for m in self.truth if m.header.stamp.to_sec() >= t0]
-            imus = {'/tianracer/imu': [m for m in self.imu if m.header.stamp.to_sec() >= t0],
-                    '/tianracer/imu_model': [m for m in self.imu_model
-                                             if m.header.stamp.to_sec() >= t0]}
+        for stream in (self.truth, self.imu, self.imu_model):
+            stream.wait_count(1)
+        self.drive(4.0)  # into the steady turn
+        t0, t1 = self.drive(4.0)
+        truth = self.between(self.truth, t0, t1)
+        imus = {'/tianracer/imu': self.between(self.imu, t0, t1),
+                '/tianracer/imu_model': self.between(self.imu_model, t0, t1)}
         self.assertGreater(len(truth), 100)
         by_stamp = {round(m.header.stamp.to_sec(), 6): m for m in truth}
         wz_true = mean([m.twist.twist.angular.z for m in truth])
@@ -114,11 +95,11 @@ class ImuTest(unittest.TestCase):
     def test_ab_p3d_equals_ground_truth(self):
         """libgazebo_ros_p3d with noise off: the sim's ground truth at the same stamps, its twist
         in the world frame (p3d's convention) where ground_truth/odom has it in base_link."""
-        self.wait_for(self.p3d)
-        self.wait_sim(1.0)
-        with self.lock:
-            by_stamp = {round(m.header.stamp.to_sec(), 6): m for m in self.truth}
-            p3d = list(self.p3d)
+        self.p3d.wait_count(1)
+        _, t1 = self.drive(1.0)
+        self.truth.first_stamped(t1)
+        by_stamp = {round(m.header.stamp.to_sec(), 6): m for m in self.truth.messages()}
+        p3d = self.between(self.p3d, 0.0, t1)
         matched = 0
         for m in p3d:
             t = by_stamp.get(round(m.header.stamp.to_sec(), 6))
@@ -146,7 +127,7 @@ class ImuTest(unittest.TestCase):
 
     def test_b_bad_imus_left_out(self):
         """The bad IMUs are left out and the others publish (this sim)."""
-        self.wait_for(self.imu)
+        self.imu.wait_count(1)
         published = dict(rospy.get_published_topics())
         for topic in ('/tianracer/imu_bad_noise', '/tianracer/imu_bad_rate', '/imu_nowhere'):
             self.assertNotIn(topic, published)

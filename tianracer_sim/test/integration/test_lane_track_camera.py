@@ -16,6 +16,7 @@ import rostest
 import tf2_ros
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import CameraInfo, Image
+from tianracer_sim.sim_time import Stream
 
 IMAGE = '/rrbot/camera1/image_raw'
 INFO = '/rrbot/camera1/camera_info'
@@ -40,20 +41,17 @@ class LaneTrackCamera(unittest.TestCase):
 
     def test_edge_lines_where_camera_info_projects_them(self):
         info = rospy.wait_for_message(INFO, CameraInfo, timeout=60)
+        truth = Stream(GROUND_TRUTH, Odometry)
         # A frame after the car has settled on its wheels.
-        while True:
-            msg = rospy.wait_for_message(IMAGE, Image, timeout=60)
-            if msg.header.stamp.to_sec() > 0.5:
-                break
+        images = Stream(IMAGE, Image, buff_size=1 << 24)
+        msg = images.first_stamped(0.5 + 1e-6)
+        images.unregister()
         self.assertEqual(msg.encoding, 'rgb8')
         img = np.frombuffer(msg.data, np.uint8).reshape(msg.height, msg.step)[:, :msg.width * 3]
         img = img.reshape(msg.height, msg.width, 3).astype(float)
         lum = 0.299 * img[:, :, 0] + 0.587 * img[:, :, 1] + 0.114 * img[:, :, 2]
         # The car stands still: the ground truth after the frame is its pose at the frame.
-        while True:
-            odom = rospy.wait_for_message(GROUND_TRUTH, Odometry, timeout=60)
-            if odom.header.stamp >= msg.header.stamp:
-                break
+        odom = truth.first_stamped(msg.header.stamp.to_sec())
         R_WB = quaternion_matrix(odom.pose.pose.orientation)
         p = odom.pose.pose.position
         t_WB = np.array([p.x, p.y, p.z])

@@ -11,13 +11,13 @@ import signal
 import subprocess
 import tempfile
 import threading
-import time
 import unittest
 
 import rospy
 import rostest
 from rosgraph_msgs.msg import Clock, Log
 from sensor_msgs.msg import JointState
+from tianracer_sim.sim_time import Stream, clock_stamp, lossless, sim_sleep, wait_for
 
 from sim_node_binary import node_binary
 
@@ -27,23 +27,20 @@ class LidarDisabled(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node('test_lidar_disabled')
         cls.lock = threading.Lock()
-        cls.clock = []
-        cls.joint_states = 0
         cls.bad_logs = []
-        rospy.Subscriber('/clock', Clock, cls.on_clock, queue_size=100)
-        rospy.Subscriber('/tianracer/joint_states', JointState, cls.on_js, queue_size=100)
-        rospy.Subscriber('/rosout_agg', Log, cls.on_log, queue_size=100)
+        cls.clock = Stream('/clock', Clock, stamp=clock_stamp)
+        cls.joint_states = Stream('/tianracer/joint_states', JointState)
+        lossless(rospy.Subscriber('/rosout_agg', Log, cls.on_log))
         cls.output = tempfile.TemporaryFile()
         cls.proc = subprocess.Popen(
             [node_binary(), '__name:=tianracer_sim', '_world:=walled_room',
              '_real_time_factor:=1.0'],
             stdout=cls.output, stderr=subprocess.STDOUT)
-        deadline = time.time() + 30
-        while time.time() < deadline and cls.proc.poll() is None:
-            with cls.lock:
-                if len(cls.clock) > 20:
-                    break
-            time.sleep(0.05)
+        try:
+            wait_for(lambda: cls.proc.poll() is not None or cls.clock.count() > 20,
+                     'the sim started by the test')
+        except AssertionError:
+            pass  # test_2 reports it with the node's output
 
     @classmethod
     def tearDownClass(cls):
@@ -54,16 +51,6 @@ class LidarDisabled(unittest.TestCase):
             except subprocess.TimeoutExpired:
                 cls.proc.kill()
                 cls.proc.wait()
-
-    @classmethod
-    def on_clock(cls, msg):
-        with cls.lock:
-            cls.clock.append(msg.clock.to_sec())
-
-    @classmethod
-    def on_js(cls, msg):
-        with cls.lock:
-            cls.joint_states += 1
 
     @classmethod
     def on_log(cls, msg):
@@ -84,15 +71,15 @@ class LidarDisabled(unittest.TestCase):
 
     def test_2_runs_without_scan(self):
         self.assertIsNone(self.proc.poll(), 'the sim exited:\n' + self.node_output())
-        with self.lock:
-            self.assertGreater(len(self.clock), 20, 'no /clock:\n' + self.node_output())
-            t0, js0 = self.clock[-1], self.joint_states
-        rospy.sleep(rospy.Duration.from_sec(1.0))
-        with self.lock:
-            t1, js1 = self.clock[-1], self.joint_states
-        rospy.loginfo('clock %.3f -> %.3f, %d joint_states in between', t0, t1, js1 - js0)
+        self.assertGreater(self.clock.count(), 20, 'no /clock:\n' + self.node_output())
+        t0 = self.clock.latest_stamp()
+        t1 = self.clock.first(lambda s, m: s >= t0 + 1.0 - 1e-6, '1 s of sim time',
+                              self.clock.count() - 1)[1]
+        self.joint_states.first_stamped(t1)
+        js = self.joint_states.between(t0, t1)
+        rospy.loginfo('clock %.3f -> %.3f, %d joint_states in between', t0, t1, len(js))
         self.assertGreaterEqual(t1 - t0, 1.0 - 1e-6)  # float sum of clock stamps
-        self.assertGreater(js1 - js0, 40)  # 50 Hz
+        self.assertGreater(len(js), 40)  # 50 Hz
         topics = [t for t, _ in rospy.get_published_topics()]
         self.assertIn('/tianracer/joint_states', topics)
         self.assertIn('/rrbot/camera1/image_raw', topics)
@@ -100,7 +87,7 @@ class LidarDisabled(unittest.TestCase):
         self.assertFalse([t for t in topics if 'scan' in t], topics)
 
     def test_3_nothing_logs_an_error(self):
-        rospy.sleep(rospy.Duration.from_sec(0.5))
+        sim_sleep(0.5)
         self.assertIsNone(self.proc.poll(), 'the sim exited:\n' + self.node_output())
         with self.lock:
             self.assertEqual(self.bad_logs, [])

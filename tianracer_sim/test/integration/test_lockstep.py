@@ -15,7 +15,7 @@ import rostest
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock, Log
-from std_srvs.srv import Empty
+from tianracer_sim.sim_time import Paused, lossless, wait_connected, wait_for
 
 ANSWERED_UNTIL = 3.0  # s of sim time
 
@@ -48,22 +48,26 @@ class LockstepTest(unittest.TestCase):
                 with lock:
                     st['warnings'].append(m.msg)
 
-        rospy.Subscriber('/clock', Clock, on_clock, queue_size=100, tcp_nodelay=True)
-        rospy.Subscriber('/tianracer/ground_truth/odom', Odometry, on_truth, queue_size=100,
-                         tcp_nodelay=True)
+        # Every /clock (rospy's own clock subscription keeps only the last of a burst).
+        lossless(rospy.Subscriber('/clock', Clock, on_clock, tcp_nodelay=True))
+        truth = lossless(rospy.Subscriber('/tianracer/ground_truth/odom', Odometry, on_truth,
+                                          tcp_nodelay=True))
         rospy.Subscriber('/rosout', Log, on_log, queue_size=100)
         rospy.wait_for_service('/gazebo/unpause_physics', 60)
-        deadline = time.time() + 60
-        while (pub.get_num_connections() < 1 or st['clock'] < 0) and time.time() < deadline:
-            time.sleep(0.05)
-        time.sleep(1.0)  # the ground-truth connection follows the publisher's registration
-        rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()
-        deadline = time.time() + 150
-        while time.time() < deadline:
+        # Connected, not only registered: the answers reach the sim, the data reach us.
+        wait_connected(pub)
+        wait_connected(truth)
+        # The sim starts paused and published its first /clock before we were connected:
+        # pause_physics puts it on /clock again (this used to be a 60 s wait for a /clock
+        # that a paused sim never sends).
+        Paused().unpause()
+
+        def done():
             with lock:
-                if st['last_truth'] > ANSWERED_UNTIL + 2.0 and st['warnings']:
-                    break
-            time.sleep(0.1)
+                return st['last_truth'] > ANSWERED_UNTIL + 2.0 and st['warnings']
+
+        wait_for(done, 'the sim going on after the answers stopped, with a warning', 150,
+                 poll=0.1)
         with lock:
             answers, warnings = list(st['answers']), list(st['warnings'])
             last = st['last_truth']

@@ -1,17 +1,22 @@
 #!/usr/bin/env python3
 """rostest: the sim node publishes /clock and the seed's joint_states, obeys controller
-commands, and serves Gazebo's pause and reset services. Times are sim time."""
+commands, and serves Gazebo's pause and reset services (pause_physics puts the paused time on
+/clock once more, so that a client can wait for it). Times are sim time."""
 import math
-import threading
 import unittest
 
 import rospy
 import rostest
+from gazebo_msgs.srv import GetWorldProperties
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 from std_srvs.srv import Empty
+from tianracer_sim.sim_time import (Paused, Stream, clock_stamp, messages_received,
+                                    published_rate, sim_sleep, wait_connected, wait_for)
+
+SIM = '/tianracer_sim'
 
 SEED_JOINTS = {'left_rear_wheel_joint', 'right_rear_wheel_joint', 'left_steering_hinge_joint',
                'right_steering_hinge_joint', 'right_front_wheel_joint', 'left_front_wheel_joint'}
@@ -21,52 +26,34 @@ class SimBasics(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('test_sim_basics')
-        cls.lock = threading.Lock()
-        cls.clock = []
-        cls.joint_states = []
-        cls.truth = None
-        rospy.Subscriber('/clock', Clock, cls.on_clock, queue_size=1000)
-        rospy.Subscriber('/tianracer/joint_states', JointState, cls.on_js, queue_size=1000)
-        rospy.Subscriber('/tianracer/ground_truth/odom', Odometry, cls.on_truth, queue_size=10)
-        for srv in ('pause_physics', 'unpause_physics', 'reset_simulation'):
+        cls.clock = Stream('/clock', Clock, stamp=clock_stamp)
+        cls.joint_states = Stream('/tianracer/joint_states', JointState)
+        cls.truth = Stream('/tianracer/ground_truth/odom', Odometry)
+        for srv in ('pause_physics', 'unpause_physics', 'reset_simulation',
+                    'get_world_properties'):
             rospy.wait_for_service('/gazebo/' + srv, timeout=30)
         cls.pause = rospy.ServiceProxy('/gazebo/pause_physics', Empty)
         cls.unpause = rospy.ServiceProxy('/gazebo/unpause_physics', Empty)
         cls.reset = rospy.ServiceProxy('/gazebo/reset_simulation', Empty)
+        cls.world = rospy.ServiceProxy('/gazebo/get_world_properties', GetWorldProperties)
+        cls.truth.wait_count(1)
 
-    @classmethod
-    def on_clock(cls, msg):
-        with cls.lock:
-            cls.clock.append(msg.clock.to_sec())
-
-    @classmethod
-    def on_js(cls, msg):
-        with cls.lock:
-            cls.joint_states.append(msg)
-
-    @classmethod
-    def on_truth(cls, msg):
-        cls.truth = msg
-
-    def wait_sim(self, seconds):
-        """Waits `seconds` of sim time (rospy follows /clock)."""
-        rospy.sleep(rospy.Duration.from_sec(seconds))
+    def truth_at(self, t):
+        """Ground truth stamped t or later."""
+        return self.truth.first_stamped(t, self.truth.count() - 1)
 
     def test_1_clock_advances(self):
-        self.wait_sim(0.5)
-        with self.lock:
-            t = list(self.clock)
+        n = self.clock.count()
+        sim_sleep(0.5)
+        t = self.clock.stamps(n)
         self.assertGreater(len(t), 10)
         self.assertGreater(t[-1], t[0])
         self.assertTrue(all(b >= a for a, b in zip(t, t[1:])), 'clock went backwards')
 
     def test_2_joint_states_seed_joints_at_50hz(self):
-        self.wait_sim(0.2)
-        with self.lock:
-            del self.joint_states[:]
-        self.wait_sim(2.0)
-        with self.lock:
-            msgs = list(self.joint_states)
+        t0 = self.joint_states.wait_count(self.joint_states.count() + 1).header.stamp.to_sec()
+        self.joint_states.first_stamped(t0 + 2.0)
+        msgs = self.joint_states.between(t0, t0 + 2.0)
         self.assertTrue(msgs)
         for m in msgs:
             self.assertEqual(set(m.name), SEED_JOINTS)
@@ -74,70 +61,71 @@ class SimBasics(unittest.TestCase):
             self.assertEqual(len(m.position), 6)
             self.assertEqual(len(m.velocity), 6)
             self.assertTrue(all(math.isfinite(x) for x in m.position + m.velocity))
-        stamps = [m.header.stamp.to_sec() for m in msgs]
-        rate = (len(stamps) - 1) / (stamps[-1] - stamps[0])
-        rospy.loginfo('joint_states rate %.2f Hz (sim time), %d messages', rate, len(stamps))
+        rate = published_rate(msgs)  # what the sim published (header.seq counts it)
+        rospy.loginfo('joint_states rate %.2f Hz (sim time), %d messages', rate, len(msgs))
         self.assertAlmostEqual(rate, 50.0, delta=5.0)
 
     def test_3_wheel_commands_move_the_car_forward(self):
-        self.wait_sim(0.2)
-        x0 = self.truth.pose.pose.position.x
         pubs = [rospy.Publisher('/tianracer/%s_rear_wheel_velocity_controller/command' % s,
                                 Float64, queue_size=1, latch=True) for s in ('left', 'right')]
         for p in pubs:
-            p.publish(Float64(0.5 / 0.032))
-        self.wait_sim(2.0)
-        x1 = self.truth.pose.pose.position.x
-        y1 = self.truth.pose.pose.position.y
-        rospy.loginfo('ground truth moved from x %.3f to %.3f (y %.3f)', x0, x1, y1)
-        self.assertGreater(x1 - x0, 0.5)  # about 0.5 m/s for ~2 s, after spin-up
-        self.assertLess(abs(y1), 0.05)
+            wait_connected(p)
+        # The commands apply from a known sim time: sent with the physics paused, read by the
+        # sim (its getBusStats) before it steps on.
+        with Paused() as paused:
+            t0 = paused.t
+            read = [messages_received(SIM, p.resolved_name) for p in pubs]
+            for p in pubs:
+                p.publish(Float64(0.5 / 0.032))
+            wait_for(lambda: all(messages_received(SIM, p.resolved_name) > n
+                                 for p, n in zip(pubs, read)), 'the sim reading the commands')
+            x0 = self.truth.first(lambda s, m: s > t0 - 0.021, 'the ground truth at the pause',
+                                  max(0, self.truth.count() - 10))[2].pose.pose.position.x
+        end = self.truth_at(t0 + 2.0).pose.pose.position
+        rospy.loginfo('ground truth moved from x %.3f to %.3f (y %.3f)', x0, end.x, end.y)
+        self.assertGreater(end.x - x0, 0.5)  # about 0.5 m/s for ~2 s, after spin-up
+        self.assertLess(abs(end.y), 0.05)
         for p in pubs:
             p.publish(Float64(0.0))
-        self.wait_sim(0.5)
+        sim_sleep(0.5)
 
     def test_4_pause_stops_the_clock_and_reset_returns_to_spawn(self):
-        self.pause()
-        rospy.rostime.wallsleep(0.2)  # let in-flight /clock messages arrive
-        with self.lock:
-            paused_at = self.clock[-1]
+        # pause_physics: the paused time (get_world_properties) comes on /clock once more, and
+        # Paused waits for it.
+        paused = Paused()
+        paused_at = paused.t
+        n = self.clock.count()
         # Sim time cannot measure a pause: this wait is wall time on purpose.
         rospy.rostime.wallsleep(1.0)
-        with self.lock:
-            self.assertEqual(self.clock[-1], paused_at)
-        self.unpause()
-        self.wait_sim(0.2)
-        with self.lock:
-            self.assertGreater(self.clock[-1], paused_at)
-        self.assertGreater(abs(self.truth.pose.pose.position.x), 0.3)  # moved by test 3
+        self.assertEqual(self.world().sim_time, paused_at)
+        self.assertTrue(all(t == paused_at for t in self.clock.stamps(n)), self.clock.stamps(n))
+        paused.unpause()
+        self.clock.first(lambda s, m: s > paused_at, '/clock after the unpause', n)
+        self.assertGreater(abs(self.truth.latest().pose.pose.position.x), 0.3)  # moved by test 3
+        n, n_truth = self.clock.count(), self.truth.count()
         self.reset()
-        rospy.rostime.wallsleep(0.5)
-        with self.lock:
-            t_after = self.clock[-1]
-        self.assertLess(t_after, paused_at)
-        deadline = rospy.rostime.get_rostime()  # sim time restarted near 0
-        self.assertLess(deadline.to_sec(), paused_at)
-        self.wait_sim(0.2)
-        p = self.truth.pose.pose.position
+        # Sim time restarted near 0: the first /clock after the reset is below the paused time.
+        _, t_after, _ = self.clock.first(lambda s, m: s < paused_at, '/clock after the reset', n)
+        self.assertLess(t_after, 0.1)
+        k, _, _ = self.truth.first(lambda s, m: s < paused_at, 'ground truth after the reset',
+                                   n_truth)
+        p = self.truth.first_stamped(t_after + 0.2, k).pose.pose.position
         self.assertLess(math.hypot(p.x, p.y), 0.01)
 
     def test_5_non_finite_commands_are_ignored(self):
         pubs = [rospy.Publisher('/tianracer/%s' % c, Float64, queue_size=10)
                 for c in ('left_rear_wheel_velocity_controller/command',
                           'left_steering_hinge_position_controller/command')]
-        rospy.rostime.wallsleep(0.5)  # connections
+        for p in pubs:
+            wait_connected(p)
         for value in (float('nan'), float('inf'), -float('inf')):
             for p in pubs:
                 p.publish(Float64(value))
-        self.wait_sim(1.0)
-        with self.lock:
-            js = self.joint_states[-1]
-            t = self.clock[-1]
-        self.wait_sim(0.2)
-        with self.lock:
-            self.assertGreater(self.clock[-1], t)  # still stepping
+        t = rospy.get_time()
+        js = self.joint_states.first_stamped(t + 1.0, self.joint_states.count())
+        self.clock.first_stamped(t + 1.2, self.clock.count())  # still stepping
         self.assertTrue(all(math.isfinite(x) for x in js.position + js.velocity + js.effort))
-        p = self.truth.pose.pose
+        p = self.truth.latest().pose.pose
         self.assertTrue(all(math.isfinite(v) for v in (p.position.x, p.position.y, p.position.z,
                                                         p.orientation.w)))
 

@@ -12,8 +12,6 @@
 Sim time throughout; wall time only bounds the waits.
 """
 import math
-import threading
-import time
 import unittest
 
 import rospy
@@ -24,6 +22,7 @@ from gazebo_msgs.srv import (DeleteModel, GetLinkState, GetModelState, GetWorldP
 from geometry_msgs.msg import Pose, Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import JointState, LaserScan
+from tianracer_sim.sim_time import Stream, drive_twist, sim_sleep
 
 WALL_TIMEOUT = 120.0
 BOX = """<?xml version='1.0'?>
@@ -40,25 +39,9 @@ BOX = """<?xml version='1.0'?>
 </sdf>"""
 
 
-class Recorder(object):
-    """Receipt stamps (sim time) of a topic's messages."""
-
-    def __init__(self, topic, cls):
-        self.lock = threading.Lock()
-        self.stamps = []
-        self.sub = rospy.Subscriber(topic, cls, self.cb, queue_size=50)
-
-    def cb(self, msg):
-        with self.lock:
-            self.stamps.append(msg.header.stamp.to_sec())
-
-    def count(self):
-        with self.lock:
-            return len(self.stamps)
-
-    def after(self, t):
-        with self.lock:
-            return [s for s in self.stamps if s > t]
+def stamps_after(stream, t):
+    """Stamps of the messages of `stream` stamped after t (sim time)."""
+    return [s for s in stream.stamps() if s > t]
 
 
 def pose(x, y, z):
@@ -81,18 +64,8 @@ class SpawnTest(unittest.TestCase):
         cls.get_state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
         cls.world = rospy.ServiceProxy('/gazebo/get_world_properties', GetWorldProperties)
 
-    def wait_for(self, cond, what, timeout=WALL_TIMEOUT):
-        end = time.time() + timeout
-        while time.time() < end and not rospy.is_shutdown():
-            if cond():
-                return
-            time.sleep(0.05)
-        self.fail('timed out waiting for ' + what)
-
     def wait_sim(self, seconds):
-        t0 = rospy.Time.now().to_sec()
-        self.wait_for(lambda: rospy.Time.now().to_sec() >= t0 + seconds,
-                      '%.1f s of sim time' % seconds)
+        sim_sleep(seconds)
 
     def sim_time(self):
         return self.world().sim_time
@@ -101,22 +74,15 @@ class SpawnTest(unittest.TestCase):
         return sorted(self.world().model_names)
 
     def wait_car2(self):
-        joints = Recorder('/car2/joint_states', JointState)
-        scans = Recorder('/car2/scan', LaserScan)
-        truth = Recorder('/car2/ground_truth/odom', Odometry)
-        self.wait_for(lambda: joints.count() > 0 and scans.count() > 0 and truth.count() > 0,
-                      "car2's joint_states, scan and ground truth")
-        return joints, scans, truth
+        streams = (Stream('/car2/joint_states', JointState), Stream('/car2/scan', LaserScan),
+                   Stream('/car2/ground_truth/odom', Odometry))
+        for stream in streams:
+            stream.wait_count(1, WALL_TIMEOUT)
+        return streams
 
     def drive_car2(self, seconds):
         pub = rospy.Publisher('/car2/cmd_vel', Twist, queue_size=1)
-        cmd = Twist()
-        cmd.linear.x = 0.5
-        t0 = rospy.Time.now().to_sec()
-        end = time.time() + WALL_TIMEOUT
-        while rospy.Time.now().to_sec() < t0 + seconds and time.time() < end:
-            pub.publish(cmd)
-            time.sleep(0.05)
+        drive_twist(pub, seconds, 0.5)
         pub.unregister()
 
     def test_1_spawned_car_publishes_and_drives(self):
@@ -141,9 +107,9 @@ class SpawnTest(unittest.TestCase):
         # The sim's own time once the delete is done (our /clock lags it by a few steps).
         t_del = self.sim_time()
         self.wait_sim(1.0)
-        self.assertEqual(joints.after(t_del + 1e-6), [])
-        self.assertEqual(scans.after(t_del + 1e-6), [])
-        self.assertEqual(truth.after(t_del + 1e-6), [])
+        self.assertEqual(stamps_after(joints, t_del + 1e-6), [])
+        self.assertEqual(stamps_after(scans, t_del + 1e-6), [])
+        self.assertEqual(stamps_after(truth, t_del + 1e-6), [])
         self.assertNotIn('car2', self.models())
         states = rospy.wait_for_message('/gazebo/model_states', ModelStates, timeout=WALL_TIMEOUT)
         self.assertNotIn('car2', states.name)
@@ -153,19 +119,21 @@ class SpawnTest(unittest.TestCase):
         urdf = rospy.get_param('/car2/robot_description')
         res = self.spawn_urdf('car2', urdf, '/car2', pose(2.0, 1.0, 0.015), 'world')
         self.assertTrue(res.success, res.status_message)
-        self.wait_car2()
+        for stream in self.wait_car2():
+            stream.unregister()
         res = self.delete('car2')
         self.assertTrue(res.success, res.status_message)
 
     def scan_ahead(self, after):
         """tianracer's lidar range straight ahead, from a scan stamped after `after` (sim s)."""
-        end = time.time() + WALL_TIMEOUT
-        while time.time() < end:
-            scan = rospy.wait_for_message('/scan', LaserScan, timeout=WALL_TIMEOUT)
-            if scan.header.stamp.to_sec() > after:
-                i = int(round((0.0 - scan.angle_min) / scan.angle_increment))
-                return scan.ranges[i]
-        self.fail('no scan after %.2f s' % after)
+        scans = Stream('/scan', LaserScan)
+        try:
+            scan = scans.first(lambda t, m: t > after, 'a scan after %.2f s' % after,
+                               wall_timeout=WALL_TIMEOUT)[2]
+        finally:
+            scans.unregister()
+        i = int(round((0.0 - scan.angle_min) / scan.angle_increment))
+        return scan.ranges[i]
 
     def test_2_spawned_box_falls_and_rests(self):
         # Straight ahead of tianracer (at the origin, facing +x), so its lidar sees it.
