@@ -207,8 +207,8 @@ void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name
       ROS_WARN_STREAM("robot '" << name << "': ~robot_name is '" << name << "' but the model's "
                       << "gazebo_ros_control robotNamespace is '/" << model_ns << "': its "
                       << "controllers and joint_states are under /" << model_ns << ", not /"
-                      << name << " (give the model its namespace, e.g. model_args:=\"robot_namespace:=/"
-                      << name << "\", or robot_name:=" << model_ns << ")");
+                      << name << " (give the model its namespace, e.g. model_args:=robot_namespace=/"
+                      << name << ", or robot_name:=" << model_ns << ")");
     }
   }
   if (name.empty()) name = model.urdf->getName();
@@ -263,11 +263,15 @@ void SimNode::addRobot(RobotRequest request) {
 
   // Controllers: the list given, else every controller defined under the namespace.
   std::string control_ns;
-  rp.param<std::string>("control_namespace", control_ns, io.ns);
+  ControlConfigKeys control_config;
+  if (!rp.getParam("control_namespace", control_ns))
+    control_ns = defaultControlNamespace(rp, io.ns, &control_config);
   ros::NodeHandle control_nh(control_ns);
   bool given = false;
   std::vector<std::string> names = getNameList(rp, "controllers", &given);
   if (!given) names = listControllers(control_nh);
+  if (!given && names.empty() && model.ext.ros_control)
+    ROS_WARN_STREAM(noControllersWarning(name, control_nh.getNamespace(), control_config));
   RobotConfig config;
   config.name = name;
   config.X_WB_spawn = request.X_WB;
