@@ -1,5 +1,6 @@
-"""Our gazebo_msgs / ackermann_msgs: the published md5sums, and left out where the system has
-the real packages (scripts/msg_packages.sh)."""
+"""Our stand-ins for packages Debian lacks: gazebo_msgs / ackermann_msgs with the published
+md5sums, the xacro executables, and each left out where the system has the real package
+(scripts/stand_in_packages.sh)."""
 import os
 import shutil
 import stat
@@ -8,7 +9,9 @@ import tempfile
 import unittest
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), '..', '..'))
-SCRIPT = os.path.join(REPO, 'scripts', 'msg_packages.sh')
+SCRIPT = os.path.join(REPO, 'scripts', 'stand_in_packages.sh')
+STAND_INS = ('gazebo_msgs', 'ackermann_msgs', 'xacro', 'controller_manager_msgs',
+             'controller_manager', 'gazebo_ros')
 
 # Published md5sums. Messages: the values stated for ROS Noetic's gazebo_msgs 2.9 and
 # ackermann_msgs 1.0 (the ModelStates/LinkStates without a header). Services: read from
@@ -72,7 +75,9 @@ class DetectionTest(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.mkdtemp()
         self.root = os.path.join(self.tmp, 'src')
-        for pkg in ('gazebo_msgs', 'ackermann_msgs'):
+        for pkg in STAND_INS:
+            if not os.path.exists(os.path.join(REPO, pkg, 'package.xml')):
+                continue
             os.makedirs(os.path.join(self.root, pkg))
             shutil.copy(os.path.join(REPO, pkg, 'package.xml'), os.path.join(self.root, pkg))
 
@@ -93,7 +98,7 @@ class DetectionTest(unittest.TestCase):
         env['TIANRACER_ROSPACK'] = fake
         out = subprocess.run([SCRIPT, self.root], env=env, check=True, stdout=subprocess.PIPE,
                              universal_newlines=True).stdout
-        return out, {p for p in ('gazebo_msgs', 'ackermann_msgs')
+        return out, {p for p in STAND_INS
                      if os.path.exists(os.path.join(self.root, p, 'CATKIN_IGNORE'))}
 
     def test_nothing_on_the_system_builds_ours(self):
@@ -118,10 +123,63 @@ class DetectionTest(unittest.TestCase):
             rospack_finds={'gazebo_msgs': os.path.join(self.root, 'gazebo_msgs')})
         self.assertEqual(ignored, set())
 
+    def test_xacro_package_found_by_rospack_leaves_ours_out(self):
+        out, ignored = self.run_script(rospack_finds={'xacro': '/opt/other/share/xacro'})
+        self.assertEqual(ignored, {'xacro'})
+        self.assertIn("xacro: the system's (/opt/other/share/xacro) is used", out)
+
     def test_ignore_is_removed_once_the_system_package_is_gone(self):
         self.run_script(rospack_finds={'gazebo_msgs': '/usr/share/gazebo_msgs'})
         _, ignored = self.run_script()
         self.assertEqual(ignored, set())
+
+
+XACRO_FILE = os.path.join(REPO, 'tianracer_description', 'urdf', 'tianracer_description.xacro')
+LAUNCH = """<launch>
+  <param name="with_find" command="$(find xacro)/xacro --inorder '%s' robot_namespace:=/car7" />
+  <param name="legacy" command="$(find xacro)/xacro.py '%s' robot_namespace:=/car8" />
+</launch>
+""" % (XACRO_FILE, XACRO_FILE)
+
+
+@unittest.skipIf(os.path.exists(os.path.join(REPO, 'xacro', 'CATKIN_IGNORE')),
+                 'the system has a real xacro package')
+class XacroStandInTest(unittest.TestCase):
+    """`$(find xacro)/xacro --inorder`, `xacro.py` and `rosrun xacro xacro`, as Gazebo users'
+    launch files call them, run the PyPI xacro 1.13.3."""
+
+    def run_ok(self, cmd):
+        proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                              universal_newlines=True, timeout=120)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        return proc
+
+    def test_rospack_finds_ours(self):
+        found = self.run_ok(['rospack', 'find', 'xacro']).stdout.strip()
+        self.assertEqual(os.path.realpath(found), os.path.realpath(os.path.join(REPO, 'xacro')))
+
+    def test_rosrun_with_inorder(self):
+        proc = self.run_ok(['rosrun', 'xacro', 'xacro', '--inorder', XACRO_FILE,
+                            'robot_namespace:=/car9'])
+        self.assertIn('<robotNamespace>/car9</robotNamespace>', proc.stdout)
+        self.assertIn('in-order processing became default', proc.stderr)
+
+    def test_launch_file_idioms(self):
+        path = os.path.join(tempfile.mkdtemp(), 'xacro_idioms.launch')
+        with open(path, 'w') as f:
+            f.write(LAUNCH)
+        # roslaunch runs the command= parameters when it loads the file.
+        proc = self.run_ok(['roslaunch', '--dump-params', path])
+        self.assertIn('<robotNamespace>/car7</robotNamespace>', proc.stdout)
+        self.assertIn('<robotNamespace>/car8</robotNamespace>', proc.stdout)
+
+    def test_errors_keep_xacros_exit_code(self):
+        for exe in ('xacro', 'xacro.py'):
+            proc = subprocess.run([os.path.join(REPO, 'xacro', exe), '/nonexistent/robot.xacro'],
+                                  stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                  universal_newlines=True, timeout=60)
+            self.assertEqual(proc.returncode, 2, exe)
+            self.assertIn('No such file or directory: /nonexistent/robot.xacro', proc.stderr)
 
 
 if __name__ == '__main__':
