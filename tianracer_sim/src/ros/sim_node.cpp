@@ -264,13 +264,15 @@ void SimNode::addRobot(RobotRequest request) {
   // Controllers: the list given, else every controller defined under the namespace.
   std::string control_ns;
   ControlConfigKeys control_config;
-  if (!rp.getParam("control_namespace", control_ns))
-    control_ns = defaultControlNamespace(rp, io.ns, &control_config);
+  const bool configured = rp.getParam("control_namespace", control_ns);
+  if (!configured) control_ns = defaultControlNamespace(rp, io.ns, &control_config);
   ros::NodeHandle control_nh(control_ns);
+  io.control_ns = control_nh.getNamespace();
   bool given = false;
   std::vector<std::string> names = getNameList(rp, "controllers", &given);
-  if (!given) names = listControllers(control_nh);
-  if (!given && names.empty() && model.ext.ros_control)
+  const bool waits_for_spawner = request.spawned && !configured;  // as in Gazebo
+  if (!given && !waits_for_spawner) names = listControllers(control_nh);
+  if (!given && !waits_for_spawner && names.empty() && model.ext.ros_control)
     ROS_WARN_STREAM(noControllersWarning(name, control_nh.getNamespace(), control_config));
   RobotConfig config;
   config.name = name;
@@ -335,6 +337,9 @@ void SimNode::setUpRobotIo(std::size_t index, const ros::NodeHandle& rp) {
   ros::NodeHandle robot_nh(io.ns);
   robot_nh.setCallbackQueue(&queue_);
   io.commands = std::make_shared<tc::ControllerCommandSubscribers>(robot_nh, robot.controllers);
+  if (robot.model.ext.ros_control)
+    io.controller_manager = std::make_unique<ControllerManagerBridge>(
+        robot_nh, io.control_ns, *sim_, robot, [this, index] { refreshControllerIo(index); });
   io.ground_truth = robot_nh.advertise<nav_msgs::Odometry>("ground_truth/odom", 10);
   io.ground_truth_schedule.period = ground_truth_rate_ > 0.0 ? 1.0 / ground_truth_rate_ : 0.0;
   ros::NodeHandle root;
@@ -558,6 +563,7 @@ void SimNode::setUpJointStates(RobotIo& io) {
                         jsp->update_rate, "joint_state_publisher plugin"});
   }
   for (const auto& c : io.robot->controllers.controllers()) {
+    if (!io.robot->controllers.isRunning(*c)) continue;
     if (auto* jsc = dynamic_cast<const tc::JointStateController*>(c.get())) {
       std::vector<std::string> joints;
       for (const auto& h : io.robot->handles) joints.push_back(h.name);
@@ -598,6 +604,15 @@ void SimNode::setUpJointStates(RobotIo& io) {
     ROS_INFO_STREAM(s.pub.getTopic() << ": " << s.joints.size() << " joints at "
                                      << 1.0 / s.schedule.period << " Hz");
   }
+}
+
+void SimNode::refreshControllerIo(std::size_t index) {
+  RobotIo& io = robots_[index];
+  ros::NodeHandle robot_nh(io.ns);
+  robot_nh.setCallbackQueue(&queue_);
+  io.commands = std::make_shared<tc::ControllerCommandSubscribers>(robot_nh, io.robot->controllers);
+  io.joint_states.clear();
+  setUpJointStates(io);
 }
 
 void SimNode::publishClock() {

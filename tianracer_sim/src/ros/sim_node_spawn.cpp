@@ -27,6 +27,7 @@ void SimNode::removeRobotAt(std::size_t index) {
   scene_step_ = ~0ull;
   // Publishers and subscribers shut down with their last handle; the command subscribers go
   // before the controllers they point into.
+  io.controller_manager.reset();
   io.commands.reset();
   sim_->removeRobot(name);
   io = RobotIo();
@@ -45,6 +46,7 @@ void SimNode::spawnRobot(const std::string& name, const std::string& urdf,
   request.model = loadRobotModel(urdf, "spawn_urdf_model '" + name + "'", options);
   request.name = name;
   request.X_WB = X_WB;
+  request.spawned = true;
   addRobot(std::move(request));
 }
 

@@ -35,7 +35,10 @@
 // the robot: sensor frames, optical frames, ground truth's child frame and the odom frame.
 //   status_period    wall seconds between status lines and /diagnostics (default 5; 0 = off)
 // Robots spawned at run time (/gazebo/spawn_urdf_model) read controllers, control_namespace,
-// odom_frame, disable_sensors and model_dir from ~<model name>/, as robots listed in ~robots.
+// odom_frame, disable_sensors and model_dir from ~<model name>/, as robots listed in ~robots;
+// without ~<name>/controllers or ~<name>/control_namespace they start no controller (as in
+// Gazebo: a spawner starts them through <ns>/controller_manager/, served for every robot with
+// gazebo_ros_control).
 // Start-up and spawn build robots through the same addRobot().
 #ifndef TIANRACER_SIM_ROS_SIM_NODE_H
 #define TIANRACER_SIM_ROS_SIM_NODE_H
@@ -57,6 +60,7 @@
 #include "tianracer_sim/render/renderer.h"
 #include "tianracer_sim/ros/borrowed_msgs.h"
 #include "tianracer_sim/ros/contact_publisher.h"
+#include "tianracer_sim/ros/controller_manager_bridge.h"
 #include "tianracer_sim/ros/gazebo_interface.h"
 #include "tianracer_sim/ros/lockstep.h"
 #include "tianracer_sim/ros/sensors/sensor_publisher.h"
@@ -92,6 +96,8 @@ class SimNode : private SensorHost, private ModelSpawner {
     SimRobot* robot = nullptr;
     std::string ns;  // ros_control namespace, e.g. "/tianracer"
     std::shared_ptr<tianracer_control::ControllerCommandSubscribers> commands;
+    std::string control_ns;  // where its controllers' parameters are read
+    std::unique_ptr<ControllerManagerBridge> controller_manager;  // with gazebo_ros_control
     std::vector<JointStateStream> joint_states;
     RobotSceneBodies scene_bodies;
     ros::Publisher ground_truth;
@@ -112,6 +118,9 @@ class SimNode : private SensorHost, private ModelSpawner {
     /// The robot's own parameters: controllers, control_namespace, odom_frame,
     /// disable_sensors (~ for one robot, ~<name>/ for several or spawned ones).
     ros::NodeHandle rp;
+    /// Through spawn_urdf_model: no controller starts unless ~<name>/ names them (in Gazebo a
+    /// spawner starts them).
+    bool spawned = false;
   };
 
   /// The frames due at one step: rendered and published on camera_worker_'s thread from
@@ -152,6 +161,8 @@ class SimNode : private SensorHost, private ModelSpawner {
   /// Brings the scene's robot bodies to the current physics poses, once per step.
   void updateScene();
   void setUpJointStates(RobotIo& io);
+  /// After controller_manager changed a robot's controllers: command topics and joint_states.
+  void refreshControllerIo(std::size_t index);
   void stepOnce();
   /// Publishes what is due at this step; `clock` false leaves /clock to the caller (lockstep).
   void publishDue(bool clock = true);
