@@ -90,14 +90,14 @@ class NamesAndPathsTest(unittest.TestCase):
         self.assertEqual(server.node_name(['__name:=sim'], {'ROS_NAMESPACE': '/a'}), '/a/sim')
         self.assertEqual(server.node_name(['__ns:=/b/', '__name:=g'], {}), '/b/g')
 
-    def test_exported_model_paths(self):
+    def test_exported_media_paths(self):
         class Out(object):
-            stdout = 'my_robot /src/my_robot/models\nother /x/a:/x/b\n'
-        paths = server.exported_paths('gazebo_model_path', run=lambda *a, **k: Out())
-        self.assertEqual(paths, ['/src/my_robot/models', '/x/a', '/x/b'])
-        env = {'GAZEBO_MODEL_PATH': '/x/a'}
-        server.extend_env_path(env, 'GAZEBO_MODEL_PATH', paths)
-        self.assertEqual(env['GAZEBO_MODEL_PATH'], '/x/a:/src/my_robot/models:/x/b')
+            stdout = 'my_robot /src/my_robot/media\nother /x/a:/x/b\n'
+        paths = server.exported_paths('gazebo_media_path', run=lambda *a, **k: Out())
+        self.assertEqual(paths, ['/src/my_robot/media', '/x/a', '/x/b'])
+        env = {'GAZEBO_RESOURCE_PATH': '/x/a'}
+        server.extend_env_path(env, 'GAZEBO_RESOURCE_PATH', paths)
+        self.assertEqual(env['GAZEBO_RESOURCE_PATH'], '/x/a:/src/my_robot/media:/x/b')
 
 
 if __name__ == '__main__':

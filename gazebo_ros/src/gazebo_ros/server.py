@@ -4,9 +4,9 @@ gazebo_ros's API plugin names its node, with no robot at start: robots come thro
 /gazebo/spawn_urdf_model (spawn_model). Each Gazebo option we do not take is named with what
 happens instead; ROS arguments (name:=value) go to the node unchanged.
 
-Also what gazebo_ros's paths plugin does: packages that export gazebo_model_path or
-gazebo_media_path for gazebo_ros (<export><gazebo_ros gazebo_model_path="${prefix}/models"/>)
-extend GAZEBO_MODEL_PATH and GAZEBO_RESOURCE_PATH."""
+Also what gazebo_ros's paths plugin does for world files: packages that export
+gazebo_media_path for gazebo_ros extend GAZEBO_RESOURCE_PATH (the node itself finds the
+gazebo_model_path exports for model:// URIs)."""
 from __future__ import print_function
 
 import os
@@ -250,7 +250,6 @@ def main(argv, mode):
     import roslib.packages
     import rospkg
     env = dict(os.environ)
-    extend_env_path(env, 'GAZEBO_MODEL_PATH', exported_paths('gazebo_model_path'))
     extend_env_path(env, 'GAZEBO_RESOURCE_PATH', exported_paths('gazebo_media_path'))
     shipped = os.path.join(rospkg.RosPack().get_path('tianracer_sim'), 'worlds')
     try:
