@@ -20,7 +20,7 @@ void logErrorLines(const std::string& text) {
 }  // namespace
 
 ControllerManagerBridge::ControllerManagerBridge(ros::NodeHandle robot_nh, std::string control_ns,
-                                                 Simulation& sim, SimRobot& robot,
+                                                 Simulator& sim, ModelId robot,
                                                  std::function<void()> changed)
     : control_ns_(std::move(control_ns)), sim_(sim), robot_(robot), changed_(std::move(changed)) {
   ros::NodeHandle cm(robot_nh, "controller_manager");
@@ -36,13 +36,18 @@ ControllerManagerBridge::ControllerManagerBridge(ros::NodeHandle robot_nh, std::
                                           &ControllerManagerBridge::onReload, this));
 }
 
+const tc::ControllerSet& ControllerManagerBridge::controllers() const {
+  return sim_.robot(robot_)->controllers;
+}
+
 bool ControllerManagerBridge::onList(cmm::ListControllers::Request&,
                                      cmm::ListControllers::Response& res) {
-  for (const auto& c : robot_.controllers.controllers()) {
+  const tc::ControllerSet& set = controllers();
+  for (const auto& c : set.controllers()) {
     cmm::ControllerState s;
     s.name = c->name();
     s.type = c->type();
-    s.state = tc::toString(robot_.controllers.state(*c));
+    s.state = tc::toString(set.state(*c));
     for (const tc::ClaimedResources& r : tc::ControllerSet::claimedResources(*c)) {
       cmm::HardwareInterfaceResources m;
       m.hardware_interface = r.hardware_interface;
@@ -146,7 +151,7 @@ bool ControllerManagerBridge::onSwitch(cmm::SwitchController::Request& req,
 bool ControllerManagerBridge::onReload(cmm::ReloadControllerLibraries::Request& req,
                                        cmm::ReloadControllerLibraries::Response& res) {
   std::vector<std::string> names;
-  for (const auto& c : robot_.controllers.controllers()) names.push_back(c->name());
+  for (const auto& c : controllers().controllers()) names.push_back(c->name());
   res.ok = false;
   if (!names.empty() && !req.force_kill) {
     ROS_ERROR("Controller manager: Cannot reload controller libraries because there are still %i "

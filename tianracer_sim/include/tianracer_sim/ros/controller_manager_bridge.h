@@ -20,7 +20,7 @@
 #include <controller_manager_msgs/UnloadController.h>
 #include <ros/ros.h>
 
-#include "tianracer_sim/sim/simulation.h"
+#include "tianracer_sim/simulator/simulator.h"
 
 namespace tianracer_sim {
 
@@ -30,8 +30,8 @@ class ControllerManagerBridge {
   /// between steps). A controller's parameters are read from `control_ns`/<name> (the robot's
   /// namespace unless ~control_namespace moves them). `changed` runs after each load, unload
   /// or switch, so that the node follows (command topics, joint_states).
-  ControllerManagerBridge(ros::NodeHandle robot_nh, std::string control_ns, Simulation& sim,
-                          SimRobot& robot, std::function<void()> changed);
+  ControllerManagerBridge(ros::NodeHandle robot_nh, std::string control_ns, Simulator& sim,
+                          ModelId robot, std::function<void()> changed);
   ControllerManagerBridge(const ControllerManagerBridge&) = delete;
   ControllerManagerBridge& operator=(const ControllerManagerBridge&) = delete;
 
@@ -55,8 +55,10 @@ class ControllerManagerBridge {
                          const std::vector<std::string>& stop, int strictness);
 
   std::string control_ns_;
-  Simulation& sim_;
-  SimRobot& robot_;
+  const tianracer_control::ControllerSet& controllers() const;
+
+  Simulator& sim_;
+  ModelId robot_;
   std::function<void()> changed_;
   std::vector<ros::ServiceServer> services_;
 };
