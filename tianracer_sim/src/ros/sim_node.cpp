@@ -76,18 +76,17 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   }
   for (const std::string& name : robot_names) loadRobot(ros::NodeHandle(pnh_, name), name);
 
-  std::vector<std::string> command_topics;
-  for (const auto& robot : robots_) {
-    for (const std::string& t : robot->commandTopics()) command_topics.push_back(t);
-  }
-  LockstepOptions lockstep = lockstepOptions(pnh_, command_topics);
+  LockstepOptions lockstep = lockstepOptions(pnh_);
   if (lockstep.enabled()) {
     lockstep_ = std::make_unique<Lockstep>(root_, &queue_, lockstep);
-    sim_->setLockstep(!lockstep.replies.empty(), lockstep.reply_period, !lockstep.ticks.empty(),
+    updateCommandTopics();
+    sim_->setLockstep(!lockstep.replies.empty(), lockstep.reply_period, lockstep.waitsForTicks(),
                       lockstep.tick_period);
-    ROS_INFO("lockstep: each %g s waits for %zu reply topics, each %g s for %zu tick topics "
+    ROS_INFO("lockstep: each %g s waits for %zu reply topics, each %g s for %zu tick topics%s "
              "(timeout %g s wall)", lockstep.reply_period, lockstep.replies.size(),
-             lockstep.tick_period, lockstep.ticks.size(), lockstep.timeout);
+             lockstep.tick_period, lockstep_->tickTopics().size(),
+             lockstep.tick_commands ? " (the controllers' command topics as they come and go)" : "",
+             lockstep.timeout);
   }
 
   ros::NodeHandle gazebo("/gazebo");
@@ -106,6 +105,15 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
 SimNode::~SimNode() {
   robots_.clear();  // command subscribers point into the controllers
   sim_.reset();     // the frame in flight goes out while the node still exists
+}
+
+void SimNode::updateCommandTopics() {
+  if (!lockstep_) return;
+  std::vector<std::string> topics;
+  for (const auto& robot : robots_) {
+    for (const std::string& t : robot->commandTopics()) topics.push_back(t);
+  }
+  lockstep_->setCommandTopics(topics);
 }
 
 void SimNode::publishClock() {

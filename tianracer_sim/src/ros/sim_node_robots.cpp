@@ -108,6 +108,7 @@ void SimNode::addRobot(RobotModel model, const std::string& name, const Eigen::I
   ros::NodeHandle control_nh(control_ns);
   bridge.control_ns = control_nh.getNamespace();
   bridge.controller_manager = model.ext.ros_control.has_value();
+  bridge.controllers_changed = [this] { updateCommandTopics(); };
   bool given = false;
   std::vector<std::string> names = getNameList(rp, "controllers", &given);
   const bool waits_for_spawner = spawned && !configured;
@@ -166,6 +167,7 @@ void SimNode::addRobot(RobotModel model, const std::string& name, const Eigen::I
     throw;
   }
   robots_.back()->topics() = *topics;
+  updateCommandTopics();
   const SimRobot& robot = *sim_->robot(id);
   // A table that leaves something out is a warning (the user's model does less here than in
   // Gazebo), unless the user left it out with ~disable_sensors.
@@ -214,7 +216,8 @@ void SimNode::deleteModel(const std::string& name) {
     contacts_->removeRobot((*it)->physicsId());
     // Its command subscribers go before the controllers they point into.
     robots_.erase(it);
-    }
+    updateCommandTopics();
+  }
   sim_->removeModel(name);
 }
 

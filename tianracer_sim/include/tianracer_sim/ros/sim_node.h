@@ -93,6 +93,9 @@ class SimNode : private ModelSpawner {
   void spawnWorldModel(const std::string& name, const std::string& sdf,
                        const Eigen::Isometry3d& X_WM) override;
   void deleteModel(const std::string& name) override;
+  /// Lockstep's "commands" follow the controllers of every robot (added, deleted, loaded and
+  /// unloaded through controller_manager).
+  void updateCommandTopics();
   /// Advertises `topic` for a robot's sensor; throws when another sensor publishes there.
   void claimTopic(const std::string& topic, const std::string& owner);
 
