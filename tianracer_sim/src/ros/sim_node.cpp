@@ -152,7 +152,16 @@ void SimNode::stepOnce() {
 
 void SimNode::run() {
   publishClock();
-  publishDue();
+  // Started paused, the state at the start time goes out when the physics first runs (Gazebo
+  // publishes nothing while paused): then every node connected by the unpause gets it, and a
+  // node that connects a moment sooner or later cannot change what it receives (the wheel
+  // odometry node's first joint_states: the determinism rostest). With lockstep replies the
+  // driver's answer to it is awaited as at any reply step.
+  bool start_due = true;
+  if (!sim_->paused()) {
+    publishDue();
+    start_due = false;
+  }
   status_wall_ = ros::WallTime::now();
   status_sim_ = sim_->time();
   ros::WallTime wall0 = ros::WallTime::now();
@@ -164,6 +173,16 @@ void SimNode::run() {
       publishStatus();
       pacing_reset_ = true;
       continue;
+    }
+    if (start_due) {
+      start_due = false;
+      const bool replies = lockstep_ && !lockstep_->options().replies.empty();
+      if (replies) lockstep_->markReplies();
+      publishDue(!replies);
+      if (replies) {
+        lockstep_->awaitReplies(sim_->time());
+        publishClock();
+      }
     }
     if (pacing_reset_) {
       wall0 = ros::WallTime::now();
