@@ -88,9 +88,11 @@ fi
 # ROS tools want the system Python first on PATH (TOOLCHAIN.md: python3 may be a pyenv).
 export PATH="/usr/bin:$PATH"
 mkdir -p "$LOG_DIR"
-# Our gazebo_msgs / ackermann_msgs only where the system has none (never shadow the real ones).
-msgs="$("$REPO/scripts/msg_packages.sh" "$REPO")" || fail "step 'build': scripts/msg_packages.sh failed"
-while read -r line; do say "msgs: $line"; done <<<"$msgs"
+# Our stand-ins (gazebo_msgs, ackermann_msgs, xacro, controller_manager(_msgs), gazebo_ros) only
+# where the system has none: never shadow the real ones.
+stand_ins="$("$REPO/scripts/stand_in_packages.sh" "$REPO")" \
+  || fail "step 'build': scripts/stand_in_packages.sh failed"
+while read -r line; do say "stand-ins: $line"; done <<<"$stand_ins"
 say "build: catkin_make in $WS (log: $LOG_DIR/build.log)"
 start=$(date +%s)
 if ! catkin_make -C "$WS" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 \

@@ -1,4 +1,4 @@
-// Controllers and their factory: behaviour of each type and every configuration error.
+// Controllers and their registry: behaviour of each type and every configuration error.
 #include <cmath>
 #include <limits>
 #include <map>
@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tianracer_control/controllers/effort_joint_position_controller.h"
 #include "tianracer_control/joint_controllers.h"
 
 using namespace tianracer_control;  // NOLINT: test file
@@ -51,29 +52,35 @@ struct Car {
   }
 };
 
+// A YAML entry as the parameter server gives it: type, joint (when not empty).
 ControllerSpec spec(const std::string& name, const std::string& type, const std::string& joint) {
   ControllerSpec s;
   s.name = name;
   s.type = type;
-  s.joint = joint;
+  if (!type.empty()) s.params["type"] = type;
+  if (!joint.empty()) s.params["joint"] = joint;
   return s;
 }
 
 ControllerSpec hingeSpec(double p, double i = 0.0, double d = 0.0) {
   ControllerSpec s = spec("hinge", "effort_controllers/JointPositionController",
                           "left_steering_hinge_joint");
-  PidParams pid;
-  pid.p = p;
-  pid.i = i;
-  pid.d = d;
-  s.pid = pid;
+  s.params["pid"]["p"] = p;
+  s.params["pid"]["i"] = i;
+  s.params["pid"]["d"] = d;
   return s;
 }
 
-// Runs makeController and returns the error text ("" if it did not throw).
+std::unique_ptr<Controller> create(const ControllerSpec& s,
+                                   std::map<std::string, JointHandle*>& joints,
+                                   const WarningSink& warn = WarningSink()) {
+  return builtinControllers().create(s, joints, warn);
+}
+
+// Builds the controller and returns the error text ("" if it did not throw).
 std::string errorOf(const ControllerSpec& s, std::map<std::string, JointHandle*>& joints) {
   try {
-    makeController(s, joints);
+    create(s, joints);
   } catch (const ControllerError& e) {
     return e.what();
   }
@@ -151,7 +158,7 @@ TEST(EffortJointPositionController, ContinuousJointTakesTheShortWayRound) {
   car.left_rear.position = 3.0;
   ControllerSpec s = spec("wheel", "effort_controllers/JointPositionController",
                           "left_rear_wheel_joint");
-  s.pid = PidGains::fromIClamp(1.0, 0.0, 0.0, 0.0);  // PidGains converts to PidParams
+  s.params["pid"]["p"] = 1.0;
   ControllerSet set;
   auto& c = set.load(s, car.joints);
   c.setCommand(-3.0);
@@ -165,10 +172,8 @@ TEST(EffortJointVelocityController, PidOnVelocityError) {
   car.left_rear.velocity_limit = 5.0;
   car.left_rear.effort_limit = 100.0;
   ControllerSpec s = spec("v", "effort_controllers/JointVelocityController", "left_rear_wheel_joint");
-  PidParams pid;
-  pid.p = 1.0;
-  pid.d = 0.01;
-  s.pid = pid;
+  s.params["pid"]["p"] = 1;  // an int, as YAML gives "p: 1"
+  s.params["pid"]["d"] = 0.01;
   ControllerSet set;
   auto& c = set.load(s, car.joints);
   EXPECT_EQ(c.command(), 0.0);
@@ -239,7 +244,7 @@ TEST(JointStateController, DueAtPublishRateInSimTime) {
   ControllerSpec s;
   s.name = "joint_state_controller";
   s.type = "joint_state_controller/JointStateController";
-  s.publish_rate = 50.0;
+  s.params["publish_rate"] = 50;
   Car car;
   ControllerSet set;
   set.load(s, car.joints);
@@ -301,20 +306,20 @@ TEST(ControllerSet, UpdatesInOrderAndFindsByName) {
   EXPECT_EQ(car.left_rear.command, 0.0);
 }
 
-// ----------------------------------------------------------------------------- factory errors
-TEST(MakeController, UnknownType) {
+// ---------------------------------------------------------------------------- registry errors
+TEST(ControllerRegistry, UnknownType) {
   Car car;
   const std::string e = errorOf(spec("x", "foo/Bar", "left_rear_wheel_joint"), car.joints);
   EXPECT_TRUE(startsWith(e, "controller 'x': unknown type 'foo/Bar'")) << e;
   EXPECT_NE(e.find("velocity_controllers/JointVelocityController"), std::string::npos) << e;
 }
 
-TEST(MakeController, MissingType) {
+TEST(ControllerRegistry, MissingType) {
   Car car;
   EXPECT_EQ(errorOf(spec("x", "", "j"), car.joints), "controller 'x': no type given (parameter 'type')");
 }
 
-TEST(MakeController, MissingJoint) {
+TEST(ControllerRegistry, MissingJoint) {
   Car car;
   const std::string e =
       errorOf(spec("wheel", "velocity_controllers/JointVelocityController", ""), car.joints);
@@ -322,7 +327,7 @@ TEST(MakeController, MissingJoint) {
                "velocity_controllers/JointVelocityController)");
 }
 
-TEST(MakeController, JointNotFound) {
+TEST(ControllerRegistry, JointNotFound) {
   Car car;
   ControllerSpec s = spec("wheel", "velocity_controllers/JointVelocityController", "left_ front_wheel_joint");
   s.line = 7;
@@ -333,11 +338,11 @@ TEST(MakeController, JointNotFound) {
       << e;
 }
 
-TEST(MakeController, InterfaceMismatchNamesBoth) {
+TEST(ControllerRegistry, InterfaceMismatchNamesBoth) {
   Car car;
   ControllerSpec s = hingeSpec(1.0);
   s.name = "rear_position";
-  s.joint = "left_rear_wheel_joint";
+  s.params["joint"] = "left_rear_wheel_joint";
   EXPECT_EQ(errorOf(s, car.joints),
             "controller 'rear_position': effort_controllers/JointPositionController needs the "
             "effort interface (EffortJointInterface) but the transmission of joint "
@@ -349,60 +354,136 @@ TEST(MakeController, InterfaceMismatchNamesBoth) {
             "'left_steering_hinge_joint' gives the effort interface (EffortJointInterface)");
 }
 
-TEST(MakeController, MissingPid) {
+TEST(ControllerRegistry, MissingPid) {
   Car car;
   ControllerSpec s = hingeSpec(1.0);
-  s.pid.reset();
+  s.params.erase("pid");
   EXPECT_EQ(errorOf(s, car.joints),
             "controller 'hinge': pid/p is missing (effort_controllers/JointPositionController "
             "needs pid gains)");
-  s.pid = PidParams();
-  s.pid->i = 1.0;  // pid present, p absent
+  s.params["pid"]["i"] = 1.0;  // pid present, p absent
   EXPECT_TRUE(startsWith(errorOf(s, car.joints), "controller 'hinge': pid/p is missing"));
   ControllerSpec v = spec("vel", "effort_controllers/JointVelocityController", "left_steering_hinge_joint");
   EXPECT_TRUE(startsWith(errorOf(v, car.joints), "controller 'vel': pid/p is missing"));
 }
 
-TEST(MakeController, BadPidValues) {
+TEST(ControllerRegistry, BadPidValues) {
   Car car;
   ControllerSpec s = hingeSpec(1.0);
-  s.pid->i_clamp_min = 1.0;
-  s.pid->i_clamp_max = -1.0;
+  s.params["pid"]["i_clamp_min"] = 1.0;
+  s.params["pid"]["i_clamp_max"] = -1.0;
   EXPECT_EQ(errorOf(s, car.joints),
             "controller 'hinge': pid/i_clamp_min (1) is greater than pid/i_clamp_max (-1)");
   s = hingeSpec(kNan);
   EXPECT_EQ(errorOf(s, car.joints), "controller 'hinge': pid/p must be finite, got nan");
 }
 
-TEST(MakeController, JointStatePublishRate) {
+TEST(ControllerRegistry, JointStatePublishRate) {
   Car car;
   ControllerSpec s = spec("jsc", "joint_state_controller/JointStateController", "");
   EXPECT_EQ(errorOf(s, car.joints),
             "controller 'jsc': publish_rate is missing (joint_state_controller/JointStateController)");
-  s.publish_rate = -5.0;
+  s.params["publish_rate"] = -5.0;
   EXPECT_EQ(errorOf(s, car.joints), "controller 'jsc': publish_rate must be a positive number, got -5");
-  s.publish_rate = 50.0;
+  s.params["publish_rate"] = 50.0;
   EXPECT_EQ(errorOf(s, car.joints), "");
 }
 
-TEST(MakeController, UnknownKeysAreWarned) {
+TEST(ControllerRegistry, UnknownKeysAreWarned) {
   Car car;
   ControllerSpec s = hingeSpec(1.0);
-  s.keys = {"type", "joint", "pid", "pid/p", "pid/i", "pid/d", "pid/i_clamp", "pid/antiwindup",
-            "pid/pp", "joints"};
+  s.params["pid"]["i_clamp"] = 0.5;
+  s.params["pid"]["antiwindup"] = true;
+  s.params["pid"]["pp"] = 2.0;
+  s.params["joints"] = ParamValue::list({"a", "b"});
+  s.line = 4;
   std::vector<std::string> warnings;
-  makeController(s, car.joints, [&](const std::string& w) { warnings.push_back(w); });
+  create(s, car.joints, [&](const std::string& w) { warnings.push_back(w); });
   ASSERT_EQ(warnings.size(), 2u);
-  EXPECT_EQ(warnings[0], "controller 'hinge': key 'pid/pp' is not used by "
+  EXPECT_EQ(warnings[0], "line 4: controller 'hinge': key 'joints' is not used by "
                          "effort_controllers/JointPositionController, ignored");
-  EXPECT_EQ(warnings[1], "controller 'hinge': key 'joints' is not used by "
+  EXPECT_EQ(warnings[1], "line 4: controller 'hinge': key 'pid/pp' is not used by "
                          "effort_controllers/JointPositionController, ignored");
 }
 
-TEST(MakeController, IntegralGainWithoutClampIsWarned) {
+TEST(ControllerRegistry, KeysOfAnotherTypeAreWarnedOncePerSubtree) {
+  Car car;
+  ControllerSpec s = spec("jsc", "joint_state_controller/JointStateController", "some_joint");
+  s.params["publish_rate"] = 50;
+  s.params["pid"]["p"] = 1.0;
+  s.params["pid"]["d"] = 1.0;
+  std::vector<std::string> warnings;
+  create(s, car.joints, [&](const std::string& w) { warnings.push_back(w); });
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_EQ(warnings[0], "controller 'jsc': key 'joint' is not used by "
+                         "joint_state_controller/JointStateController, ignored");
+  EXPECT_EQ(warnings[1], "controller 'jsc': key 'pid' is not used by "
+                         "joint_state_controller/JointStateController, ignored");
+}
+
+TEST(ControllerRegistry, EachClassChecksTheKindsOfItsKeys) {
+  Car car;
+  ControllerSpec s = hingeSpec(1.0);
+  s.params["pid"]["p"] = "high";
+  EXPECT_EQ(errorOf(s, car.joints), "controller 'hinge': pid/p must be a number, got a string");
+  s = hingeSpec(1.0);
+  s.params["pid"] = 1.0;
+  EXPECT_EQ(errorOf(s, car.joints), "controller 'hinge': pid must be a dictionary, got a double");
+  s = hingeSpec(1.0);
+  s.params["pid"]["antiwindup"] = 1;
+  EXPECT_EQ(errorOf(s, car.joints),
+            "controller 'hinge': pid/antiwindup must be true or false, got an int");
+  s = hingeSpec(1.0);
+  s.params["joint"] = 3;
+  EXPECT_EQ(errorOf(s, car.joints), "controller 'hinge': joint must be a string, got an int");
+  ControllerSpec j = spec("jsc", "joint_state_controller/JointStateController", "");
+  j.params["publish_rate"] = "fast";
+  EXPECT_EQ(errorOf(j, car.joints),
+            "controller 'jsc': publish_rate must be a number, got a string");
+}
+
+TEST(ControllerRegistry, ListsTheTypesInRegistrationOrderAndTakesNewOnes) {
+  const std::vector<std::string> types = builtinControllers().types();
+  const std::vector<std::string> expected = {
+      "joint_state_controller/JointStateController", "effort_controllers/JointPositionController",
+      "effort_controllers/JointVelocityController", "effort_controllers/JointEffortController",
+      "velocity_controllers/JointVelocityController",
+      "position_controllers/JointPositionController"};
+  EXPECT_EQ(types, expected);
+
+  // A registry of one's own: a new type is one factory and one add().
+  ControllerRegistry registry;
+  registry.add("my_controllers/Hold", [](ControllerContext& context) -> std::unique_ptr<Controller> {
+    JointHandle* joint = SingleJointController::claimJoint(context, JointHandle::Interface::kEffort);
+    const double gain = context.params.number("gain").value_or(1.0);
+    return std::make_unique<EffortJointPositionController>(
+        context.params.name(), joint, PidGains::fromIClamp(gain, 0.0, 0.0, 0.0));
+  });
+  EXPECT_TRUE(registry.has("my_controllers/Hold"));
+  EXPECT_FALSE(registry.has("effort_controllers/JointPositionController"));
+  Car car;
+  ControllerSpec s = spec("hold", "my_controllers/Hold", "left_steering_hinge_joint");
+  s.params["gain"] = 3.0;
+  std::vector<std::string> warnings;
+  auto c = registry.create(s, car.joints, [&](const std::string& w) { warnings.push_back(w); });
+  EXPECT_EQ(c->joint(), &car.left_hinge);
+  EXPECT_TRUE(warnings.empty());
+  const std::string e = [&] {
+    try {
+      registry.create(hingeSpec(1.0), car.joints);
+    } catch (const ControllerError& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  }();
+  EXPECT_EQ(e, "controller 'hinge': unknown type 'effort_controllers/JointPositionController' "
+               "(known types: my_controllers/Hold)");
+}
+
+TEST(ControllerRegistry, IntegralGainWithoutClampIsWarned) {
   Car car;
   std::vector<std::string> warnings;
-  makeController(hingeSpec(1.0, 2.0), car.joints, [&](const std::string& w) { warnings.push_back(w); });
+  create(hingeSpec(1.0, 2.0), car.joints, [&](const std::string& w) { warnings.push_back(w); });
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("integral term is always 0"), std::string::npos) << warnings[0];
 }

@@ -57,7 +57,9 @@ def wrapper_launch(path, args, params, extra_xml=""):
 
 class RosSession:
     """own_master: start rosmaster first and wait for it (roslaunch gives a master 10 s to come
-    up, which a loaded machine can miss); False: roslaunch starts it, as a user's launch does."""
+    up, which a loaded machine can miss); False: roslaunch starts it, as a user's launch does.
+    launch_file is a path, or roslaunch's arguments as a user types them (a list, e.g.
+    ['tianracer_bringup', 'tianracer.launch', 'robot_name:=racecar'])."""
 
     def __init__(self, launch_file, log_path, log_dir=None, port=None, own_master=True):
         self.own_master = own_master
@@ -89,7 +91,8 @@ class RosSession:
                         raise RuntimeError("rosmaster on port %d did not start; see %s" % (self.port, self.log_path))
                     time.sleep(0.05)
         self.t_start = time.time()
-        self.proc = subprocess.Popen(["roslaunch", "-p", str(self.port), self.launch_file],
+        launch = list(self.launch_file) if isinstance(self.launch_file, (list, tuple)) else [self.launch_file]
+        self.proc = subprocess.Popen(["roslaunch", "-p", str(self.port)] + launch,
                                      env=self.env, stdout=self._log, stderr=subprocess.STDOUT,
                                      stdin=subprocess.DEVNULL, start_new_session=True)
         return self

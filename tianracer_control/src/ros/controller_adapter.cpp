@@ -11,83 +11,49 @@ namespace {
 
 using XmlRpc::XmlRpcValue;
 
-const char* typeName(const XmlRpcValue& v) {
+// XmlRpcValue's conversions are non-const: read from a copy.
+ParamValue toParamValue(XmlRpcValue v) {
   switch (v.getType()) {
     case XmlRpcValue::TypeBoolean:
-      return "a bool";
+      return ParamValue(static_cast<bool>(v));
     case XmlRpcValue::TypeInt:
-      return "an int";
+      return ParamValue(static_cast<int>(v));
     case XmlRpcValue::TypeDouble:
-      return "a double";
+      return ParamValue(static_cast<double>(v));
     case XmlRpcValue::TypeString:
-      return "a string";
-    case XmlRpcValue::TypeArray:
-      return "a list";
-    case XmlRpcValue::TypeStruct:
-      return "a dictionary";
+      return ParamValue(static_cast<std::string>(v));
+    case XmlRpcValue::TypeArray: {
+      ParamValue::List items;
+      for (int i = 0; i < v.size(); ++i) items.push_back(toParamValue(v[i]));
+      return ParamValue::list(std::move(items));
+    }
+    case XmlRpcValue::TypeStruct: {
+      ParamValue tree = ParamValue::dict();
+      for (auto it = v.begin(); it != v.end(); ++it) tree[it->first] = toParamValue(it->second);
+      return tree;
+    }
     default:
-      return "an unsupported value";
+      return ParamValue::other();
   }
-}
-
-std::string prefix(const std::string& name) { return "controller '" + name + "': "; }
-
-// XmlRpcValue's conversions are non-const: the helpers read from a copy.
-double number(const std::string& name, const std::string& key, XmlRpcValue v) {
-  if (v.getType() == XmlRpcValue::TypeDouble) return static_cast<double>(v);
-  if (v.getType() == XmlRpcValue::TypeInt) return static_cast<int>(v);
-  throw ControllerError(prefix(name) + key + " must be a number, got " + typeName(v));
-}
-
-std::string text(const std::string& name, const std::string& key, XmlRpcValue v) {
-  if (v.getType() == XmlRpcValue::TypeString) return static_cast<std::string>(v);
-  throw ControllerError(prefix(name) + key + " must be a string, got " + typeName(v));
-}
-
-bool boolean(const std::string& name, const std::string& key, XmlRpcValue v) {
-  if (v.getType() == XmlRpcValue::TypeBoolean) return static_cast<bool>(v);
-  throw ControllerError(prefix(name) + key + " must be true or false, got " + typeName(v));
 }
 
 }  // namespace
 
 ControllerSpec toControllerSpec(const std::string& name, const XmlRpcValue& params) {
-  if (params.getType() != XmlRpcValue::TypeStruct) {
-    throw ControllerError(prefix(name) + "its parameters must be a dictionary, got " +
-                          typeName(params));
-  }
   ControllerSpec spec;
   spec.name = name;
-  for (auto it = params.begin(); it != params.end(); ++it) {
-    const std::string& key = it->first;
-    const XmlRpcValue& value = it->second;
-    spec.keys.push_back(key);
-    if (key == "type") {
-      spec.type = text(name, key, value);
-    } else if (key == "joint") {
-      spec.joint = text(name, key, value);
-    } else if (key == "publish_rate") {
-      spec.publish_rate = number(name, key, value);
-    } else if (key == "pid") {
-      if (value.getType() != XmlRpcValue::TypeStruct) {
-        throw ControllerError(prefix(name) + "pid must be a dictionary, got " + typeName(value));
-      }
-      PidParams pid;
-      for (auto p = value.begin(); p != value.end(); ++p) {
-        const std::string sub = "pid/" + p->first;
-        spec.keys.push_back(sub);
-        const XmlRpcValue& v = p->second;
-        if (p->first == "p") pid.p = number(name, sub, v);
-        else if (p->first == "i") pid.i = number(name, sub, v);
-        else if (p->first == "d") pid.d = number(name, sub, v);
-        else if (p->first == "i_clamp") pid.i_clamp = number(name, sub, v);
-        else if (p->first == "i_clamp_min") pid.i_clamp_min = number(name, sub, v);
-        else if (p->first == "i_clamp_max") pid.i_clamp_max = number(name, sub, v);
-        else if (p->first == "antiwindup") pid.antiwindup = boolean(name, sub, v);
-        // other keys stay in spec.keys and are reported by makeController()
-      }
-      spec.pid = pid;
+  spec.params = toParamValue(params);
+  if (spec.params.kind() != ParamValue::Kind::kDict) {
+    throw ControllerError(controllerPrefix(name) + "its parameters must be a dictionary, got " +
+                          spec.params.typeName());
+  }
+  // The type picks the class (controller_manager reads it); the class reads the rest.
+  if (const ParamValue* type = spec.params.find("type")) {
+    if (type->kind() != ParamValue::Kind::kString) {
+      throw ControllerError(controllerPrefix(name) + "type must be a string, got " +
+                            type->typeName());
     }
+    spec.type = type->asString();
   }
   return spec;
 }
@@ -98,7 +64,7 @@ std::vector<ControllerSpec> loadControllerSpecs(const ros::NodeHandle& ns,
   for (const std::string& name : names) {
     XmlRpcValue params;
     if (!ns.getParam(name, params)) {
-      throw ControllerError(prefix(name) + "no parameters at " + ns.resolveName(name));
+      throw ControllerError(controllerPrefix(name) + "no parameters at " + ns.resolveName(name));
     }
     specs.push_back(toControllerSpec(name, params));
   }

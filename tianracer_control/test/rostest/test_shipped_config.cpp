@@ -12,6 +12,7 @@
 #include <ros/ros.h>
 #include <std_msgs/Float64.h>
 
+#include "tianracer_control/controllers/effort_joint_position_controller.h"
 #include "tianracer_control/ros/controller_adapter.h"
 
 using namespace tianracer_control;  // NOLINT: test file

@@ -48,13 +48,12 @@ double positive(const ros::NodeHandle& pnh, const std::string& key, double fallb
 
 }  // namespace
 
-LockstepOptions lockstepOptions(const ros::NodeHandle& pnh,
-                                const std::vector<std::string>& command_topics) {
+LockstepOptions lockstepOptions(const ros::NodeHandle& pnh) {
   LockstepOptions o;
   o.replies = topicList(pnh, "lockstep/replies");
   for (const std::string& t : topicList(pnh, "lockstep/ticks")) {
     if (t == "commands") {
-      o.ticks.insert(o.ticks.end(), command_topics.begin(), command_topics.end());
+      o.tick_commands = true;
     } else {
       o.ticks.push_back(t);
     }
@@ -66,27 +65,61 @@ LockstepOptions lockstepOptions(const ros::NodeHandle& pnh,
 }
 
 Lockstep::Lockstep(ros::NodeHandle nh, ros::CallbackQueue* queue, LockstepOptions options)
-    : queue_(queue), options_(std::move(options)) {
-  nh.setCallbackQueue(queue_);
-  subscribe(nh, options_.replies, &replies_);
-  subscribe(nh, options_.ticks, &ticks_);
+    : nh_(nh), queue_(queue), options_(std::move(options)) {
+  nh_.setCallbackQueue(queue_);
+  subscribe(nh_, options_.replies, &replies_);
+  subscribe(nh_, options_.ticks, &ticks_);
+}
+
+std::unique_ptr<Lockstep::Topic> Lockstep::makeTopic(ros::NodeHandle& nh, const std::string& name) {
+  auto topic = std::make_unique<Topic>();
+  topic->name = nh.resolveName(name);
+  Topic* raw = topic.get();
+  // Any type: only the arrival matters. tcp_nodelay, as the answer is awaited.
+  topic->sub = nh.subscribe<topic_tools::ShapeShifter>(
+      topic->name, 10,
+      [raw](const topic_tools::ShapeShifter::ConstPtr&) {
+        raw->arrived = true;
+        raw->absent = false;
+      },
+      ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
+  return topic;
 }
 
 void Lockstep::subscribe(ros::NodeHandle& nh, const std::vector<std::string>& names, Group* group) {
-  for (const std::string& name : names) {
-    auto topic = std::make_unique<Topic>();
-    topic->name = nh.resolveName(name);
-    Topic* raw = topic.get();
-    // Any type: only the arrival matters. tcp_nodelay, as the answer is awaited.
-    topic->sub = nh.subscribe<topic_tools::ShapeShifter>(
-        topic->name, 10,
-        [raw](const topic_tools::ShapeShifter::ConstPtr&) {
-          raw->arrived = true;
-          raw->absent = false;
-        },
-        ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
-    group->push_back(std::move(topic));
+  for (const std::string& name : names) group->push_back(makeTopic(nh, name));
+}
+
+void Lockstep::setCommandTopics(const std::vector<std::string>& topics) {
+  if (!options_.tick_commands) return;
+  std::vector<std::string> wanted;
+  for (const std::string& t : topics) wanted.push_back(nh_.resolveName(t));
+  // Gone: command topics no longer wanted (topics named in ~lockstep/ticks stay).
+  ticks_.erase(std::remove_if(ticks_.begin(), ticks_.end(),
+                              [&](const std::unique_ptr<Topic>& topic) {
+                                return topic->command && std::find(wanted.begin(), wanted.end(),
+                                                                   topic->name) == wanted.end();
+                              }),
+               ticks_.end());
+  for (const std::string& name : wanted) {
+    const bool known = std::any_of(ticks_.begin(), ticks_.end(), [&](const auto& topic) {
+      return topic->name == name;
+    });
+    if (known) continue;
+    std::unique_ptr<Topic> topic = makeTopic(nh_, name);
+    topic->command = true;
+    // At start-up everything is waited for from the first tick; later a new controller's topic
+    // only once somebody publishes there.
+    topic->absent = started_;
+    ticks_.push_back(std::move(topic));
   }
+  started_ = true;
+}
+
+std::vector<std::string> Lockstep::tickTopics() const {
+  std::vector<std::string> names;
+  for (const auto& topic : ticks_) names.push_back(topic->name);
+  return names;
 }
 
 void Lockstep::mark(Group& group) {

@@ -16,7 +16,7 @@ namespace tc = tianracer_control;
 
 RobotBridge::RobotBridge(Simulator& sim, ModelId id, Options options, ros::NodeHandle root,
                          tf2_ros::StaticTransformBroadcaster& static_tf)
-    : sim_(sim), id_(id), options_(std::move(options)) {
+    : sim_(sim), id_(id), options_(std::move(options)), root_(root) {
   SimRobot& robot = *sim_.robot(id_);
   physics_id_ = robot.id;
   const PhysicsRobot& pr = sim_.simulation().physics().robot(robot.id);
@@ -36,15 +36,35 @@ RobotBridge::RobotBridge(Simulator& sim, ModelId id, Options options, ros::NodeH
     static_tf.sendTransform(tf);
   }
 
-  setUpJointStates(root);
+  joint_states_ = makeJointStates();
   ros::NodeHandle robot_nh(root, options_.ns);
   commands_ = std::make_shared<tc::ControllerCommandSubscribers>(robot_nh, robot.controllers);
   ground_truth_ = robot_nh.advertise<nav_msgs::Odometry>("ground_truth/odom", 10);
   ground_truth_schedule_.period =
       options_.ground_truth_rate > 0.0 ? 1.0 / options_.ground_truth_rate : 0.0;
+  if (options_.controller_manager) {
+    controller_manager_ = std::make_unique<ControllerManagerBridge>(
+        robot_nh, options_.control_ns, sim_, id_, [this] { controllersChanged(); });
+  }
 }
 
-void RobotBridge::setUpJointStates(ros::NodeHandle& root) {
+void RobotBridge::controllersChanged() {
+  // The new subscribers and publishers exist before the old ones go, so that connections on
+  // the topics that stay are kept. A stream that stays keeps its schedule.
+  ros::NodeHandle robot_nh(root_, options_.ns);
+  commands_ = std::make_shared<tc::ControllerCommandSubscribers>(robot_nh,
+                                                                 sim_.robot(id_)->controllers);
+  std::vector<JointStateStream> streams = makeJointStates();
+  for (JointStateStream& s : streams) {
+    for (const JointStateStream& old : joint_states_) {
+      if (old.pub.getTopic() == s.pub.getTopic()) s.schedule.next = old.schedule.next;
+    }
+  }
+  joint_states_.swap(streams);
+  if (options_.controllers_changed) options_.controllers_changed();
+}
+
+std::vector<RobotBridge::JointStateStream> RobotBridge::makeJointStates() {
   // Both the joint_state_publisher plugin and joint_state_controller publish JointState; when
   // they resolve to the same topic they become ONE stream (one publisher): the plugin's joints
   // in its order, then the controller's other joints, at the higher of the two rates.
@@ -63,6 +83,7 @@ void RobotBridge::setUpJointStates(ros::NodeHandle& root) {
                         jsp->update_rate, "joint_state_publisher plugin"});
   }
   for (const auto& c : robot.controllers.controllers()) {
+    if (!robot.controllers.isRunning(*c)) continue;
     if (auto* jsc = dynamic_cast<const tc::JointStateController*>(c.get())) {
       std::vector<std::string> joints;
       for (const auto& h : robot.handles) joints.push_back(h.name);
@@ -70,15 +91,16 @@ void RobotBridge::setUpJointStates(ros::NodeHandle& root) {
                           "joint_state_controller '" + c->name() + "'"});
     }
   }
+  std::vector<JointStateStream> streams;
   for (const Request& r : requests) {
-    auto it = std::find_if(joint_states_.begin(), joint_states_.end(),
+    auto it = std::find_if(streams.begin(), streams.end(),
                            [&](const JointStateStream& s) { return s.pub.getTopic() == r.topic; });
-    if (it == joint_states_.end()) {
+    if (it == streams.end()) {
       JointStateStream s;
-      s.pub = root.advertise<sensor_msgs::JointState>(r.topic, 10);
+      s.pub = root_.advertise<sensor_msgs::JointState>(r.topic, 10);
       s.schedule.period = 1.0 / r.rate;
-      joint_states_.push_back(std::move(s));
-      it = std::prev(joint_states_.end());
+      streams.push_back(std::move(s));
+      it = std::prev(streams.end());
     } else {
       ROS_INFO_STREAM(r.topic << ": " << r.source
                               << " shares the topic with another joint state source: merged "
@@ -94,13 +116,14 @@ void RobotBridge::setUpJointStates(ros::NodeHandle& root) {
       }
     }
   }
-  for (JointStateStream& s : joint_states_) {
+  for (JointStateStream& s : streams) {
     s.msg.position.resize(s.joints.size());
     s.msg.velocity.resize(s.joints.size());
     s.msg.effort.resize(s.joints.size());
     ROS_INFO_STREAM(s.pub.getTopic() << ": " << s.joints.size() << " joints at "
                                      << 1.0 / s.schedule.period << " Hz");
   }
+  return streams;
 }
 
 void RobotBridge::publish(double t) {

@@ -77,18 +77,17 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   }
   for (const std::string& name : robot_names) loadRobot(ros::NodeHandle(pnh_, name), name);
 
-  std::vector<std::string> command_topics;
-  for (const auto& robot : robots_) {
-    for (const std::string& t : robot->commandTopics()) command_topics.push_back(t);
-  }
-  LockstepOptions lockstep = lockstepOptions(pnh_, command_topics);
+  LockstepOptions lockstep = lockstepOptions(pnh_);
   if (lockstep.enabled()) {
     lockstep_ = std::make_unique<Lockstep>(root_, &queue_, lockstep);
-    sim_->setLockstep(!lockstep.replies.empty(), lockstep.reply_period, !lockstep.ticks.empty(),
+    updateCommandTopics();
+    sim_->setLockstep(!lockstep.replies.empty(), lockstep.reply_period, lockstep.waitsForTicks(),
                       lockstep.tick_period);
-    ROS_INFO("lockstep: each %g s waits for %zu reply topics, each %g s for %zu tick topics "
+    ROS_INFO("lockstep: each %g s waits for %zu reply topics, each %g s for %zu tick topics%s "
              "(timeout %g s wall)", lockstep.reply_period, lockstep.replies.size(),
-             lockstep.tick_period, lockstep.ticks.size(), lockstep.timeout);
+             lockstep.tick_period, lockstep_->tickTopics().size(),
+             lockstep.tick_commands ? " (the controllers' command topics as they come and go)" : "",
+             lockstep.timeout);
   }
 
   ros::NodeHandle gazebo("/gazebo");
@@ -107,6 +106,15 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
 SimNode::~SimNode() {
   robots_.clear();  // command subscribers point into the controllers
   sim_.reset();     // the frame in flight goes out while the node still exists
+}
+
+void SimNode::updateCommandTopics() {
+  if (!lockstep_) return;
+  std::vector<std::string> topics;
+  for (const auto& robot : robots_) {
+    for (const std::string& t : robot->commandTopics()) topics.push_back(t);
+  }
+  lockstep_->setCommandTopics(topics);
 }
 
 void SimNode::publishClock() {
@@ -145,7 +153,16 @@ void SimNode::stepOnce() {
 
 void SimNode::run() {
   publishClock();
-  publishDue();
+  // Started paused, the state at the start time goes out when the physics first runs (Gazebo
+  // publishes nothing while paused): then every node connected by the unpause gets it, and a
+  // node that connects a moment sooner or later cannot change what it receives (the wheel
+  // odometry node's first joint_states: the determinism rostest). With lockstep replies the
+  // driver's answer to it is awaited as at any reply step.
+  bool start_due = true;
+  if (!sim_->paused()) {
+    publishDue();
+    start_due = false;
+  }
   status_wall_ = ros::WallTime::now();
   status_sim_ = sim_->time();
   ros::WallTime wall0 = ros::WallTime::now();
@@ -164,6 +181,16 @@ void SimNode::run() {
       continue;
     }
     paused_clock = false;
+    if (start_due) {
+      start_due = false;
+      const bool replies = lockstep_ && !lockstep_->options().replies.empty();
+      if (replies) lockstep_->markReplies();
+      publishDue(!replies);
+      if (replies) {
+        lockstep_->awaitReplies(sim_->time());
+        publishClock();
+      }
+    }
     if (pacing_reset_) {
       wall0 = ros::WallTime::now();
       sim0 = sim_->time();

@@ -60,18 +60,18 @@ void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name
       ROS_WARN_STREAM("robot '" << name << "': ~robot_name is '" << name << "' but the model's "
                       << "gazebo_ros_control robotNamespace is '/" << model_ns << "': its "
                       << "controllers and joint_states are under /" << model_ns << ", not /"
-                      << name << " (give the model its namespace, e.g. model_args:=\"robot_namespace:=/"
-                      << name << "\", or robot_name:=" << model_ns << ")");
+                      << name << " (give the model its namespace, e.g. model_args:=robot_namespace=/"
+                      << name << ", or robot_name:=" << model_ns << ")");
     }
   }
   if (name.empty()) name = model.urdf->getName();
   bool auto_z = true;
   const Eigen::Isometry3d X_WB = getSpawnPose(rp, &auto_z);
-  addRobot(std::move(model), name, X_WB, auto_z, rp);
+  addRobot(std::move(model), name, X_WB, auto_z, rp, false);
 }
 
 void SimNode::addRobot(RobotModel model, const std::string& name, const Eigen::Isometry3d& X_WB,
-                       bool auto_z, const ros::NodeHandle& rp) {
+                       bool auto_z, const ros::NodeHandle& rp, bool spawned) {
   if (sim_->simulation().findRobot(name)) {
     throw ModelError("robot '" + name + "' exists already: robot names must be unique");
   }
@@ -98,13 +98,26 @@ void SimNode::addRobot(RobotModel model, const std::string& name, const Eigen::I
   spawn.X_WB = X_WB;
   spawn.drop_to_ground = auto_z;
   spawn.tf_prefix = bridge.tf_prefix;
-  // Controllers: the list given, else every controller defined under the namespace.
+  // Controllers: the list given, else every controller defined under the namespace, except for
+  // a robot spawned through spawn_urdf_model with neither given: as in Gazebo, it runs none
+  // until a spawner starts them through <ns>/controller_manager/.
   std::string control_ns;
-  rp.param<std::string>("control_namespace", control_ns, bridge.ns);
+  ControlConfigKeys control_config;
+  const bool configured = rp.getParam("control_namespace", control_ns);
+  if (!configured) control_ns = defaultControlNamespace(rp, bridge.ns, &control_config);
   ros::NodeHandle control_nh(control_ns);
+  bridge.control_ns = control_nh.getNamespace();
+  bridge.controller_manager = model.ext.ros_control.has_value();
+  bridge.controllers_changed = [this] { updateCommandTopics(); };
   bool given = false;
   std::vector<std::string> names = getNameList(rp, "controllers", &given);
-  if (!given) names = listControllers(control_nh);
+  const bool waits_for_spawner = spawned && !configured;
+  if (!given && !waits_for_spawner) {
+    names = listControllers(control_nh);
+    if (names.empty() && model.ext.ros_control) {
+      ROS_WARN_STREAM(noControllersWarning(name, control_nh.getNamespace(), control_config));
+    }
+  }
   spawn.controllers = tianracer_control::loadControllerSpecs(control_nh, names);
   spawn.disabled_sensors = getNameList(rp, "disable_sensors", &given);
   if (!given) spawn.disabled_sensors = getNameList(pnh_, "disable_sensors", &given);
@@ -154,6 +167,7 @@ void SimNode::addRobot(RobotModel model, const std::string& name, const Eigen::I
     throw;
   }
   robots_.back()->topics() = *topics;
+  updateCommandTopics();
   const SimRobot& robot = *sim_->robot(id);
   // A table that leaves something out is a warning (the user's model does less here than in
   // Gazebo), unless the user left it out with ~disable_sensors.
@@ -179,7 +193,8 @@ void SimNode::spawnRobot(const std::string& name, const std::string& urdf,
   const ros::NodeHandle rp(pnh_, name);
   LoadOptions options = loadOptions(rp);
   options.warn = [](const std::string& w) { warnOnce(w); };
-  addRobot(loadRobotModel(urdf, "spawn_urdf_model '" + name + "'", options), name, X_WB, false, rp);
+  addRobot(loadRobotModel(urdf, "spawn_urdf_model '" + name + "'", options), name, X_WB, false, rp,
+           true);
 }
 
 void SimNode::spawnWorldModel(const std::string& name, const std::string& sdf,
@@ -201,6 +216,7 @@ void SimNode::deleteModel(const std::string& name) {
     contacts_->removeRobot((*it)->physicsId());
     // Its command subscribers go before the controllers they point into.
     robots_.erase(it);
+    updateCommandTopics();
   }
   sim_->removeModel(name);
 }

@@ -151,11 +151,7 @@ SimRobot& Simulation::addRobot(RobotConfig config) {
     }
     // Joints no controller writes stay free (no motor holding them at a zero command).
     robot->claimed.assign(robot->handles.size(), false);
-    for (const auto& c : robot->controllers.controllers()) {
-      for (size_t k = 0; k < robot->handles.size(); ++k) {
-        if (c->joint() == &robot->handles[k]) robot->claimed[k] = true;
-      }
-    }
+    updateClaims(*robot);
   } catch (...) {
     physics_.removeRobot(robot->id);  // nothing of a robot that failed stays
     throw;
@@ -177,6 +173,48 @@ SimRobot* Simulation::findRobot(const std::string& name) {
     if (r->name == name) return r.get();
   }
   return nullptr;
+}
+
+namespace {
+
+std::map<std::string, tc::JointHandle*> jointsOf(SimRobot& robot) {
+  std::map<std::string, tc::JointHandle*> joints;
+  for (tc::JointHandle& h : robot.handles) joints[h.name] = &h;
+  return joints;
+}
+
+}  // namespace
+
+tc::Controller& Simulation::loadController(SimRobot& robot, const tc::ControllerSpec& spec) {
+  std::map<std::string, tc::JointHandle*> joints = jointsOf(robot);
+  return robot.controllers.loadController(spec, joints, [&](const std::string& w) {
+    if (warn_) warn_("robot '" + robot.name + "': " + w);
+  });
+}
+
+void Simulation::unloadController(SimRobot& robot, const std::string& name) {
+  robot.controllers.unloadController(name);
+  updateClaims(robot);
+}
+
+void Simulation::switchControllers(SimRobot& robot, const std::vector<std::string>& start,
+                                   const std::vector<std::string>& stop,
+                                   tc::Strictness strictness) {
+  read(robot);  // a controller starting holds the current position
+  robot.controllers.switchControllers(start, stop, strictness, physics_.time());
+  updateClaims(robot);
+}
+
+void Simulation::updateClaims(SimRobot& robot) {
+  PhysicsRobot& pr = physics_.robot(robot.id);
+  for (size_t k = 0; k < robot.handles.size(); ++k) {
+    bool claimed = false;
+    for (const auto& c : robot.controllers.controllers()) {
+      if (c->joint() == &robot.handles[k] && robot.controllers.isRunning(*c)) claimed = true;
+    }
+    if (robot.claimed[k] && !claimed) pr.clearJointCommand(robot.handle_joint[k]);
+    robot.claimed[k] = claimed;
+  }
 }
 
 void Simulation::read(SimRobot& robot) {

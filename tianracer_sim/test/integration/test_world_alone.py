@@ -3,8 +3,9 @@
 
 - before any spawn: /clock advances, /gazebo/model_states lists the world's models and no robot,
   get_world_properties agrees, nothing is published on the car's topics;
-- spawn_urdf_model adds the tianracer: its /tianracer/joint_states appear, and wheel velocity
-  commands on its controllers' topics turn its wheels and drive it forward (ground truth x).
+- spawn_urdf_model adds the tianracer; the spawner waiting in its namespace starts its
+  controllers: its /tianracer/joint_states appear, and wheel velocity commands on its
+  controllers' topics turn its wheels and drive it forward (ground truth x).
 Sim time throughout; wall time only bounds the waits.
 """
 import threading

@@ -29,8 +29,30 @@ inline RobotModel loadTianracer() {
   return loadRobotModelFile(descriptionDir() + "/urdf/tianracer_description.xacro", options);
 }
 
+/// A YAML node as the parameter server holds it (rosparam load: ints, doubles, bools, strings).
+inline tianracer_control::ParamValue toParamValue(const YAML::Node& node) {
+  using tianracer_control::ParamValue;
+  if (node.IsMap()) {
+    ParamValue tree = ParamValue::dict();
+    for (const auto& entry : node) tree[entry.first.as<std::string>()] = toParamValue(entry.second);
+    return tree;
+  }
+  if (node.IsSequence()) {
+    ParamValue::List items;
+    for (const auto& item : node) items.push_back(toParamValue(item));
+    return ParamValue::list(std::move(items));
+  }
+  int i = 0;
+  double d = 0.0;
+  bool b = false;
+  if (YAML::convert<int>::decode(node, i)) return ParamValue(i);
+  if (YAML::convert<double>::decode(node, d)) return ParamValue(d);
+  if (YAML::convert<bool>::decode(node, b)) return ParamValue(b);
+  return ParamValue(node.as<std::string>());
+}
+
 /// The controllers of a ros_control YAML under `ns`, as the node reads them from the
-/// parameter server (type, joint, pid/{...}, publish_rate).
+/// parameter server.
 inline std::vector<tianracer_control::ControllerSpec> loadControllerYaml(const std::string& file,
                                                                         const std::string& ns) {
   std::vector<tianracer_control::ControllerSpec> specs;
@@ -38,22 +60,8 @@ inline std::vector<tianracer_control::ControllerSpec> loadControllerYaml(const s
   for (const auto& entry : root) {
     tianracer_control::ControllerSpec spec;
     spec.name = entry.first.as<std::string>();
-    const YAML::Node c = entry.second;
-    spec.type = c["type"].as<std::string>();
-    if (c["joint"]) spec.joint = c["joint"].as<std::string>();
-    if (c["publish_rate"]) spec.publish_rate = c["publish_rate"].as<double>();
-    if (c["pid"]) {
-      tianracer_control::PidParams pid;
-      const YAML::Node p = c["pid"];
-      if (p["p"]) pid.p = p["p"].as<double>();
-      if (p["i"]) pid.i = p["i"].as<double>();
-      if (p["d"]) pid.d = p["d"].as<double>();
-      if (p["i_clamp"]) pid.i_clamp = p["i_clamp"].as<double>();
-      if (p["i_clamp_min"]) pid.i_clamp_min = p["i_clamp_min"].as<double>();
-      if (p["i_clamp_max"]) pid.i_clamp_max = p["i_clamp_max"].as<double>();
-      if (p["antiwindup"]) pid.antiwindup = p["antiwindup"].as<bool>();
-      spec.pid = pid;
-    }
+    spec.type = entry.second["type"].as<std::string>();
+    spec.params = toParamValue(entry.second);
     specs.push_back(spec);
   }
   return specs;

@@ -193,7 +193,7 @@ TEST(SimulationErrors, ControllerOnAJointWithoutTransmissionNamesTheController) 
   tc::ControllerSpec spec;
   spec.name = "front_wheel_controller";
   spec.type = "velocity_controllers/JointVelocityController";
-  spec.joint = "left_front_wheel_joint";  // rolls freely: no transmission
+  spec.params["joint"] = "left_front_wheel_joint";  // rolls freely: no transmission
   config.controllers = {spec};
   try {
     sim.addRobot(std::move(config));

@@ -18,9 +18,9 @@
 namespace tianracer_control {
 
 /// One controller's parameter tree (e.g. the value of /tianracer/joint_state_controller) ->
-/// spec, keeping every key for the unknown-key check. Throws ControllerError naming the
-/// controller when the tree is not a struct or a value has the wrong type (type and joint are
-/// strings, publish_rate and pid gains numbers, antiwindup a bool).
+/// spec: its type, and the whole tree for the controller class to read. Throws ControllerError
+/// naming the controller when the tree is not a struct or the type is not a string (the class
+/// checks the kinds of its own keys when it is built).
 ControllerSpec toControllerSpec(const std::string& name, const XmlRpc::XmlRpcValue& params);
 
 /// Reads <ns>/<name> for each name (the list a spawner would get). Throws ControllerError

@@ -23,16 +23,18 @@ struct LockstepOptions {
   /// Topics that nodes publish on a sim-time timer of tick_period (e.g. the cmd_vel node's
   /// controller commands). Waited for after the /clock of each tick.
   std::vector<std::string> ticks;
+  /// The word "commands" in ticks: every loaded controller's command topic is a tick topic,
+  /// as controllers come and go (Lockstep::setCommandTopics()).
+  bool tick_commands = false;
   double tick_period = 0.02;  // s of sim time
   double timeout = 1.0;       // wall s; past it the step goes on without the topic
-  bool enabled() const { return !replies.empty() || !ticks.empty(); }
+  bool enabled() const { return !replies.empty() || !ticks.empty() || tick_commands; }
+  bool waitsForTicks() const { return !ticks.empty() || tick_commands; }
 };
 
-/// Reads ~lockstep/{replies,reply_period,ticks,tick_period,timeout}; the word "commands" in
-/// ticks stands for `command_topics` (every controller's command topic). Throws
+/// Reads ~lockstep/{replies,reply_period,ticks,tick_period,timeout}. Throws
 /// std::runtime_error naming the parameter and the value.
-LockstepOptions lockstepOptions(const ros::NodeHandle& pnh,
-                                const std::vector<std::string>& command_topics);
+LockstepOptions lockstepOptions(const ros::NodeHandle& pnh);
 
 class Lockstep {
  public:
@@ -48,6 +50,13 @@ class Lockstep {
   /// that stopped costs one timeout, not one per period); reported once per topic.
   void awaitReplies(double t) { await(replies_, t, "the sensor data of"); }
   void awaitTicks(double t) { await(ticks_, t, "the /clock of"); }
+  /// With tick_commands: the controllers' command topics now (start-up, spawn, delete_model,
+  /// controller_manager's load and unload). A topic added after start-up is waited for from
+  /// its first message on (a controller nobody commands yet costs no timeout); one gone is no
+  /// longer waited for.
+  void setCommandTopics(const std::vector<std::string>& topics);
+  /// The tick topics waited for (resolved names), in order.
+  std::vector<std::string> tickTopics() const;
   const LockstepOptions& options() const { return options_; }
   std::uint64_t timeouts() const { return timeouts_; }
 
@@ -58,14 +67,18 @@ class Lockstep {
     bool arrived = false;
     bool absent = false;  // timed out; waited for again once a message arrives
     bool reported = false;
+    bool command = false;  // from setCommandTopics(), not named in ~lockstep/ticks
   };
   using Group = std::vector<std::unique_ptr<Topic>>;
   void subscribe(ros::NodeHandle& nh, const std::vector<std::string>& names, Group* group);
+  std::unique_ptr<Topic> makeTopic(ros::NodeHandle& nh, const std::string& name);
   void mark(Group& group);
   void await(Group& group, double t, const char* after);
 
+  ros::NodeHandle nh_;
   ros::CallbackQueue* queue_;
   LockstepOptions options_;
+  bool started_ = false;  // setCommandTopics() ran once
   Group replies_, ticks_;
   std::uint64_t timeouts_ = 0;
 };

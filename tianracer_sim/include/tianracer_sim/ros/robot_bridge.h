@@ -1,10 +1,13 @@
 // The ROS side of one robot of the Simulator: its controllers' command topics, its joint
-// states (the joint_state_publisher plugin's and joint_state_controller's streams, merged where
-// they share a topic), its ground truth (<ns>/ground_truth/odom), the world -> odom TF at its
-// spawn pose, and the sensor topics it claimed.
+// states (the joint_state_publisher plugin's and running joint_state_controllers' streams,
+// merged where they share a topic), its ground truth (<ns>/ground_truth/odom), the world ->
+// odom TF at its spawn pose, the sensor topics it claimed, and, with gazebo_ros_control,
+// controller_manager's services (controller_manager_bridge.h), after which the command topics
+// and joint states follow the controllers loaded and running.
 #ifndef TIANRACER_SIM_ROS_ROBOT_BRIDGE_H
 #define TIANRACER_SIM_ROS_ROBOT_BRIDGE_H
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,6 +18,7 @@
 
 #include <tianracer_control/ros/controller_adapter.h>
 
+#include "tianracer_sim/ros/controller_manager_bridge.h"
 #include "tianracer_sim/simulator/simulator.h"
 
 namespace tianracer_sim {
@@ -26,6 +30,12 @@ class RobotBridge {
     std::string tf_prefix;    // "" for a robot alone; e.g. "tianracer_02"
     std::string odom_frame;   // "" = no world -> odom TF
     double ground_truth_rate = 50.0;
+    /// Serve <ns>/controller_manager/ (a model with gazebo_ros_control), loading controllers'
+    /// parameters from control_ns/<name>.
+    bool controller_manager = false;
+    std::string control_ns;
+    /// After a controller_manager call changed the controllers (the node's lockstep follows).
+    std::function<void()> controllers_changed;
   };
 
   /// Advertises and subscribes on `root` (the node's callback queue). Throws ModelError for a
@@ -56,18 +66,24 @@ class RobotBridge {
     Schedule schedule;
     sensor_msgs::JointState msg;
   };
-  void setUpJointStates(ros::NodeHandle& root);
+  /// The joint state streams of the plugin and of the running joint_state_controllers.
+  std::vector<JointStateStream> makeJointStates();
+  /// After a load, unload or switch: command topics and joint_states follow the controllers.
+  void controllersChanged();
 
   Simulator& sim_;
   ModelId id_;
   RobotId physics_id_;
   Options options_;
+  ros::NodeHandle root_;
   std::string base_frame_;  // tf_prefix + root link
   std::shared_ptr<tianracer_control::ControllerCommandSubscribers> commands_;
   std::vector<JointStateStream> joint_states_;
   ros::Publisher ground_truth_;
   Schedule ground_truth_schedule_;
   std::vector<std::string> topics_;
+  // Last: its services go first (they call into the members above).
+  std::unique_ptr<ControllerManagerBridge> controller_manager_;
 };
 
 }  // namespace tianracer_sim

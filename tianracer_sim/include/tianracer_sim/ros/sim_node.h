@@ -38,7 +38,10 @@
 // the robot: sensor frames, optical frames, ground truth's child frame and the odom frame.
 //   status_period    wall seconds between status lines and /diagnostics (default 5; 0 = off)
 // Robots spawned at run time (/gazebo/spawn_urdf_model) read controllers, control_namespace,
-// odom_frame, disable_sensors and model_dir from ~<model name>/, as robots listed in ~robots.
+// odom_frame, disable_sensors and model_dir from ~<model name>/, as robots listed in ~robots;
+// without ~<name>/controllers or ~<name>/control_namespace they start no controller (as in
+// Gazebo: a spawner starts them through <ns>/controller_manager/, served for every robot with
+// gazebo_ros_control).
 // Start-up and spawn build robots through the same addRobot().
 #ifndef TIANRACER_SIM_ROS_SIM_NODE_H
 #define TIANRACER_SIM_ROS_SIM_NODE_H
@@ -81,14 +84,18 @@ class SimNode : private ModelSpawner {
   /// The robot into the simulator with its bridges (`rp`: its own parameters: controllers,
   /// control_namespace, odom_frame, disable_sensors). Throws naming the robot; nothing of it
   /// stays then.
+  /// `spawned`: through spawn_urdf_model (no controller unless `rp` names them).
   void addRobot(RobotModel model, const std::string& name, const Eigen::Isometry3d& X_WB,
-                bool auto_z, const ros::NodeHandle& rp);
+                bool auto_z, const ros::NodeHandle& rp, bool spawned);
   // ModelSpawner: spawn_urdf_model, spawn_sdf_model and delete_model, between steps.
   void spawnRobot(const std::string& name, const std::string& urdf,
                   const Eigen::Isometry3d& X_WB) override;
   void spawnWorldModel(const std::string& name, const std::string& sdf,
                        const Eigen::Isometry3d& X_WM) override;
   void deleteModel(const std::string& name) override;
+  /// Lockstep's "commands" follow the controllers of every robot (added, deleted, loaded and
+  /// unloaded through controller_manager).
+  void updateCommandTopics();
   /// Advertises `topic` for a robot's sensor; throws when another sensor publishes there.
   void claimTopic(const std::string& topic, const std::string& owner);
 

@@ -58,6 +58,19 @@ class Simulation {
   /// unknown name.
   void removeRobot(const std::string& name);
 
+  /// controller_manager's load_controller, unload_controller and switch_controller for one
+  /// robot: tianracer_control::ControllerSet's, with the robot's joints and the sim time (a
+  /// started controller reads the current joint state first). Afterwards exactly the joints
+  /// of running controllers are written; a joint whose controller stopped is free again (in
+  /// Gazebo, DefaultRobotHWSim keeps applying its last command). Throws
+  /// tianracer_control::ControllerError with controller_manager's text; nothing changes then.
+  tianracer_control::Controller& loadController(SimRobot& robot,
+                                                const tianracer_control::ControllerSpec& spec);
+  void unloadController(SimRobot& robot, const std::string& name);
+  void switchControllers(SimRobot& robot, const std::vector<std::string>& start,
+                         const std::vector<std::string>& stop,
+                         tianracer_control::Strictness strictness);
+
   /// One physics step of dt.
   void step();
 
@@ -82,6 +95,8 @@ class Simulation {
   void read(SimRobot& robot);
   void write(SimRobot& robot);
   void restartControllers(SimRobot& robot);
+  /// claimed = written by a running controller; a joint no longer claimed is freed.
+  void updateClaims(SimRobot& robot);
 
   PhysicsWorld physics_;
   WarningSink warn_;

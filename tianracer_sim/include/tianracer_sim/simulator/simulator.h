@@ -153,6 +153,21 @@ class Simulator : public SensorWorld {
   /// Sets the command of a robot's controller (as its /command topic does). False for an
   /// unknown robot or controller, or a non-finite value (the previous command stays).
   bool setCommand(ModelId robot, const std::string& controller, double value);
+
+  // --- controllers by name (controller_manager's load, unload and switch) ---------------------
+  /// Loads a controller stopped on robot `id` (its joints must exist and be free of other
+  /// loaded controllers' claims as controller_manager checks them). Throws
+  /// tianracer_control::ControllerError with controller_manager's text, std::out_of_range for
+  /// a model that is not a robot; nothing changes then.
+  tianracer_control::Controller& loadController(ModelId id,
+                                                const tianracer_control::ControllerSpec& spec);
+  /// Unloads a stopped controller (ControllerError otherwise).
+  void unloadController(ModelId id, const std::string& name);
+  /// Stops, then starts, by name (ControllerSet's rules for strictness). A started controller
+  /// reads the current joint state first; a joint no running controller writes is free.
+  void switchControllers(ModelId id, const std::vector<std::string>& start,
+                         const std::vector<std::string>& stop,
+                         tianracer_control::Strictness strictness);
   /// Every sensor, in set-up order (robots' sensors in the order their models list them).
   const std::vector<std::unique_ptr<SimSensor>>& sensors() const { return sensors_; }
   /// The sensor called `name` on model `id` (model plugins by their plugin name); nullptr if none.
@@ -193,6 +208,7 @@ class Simulator : public SensorWorld {
   };
 
   const Model* model(ModelId id) const;
+  SimRobot& robotOrThrow(ModelId id);
   /// The physics of a model (a robot, or a world model's free body); nullptr for static ones.
   const PhysicsRobot* physicsOf(ModelId id) const;
   void setUpSensors(ModelId id, const RobotSpawn& spawn);

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Our gazebo_msgs and ackermann_msgs stand in for the real packages only where the system has
-# none (Debian 12). Where the system has one (a stock Noetic in /opt/ros, or any package that
-# rospack finds outside this workspace), ours gets a CATKIN_IGNORE so it never shadows it.
-#   scripts/msg_packages.sh [SOURCE_ROOT]    (default: the repo root)
+# Our stand-ins for ROS packages Debian 12 does not ship (gazebo_msgs, ackermann_msgs, xacro,
+# controller_manager_msgs, controller_manager, gazebo_ros) are built only where the system has
+# none. Where the system has one (a stock Noetic in /opt/ros, or any package that rospack finds
+# outside this workspace), ours gets a CATKIN_IGNORE so it never shadows it.
+#   scripts/stand_in_packages.sh [SOURCE_ROOT]    (default: the repo root)
 # Prints one line per package. For tests, the places looked at can be replaced:
 #   TIANRACER_ROS_PREFIXES  space-separated install prefixes (default: /opt/ros/*)
 #   TIANRACER_ROSPACK       the rospack command (default: rospack)
@@ -39,7 +40,8 @@ system_package() {
   fi
 }
 
-for pkg in gazebo_msgs ackermann_msgs; do
+STAND_INS=(gazebo_msgs ackermann_msgs xacro controller_manager_msgs controller_manager gazebo_ros)
+for pkg in "${STAND_INS[@]}"; do
   dir="$ROOT/$pkg"
   [[ -f "$dir/package.xml" ]] || continue
   where="$(system_package "$pkg")"

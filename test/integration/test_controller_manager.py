@@ -1,0 +1,228 @@
+#!/usr/bin/env python3
+"""rostest: a robot spawned through gazebo_ros's entry points, its controllers started by
+controller_manager's spawner and managed through <ns>/controller_manager/*, as in Gazebo.
+
+- before the spawner runs, the robot runs no controller (nothing listens to its command topics);
+- the spawner loads and starts them: list_controllers shows them running, the car drives from its
+  velocity controllers;
+- switch_controller stops one: its joint no longer follows its commands;
+- bad input: each gets controller_manager's error text, ok = false, and the sim goes on;
+- the controller_manager command line lists them;
+- shutting the spawner down unloads them;
+- a spawner for a robot that does not exist gives up after its timeout and exits.
+
+Everything is timed in sim time; wall time only bounds the waits.
+"""
+import math
+import os
+import subprocess
+import sys
+import threading
+import time
+import unittest
+
+import rosnode
+import rospy
+import rostest
+from controller_manager_msgs.srv import (ListControllers, LoadController, SwitchController,
+                                         SwitchControllerRequest, UnloadController)
+from nav_msgs.msg import Odometry
+from rosgraph_msgs.msg import Log
+from sensor_msgs.msg import JointState
+from std_msgs.msg import Bool, Float64
+
+NS = '/tianracer'
+CONTROLLERS = ['joint_state_controller', 'left_rear_wheel_velocity_controller',
+               'right_rear_wheel_velocity_controller', 'left_steering_hinge_position_controller',
+               'right_steering_hinge_position_controller']
+LEFT, RIGHT = CONTROLLERS[1], CONTROLLERS[2]
+STRICT, BEST_EFFORT = SwitchControllerRequest.STRICT, SwitchControllerRequest.BEST_EFFORT
+
+
+def wall_wait(predicate, timeout):
+    end = time.time() + timeout
+    while time.time() < end and not rospy.is_shutdown():
+        if predicate():
+            return True
+        time.sleep(0.05)
+    return predicate()
+
+
+def sim_sleep(seconds):
+    target = rospy.get_time() + seconds
+    assert wall_wait(lambda: rospy.get_time() >= target, 120.0), 'sim time stood still'
+
+
+class Latest(object):
+    def __init__(self, topic, cls):
+        self.msg = None
+        rospy.Subscriber(topic, cls, self._cb, queue_size=10)
+
+    def _cb(self, msg):
+        self.msg = msg
+
+
+class ControllerManagerTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('test_controller_manager')
+        cls.logs, cls.lock = [], threading.Lock()
+        rospy.Subscriber('/rosout', Log, cls.on_log, queue_size=1000)
+        cls.truth = Latest(NS + '/ground_truth/odom', Odometry)
+        cls.joints = Latest(NS + '/joint_states', JointState)
+        cm = NS + '/controller_manager/'
+        rospy.wait_for_service(cm + 'list_controllers', timeout=240.0)
+        cls.list = rospy.ServiceProxy(cm + 'list_controllers', ListControllers)
+        cls.load = rospy.ServiceProxy(cm + 'load_controller', LoadController)
+        cls.unload = rospy.ServiceProxy(cm + 'unload_controller', UnloadController)
+        cls.switch = rospy.ServiceProxy(cm + 'switch_controller', SwitchController)
+        cls.pubs = {name: rospy.Publisher('%s/%s/command' % (NS, name), Float64, queue_size=1)
+                    for name in CONTROLLERS[1:]}
+
+    @classmethod
+    def on_log(cls, msg):
+        with cls.lock:
+            cls.logs.append((msg.name, msg.level, msg.msg))
+
+    def errors_since(self, n):
+        with self.lock:
+            return [text for name, level, text in self.logs[n:] if level >= Log.ERROR]
+
+    def log_count(self):
+        with self.lock:
+            return len(self.logs)
+
+    def states(self):
+        return {c.name: c.state for c in self.list().controller}
+
+    def command(self, values, seconds):
+        """Publishes the commands ({controller: value}) at 20 Hz for `seconds` of sim time."""
+        end = rospy.get_time() + seconds
+        while rospy.get_time() < end and not rospy.is_shutdown():
+            for name, value in values.items():
+                self.pubs[name].publish(Float64(value))
+            sim_sleep(0.05)
+
+    def wheel_velocity(self, joint):
+        msg = self.joints.msg
+        return msg.velocity[msg.name.index(joint)]
+
+    def test_a_no_controller_before_the_spawner(self):
+        self.assertEqual(self.states(), {})
+        topic = '%s/%s/command' % (NS, LEFT)
+        subscribers = [nodes for t, nodes in rospy.get_master().getSystemState()[2][1]
+                       if t == topic]
+        self.assertEqual(subscribers, [])
+        # Our own launch files start every controller of their YAML.
+        if rospy.has_param('~own_robot_namespace'):
+            own = rospy.get_param('~own_robot_namespace')
+            rospy.wait_for_service(own + '/controller_manager/list_controllers', 60.0)
+            listed = rospy.ServiceProxy(own + '/controller_manager/list_controllers',
+                                        ListControllers)().controller
+            self.assertEqual(sorted(c.name for c in listed), sorted(CONTROLLERS))
+            self.assertEqual({c.state for c in listed}, {'running'})
+
+    def test_b_the_spawner_starts_them(self):
+        rospy.Publisher('/start_spawner', Bool, queue_size=1, latch=True).publish(Bool(True))
+        self.assertTrue(wall_wait(lambda: self.states() == {n: 'running' for n in CONTROLLERS},
+                                  120.0), self.states())
+        by_name = {c.name: c for c in self.list().controller}
+        self.assertEqual(by_name[LEFT].type, 'velocity_controllers/JointVelocityController')
+        self.assertEqual([(r.hardware_interface, r.resources)
+                          for r in by_name[LEFT].claimed_resources],
+                         [('hardware_interface::VelocityJointInterface', ['left_rear_wheel_joint'])])
+        self.assertTrue(wall_wait(lambda: all(self.pubs[n].get_num_connections() > 0
+                                              for n in self.pubs), 30.0))
+
+    def test_c_the_car_drives_from_its_velocity_controllers(self):
+        self.assertTrue(wall_wait(lambda: self.truth.msg is not None, 60.0))
+        p0 = self.truth.msg.pose.pose.position
+        straight = {CONTROLLERS[3]: 0.0, CONTROLLERS[4]: 0.0}
+        self.command(dict(straight, **{LEFT: 15.0, RIGHT: 15.0}), 2.0)
+        p1 = self.truth.msg.pose.pose.position
+        moved = math.hypot(p1.x - p0.x, p1.y - p0.y)
+        rospy.loginfo('drove %.3f m in 2 s at 15 rad/s', moved)
+        self.assertGreater(moved, 0.6)  # 0.96 m at 15 rad/s * 0.032 m, less the start
+        self.assertAlmostEqual(self.wheel_velocity('left_rear_wheel_joint'), 15.0, delta=1.0)
+
+    def test_d_a_stopped_controller_lets_its_joint_go(self):
+        res = self.switch([], [LEFT], STRICT, False, 0.0)
+        self.assertTrue(res.ok)
+        self.assertEqual(self.states()[LEFT], 'stopped')
+        # The right wheel holds 0; the left one is commanded hard but no longer follows.
+        self.command({LEFT: 30.0, RIGHT: 0.0}, 1.0)
+        self.assertLess(abs(self.wheel_velocity('left_rear_wheel_joint')), 5.0)
+        self.assertLess(abs(self.wheel_velocity('right_rear_wheel_joint')), 0.5)
+        # Started again, it follows.
+        self.assertTrue(self.switch([LEFT], [], STRICT, False, 0.0).ok)
+        self.command({LEFT: 10.0, RIGHT: 10.0}, 1.0)
+        self.assertAlmostEqual(self.wheel_velocity('left_rear_wheel_joint'), 10.0, delta=1.0)
+        self.command({LEFT: 0.0, RIGHT: 0.0}, 0.5)
+
+    def test_e_bad_input_gets_controller_managers_errors(self):
+        rospy.set_param(NS + '/diff_drive', {'type': 'diff_drive_controller/DiffDriveController'})
+        cases = [
+            (lambda: self.load('no_such_controller'),
+             "Could not load controller 'no_such_controller' because the type was not specified. "
+             "Did you load the controller configuration on the parameter server (namespace: "
+             "'%s/no_such_controller')?" % NS),
+            (lambda: self.load('diff_drive'),
+             "Could not load controller 'diff_drive' because controller type "
+             "'diff_drive_controller/DiffDriveController' does not exist."),
+            (lambda: self.load(LEFT),
+             "A controller named '%s' was already loaded inside the controller manager" % LEFT),
+            (lambda: self.switch(['not_loaded'], [], STRICT, False, 0.0),
+             "Could not start controller with name 'not_loaded' because no controller with this "
+             "name exists"),
+            (lambda: self.unload(RIGHT),
+             "Could not unload controller with name '%s' because it is still running" % RIGHT),
+        ]
+        for call, text in cases:
+            n = self.log_count()
+            self.assertFalse(call().ok, text)
+            self.assertTrue(wall_wait(lambda: text in self.errors_since(n), 10.0),
+                            '%r not in %r' % (text, self.errors_since(n)))
+        # BEST_EFFORT skips what it cannot do.
+        self.assertTrue(self.switch(['not_loaded'], [], BEST_EFFORT, False, 0.0).ok)
+        # Nothing changed, and the simulation goes on.
+        self.assertEqual(self.states(), {n: 'running' for n in CONTROLLERS})
+        t0 = rospy.get_time()
+        sim_sleep(0.5)
+        self.assertGreater(rospy.get_time(), t0)
+
+    def test_f_controller_manager_command_line(self):
+        env = dict(os.environ, ROS_NAMESPACE=NS)
+        out = subprocess.run(['rosrun', 'controller_manager', 'controller_manager', 'list'],
+                             env=env, stdout=subprocess.PIPE, universal_newlines=True,
+                             timeout=60).stdout
+        self.assertIn("'%s' - 'hardware_interface::VelocityJointInterface' ( running )" % LEFT,
+                      out)
+        self.assertIn("'joint_state_controller' - 'hardware_interface::JointStateInterface' "
+                      "( running )", out)
+        types = subprocess.run(['rosrun', 'controller_manager', 'controller_manager',
+                                'list-types'], env=env, stdout=subprocess.PIPE,
+                               universal_newlines=True, timeout=60).stdout
+        self.assertIn('effort_controllers/JointPositionController', types.split())
+
+    def test_g_shutting_the_spawner_down_unloads_them(self):
+        spawners = [n for n in rosnode.get_node_names() if n.startswith(NS + '/controller_spawner')]
+        self.assertEqual(len(spawners), 1, rosnode.get_node_names())
+        rosnode.kill_nodes(spawners)
+        self.assertTrue(wall_wait(lambda: self.states() == {}, 60.0), self.states())
+
+    def test_h_a_spawner_for_a_robot_that_does_not_exist_gives_up(self):
+        # /ghost's spawner (--timeout 3) was started with everything else.
+        self.assertTrue(wall_wait(lambda: not any(n.startswith('/ghost/')
+                                                  for n in rosnode.get_node_names()), 120.0),
+                        rosnode.get_node_names())
+        with self.lock:
+            said = [text for name, level, text in self.logs if name.startswith('/ghost/')]
+        self.assertIn("Controller Spawner couldn't find the expected controller_manager ROS "
+                      "interface.", said)
+        t0 = rospy.get_time()
+        sim_sleep(0.5)
+        self.assertGreater(rospy.get_time(), t0)
+
+
+if __name__ == '__main__':
+    rostest.rosrun('tianracer_tests', 'controller_manager', ControllerManagerTest, sys.argv)

@@ -1,0 +1,33 @@
+// The pid/ keys of a ros_control YAML -> PidGains, with control_toolbox's rules. ROS-free.
+#ifndef TIANRACER_CONTROL_PID_PARAMS_H
+#define TIANRACER_CONTROL_PID_PARAMS_H
+
+#include <optional>
+#include <string>
+
+#include "tianracer_control/controller_params.h"
+#include "tianracer_control/pid.h"
+
+namespace tianracer_control {
+
+/// The pid/ keys as written in the YAML; unset = absent. Converted and checked by toPidGains().
+struct PidParams {
+  std::optional<double> p, i, d, i_clamp, i_clamp_min, i_clamp_max;
+  std::optional<bool> antiwindup;
+};
+
+/// pid/{p,i,d,i_clamp,i_clamp_min,i_clamp_max,antiwindup} -> gains, with control_toolbox's rules:
+/// p is required; i, d default to 0; i_clamp_min/max override i_clamp (min = -|i_clamp|,
+/// max = |i_clamp|); all clamps default to 0, which disables the integral term (warned when i != 0).
+/// Throws ControllerError (naming `controller`) for a missing p, non-finite values or min > max.
+PidGains toPidGains(const std::string& controller, const PidParams& params,
+                    const WarningSink& warn = WarningSink());
+
+/// The gains of a controller that needs them (control_toolbox::Pid::init(nh "pid")): reads
+/// pid/..., throws ControllerError "pid/p is missing (<type> needs pid gains)" when p is absent,
+/// then toPidGains().
+PidGains readPidGains(ControllerParams& params, const WarningSink& warn);
+
+}  // namespace tianracer_control
+
+#endif  // TIANRACER_CONTROL_PID_PARAMS_H

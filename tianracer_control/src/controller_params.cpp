@@ -1,0 +1,126 @@
+#include "tianracer_control/controller_params.h"
+
+namespace tianracer_control {
+
+ParamValue ParamValue::list(List items) {
+  ParamValue v;
+  v.kind_ = Kind::kList;
+  v.list_ = std::move(items);
+  return v;
+}
+
+ParamValue ParamValue::dict() {
+  ParamValue v;
+  v.kind_ = Kind::kDict;
+  return v;
+}
+
+ParamValue ParamValue::other() {
+  ParamValue v;
+  v.kind_ = Kind::kOther;
+  return v;
+}
+
+ParamValue& ParamValue::operator[](const std::string& key) {
+  if (kind_ == Kind::kNone) kind_ = Kind::kDict;
+  return dict_[key];
+}
+
+const ParamValue* ParamValue::find(const std::string& key) const {
+  if (kind_ != Kind::kDict) return nullptr;
+  const auto it = dict_.find(key);
+  return it == dict_.end() ? nullptr : &it->second;
+}
+
+const char* ParamValue::typeName() const {
+  switch (kind_) {
+    case Kind::kBool:
+      return "a bool";
+    case Kind::kInt:
+      return "an int";
+    case Kind::kDouble:
+      return "a double";
+    case Kind::kString:
+      return "a string";
+    case Kind::kList:
+      return "a list";
+    case Kind::kDict:
+      return "a dictionary";
+    default:
+      return "an unsupported value";
+  }
+}
+
+std::string controllerPrefix(const std::string& name) { return "controller '" + name + "': "; }
+
+// The line first, as in every located message (diagnostic.h): "line 7: controller 'x': ".
+std::string ControllerParams::prefix() const {
+  return formatLocation("", spec_.line) + controllerPrefix(spec_.name);
+}
+
+const ParamValue* ControllerParams::lookup(const std::string& key) {
+  const ParamValue* node = &spec_.params;
+  std::string path;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t slash = key.find('/', start);
+    const std::string part = key.substr(start, slash == std::string::npos ? slash : slash - start);
+    if (node->kind() != ParamValue::Kind::kDict) {
+      // The parent of `part` is there but is no dictionary ("pid: 1.0" and pid/p asked for).
+      throw ControllerError(prefix() + path + " must be a dictionary, got " + node->typeName());
+    }
+    node = node->find(part);
+    if (!node) return nullptr;
+    path += (path.empty() ? "" : "/") + part;
+    read_.insert(path);
+    if (slash == std::string::npos) return node;
+    start = slash + 1;
+  }
+}
+
+std::optional<double> ControllerParams::number(const std::string& key) {
+  const ParamValue* v = lookup(key);
+  if (!v) return std::nullopt;
+  if (v->kind() == ParamValue::Kind::kDouble) return v->asDouble();
+  if (v->kind() == ParamValue::Kind::kInt) return v->asInt();
+  throw ControllerError(prefix() + key + " must be a number, got " + v->typeName());
+}
+
+std::optional<std::string> ControllerParams::text(const std::string& key) {
+  const ParamValue* v = lookup(key);
+  if (!v) return std::nullopt;
+  if (v->kind() == ParamValue::Kind::kString) return v->asString();
+  throw ControllerError(prefix() + key + " must be a string, got " + v->typeName());
+}
+
+std::optional<bool> ControllerParams::boolean(const std::string& key) {
+  const ParamValue* v = lookup(key);
+  if (!v) return std::nullopt;
+  if (v->kind() == ParamValue::Kind::kBool) return v->asBool();
+  throw ControllerError(prefix() + key + " must be true or false, got " + v->typeName());
+}
+
+namespace {
+
+void collectUnread(const ParamValue& tree, const std::string& path,
+                   const std::set<std::string>& read, std::vector<std::string>* out) {
+  for (const auto& [key, value] : tree.members()) {
+    const std::string sub = path.empty() ? key : path + "/" + key;
+    if (sub == "type") continue;
+    if (read.count(sub) == 0) {
+      out->push_back(sub);
+    } else if (value.kind() == ParamValue::Kind::kDict) {
+      collectUnread(value, sub, read, out);
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> ControllerParams::unread() const {
+  std::vector<std::string> out;
+  collectUnread(spec_.params, "", read_, &out);
+  return out;
+}
+
+}  // namespace tianracer_control

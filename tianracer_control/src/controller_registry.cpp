@@ -1,0 +1,74 @@
+#include "tianracer_control/controller_registry.h"
+
+#include <algorithm>
+
+#include "tianracer_control/controllers/effort_forward_controller.h"
+#include "tianracer_control/controllers/effort_joint_position_controller.h"
+#include "tianracer_control/controllers/effort_joint_velocity_controller.h"
+#include "tianracer_control/controllers/joint_state_controller.h"
+#include "tianracer_control/controllers/position_forward_controller.h"
+#include "tianracer_control/controllers/velocity_forward_controller.h"
+
+namespace tianracer_control {
+
+const ControllerRegistry& builtinControllers() {
+  static const ControllerRegistry registry = [] {
+    ControllerRegistry r;
+    r.add(JointStateController::kType, &JointStateController::create);
+    r.add(EffortJointPositionController::kType, &EffortJointPositionController::create);
+    r.add(EffortJointVelocityController::kType, &EffortJointVelocityController::create);
+    r.add(EffortForwardController::kType, &EffortForwardController::create);
+    r.add(VelocityForwardController::kType, &VelocityForwardController::create);
+    r.add(PositionForwardController::kType, &PositionForwardController::create);
+    return r;
+  }();
+  return registry;
+}
+
+void ControllerRegistry::add(const std::string& type, ControllerFactory factory) {
+  for (auto& entry : factories_) {
+    if (entry.first == type) {
+      entry.second = factory;
+      return;
+    }
+  }
+  factories_.emplace_back(type, factory);
+}
+
+std::vector<std::string> ControllerRegistry::types() const {
+  std::vector<std::string> out;
+  for (const auto& entry : factories_) out.push_back(entry.first);
+  return out;
+}
+
+bool ControllerRegistry::has(const std::string& type) const {
+  return std::any_of(factories_.begin(), factories_.end(),
+                     [&](const auto& entry) { return entry.first == type; });
+}
+
+std::unique_ptr<Controller> ControllerRegistry::create(const ControllerSpec& spec,
+                                                       std::map<std::string, JointHandle*>& joints,
+                                                       const WarningSink& warn) const {
+  ControllerParams params(spec);
+  const std::string pre = params.prefix();
+  if (spec.name.empty()) throw ControllerError(pre + "the controller name is empty");
+  if (spec.type.empty()) throw ControllerError(pre + "no type given (parameter 'type')");
+  const auto it = std::find_if(factories_.begin(), factories_.end(),
+                               [&](const auto& entry) { return entry.first == spec.type; });
+  if (it == factories_.end()) {
+    std::string known;
+    for (const auto& entry : factories_) known += (known.empty() ? "" : ", ") + entry.first;
+    throw ControllerError(pre + "unknown type '" + spec.type + "' (known types: " +
+                          known + ")");
+  }
+  ControllerContext context{params, joints, warn};
+  std::unique_ptr<Controller> controller = it->second(context);
+  if (warn) {
+    for (const std::string& key : params.unread()) {
+      warn(pre + "key '" + key + "' is not used by " + spec.type + ", ignored");
+    }
+  }
+  return controller;
+}
+
+}  // namespace tianracer_control

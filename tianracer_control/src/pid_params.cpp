@@ -1,0 +1,60 @@
+#include "tianracer_control/pid_params.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace tianracer_control {
+
+PidGains toPidGains(const std::string& controller, const PidParams& params,
+                    const WarningSink& warn) {
+  const std::string pre = controllerPrefix(controller);
+  if (!params.p) throw ControllerError(pre + "pid/p is missing (pid gains are required)");
+  auto finite = [&](const std::optional<double>& v, const char* key) {
+    if (v && !std::isfinite(*v)) {
+      std::ostringstream os;
+      os << pre << "pid/" << key << " must be finite, got " << *v;
+      throw ControllerError(os.str());
+    }
+  };
+  finite(params.p, "p");
+  finite(params.i, "i");
+  finite(params.d, "d");
+  finite(params.i_clamp, "i_clamp");
+  finite(params.i_clamp_min, "i_clamp_min");
+  finite(params.i_clamp_max, "i_clamp_max");
+
+  const double i_clamp = std::abs(params.i_clamp.value_or(0.0));
+  PidGains g = PidGains::fromIClamp(*params.p, params.i.value_or(0.0), params.d.value_or(0.0),
+                                    i_clamp, params.antiwindup.value_or(false));
+  if (params.i_clamp_min) g.i_clamp_min = *params.i_clamp_min;
+  if (params.i_clamp_max) g.i_clamp_max = *params.i_clamp_max;
+  if (g.i_clamp_min > g.i_clamp_max) {
+    std::ostringstream os;
+    os << pre << "pid/i_clamp_min (" << g.i_clamp_min << ") is greater than pid/i_clamp_max ("
+       << g.i_clamp_max << ")";
+    throw ControllerError(os.str());
+  }
+  if (warn && g.i != 0.0 && g.i_clamp_min == 0.0 && g.i_clamp_max == 0.0) {
+    warn(pre + "pid/i is " + std::to_string(g.i) +
+         " but the integral clamp is 0, so the integral term is always 0 (set pid/i_clamp)");
+  }
+  return g;
+}
+
+PidGains readPidGains(ControllerParams& params, const WarningSink& warn) {
+  PidParams pid;
+  pid.p = params.number("pid/p");
+  pid.i = params.number("pid/i");
+  pid.d = params.number("pid/d");
+  pid.i_clamp = params.number("pid/i_clamp");
+  pid.i_clamp_min = params.number("pid/i_clamp_min");
+  pid.i_clamp_max = params.number("pid/i_clamp_max");
+  pid.antiwindup = params.boolean("pid/antiwindup");
+  if (!pid.p) {
+    throw ControllerError(params.prefix() + "pid/p is missing (" + params.type() +
+                          " needs pid gains)");
+  }
+  return toPidGains(params.name(), pid, warn);
+}
+
+}  // namespace tianracer_control
