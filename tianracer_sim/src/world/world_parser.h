@@ -24,10 +24,6 @@ std::string join(const std::string& dir, const std::string& rest);
 /// "." for a bare file name.
 std::string dirName(const std::string& path);
 bool startsWith(const std::string& s, const std::string& prefix);
-/// A ':'-separated list of folders (empty entries dropped).
-std::vector<std::string> splitPath(const char* env);
-/// The gazebo_model_path exports of the ROS packages under ROS_PACKAGE_PATH.
-std::vector<std::string> rosExportedModelPaths();
 
 /// State shared by the parse functions of one file.
 class Parser : public XmlReader {

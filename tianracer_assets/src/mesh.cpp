@@ -1,4 +1,4 @@
-#include "tianracer_sim/mesh/mesh_loader.h"
+#include "tianracer_assets/mesh.h"
 
 #include <sys/stat.h>
 
@@ -13,7 +13,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-namespace tianracer_sim {
+namespace tianracer_assets {
 
 Eigen::Vector3f TriangleMesh::boundsMin() const {
   Eigen::Vector3f lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity());
@@ -284,4 +284,4 @@ MeshCache& MeshCache::global() {
   return cache;
 }
 
-}  // namespace tianracer_sim
+}  // namespace tianracer_assets
