@@ -79,7 +79,7 @@ void makeStaticShape(const StaticShape& st, double margin, OwnedShape* out) {
       out->shape = std::make_unique<btStaticPlaneShape>(toBt(Eigen::Vector3d(s.normal.normalized())), 0.0);
       return;
     case ShapeType::kMesh: {
-      const auto mesh = MeshCache::global().get(s.mesh_path, s.scale);
+      const auto mesh = meshOf(s);
       out->mesh_vertices.reserve(mesh->vertices.size() * 3);
       for (const auto& v : mesh->vertices) {
         out->mesh_vertices.insert(out->mesh_vertices.end(), {v.x(), v.y(), v.z()});
@@ -106,7 +106,7 @@ std::unique_ptr<btCollisionShape> makeLinkShape(const TreeBody& body, const Coll
   WheelFit fit;
   std::vector<Eigen::Vector3d> verts_B;
   if (g.shape.type == ShapeType::kMesh) {
-    const auto mesh = MeshCache::global().get(g.shape.mesh_path, g.shape.scale);
+    const auto mesh = meshOf(g.shape);
     verts_B.reserve(mesh->vertices.size());
     for (const auto& v : mesh->vertices) verts_B.push_back(g.X_BG * v.cast<double>());
     if (wheel_joint && wheel_shape != WheelShape::kMeshHull) fit = fitWheel(verts_B, body.axis_B);

@@ -288,10 +288,10 @@ struct Renderer::Impl {
     if (shape.type != ShapeType::kMesh) return nullptr;  // primitives are made up front
     try {
       if (!mayHaveMaterials(shape.mesh_path)) {
-        const auto mesh = MeshCache::global().get(shape.mesh_path, shape.scale);
+        const auto mesh = meshOf(shape);
         return addGeometry(key, ri::meshSoup(*mesh));
       }
-      const auto mesh = MeshCache::global().getWithMaterials(shape.mesh_path, shape.scale);
+      const auto mesh = meshWithMaterialsOf(shape);
       std::vector<ri::MeshPart> parts;
       const ri::Soup soup = ri::meshSoup(*mesh, 40.0, &parts);
       return addGeometry(key, soup, parts, mesh);
