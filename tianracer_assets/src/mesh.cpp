@@ -2,6 +2,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <cmath>
@@ -29,19 +30,108 @@ Eigen::Vector3f TriangleMesh::boundsMax() const {
 
 namespace {
 
-// Appends the triangles of `node` and its children, with the accumulated node transform
-// (aiProcess_PreTransformVertices would also do this, but it drops meshes used twice).
-void collect(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent,
-             const Eigen::Vector3d& scale, TriangleMesh* out) {
+// Where each piece of a file lands (mesh.h, docs/meshes.md). The rules are Gazebo classic's;
+// the file named after each is where Gazebo applies it:
+//  - COLLADA <asset><unit meter>: every vertex times `meter` (gazebo/common/ColladaLoader.cc,
+//    Load: mesh->Scale(meter)). assimp 5.2's COLLADA importer applies it to the root node
+//    (it has no switch to turn that off).
+//  - COLLADA <up_axis>: ignored. Gazebo's ColladaLoader.cc never reads it (gazebo-classic issue
+//    #1305, open): a Z_UP file from Blender stands as drawn and a Y_UP file lies on its side.
+//    assimp turns Z_UP and X_UP files into Y_UP unless told not to:
+//    AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION (readScene).
+//  - COLLADA nodes: <matrix>, <translate>, <rotate>, <scale> and <instance_node>, composed from
+//    the scene root down (ColladaLoader.cc LoadNode / LoadNodeTransform); assimp keeps them as
+//    aiNode transforms, applied here per instance (instances()).
+//  - COLLADA geometry instanced by several nodes: every instance at its own node. Gazebo 11
+//    differs: LoadPositions caches a source's transformed positions by id, so the later
+//    instances land on the first one (gazebo-classic issue #2940, open). We follow COLLADA.
+//  - STL, ASCII or binary (gazebo/common/STLLoader.cc tries ASCII, then binary; assimp tells
+//    them apart by the file size, so a binary file whose header starts with "solid" is binary
+//    here too): the numbers as written, in metres, one part without a name.
+//  - OBJ with .mtl (gazebo/common/OBJLoader.cc, tinyobjloader): vertices as written; the
+//    mtllib file next to the .obj gives the materials; each o/g group is a part named after
+//    it (assimp names its node so).
+//  - SDF <mesh><scale>: per axis, about the mesh origin, after all of the above
+//    (gazebo/physics/ode/ODEMesh.cc scales the collision vertices, gazebo/rendering/Visual.cc
+//    the scene node).
+//  - SDF <submesh><name>: only the parts of that name (gazebo/physics/MeshShape.cc takes
+//    mesh->GetSubMesh(name), gazebo/rendering/Visual.cc InsertMesh draws every submesh of that
+//    name); <center>true: the part's bounding box centred on the origin before the scale
+//    (SubMesh::Center(Zero) in both). Gazebo's collision uses the whole mesh when no part has
+//    the name while its visual shows nothing; here it is an error naming the parts there are.
+struct Instance {
+  const aiMesh* mesh;
+  aiMatrix4x4 T;  // node transforms from the scene root (unit included)
+};
+
+// The mesh instances of `node` and its children in depth-first order, each with its
+// accumulated node transform; with a submesh name, only those of nodes of that name.
+// (aiProcess_PreTransformVertices would also apply the transforms, but drops meshes used twice.)
+void instances(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent,
+               const std::string& submesh, std::vector<Instance>* out) {
   const aiMatrix4x4 T = parent * node->mTransformation;
-  for (unsigned m = 0; m < node->mNumMeshes; ++m) {
-    const aiMesh* mesh = scene->mMeshes[node->mMeshes[m]];
+  if (submesh.empty() || submesh == node->mName.C_Str()) {
+    for (unsigned m = 0; m < node->mNumMeshes; ++m) out->push_back({scene->mMeshes[node->mMeshes[m]], T});
+  }
+  for (unsigned c = 0; c < node->mNumChildren; ++c)
+    instances(scene, node->mChildren[c], T, submesh, out);
+}
+
+// The names of the nodes that hold triangles: the parts a <submesh> can name.
+void partNames(const aiScene* scene, const aiNode* node, std::vector<std::string>* out) {
+  bool triangles = false;
+  for (unsigned m = 0; m < node->mNumMeshes; ++m)
+    triangles = triangles || (scene->mMeshes[node->mMeshes[m]]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE);
+  const std::string name = node->mName.C_Str();
+  if (triangles && std::find(out->begin(), out->end(), name) == out->end()) out->push_back(name);
+  for (unsigned c = 0; c < node->mNumChildren; ++c) partNames(scene, node->mChildren[c], out);
+}
+
+// The instances a source places, and the offset its <center> subtracts (zero without).
+std::vector<Instance> select(const aiScene* scene, const MeshSource& source, aiVector3D* offset) {
+  std::vector<Instance> out;
+  instances(scene, scene->mRootNode, aiMatrix4x4(), source.submesh, &out);
+  if (!source.submesh.empty() && out.empty()) {
+    std::vector<std::string> names;
+    partNames(scene, scene->mRootNode, &names);
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "'" : ", '") + n + "'";
+    throw MeshError("mesh '" + source.path + "': no submesh '" + source.submesh + "' (its parts: " +
+                    (list.empty() ? std::string("none") : list) + ")");
+  }
+  *offset = aiVector3D(0, 0, 0);
+  if (source.center_submesh && !source.submesh.empty()) {
+    aiVector3D lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
+    for (const Instance& in : out) {
+      for (unsigned v = 0; v < in.mesh->mNumVertices; ++v) {
+        const aiVector3D p = in.T * in.mesh->mVertices[v];
+        lo = aiVector3D(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
+        hi = aiVector3D(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
+      }
+    }
+    if (lo.x <= hi.x) *offset = (lo + hi) * 0.5f;
+  }
+  return out;
+}
+
+// A vertex as it lands: node transforms, the <center> offset, then the <scale>.
+std::array<float, 3> place(const Instance& in, unsigned v, const aiVector3D& offset,
+                           const Eigen::Vector3d& scale) {
+  const aiVector3D p = in.T * in.mesh->mVertices[v];
+  return {static_cast<float>((p.x - offset.x) * scale.x()),
+          static_cast<float>((p.y - offset.y) * scale.y()),
+          static_cast<float>((p.z - offset.z) * scale.z())};
+}
+
+// Appends the triangles of the instances.
+void collect(const std::vector<Instance>& parts, const aiVector3D& offset,
+             const Eigen::Vector3d& scale, TriangleMesh* out) {
+  for (const Instance& in : parts) {
+    const aiMesh* mesh = in.mesh;
     const auto base = static_cast<uint32_t>(out->vertices.size());
     for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
-      const aiVector3D p = T * mesh->mVertices[v];
-      out->vertices.emplace_back(static_cast<float>(p.x * scale.x()),
-                                 static_cast<float>(p.y * scale.y()),
-                                 static_cast<float>(p.z * scale.z()));
+      const std::array<float, 3> p = place(in, v, offset, scale);
+      out->vertices.emplace_back(p[0], p[1], p[2]);
     }
     for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
       const aiFace& face = mesh->mFaces[f];
@@ -49,7 +139,6 @@ void collect(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent
       for (int k = 0; k < 3; ++k) out->indices.push_back(base + face.mIndices[k]);
     }
   }
-  for (unsigned c = 0; c < node->mNumChildren; ++c) collect(scene, node->mChildren[c], T, scale, out);
 }
 
 }  // namespace
@@ -77,7 +166,7 @@ void checkFile(const std::string& path, const Eigen::Vector3d& scale) {
 }
 
 void checkResult(const std::string& path, const TriangleMesh& mesh) {
-  if (mesh.vertices.empty()) throw MeshError("mesh '" + path + "': no vertices");
+  if (mesh.vertices.empty()) throw MeshError("mesh '" + path + "': no triangles: the file holds no geometry");
   if (mesh.indices.empty()) throw MeshError("mesh '" + path + "': no triangles");
   for (const auto& v : mesh.vertices) {
     if (!v.allFinite()) throw MeshError("mesh '" + path + "': non-finite vertex");
@@ -135,21 +224,17 @@ void resolveTexture(const std::string& mesh_path, MeshMaterial* m) {
   m->texture_error += ")";
 }
 
-// Appends the triangles of `node` and its children with UVs and material indices; vertices
-// are joined by exact position.
-void collectWithMaterials(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent,
+// Appends the triangles of the instances with UVs and material indices; vertices are joined
+// by exact position.
+void collectWithMaterials(const std::vector<Instance>& parts, const aiVector3D& offset,
                           const Eigen::Vector3d& scale,
                           std::map<std::array<float, 3>, uint32_t>* joined, bool* any_uv,
                           TriangleMesh* out) {
-  const aiMatrix4x4 T = parent * node->mTransformation;
-  for (unsigned m = 0; m < node->mNumMeshes; ++m) {
-    const aiMesh* mesh = scene->mMeshes[node->mMeshes[m]];
+  for (const Instance& in : parts) {
+    const aiMesh* mesh = in.mesh;
     std::vector<uint32_t> index(mesh->mNumVertices);
     for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
-      const aiVector3D p = T * mesh->mVertices[v];
-      const std::array<float, 3> key = {static_cast<float>(p.x * scale.x()),
-                                        static_cast<float>(p.y * scale.y()),
-                                        static_cast<float>(p.z * scale.z())};
+      const std::array<float, 3> key = place(in, v, offset, scale);
       const auto it = joined->emplace(key, static_cast<uint32_t>(out->vertices.size()));
       if (it.second) out->vertices.emplace_back(key[0], key[1], key[2]);
       index[v] = it.first->second;
@@ -167,51 +252,68 @@ void collectWithMaterials(const aiScene* scene, const aiNode* node, const aiMatr
       out->triangle_material.push_back(static_cast<int>(mesh->mMaterialIndex));
     }
   }
-  for (unsigned c = 0; c < node->mNumChildren; ++c) {
-    collectWithMaterials(scene, node->mChildren[c], T, scale, joined, any_uv, out);
-  }
+}
+
+// Reads the file with the settings that give Gazebo's placement (see the rules above).
+const aiScene* readScene(Assimp::Importer* importer, const std::string& path, unsigned removed) {
+  importer->SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  importer->SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, static_cast<int>(removed));
+  importer->SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
+  // Node names as the file writes them (<node name>, not its id): Gazebo's submesh names.
+  importer->SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_USE_COLLADA_NAMES, true);
+  // A file without geometry is an error, not assimp's stand-in (a zero-size "skeleton" mesh
+  // at each node, which would collide and be seen as a point).
+  importer->SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
+  const aiScene* scene = importer->ReadFile(
+      path, aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                aiProcess_SortByPType);
+  if (scene == nullptr || scene->mRootNode == nullptr) importFailed(path, *importer);
+  return scene;
 }
 
 }  // namespace
 
-TriangleMesh loadMeshFile(const std::string& path, const Eigen::Vector3d& scale) {
-  checkFile(path, scale);
+TriangleMesh loadMesh(const MeshSource& source) {
+  checkFile(source.path, source.scale);
   Assimp::Importer importer;
   // Only positions are kept: dropping STL's per-facet normals (and UVs, colours) first lets
   // JoinIdenticalVertices merge the corners that facets share.
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
-                              aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS |
-                                  aiComponent_COLORS | aiComponent_TEXCOORDS |
-                                  aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
-                                  aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS |
-                                  aiComponent_MATERIALS);
-  const aiScene* scene = importer.ReadFile(
-      path, aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                aiProcess_SortByPType);
-  if (scene == nullptr || scene->mRootNode == nullptr) importFailed(path, importer);
+  const aiScene* scene =
+      readScene(&importer, source.path,
+                aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
+                    aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
+                    aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS |
+                    aiComponent_MATERIALS);
+  aiVector3D offset;
+  const std::vector<Instance> parts = select(scene, source, &offset);
   TriangleMesh mesh;
-  collect(scene, scene->mRootNode, aiMatrix4x4(), scale, &mesh);
-  checkResult(path, mesh);
+  collect(parts, offset, source.scale, &mesh);
+  checkResult(source.path, mesh);
   return mesh;
 }
 
-TriangleMesh loadMeshFileWithMaterials(const std::string& path, const Eigen::Vector3d& scale) {
-  checkFile(path, scale);
+TriangleMesh loadMeshFile(const std::string& path, const Eigen::Vector3d& scale) {
+  MeshSource source;
+  source.path = path;
+  source.scale = scale;
+  return loadMesh(source);
+}
+
+TriangleMesh loadMeshWithMaterials(const MeshSource& source) {
+  const std::string& path = source.path;
+  checkFile(path, source.scale);
   Assimp::Importer importer;
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
-                              aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS |
-                                  aiComponent_COLORS | aiComponent_BONEWEIGHTS |
-                                  aiComponent_ANIMATIONS | aiComponent_LIGHTS | aiComponent_CAMERAS);
-  const aiScene* scene = importer.ReadFile(
-      path, aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                aiProcess_SortByPType);
-  if (scene == nullptr || scene->mRootNode == nullptr) importFailed(path, importer);
+  const aiScene* scene =
+      readScene(&importer, path,
+                aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
+                    aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS | aiComponent_LIGHTS |
+                    aiComponent_CAMERAS);
+  aiVector3D offset;
+  const std::vector<Instance> parts = select(scene, source, &offset);
   TriangleMesh mesh;
   std::map<std::array<float, 3>, uint32_t> joined;
   bool any_uv = false;
-  collectWithMaterials(scene, scene->mRootNode, aiMatrix4x4(), scale, &joined, &any_uv, &mesh);
+  collectWithMaterials(parts, offset, source.scale, &joined, &any_uv, &mesh);
   checkResult(path, mesh);
   if (!any_uv) mesh.corner_uvs.clear();
   for (unsigned i = 0; i < scene->mNumMaterials; ++i) {
@@ -242,29 +344,53 @@ TriangleMesh loadMeshFileWithMaterials(const std::string& path, const Eigen::Vec
   return mesh;
 }
 
+TriangleMesh loadMeshFileWithMaterials(const std::string& path, const Eigen::Vector3d& scale) {
+  MeshSource source;
+  source.path = path;
+  source.scale = scale;
+  return loadMeshWithMaterials(source);
+}
+
+namespace {
+
+MeshSource sourceOf(const std::string& path, const Eigen::Vector3d& scale) {
+  MeshSource source;
+  source.path = path;
+  source.scale = scale;
+  return source;
+}
+
+}  // namespace
+
+std::shared_ptr<const TriangleMesh> MeshCache::get(const MeshSource& source) {
+  return find(source, false);
+}
+
 std::shared_ptr<const TriangleMesh> MeshCache::get(const std::string& path,
                                                    const Eigen::Vector3d& scale) {
-  const Key key{path, scale.x(), scale.y(), scale.z(), false};
+  return find(sourceOf(path, scale), false);
+}
+
+std::shared_ptr<const TriangleMesh> MeshCache::getWithMaterials(const MeshSource& source) {
+  return find(source, true);
+}
+
+std::shared_ptr<const TriangleMesh> MeshCache::getWithMaterials(const std::string& path,
+                                                                const Eigen::Vector3d& scale) {
+  return find(sourceOf(path, scale), true);
+}
+
+std::shared_ptr<const TriangleMesh> MeshCache::find(const MeshSource& source, bool materials) {
+  const Key key{source.path,    source.scale.x(),       source.scale.y(), source.scale.z(),
+                source.submesh, source.center_submesh, materials};
   {
     std::lock_guard<std::mutex> lock(mutex_);
     auto it = meshes_.find(key);
     if (it != meshes_.end()) return it->second;
   }
   // Parse outside the lock; if two threads race, the first insert wins (same content).
-  auto mesh = std::make_shared<const TriangleMesh>(loadMeshFile(path, scale));
-  std::lock_guard<std::mutex> lock(mutex_);
-  return meshes_.emplace(key, std::move(mesh)).first->second;
-}
-
-std::shared_ptr<const TriangleMesh> MeshCache::getWithMaterials(const std::string& path,
-                                                                const Eigen::Vector3d& scale) {
-  const Key key{path, scale.x(), scale.y(), scale.z(), true};
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    auto it = meshes_.find(key);
-    if (it != meshes_.end()) return it->second;
-  }
-  auto mesh = std::make_shared<const TriangleMesh>(loadMeshFileWithMaterials(path, scale));
+  auto mesh = std::make_shared<const TriangleMesh>(materials ? loadMeshWithMaterials(source)
+                                                             : loadMesh(source));
   std::lock_guard<std::mutex> lock(mutex_);
   return meshes_.emplace(key, std::move(mesh)).first->second;
 }

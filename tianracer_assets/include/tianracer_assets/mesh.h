@@ -1,6 +1,7 @@
-// Mesh files (STL, DAE, OBJ, ... anything assimp reads) as plain indexed triangle lists, loaded
-// once per (path, scale) and shared by the simulator (collision, ray casting, rendering) and by
-// tianracer_control (wheel sizing). ROS-free.
+// Mesh files (STL, DAE, OBJ, ... anything assimp reads) as plain indexed triangle lists, placed
+// the way Gazebo classic places them (docs/meshes.md: one rule per line, with its Gazebo source
+// file), loaded once per source and shared by the simulator (collision, ray casting, rendering)
+// and by tianracer_control (wheel sizing). ROS-free.
 #ifndef TIANRACER_ASSETS_MESH_H
 #define TIANRACER_ASSETS_MESH_H
 
@@ -35,8 +36,21 @@ struct MeshMaterial {
   std::string texture_error;  // why `texture_uri` did not resolve (names the paths tried)
 };
 
+/// What to load: a file, the part of it an SDF <submesh> names, and the SDF <mesh><scale>.
+struct MeshSource {
+  std::string path;
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+  /// "" = the whole file; else the triangles of the parts of that name (COLLADA <node name>,
+  /// OBJ o/g name), as Gazebo's submeshes are named.
+  std::string submesh;
+  /// Move the submesh's bounding-box centre to the origin (SDF <submesh><center>), before the
+  /// scale.
+  bool center_submesh = false;
+};
+
 /// Triangles only (assimp triangulates polygons and drops points and lines), identical vertices
-/// joined, node transforms and the caller's scale applied; coordinates in the file's frame.
+/// joined; in the mesh's frame: the file's nodes, unit and the source's submesh and scale
+/// applied (Gazebo's placement, mesh.cpp).
 struct TriangleMesh {
   std::vector<Eigen::Vector3f> vertices;
   std::vector<uint32_t> indices;  // 3 per triangle, into vertices
@@ -53,7 +67,9 @@ struct TriangleMesh {
   Eigen::Vector3f boundsMax() const;
 };
 
-/// Loads `path` without caching. Throws MeshError naming the path.
+/// Loads a source without caching. Throws MeshError naming the path (and the submesh).
+TriangleMesh loadMesh(const MeshSource& source);
+/// Loads the whole file `path`, scaled.
 TriangleMesh loadMeshFile(const std::string& path,
                           const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
 
@@ -62,16 +78,19 @@ TriangleMesh loadMeshFile(const std::string& path,
 /// it (file:// URIs and %20 decoded), relative to the mesh's folder, then by its file name in
 /// the mesh's folder and in ../materials/textures (where Gazebo models keep them). Embedded
 /// textures are not read (texture_error says so). Throws MeshError as loadMeshFile.
+TriangleMesh loadMeshWithMaterials(const MeshSource& source);
 TriangleMesh loadMeshFileWithMaterials(const std::string& path,
                                        const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
 
-/// Thread-safe cache keyed by (path, scale): each file is parsed once per scale.
+/// Thread-safe cache keyed by the source: each file is parsed once per scale and submesh.
 class MeshCache {
  public:
   /// Returns the cached mesh, loading it on first use. Throws MeshError (not cached).
+  std::shared_ptr<const TriangleMesh> get(const MeshSource& source);
   std::shared_ptr<const TriangleMesh> get(const std::string& path,
                                           const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
-  /// The same through loadMeshFileWithMaterials (cached separately).
+  /// The same through loadMeshWithMaterials (cached separately).
+  std::shared_ptr<const TriangleMesh> getWithMaterials(const MeshSource& source);
   std::shared_ptr<const TriangleMesh> getWithMaterials(
       const std::string& path, const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
   std::size_t size() const;
@@ -81,7 +100,8 @@ class MeshCache {
   static MeshCache& global();
 
  private:
-  using Key = std::tuple<std::string, double, double, double, bool>;
+  std::shared_ptr<const TriangleMesh> find(const MeshSource& source, bool materials);
+  using Key = std::tuple<std::string, double, double, double, std::string, bool, bool>;
   mutable std::mutex mutex_;
   std::map<Key, std::shared_ptr<const TriangleMesh>> meshes_;
 };

@@ -17,10 +17,14 @@ using tianracer_assets::loadMeshFileWithMaterials;
 using tianracer_assets::MeshCache;
 using tianracer_assets::MeshError;
 using tianracer_assets::MeshMaterial;
+using tianracer_assets::MeshSource;
 using tianracer_assets::TriangleMesh;
 
-/// The triangles of a kMesh shape (its file, scaled), from MeshCache::global(). Throws MeshError
-/// naming the file.
+/// What a kMesh shape loads: its file, scale and submesh.
+tianracer_assets::MeshSource meshSourceOf(const Shape& shape);
+
+/// The triangles of a kMesh shape (its file's parts, placed as Gazebo places them, scaled), from
+/// MeshCache::global(). Throws MeshError naming the file.
 std::shared_ptr<const TriangleMesh> meshOf(const Shape& shape);
 
 /// The same with texture coordinates and materials (rendering), cached separately.
