@@ -394,13 +394,21 @@ Shape Parser::parseGeometry(const XMLElement* e, const std::string& what) {
     s.type = ShapeType::kMesh;
     std::string uri;
     const XMLElement* uri_e = g;
-    children({"uri", "scale"}, [&](const XMLElement* c, const std::string& tag) {
+    children({"uri", "scale", "submesh"}, [&](const XMLElement* c, const std::string& tag) {
       if (tag == "uri") {
         uri = text(c);
         uri_e = c;
-      } else {
+      } else if (tag == "scale") {
         s.scale = vector3(c, what + " mesh");
         if (!(s.scale.minCoeff() > 0.0)) fail(c, what + ": <mesh> <scale> must be > 0");
+      } else {
+        // <submesh>: the file's parts of one name (mesh/mesh_loader.h), centred or not.
+        for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
+          const std::string ktag = k->Name();
+          if (ktag == "name") s.submesh = text(k);
+          else if (ktag == "center") s.center_submesh = boolean(k, what + " <submesh>");
+          else unsupported(k);
+        }
       }
     });
     if (uri.empty()) fail(g, what + ": <mesh> has no <uri>");
