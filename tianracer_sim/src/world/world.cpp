@@ -7,6 +7,7 @@
 #include "tianracer_sim/world/sdf_material.h"
 #include "tianracer_sim/world/map_world.h"
 
+#include "tianracer_sim/mesh/mesh_loader.h"
 #include "tianracer_sim/scene/materials.h"
 
 #include <sys/stat.h>
@@ -209,7 +210,9 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
       Eigen::Isometry3d X_MS;
       if (tag == "include") {
         const IncludeSpec spec = parseIncludeSpec(c);
-        sub = includeModel(c, spec);
+        std::optional<ModelDescription> included = includeModel(c, spec);
+        if (!included) continue;  // left out, reported
+        sub = std::move(*included);
         X_MS = sub.X_WM;
       } else {
         sub = parseModel(c);
@@ -288,11 +291,12 @@ LinkDescription Parser::parseLink(const XMLElement* e, const std::string& model)
         }
       }
       if (!geometry) fail(c, cwhat + " has no <geometry>");
-      const Shape shape = parseGeometry(geometry, cwhat);
+      const std::optional<Shape> shape = parseGeometry(geometry, cwhat, tag);
+      if (!shape) continue;  // left out, reported
       if (tag == "collision") {
-        l.collisions.push_back({name, shape, X_LS, friction, c->GetLineNum(), contact});
+        l.collisions.push_back({name, *shape, X_LS, friction, c->GetLineNum(), contact});
       } else {
-        l.visuals.push_back({name, shape, X_LS, material, c->GetLineNum()});
+        l.visuals.push_back({name, *shape, X_LS, material, c->GetLineNum()});
       }
     } else {
       unsupported(c);
@@ -331,7 +335,8 @@ InertialDescription Parser::parseInertial(const XMLElement* e, const std::string
   return in;
 }
 
-Shape Parser::parseGeometry(const XMLElement* e, const std::string& what) {
+std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::string& what,
+                                           const std::string& kind) {
   const XMLElement* g = e->FirstChildElement();
   if (!g) fail(e, what + ": <geometry> is empty");
   if (g->NextSiblingElement())
@@ -394,13 +399,14 @@ Shape Parser::parseGeometry(const XMLElement* e, const std::string& what) {
     s.type = ShapeType::kMesh;
     std::string uri;
     const XMLElement* uri_e = g;
+    const XMLElement* bad_scale = nullptr;
     children({"uri", "scale", "submesh"}, [&](const XMLElement* c, const std::string& tag) {
       if (tag == "uri") {
         uri = text(c);
         uri_e = c;
       } else if (tag == "scale") {
         s.scale = vector3(c, what + " mesh");
-        if (!(s.scale.minCoeff() > 0.0)) fail(c, what + ": <mesh> <scale> must be > 0");
+        if (!(s.scale.minCoeff() > 0.0)) bad_scale = c;
       } else {
         // <submesh>: the file's parts of one name (mesh/mesh_loader.h), centred or not.
         for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
@@ -412,7 +418,26 @@ Shape Parser::parseGeometry(const XMLElement* e, const std::string& what) {
       }
     });
     if (uri.empty()) fail(g, what + ": <mesh> has no <uri>");
-    s.mesh_path = resolveMesh(uri_e, uri, what);
+    const std::string consequence = "the " + kind + " is left out";
+    if (bad_scale) {
+      leftOut(bad_scale, what + ": <mesh> <scale> '" + text(bad_scale) +
+                             "' must be > 0 in x, y and z (mesh '" + uri + "')",
+              consequence);
+      return std::nullopt;
+    }
+    const std::optional<std::string> path = resolveMesh(uri_e, uri, what, kind);
+    if (!path) return std::nullopt;
+    s.mesh_path = *path;
+    if (options_.require_meshes) {
+      // Read now (cached for the physics and sensors): a file that is no mesh, or has no
+      // triangles or no such <submesh>, leaves out this geometry only, not the world.
+      try {
+        meshOf(s);
+      } catch (const MeshError& err) {
+        leftOut(uri_e, what + ": " + err.what(), consequence);
+        return std::nullopt;
+      }
+    }
   } else {
     fail(g, what + ": unknown geometry <" + type +
                 "> (supported: box, cylinder, sphere, plane, mesh)");
@@ -420,8 +445,16 @@ Shape Parser::parseGeometry(const XMLElement* e, const std::string& what) {
   return s;
 }
 
-std::string Parser::resolveMesh(const XMLElement* e, const std::string& uri,
-                                const std::string& what) {
+void Parser::leftOut(const XMLElement* e, const std::string& problem,
+                     const std::string& consequence) {
+  const std::string message = at(e) + problem;
+  if (options_.strict) throw WorldError(message);
+  const WarningSink& sink = options_.error ? options_.error : options_.warn;
+  if (sink) sink(message + "; " + consequence);
+}
+
+std::optional<std::string> Parser::resolveMesh(const XMLElement* e, const std::string& uri,
+                                               const std::string& what, const std::string& kind) {
   std::string path;
   std::vector<std::string> tried;
   if (startsWith(uri, "model://")) {
@@ -442,14 +475,16 @@ std::string Parser::resolveMesh(const XMLElement* e, const std::string& uri,
     try {
       path = resolver.resolve(uri);
     } catch (const ModelError& err) {
-      fail(e, what + ": " + err.what());
+      leftOut(e, what + ": " + err.what(), "the " + kind + " is left out");
+      return std::nullopt;
     }
     tried.push_back(path);
   }
   if (options_.require_meshes && !isFile(path)) {
     std::string msg = what + ": mesh '" + uri + "' not found (";
     for (std::size_t i = 0; i < tried.size(); ++i) msg += (i ? ", " : "tried ") + tried[i];
-    fail(e, msg + ")");
+    leftOut(e, msg + ")", "the " + kind + " is left out");
+    return std::nullopt;
   }
   return path;
 }

@@ -166,8 +166,8 @@ void Parser::parseInclude(const XMLElement* e, WorldDescription& world) {
     DirectionalLight sun;  // Gazebo's sun model: the defaults of DirectionalLight
     if (spec.has_pose) sun.direction = spec.X.linear() * sun.direction;
     world.sun = sun;
-  } else {
-    world.models.push_back(includeModel(e, spec));
+  } else if (std::optional<ModelDescription> m = includeModel(e, spec)) {
+    world.models.push_back(std::move(*m));
   }
 }
 
@@ -183,7 +183,7 @@ std::vector<std::string> Parser::modelDirs() const {
   return dirs;
 }
 
-ModelDescription Parser::includeModel(const XMLElement* e, const IncludeSpec& spec) {
+std::optional<ModelDescription> Parser::includeModel(const XMLElement* e, const IncludeSpec& spec) {
   // The model's folder: model://NAME in the model folders, or a file:// / plain path.
   std::string dir;
   std::vector<std::string> tried;
@@ -208,7 +208,9 @@ ModelDescription Parser::includeModel(const XMLElement* e, const IncludeSpec& sp
     for (const std::string& t : tried) msg += " " + t;
     if (startsWith(spec.uri, "model://"))
       msg += " (set GAZEBO_MODEL_PATH, or export gazebo_model_path from a ROS package)";
-    fail(e, msg);
+    // Gazebo's sdformat parser reports "Unable to find uri[...]" and goes on without it.
+    leftOut(e, msg, "the model is left out");
+    return std::nullopt;
   }
   // model.config names the model file(s): the highest SDF version we read (<= 1.7) wins.
   std::string file;
@@ -232,7 +234,9 @@ ModelDescription Parser::includeModel(const XMLElement* e, const IncludeSpec& sp
   } else if (isFile(join(dir, "model.sdf"))) {
     file = join(dir, "model.sdf");
   } else {
-    fail(e, "<include> of '" + spec.uri + "': " + dir + " has neither model.config nor model.sdf");
+    leftOut(e, "<include> of '" + spec.uri + "': " + dir + " has neither model.config nor model.sdf",
+            "the model is left out");
+    return std::nullopt;
   }
   std::string canonical = file;
   std::error_code ec;
@@ -247,7 +251,7 @@ ModelDescription Parser::includeModel(const XMLElement* e, const IncludeSpec& sp
   if (!in) fail(e, "<include> of '" + spec.uri + "': cannot read " + file);
   std::stringstream ss;
   ss << in.rdbuf();
-  Parser sub(file, dir, options_);
+  Parser sub(file, dir, options_);  // a strict world is strict in its models too
   sub.include_stack_ = include_stack_;
   sub.include_stack_.push_back(canonical);
   sub.model_roots_ = model_roots_;

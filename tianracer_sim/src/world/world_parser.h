@@ -49,7 +49,9 @@ class Parser : public XmlReader {
   ModelDescription parseModel(const XMLElement* e);
   LinkDescription parseLink(const XMLElement* e, const std::string& model);
   InertialDescription parseInertial(const XMLElement* e, const std::string& what);
-  Shape parseGeometry(const XMLElement* e, const std::string& what);
+  /// The shape, or nullopt when it is left out (leftOut() has reported why).
+  std::optional<Shape> parseGeometry(const XMLElement* e, const std::string& what,
+                                     const std::string& kind);
   Friction parseSurface(const XMLElement* e, const std::string& what, ContactDescription* contact);
   struct IncludeSpec {
     std::string uri, name;
@@ -58,8 +60,9 @@ class Parser : public XmlReader {
     std::optional<bool> is_static;
   };
   IncludeSpec parseIncludeSpec(const XMLElement* e);
-  /// Resolves and parses the model an <include> names, with its <name>/<pose>/<static>.
-  ModelDescription includeModel(const XMLElement* e, const IncludeSpec& spec);
+  /// Resolves and parses the model an <include> names, with its <name>/<pose>/<static>;
+  /// nullopt when its model is not found (left out, leftOut()).
+  std::optional<ModelDescription> includeModel(const XMLElement* e, const IncludeSpec& spec);
   /// Folders searched for model://NAME: GAZEBO_MODEL_PATH, the load options' model_paths, the
   /// folders of enclosing includes, ~/.gazebo/models, ROS packages' exported
   /// gazebo_model_path, the world file's folder and its models/ subfolder.
@@ -68,7 +71,13 @@ class Parser : public XmlReader {
   static void mergeSubModel(ModelDescription* m, const ModelDescription& sub,
                             const Eigen::Isometry3d& X_MS);
   JointDescription parseJoint(const XMLElement* e, const std::string& model);
-  std::string resolveMesh(const XMLElement* e, const std::string& uri, const std::string& what);
+  /// The file of a mesh URI; nullopt when it is not found (left out, leftOut()).
+  std::optional<std::string> resolveMesh(const XMLElement* e, const std::string& uri,
+                                         const std::string& what, const std::string& kind);
+  /// A part of the world that cannot be used: `problem` goes to the options' error sink with
+  /// `consequence` ("the collision is left out") and parsing goes on, as in Gazebo; with
+  /// strict options it is a WorldError.
+  void leftOut(const XMLElement* e, const std::string& problem, const std::string& consequence);
 
   std::string source_;
   std::string base_dir_;
