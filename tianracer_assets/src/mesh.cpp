@@ -6,6 +6,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <string>
@@ -13,6 +14,7 @@
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <tinyxml2.h>
 
 namespace tianracer_assets {
 
@@ -59,6 +61,9 @@ namespace {
 //    name); <center>true: the part's bounding box centred on the origin before the scale
 //    (SubMesh::Center(Zero) in both). Gazebo's collision uses the whole mesh when no part has
 //    the name while its visual shows nothing; here it is an error naming the parts there are.
+// The file name given to a COLLADA <image> that names none (colladaWithImagePlaceholders).
+constexpr const char* kNoImage = "tianracer-no-image:";
+
 struct Instance {
   const aiMesh* mesh;
   aiMatrix4x4 T;  // node transforms from the scene root (unit included)
@@ -67,33 +72,48 @@ struct Instance {
 // The mesh instances of `node` and its children in depth-first order, each with its
 // accumulated node transform; with a submesh name, only those of nodes of that name.
 // (aiProcess_PreTransformVertices would also apply the transforms, but drops meshes used twice.)
+// The part name of a node: its own name, or for a node without one (assimp calls it
+// "$ColladaAutoName$_<n>") its parent's part. Gazebo names a COLLADA submesh after the last
+// <node name> its loader entered (ColladaLoader.cc, currentNodeName), which for geometry in an
+// unnamed child node is the named parent's: Blender and 3ds Max write files so.
+std::string partName(const aiNode* node, const std::string& parent_part) {
+  const std::string name = node->mName.C_Str();
+  return name.rfind("$ColladaAutoName$", 0) == 0 ? parent_part : name;
+}
+
+// The mesh instances of `node` and its children in depth-first order, each with its
+// accumulated node transform; with a submesh name, only those of parts of that name.
+// (aiProcess_PreTransformVertices would also apply the transforms, but drops meshes used twice.)
 void instances(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent,
-               const std::string& submesh, std::vector<Instance>* out) {
+               const std::string& parent_part, const std::string& submesh,
+               std::vector<Instance>* out) {
   const aiMatrix4x4 T = parent * node->mTransformation;
-  if (submesh.empty() || submesh == node->mName.C_Str()) {
+  const std::string part = partName(node, parent_part);
+  if (submesh.empty() || submesh == part) {
     for (unsigned m = 0; m < node->mNumMeshes; ++m) out->push_back({scene->mMeshes[node->mMeshes[m]], T});
   }
   for (unsigned c = 0; c < node->mNumChildren; ++c)
-    instances(scene, node->mChildren[c], T, submesh, out);
+    instances(scene, node->mChildren[c], T, part, submesh, out);
 }
 
-// The names of the nodes that hold triangles: the parts a <submesh> can name.
-void partNames(const aiScene* scene, const aiNode* node, std::vector<std::string>* out) {
+// The names of the parts that hold triangles: what a <submesh> can name.
+void partNames(const aiScene* scene, const aiNode* node, const std::string& parent_part,
+               std::vector<std::string>* out) {
+  const std::string part = partName(node, parent_part);
   bool triangles = false;
   for (unsigned m = 0; m < node->mNumMeshes; ++m)
     triangles = triangles || (scene->mMeshes[node->mMeshes[m]]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE);
-  const std::string name = node->mName.C_Str();
-  if (triangles && std::find(out->begin(), out->end(), name) == out->end()) out->push_back(name);
-  for (unsigned c = 0; c < node->mNumChildren; ++c) partNames(scene, node->mChildren[c], out);
+  if (triangles && std::find(out->begin(), out->end(), part) == out->end()) out->push_back(part);
+  for (unsigned c = 0; c < node->mNumChildren; ++c) partNames(scene, node->mChildren[c], part, out);
 }
 
 // The instances a source places, and the offset its <center> subtracts (zero without).
 std::vector<Instance> select(const aiScene* scene, const MeshSource& source, aiVector3D* offset) {
   std::vector<Instance> out;
-  instances(scene, scene->mRootNode, aiMatrix4x4(), source.submesh, &out);
+  instances(scene, scene->mRootNode, aiMatrix4x4(), "", source.submesh, &out);
   if (!source.submesh.empty() && out.empty()) {
     std::vector<std::string> names;
-    partNames(scene, scene->mRootNode, &names);
+    partNames(scene, scene->mRootNode, "", &names);
     std::string list;
     for (const std::string& n : names) list += (list.empty() ? "'" : ", '") + n + "'";
     throw MeshError("mesh '" + source.path + "': no submesh '" + source.submesh + "' (its parts: " +
@@ -201,6 +221,11 @@ std::string uriToPath(std::string uri) {
 
 void resolveTexture(const std::string& mesh_path, MeshMaterial* m) {
   if (m->texture_uri.empty()) return;
+  if (m->texture_uri.rfind(kNoImage, 0) == 0) {
+    m->texture_error = "image '" + m->texture_uri.substr(std::strlen(kNoImage)) +
+                       "' names no file (Gazebo draws the colour too)";
+    return;
+  }
   if (m->texture_uri[0] == '*') {
     m->texture_error = "texture '" + m->texture_uri + "' is embedded in the mesh file (not supported)";
     return;
@@ -254,6 +279,33 @@ void collectWithMaterials(const std::vector<Instance>& parts, const aiVector3D& 
   }
 }
 
+// A COLLADA file whose <image>s without a file (an <init_from> commented out, as in several
+// gazebo_models parts) each get a placeholder file name, so that assimp, which refuses such an
+// image ("Invalid texture, no data or file reference given"), reads the geometry, as Gazebo's
+// ColladaLoader does (it just draws the material's colour). "" when there is nothing to mend.
+std::string colladaWithImagePlaceholders(const std::string& path) {
+  tinyxml2::XMLDocument doc;
+  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) return "";
+  tinyxml2::XMLElement* root = doc.RootElement();
+  int mended = 0;
+  for (tinyxml2::XMLElement* lib = root ? root->FirstChildElement("library_images") : nullptr; lib;
+       lib = lib->NextSiblingElement("library_images")) {
+    for (tinyxml2::XMLElement* image = lib->FirstChildElement("image"); image;
+         image = image->NextSiblingElement("image")) {
+      if (image->FirstChildElement("init_from") || image->FirstChildElement("data")) continue;
+      const char* id = image->Attribute("id");
+      tinyxml2::XMLElement* init = doc.NewElement("init_from");
+      init->SetText((kNoImage + std::string(id ? id : "")).c_str());
+      image->InsertEndChild(init);
+      ++mended;
+    }
+  }
+  if (mended == 0) return "";
+  tinyxml2::XMLPrinter printer;
+  doc.Print(&printer);
+  return printer.CStr();
+}
+
 // Reads the file with the settings that give Gazebo's placement (see the rules above).
 const aiScene* readScene(Assimp::Importer* importer, const std::string& path, unsigned removed) {
   importer->SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
@@ -264,9 +316,13 @@ const aiScene* readScene(Assimp::Importer* importer, const std::string& path, un
   // A file without geometry is an error, not assimp's stand-in (a zero-size "skeleton" mesh
   // at each node, which would collide and be seen as a point).
   importer->SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
-  const aiScene* scene = importer->ReadFile(
-      path, aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                aiProcess_SortByPType);
+  const unsigned flags = aiProcess_RemoveComponent | aiProcess_Triangulate |
+                        aiProcess_JoinIdenticalVertices | aiProcess_SortByPType;
+  const aiScene* scene = importer->ReadFile(path, flags);
+  if (scene == nullptr && std::string(importer->GetErrorString()).find("Invalid texture") != std::string::npos) {
+    const std::string mended = colladaWithImagePlaceholders(path);
+    if (!mended.empty()) scene = importer->ReadFileFromMemory(mended.data(), mended.size(), flags, "dae");
+  }
   if (scene == nullptr || scene->mRootNode == nullptr) importFailed(path, *importer);
   return scene;
 }

@@ -104,10 +104,11 @@ TEST(MeshRules, SdfScaleAppliesAfterTheFilesUnitAndNodes) {
                Eigen::Vector3f(2, 2, 1.5));
 }
 
-TEST(MeshRules, SubmeshSelectsANodeByName) {
+TEST(MeshRules, SubmeshSelectsANodeByNameWithItsUnnamedChildren) {
   const auto left = meshOf(meshShape("collada_submeshes.dae", Eigen::Vector3d::Ones(), "left"));
   EXPECT_EQ(left->triangleCount(), 12u);
   expectBounds(*left, Eigen::Vector3f(1, -0.5f, 0.5f), Eigen::Vector3f(2, 0.5f, 1.5f));
+  // right's geometry sits in a child node without a name: still part 'right' (Gazebo's rule).
   const auto right = meshOf(meshShape("collada_submeshes.dae", Eigen::Vector3d::Ones(), "right"));
   expectBounds(*right, Eigen::Vector3f(-4, -1, -1), Eigen::Vector3f(-2, 1, 1));
   // The whole file holds both.
@@ -123,6 +124,21 @@ TEST(MeshRules, CenteredSubmeshIsCentredBeforeTheScale) {
   // <center> without a <submesh> name changes nothing (Gazebo reads it inside <submesh> only).
   expectBounds(*meshOf(meshShape("collada_submeshes.dae", Eigen::Vector3d::Ones(), "", true)),
                Eigen::Vector3f(-4, -1, -1), Eigen::Vector3f(2, 1, 1.5f));
+}
+
+TEST(MeshRules, ColladaImageWithoutAFileLosesItsTextureOnly) {
+  expectBounds(*meshOf(meshShape("collada_image_without_file.dae")), Eigen::Vector3f(-1, -2, 0),
+               Eigen::Vector3f(1, 2, 3));
+  const auto m = meshWithMaterialsOf(meshShape("collada_image_without_file.dae"));
+  EXPECT_EQ(m->triangleCount(), 12u);
+  bool painted = false;
+  for (const MeshMaterial& mm : m->materials) {
+    if (mm.name != "paint") continue;
+    painted = true;
+    EXPECT_TRUE(mm.texture.empty());
+    EXPECT_THAT(mm.texture_error, HasSubstr("image 'paint_png' names no file"));
+  }
+  EXPECT_TRUE(painted);
 }
 
 TEST(MeshRules, ObjGroupIsASubmesh) {
