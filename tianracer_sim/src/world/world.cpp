@@ -192,6 +192,7 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
   if (m.name.empty()) fail(e, "<model> has no name");
   const std::string what = "model '" + m.name + "'";
   std::set<std::string> link_names;
+  int left_out_includes = 0;
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
     if (tag == "static") {
@@ -211,7 +212,10 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
       if (tag == "include") {
         const IncludeSpec spec = parseIncludeSpec(c);
         std::optional<ModelDescription> included = includeModel(c, spec);
-        if (!included) continue;  // left out, reported
+        if (!included) {  // left out, reported
+          ++left_out_includes;
+          continue;
+        }
         sub = std::move(*included);
         X_MS = sub.X_WM;
       } else {
@@ -228,12 +232,22 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
     }
   }
   if (m.links.empty()) warn(e, what + " has no <link>: nothing to simulate or see");
-  for (const JointDescription& j : m.joints) {
-    for (const std::string* end : {&j.parent, &j.child}) {
-      if (*end != "world" && !link_names.count(*end))
-        throw WorldError(source_ + ":" + std::to_string(j.line) + ": " + what + " joint '" +
-                         j.name + "': no link '" + *end + "' in the model");
+  for (auto j = m.joints.begin(); j != m.joints.end();) {
+    std::string missing;
+    for (const std::string* end : {&j->parent, &j->child}) {
+      if (missing.empty() && *end != "world" && !link_names.count(*end)) missing = *end;
     }
+    if (missing.empty()) {
+      ++j;
+      continue;
+    }
+    const std::string problem = what + " joint '" + j->name + "': no link '" + missing + "' in the model";
+    if (left_out_includes == 0) throw WorldError(source_ + ":" + std::to_string(j->line) + ": " + problem);
+    // Most likely in the <include> that was left out: the joint goes with it.
+    const XMLElement* joint_e = e->FirstChildElement("joint");
+    while (joint_e && joint_e->GetLineNum() != j->line) joint_e = joint_e->NextSiblingElement("joint");
+    leftOut(joint_e ? joint_e : e, problem + " (an <include> of it was left out)", "the joint is left out");
+    j = m.joints.erase(j);
   }
   if (!m.is_static) {
     // A free body needs a mass and an inertia it can be divided by (mass is checked > 0 when

@@ -107,6 +107,22 @@ TEST(WorldMeshes, MissingNestedIncludeLeavesOutThatPartOnly) {
   EXPECT_NE(model(l.world, "good"), nullptr);
 }
 
+TEST(WorldMeshes, JointsToALeftOutIncludeGoWithIt) {
+  const Loaded l = load("<model name='outer'><link name='base'/>"
+                        "<include><uri>model://gone</uri><name>gone</name></include>"
+                        "<joint name='mount' type='fixed'><parent>base</parent><child>gone::link</child>"
+                        "</joint></model>");
+  ASSERT_EQ(l.errors.size(), 2u);
+  EXPECT_THAT(l.errors[1], HasSubstr("model 'outer' joint 'mount': no link 'gone::link' in the model "
+                                     "(an <include> of it was left out); the joint is left out"));
+  ASSERT_NE(model(l.world, "outer"), nullptr);
+  EXPECT_TRUE(model(l.world, "outer")->joints.empty());
+  // Without a left-out include, a joint to a link the model lacks still stops the load.
+  EXPECT_THROW(load("<model name='outer'><link name='base'/><joint name='j' type='fixed'>"
+                    "<parent>base</parent><child>nope</child></joint></model>"),
+               WorldError);
+}
+
 TEST(WorldMeshes, MissingMeshLeavesOutThatCollisionOnly) {
   const Loaded l = load(
       "<model name='m'><static>true</static><link name='l'><collision name='c'><geometry><mesh>"
