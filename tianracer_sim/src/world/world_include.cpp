@@ -180,7 +180,12 @@ std::vector<std::string> Parser::modelDirs() const {
   for (const std::string& d : tianracer_assets::rosExportedModelPaths()) dirs.push_back(d);
   dirs.push_back(base_dir_);
   dirs.push_back(join(base_dir_, "models"));
-  return dirs;
+  // Each folder once, at its first place (the messages list every folder searched).
+  std::vector<std::string> unique;
+  for (const std::string& d : dirs) {
+    if (std::find(unique.begin(), unique.end(), d) == unique.end()) unique.push_back(d);
+  }
+  return unique;
 }
 
 std::optional<ModelDescription> Parser::includeModel(const XMLElement* e, const IncludeSpec& spec) {
