@@ -325,7 +325,7 @@ class AckermannTestCase(unittest.TestCase):
             raise AssertionError('no ground truth, wheel odometry or cmd_vel_node output within '
                                  '60 s of wall time')
         cls.geometry = ackermann_geometry(rospy.get_param('/robot_description'))
-        cls.wheel_radius = 0.032  # what cmd_vel_node uses for the seed's mesh wheels (README)
+        cls.wheel_radius = 0.032  # what cmd_vel_node uses for the seed's mesh wheels (docs/bringup.md)
         cls.max_speed = float(rospy.get_param(CMD_NODE + '/max_speed', 3.0))
         for srv in ('pause_physics', 'unpause_physics'):
             rospy.wait_for_service('/gazebo/' + srv, timeout=30)

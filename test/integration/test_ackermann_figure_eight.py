@@ -8,7 +8,7 @@ ackermann_figure_eight.test runs the cmd_vel node with per-wheel rear speeds
 differential turns them. With the default (both rear wheels at v / r, a locked axle) the inner
 and outer rear wheels must scrub against each other by v T_r / R, about 10 % in this 0.8 m turn;
 the car's path then follows how the scrub splits between the tyres, and the same figure-eight
-measures 2.8 % of the distance and 6.5-6.8 deg (README, known differences). Figures are sim
+measures 2.8 % of the distance and 6.5-6.8 deg (docs/simulator.md, known differences). Figures are sim
 time; see test_ackermann_drive.py for how they are taken.
 """
 import math

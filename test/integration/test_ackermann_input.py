@@ -137,7 +137,7 @@ class AckermannInput(AckermannTestCase):
                            'speed %.4f m/s', r, rms, len(samples), samples[-1].t - samples[0].t,
                            expected, 100.0 * (r / expected - 1.0), speed)
         # The axle's speed is reported, not checked: with both rear wheels at v / r (the
-        # tutorial's locked axle) the tyres scrub in a 0.8 m turn (README, known limits).
+        # tutorial's locked axle) the tyres scrub in a 0.8 m turn (docs/simulator.md, known differences).
         self.assertLess(abs(r / expected - 1.0), RADIUS_TOL, text)
 
     def test_b_stream_then_silence_stops_after_the_timeout(self):

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""PyBullet 3.2.7 doing the simulator's work, for the side-by-side benchmark (README, Benchmarks).
+"""PyBullet 3.2.7 doing the simulator's work, for the side-by-side benchmark (docs/benchmarks.md).
 
 Same URDF (xacro-expanded, package:// paths made absolute), same world geometry (the .world's
 static boxes, cylinders and spheres plus a ground plane), a 1 ms step with 20 solver iterations,

@@ -37,7 +37,7 @@ const std::string kSourceDir = TIANRACER_DESCRIPTION_SOURCE_DIR;
 const std::string kXacroPath = kSourceDir + "/urdf/tianracer_description.xacro";
 const std::string kMeshPrefix = "package://tianracer_description/";
 
-// Layout constants the meshes are built against (README, The model).
+// Layout constants the meshes are built against (docs/bringup.md, The model).
 constexpr double kWheelRadius = 0.032;
 constexpr double kGroundZ = 0.0225 - kWheelRadius;  // rear wheel centre z minus radius
 constexpr double kNonWheelMinZ = kGroundZ + 0.003;  // clearance kept by everything but wheels

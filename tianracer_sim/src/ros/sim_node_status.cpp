@@ -1,6 +1,6 @@
 // The sim node's status: every status period (wall time) one line on the log and a
 // /diagnostics array with the real-time factor, contacts per robot and each sensor's rate in sim
-// and in wall time (the /diagnostics row of the README's topic table).
+// and in wall time (the /diagnostics row of docs/model_and_sensors.md's topic table).
 #include <iomanip>
 #include <sstream>
 

@@ -13,7 +13,7 @@ namespace {
 
 std::string fmt(double v) { return formatShort(v); }
 
-// Differences every instance of a type has, whatever its parameters (README, Known
+// Differences every instance of a type has, whatever its parameters (docs/simulator.md, Known
 // differences and limits).
 std::vector<std::string> typeDifferences(const SensorSpec& s) {
   std::vector<std::string> out;

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """rostest: the seed's camera (800x800, 30 Hz) and RealSense depth camera (640x480, images and
-cloud at 20 Hz, camera_infos at 10 Hz) in walled_room, as the README (Sensors) lists them:
+cloud at 20 Hz, camera_infos at 10 Hz) in walled_room, as docs/model_and_sensors.md lists them:
 
 - the seven topics at their rates in sim time (header stamps, +-10 % over >= 2 s), with their
   encodings, sizes, steps, cloud layout and optical frame ids; the cloud's z and colour equal

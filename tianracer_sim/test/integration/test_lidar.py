@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""rostest: the seed's hokuyo on /scan (README, Sensors), in walled_room with the car at the origin.
+"""rostest: the seed's hokuyo on /scan (docs/model_and_sensors.md), in walled_room with the car at the origin.
 
 - /scan at 40 +- 2 Hz in sim time (header stamps);
 - angle_min/max/increment, range_min/max equal the float32 of the seed's values, frame 'lidar',

@@ -1,4 +1,4 @@
-// The shipped tianracer xacro expands and loads with the seed's values (README, The model).
+// The shipped tianracer xacro expands and loads with the seed's values (docs/bringup.md, The model).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // A Gazebo <sensor type="ray"> with its libgazebo_ros_laser plugin, as a plain validated struct,
-// and a RaySensor that scans a Scene with it (README, Sensors). ROS-free.
+// and a RaySensor that scans a Scene with it (docs/model_and_sensors.md). ROS-free.
 #ifndef TIANRACER_SIM_LIDAR_RAY_SENSOR_H
 #define TIANRACER_SIM_LIDAR_RAY_SENSOR_H
 

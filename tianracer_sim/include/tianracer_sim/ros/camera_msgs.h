@@ -1,5 +1,5 @@
 // Camera and depth camera frames -> sensor_msgs (Image, CameraInfo, PointCloud2), as
-// gazebo_ros_camera and gazebo_ros_openni_kinect fill them (README, Sensors), except the frame:
+// gazebo_ros_camera and gazebo_ros_openni_kinect fill them (docs/model_and_sensors.md), except the frame:
 // every header carries the sensor's optical frame, "<frameName>_optical_frame"
 // (opticalFrameId()), which the node publishes by TF as rpy(-pi/2, 0, -pi/2) from frameName's
 // link (CameraConfig::X_LO()). Gazebo stamps the plain link frame, which rviz draws rotated.

@@ -6,7 +6,7 @@
 // ModelSpawner).
 // Entities are gazebo_ros's: a model by name (a robot, or a model of the world file, the
 // ground plane included), a link as "model::link". What differs from gazebo_ros is listed in
-// the README's "Gazebo interface" section.
+// docs/gazebo_interface.md.
 //
 // The owner (the sim node) calls beforeStep() before and afterStep() after each physics step,
 // and onReset() when time goes back to 0 or the world is reset; callbacks run on the owner's

@@ -1,5 +1,5 @@
 // RaySensor scans -> sensor_msgs/LaserScan, field for field as gazebo_ros_laser fills them
-// (README, Sensors), except scan_time, which we set to the scan period.
+// (docs/model_and_sensors.md), except scan_time, which we set to the scan period.
 #ifndef TIANRACER_SIM_ROS_LASER_MSGS_H
 #define TIANRACER_SIM_ROS_LASER_MSGS_H
 

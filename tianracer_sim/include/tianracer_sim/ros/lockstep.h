@@ -1,6 +1,6 @@
 // Lockstep with the nodes that drive the car: at real_time_factor 0 the simulator waits, each
 // control period of sim time, for their answer, so that a run is repeatable however slowly they
-// react in wall time. README "The simulator", lockstep.
+// react in wall time. docs/simulator.md, Lockstep.
 #ifndef TIANRACER_SIM_ROS_LOCKSTEP_H
 #define TIANRACER_SIM_ROS_LOCKSTEP_H
 

@@ -1,4 +1,4 @@
-// Simulation: the step loop without ROS (README, The simulator): robots from their RobotModel,
+// Simulation: the step loop without ROS (docs/simulator.md): robots from their RobotModel,
 // their ros_control-style controllers from tianracer_control, the physics world, and sim time:
 //   read joint state -> controllers update (every control period) -> write commands ->
 //   physics step.

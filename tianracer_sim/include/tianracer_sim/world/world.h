@@ -1,4 +1,4 @@
-// The SDF world subset (README) as plain structs (tinyxml2), and its insertion into the Scene
+// The SDF world subset (docs/worlds.md) as plain structs (tinyxml2), and its insertion into the Scene
 // that sensors and the renderer see. ROS-free.
 //
 // Supported: <sdf><world> with <physics> (max_step_size, real_time_factor, real_time_update_rate,
