@@ -2,6 +2,7 @@
 // folders) through the ROS-free core, one model at a time, the way a user's world would hold it
 // (docs/gazebo_models.md). Run by hand, not in CI:
 //   model_corpus <models_dir> [--only NAME]... [--settle S] [--hold S] [--markdown FILE]
+//                [--load-only]
 // For every folder with a model.sdf: a world with model://ground_plane and an <include> of the
 // model at its default pose is loaded (world loader), added to a Simulation (sim/world_physics)
 // and stepped. Reported: whether it loads (and what was left out), its collision bounds, its
@@ -11,7 +12,8 @@
 //   for --hold seconds (30));
 //   above or in the ground: whether it ends resting on its base (within 1 cm and 0.05 rad of
 //   its start pose moved until the base meets the ground, after --hold seconds).
-// The last lines time the loading of the whole corpus (a benchmark, not a test).
+// The last lines time the loading of the whole corpus (a benchmark, not a test; --load-only
+// skips the physics for it) and name the slowest models to load.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -208,7 +210,8 @@ void judgeBase(const ts::ModelDescription& m, Result* r) {
   r->base = os.str();
 }
 
-Result run(const std::string& models_dir, const std::string& name, double settle, double hold) {
+Result run(const std::string& models_dir, const std::string& name, double settle, double hold,
+           bool load_only) {
   Result r;
   r.name = name;
   const std::string xml = "<sdf version='1.6'><world name='corpus'>"
@@ -254,6 +257,10 @@ Result run(const std::string& models_dir, const std::string& name, double settle
     }
   }
   judgeBase(m, &r);
+  if (load_only) {
+    r.verdict = "loads";
+    return r;
+  }
 
   const auto t1 = std::chrono::steady_clock::now();
   try {
@@ -334,6 +341,7 @@ int main(int argc, char** argv) {
   std::string dir, markdown;
   std::vector<std::string> only;
   double settle = 3.0, hold = 30.0;
+  bool load_only = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -347,9 +355,10 @@ int main(int argc, char** argv) {
     else if (a == "--settle") settle = std::stod(next());
     else if (a == "--hold") hold = std::stod(next());
     else if (a == "--markdown") markdown = next();
+    else if (a == "--load-only") load_only = true;
     else if (!a.empty() && a[0] == '-') {
       std::cerr << "usage: model_corpus <models_dir> [--only NAME]... [--settle S] [--hold S] "
-                   "[--markdown FILE]\n";
+                   "[--markdown FILE] [--load-only]\n";
       return 2;
     } else dir = a;
   }
@@ -373,7 +382,7 @@ int main(int argc, char** argv) {
   double load_ms = 0.0, sim_ms = 0.0;
   for (const std::string& n : names) {
     std::cerr << n << "... " << std::flush;
-    results.push_back(run(dir, n, settle, hold));
+    results.push_back(run(dir, n, settle, hold, load_only));
     const Result& r = results.back();
     std::cerr << r.verdict << (r.why.empty() ? "" : " (" + r.why.substr(0, 160) + ")") << "\n";
     ++counts[r.verdict];
@@ -402,8 +411,18 @@ int main(int argc, char** argv) {
   for (const auto& kv : counts) md << " " << kv.second << " " << kv.first << ",";
   md.seekp(-1, std::ios::cur);
   md << ".\n\nLoading the whole corpus (world loader and every mesh, first load): " << fmt(load_ms, 0)
-     << " ms; physics set-up and " << fmt(std::max(settle, hold), 0) << " s of sim per model: "
-     << fmt(sim_ms / 1000.0, 1) << " s.\n";
+     << " ms";
+  if (!load_only) {
+    md << "; physics set-up and " << fmt(std::max(settle, hold), 0) << " s of sim per model: "
+       << fmt(sim_ms / 1000.0, 1) << " s";
+  }
+  std::vector<const Result*> slow;
+  for (const Result& r : results) slow.push_back(&r);
+  std::sort(slow.begin(), slow.end(), [](const Result* a, const Result* b) { return a->load_ms > b->load_ms; });
+  md << ". Slowest to load:";
+  for (std::size_t i = 0; i < std::min<std::size_t>(5, slow.size()); ++i)
+    md << (i ? "," : "") << " " << slow[i]->name << " " << fmt(slow[i]->load_ms, 0) << " ms";
+  md << ".\n";
   std::cout << md.str();
   if (!markdown.empty()) std::ofstream(markdown) << md.str();
   return 0;
