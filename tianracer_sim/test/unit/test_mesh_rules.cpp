@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "tianracer_sim/mesh/mesh_loader.h"
 
@@ -144,6 +145,26 @@ TEST(MeshRules, ColladaImageWithoutAFileLosesItsTextureOnly) {
 TEST(MeshRules, ObjGroupIsASubmesh) {
   expectBounds(*meshOf(meshShape("obj_groups.obj", Eigen::Vector3d::Ones(), "blue_block", true)),
                Eigen::Vector3f(-0.5f, -0.5f, -0.5f), Eigen::Vector3f(0.5f, 0.5f, 0.5f));
+}
+
+TEST(MeshRules, CollisionAndCamerasPlaceEveryRuleFileAlike) {
+  // Physics and the ray caster take meshOf, the renderer meshWithMaterialsOf (UVs and
+  // materials): the same vertices, whatever the rule.
+  const std::vector<Shape> shapes = {
+      meshShape("collada_inch_zup_nodes.dae", Eigen::Vector3d(10, 10, 10)),
+      meshShape("collada_yup.dae"),
+      meshShape("collada_instanced.dae"),
+      meshShape("collada_submeshes.dae", Eigen::Vector3d(2, 1, 1), "right", true),
+      meshShape("collada_image_without_file.dae"),
+      meshShape("stl_binary_solid_header.stl", Eigen::Vector3d(1, 2, 3)),
+      meshShape("obj_groups.obj", Eigen::Vector3d::Ones(), "red_block")};
+  for (const Shape& s : shapes) {
+    const auto collision = meshOf(s);
+    const auto visual = meshWithMaterialsOf(s);
+    EXPECT_EQ(collision->triangleCount(), visual->triangleCount()) << s.mesh_path;
+    EXPECT_EQ(collision->boundsMin(), visual->boundsMin()) << s.mesh_path;
+    EXPECT_EQ(collision->boundsMax(), visual->boundsMax()) << s.mesh_path;
+  }
 }
 
 TEST(MeshRules, UnknownSubmeshNamesTheFileAndItsParts) {
