@@ -59,10 +59,10 @@ std::string withRobotNamespace(const std::string& urdf, const std::string& robot
   return printer.CStr();
 }
 
-GazeboInterface::GazeboInterface(ros::NodeHandle nh, Simulation& sim,
-                                 const WorldDescription& world, const Options& options,
-                                 ModelSpawner* spawner)
-    : sim_(sim), world_(world), options_(options), spawner_(spawner) {
+GazeboInterface::GazeboInterface(ros::NodeHandle nh, Simulator& sim, const Options& options,
+                                 ModelSpawner* spawner, std::function<void()> after_reset)
+    : simulator_(sim), sim_(sim.simulation()), world_(sim.world()), options_(options),
+      spawner_(spawner), after_reset_(std::move(after_reset)) {
   if (!(options_.states_rate >= 0.0) || !std::isfinite(options_.states_rate)) {
     throw std::runtime_error("parameter ~gazebo_states_rate must be >= 0 (0 = every step), got " +
                              std::to_string(options_.states_rate));
@@ -88,6 +88,12 @@ GazeboInterface::GazeboInterface(ros::NodeHandle nh, Simulation& sim,
       nh.advertiseService("apply_body_wrench", &GazeboInterface::applyBodyWrench, this));
   services_.push_back(
       nh.advertiseService("clear_body_wrenches", &GazeboInterface::clearBodyWrenches, this));
+  services_.push_back(nh.advertiseService("pause_physics", &GazeboInterface::pausePhysics, this));
+  services_.push_back(
+      nh.advertiseService("unpause_physics", &GazeboInterface::unpausePhysics, this));
+  services_.push_back(
+      nh.advertiseService("reset_simulation", &GazeboInterface::resetSimulation, this));
+  services_.push_back(nh.advertiseService("reset_world", &GazeboInterface::resetWorld, this));
   if (spawner_) {
     services_.push_back(
         nh.advertiseService("spawn_urdf_model", &GazeboInterface::spawnUrdfModel, this));
@@ -561,6 +567,31 @@ bool GazeboInterface::deleteModel(gazebo_msgs::DeleteModel::Request& req,
   }
   res.status_message = "delete_model: " + error;
   ROS_ERROR_STREAM(res.status_message);
+  return true;
+}
+
+// --- pause and reset -----------------------------------------------------------------------------
+
+bool GazeboInterface::pausePhysics(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  simulator_.setPaused(true);
+  return true;
+}
+
+bool GazeboInterface::unpausePhysics(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  simulator_.setPaused(false);
+  return true;
+}
+
+bool GazeboInterface::resetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  simulator_.resetSimulation();
+  onReset();
+  if (after_reset_) after_reset_();
+  return true;
+}
+
+bool GazeboInterface::resetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  simulator_.resetWorld();
+  onReset();
   return true;
 }
 

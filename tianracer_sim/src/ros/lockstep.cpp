@@ -70,9 +70,6 @@ Lockstep::Lockstep(ros::NodeHandle nh, ros::CallbackQueue* queue, LockstepOption
   nh.setCallbackQueue(queue_);
   subscribe(nh, options_.replies, &replies_);
   subscribe(nh, options_.ticks, &ticks_);
-  reply_schedule_.period = options_.reply_period;
-  tick_schedule_.period = options_.tick_period;
-  restart(0.0);
 }
 
 void Lockstep::subscribe(ros::NodeHandle& nh, const std::vector<std::string>& names, Group* group) {
@@ -90,13 +87,6 @@ void Lockstep::subscribe(ros::NodeHandle& nh, const std::vector<std::string>& na
         ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
     group->push_back(std::move(topic));
   }
-}
-
-void Lockstep::restart(double t) {
-  // The data at t itself went out before anyone could answer it (start, reset): the first wait
-  // is one period later.
-  reply_schedule_.next = t + reply_schedule_.period;
-  tick_schedule_.next = t + tick_schedule_.period;
 }
 
 void Lockstep::mark(Group& group) {

@@ -18,14 +18,14 @@ void SimNode::publishStatus() {
   const double rtf = sim / wall;
   std::ostringstream line;
   line << std::fixed << std::setprecision(2) << "sim time " << sim_->time() << " s, real-time factor "
-       << rtf << (paused_ ? " (paused)" : "");
+       << rtf << (sim_->paused() ? " (paused)" : "");
   diagnostic_msgs::DiagnosticArray array;
   array.header.stamp = ros::Time(sim_->time());
   diagnostic_msgs::DiagnosticStatus sim_status;
   sim_status.name = "tianracer_sim: simulation";
   sim_status.hardware_id = "tianracer_sim";
   sim_status.level = diagnostic_msgs::DiagnosticStatus::OK;
-  sim_status.message = paused_ ? "paused" : "running";
+  sim_status.message = sim_->paused() ? "paused" : "running";
   auto kv = [](const std::string& k, double v) {
     diagnostic_msgs::KeyValue x;
     x.key = k;
@@ -37,15 +37,15 @@ void SimNode::publishStatus() {
   sim_status.values.push_back(kv("sim_time", sim_->time()));
   sim_status.values.push_back(kv("real_time_factor", rtf));
   sim_status.values.push_back(kv("target_real_time_factor", real_time_factor_));
-  for (const RobotIo& io : robots_) {
-    if (!io.robot) continue;
-    sim_status.values.push_back(kv("contacts " + io.robot->name, contacts_->count(io.robot->id)));
+  for (const auto& robot : robots_) {
+    sim_status.values.push_back(
+        kv("contacts " + sim_->robot(robot->id())->name, sim_->contactCount(robot->id())));
   }
   array.status.push_back(sim_status);
   // In sim time every sensor keeps its rate by construction (rendering holds the step); what
   // can fall behind is the wall-clock rate a consumer sees when the sim cannot keep real time.
-  for (SensorStat& stat : stats_) {
-    if (stat.name.empty()) continue;  // its robot was deleted
+  for (const auto& sensor : sim_->sensors()) {
+    SensorStat& stat = sensor->stat();
     const double rate = sim > 0.0 ? stat.count / sim : 0.0;
     const double wall_rate = stat.count / wall;
     diagnostic_msgs::DiagnosticStatus st;

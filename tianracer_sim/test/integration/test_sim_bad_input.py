@@ -181,11 +181,6 @@ class SimBadInput(unittest.TestCase):
         self.assert_fails(['/sim_under_test/lockstep/ticks', 'must be a list of topics'],
                           '_disable_sensors:=ray camera depth')
 
-    def test_empty_robot_list(self):
-        rospy.set_param('/robot_description', self.urdf)
-        rospy.set_param('/sim_under_test/robots', [])
-        self.assert_fails(['/sim_under_test/robots', 'lists no robot'])
-
     def test_two_robots_in_one_namespace(self):
         # The same xacro twice without robot_namespace:=...: both cars would answer to
         # /tianracer/... commands.

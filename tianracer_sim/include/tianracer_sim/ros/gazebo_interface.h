@@ -1,16 +1,16 @@
 // gazebo_ros's world interface (gazebo_ros_api_plugin) with gazebo_msgs types, over the
-// Simulation: /gazebo/model_states and /gazebo/link_states, the set_model_state and
+// Simulator: /gazebo/model_states and /gazebo/link_states, the set_model_state and
 // set_link_state topics, and the services get/set_model_state, get/set_link_state,
 // get_model_properties, get_world_properties, apply_body_wrench and clear_body_wrenches,
+// pause_physics, unpause_physics, reset_simulation and reset_world (std_srvs/Empty),
 // spawn_urdf_model, spawn_sdf_model and delete_model (checked here, carried out by the owner's
 // ModelSpawner).
 // Entities are gazebo_ros's: a model by name (a robot, or a model of the world file, the
 // ground plane included), a link as "model::link". What differs from gazebo_ros is listed in
 // docs/gazebo_interface.md.
 //
-// The owner (the sim node) calls beforeStep() before and afterStep() after each physics step,
-// and onReset() when time goes back to 0 or the world is reset; callbacks run on the owner's
-// callback queue, between steps.
+// The owner (the sim node) calls beforeStep() before and afterStep() after each physics step;
+// callbacks run on the owner's callback queue, between steps.
 #ifndef TIANRACER_SIM_ROS_GAZEBO_INTERFACE_H
 #define TIANRACER_SIM_ROS_GAZEBO_INTERFACE_H
 
@@ -30,9 +30,11 @@
 #include <gazebo_msgs/SetModelState.h>
 #include <gazebo_msgs/SpawnModel.h>
 #include <ros/ros.h>
+#include <std_srvs/Empty.h>
 
 #include "tianracer_sim/sim/entity_state.h"
 #include "tianracer_sim/sim/simulation.h"
+#include "tianracer_sim/simulator/simulator.h"
 #include "tianracer_sim/world/world.h"
 
 namespace tianracer_sim {
@@ -69,17 +71,16 @@ class GazeboInterface {
   };
 
   /// Advertises on `gazebo_nh` (the /gazebo namespace, with the owner's callback queue). The
-  /// spawn and delete services only with a spawner.
-  GazeboInterface(ros::NodeHandle gazebo_nh, Simulation& sim, const WorldDescription& world,
-                  const Options& options, ModelSpawner* spawner = nullptr);
+  /// spawn and delete services only with a spawner. `after_reset` is called once
+  /// reset_simulation has brought the Simulator back to time 0 (the owner restarts its own
+  /// schedules and /clock).
+  GazeboInterface(ros::NodeHandle gazebo_nh, Simulator& sim, const Options& options,
+                  ModelSpawner* spawner = nullptr, std::function<void()> after_reset = {});
 
   /// Applies the external wrenches due in the coming step.
   void beforeStep();
   /// Publishes model_states and link_states when due (and subscribed).
   void afterStep();
-  /// Time went back (reset_simulation) or the world was reset: wrenches are cleared and the
-  /// publishing schedule restarts.
-  void onReset();
   /// Models were added or removed: the state messages are rebuilt before the next publish.
   void onModelsChanged() { robots_in_msgs_ = ~std::size_t(0); }
 
@@ -107,6 +108,12 @@ class GazeboInterface {
                      gazebo_msgs::SpawnModel::Response& res);
   bool deleteModel(gazebo_msgs::DeleteModel::Request& req,
                    gazebo_msgs::DeleteModel::Response& res);
+  bool pausePhysics(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  bool unpausePhysics(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  /// Time to 0, models to their spawn poses, controllers and sensors restarted, wrenches gone.
+  bool resetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  /// Poses only; time keeps running.
+  bool resetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
 
  private:
   /// A model or link found by name.
@@ -136,11 +143,16 @@ class GazeboInterface {
   /// element (<robot>: a robot, <sdf>/<model>: a world model).
   bool spawn(const std::string& service, gazebo_msgs::SpawnModel::Request& req,
              gazebo_msgs::SpawnModel::Response& res);
+  /// Time went back or the world was reset: wrenches are cleared and the publishing schedule
+  /// restarts.
+  void onReset();
 
+  Simulator& simulator_;
   Simulation& sim_;
   const WorldDescription& world_;
   Options options_;
   ModelSpawner* spawner_ = nullptr;
+  std::function<void()> after_reset_;
   WrenchSchedule wrenches_;
 
   ros::Publisher model_states_pub_, link_states_pub_;

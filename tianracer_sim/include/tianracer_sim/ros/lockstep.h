@@ -12,7 +12,6 @@
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 
-#include "tianracer_sim/ros/sensors/sensor_publisher.h"
 
 namespace tianracer_sim {
 
@@ -40,9 +39,7 @@ class Lockstep {
   /// Subscribes (any type) to the topics on `nh`, whose callbacks run on `queue`.
   Lockstep(ros::NodeHandle nh, ros::CallbackQueue* queue, LockstepOptions options);
 
-  /// Called at each step with its sim time; says which waits the step has.
-  bool repliesDue(double t) { return !options_.replies.empty() && reply_schedule_.due(t); }
-  bool ticksDue(double t) { return !options_.ticks.empty() && tick_schedule_.due(t); }
+  // Which steps wait is the Simulator's decision (Simulator::setLockstep(), advance()).
   /// Forgets what arrived so far: the wait after this call needs a message sent after it.
   void markReplies() { mark(replies_); }
   void markTicks() { mark(ticks_); }
@@ -51,8 +48,6 @@ class Lockstep {
   /// that stopped costs one timeout, not one per period); reported once per topic.
   void awaitReplies(double t) { await(replies_, t, "the sensor data of"); }
   void awaitTicks(double t) { await(ticks_, t, "the /clock of"); }
-  /// Time jumped (reset): the periods restart at t.
-  void restart(double t);
   const LockstepOptions& options() const { return options_; }
   std::uint64_t timeouts() const { return timeouts_; }
 
@@ -72,7 +67,6 @@ class Lockstep {
   ros::CallbackQueue* queue_;
   LockstepOptions options_;
   Group replies_, ticks_;
-  Schedule reply_schedule_, tick_schedule_;
   std::uint64_t timeouts_ = 0;
 };
 

@@ -1,12 +1,15 @@
-// The simulator's ROS node: parameters in, Simulation stepped, Gazebo's topics and services
-// out. Thin: the physics, controllers and sensors are the ROS-free libraries.
+// The simulator's ROS node: parameters in, the ROS-free Simulator (simulator/simulator.h)
+// stepped, Gazebo's topics and services out. Bridges only: RobotBridge (commands, joint_states,
+// ground truth, odom TF), the sensor publishers (ros/sensors/), GazeboInterface (world state,
+// spawn, pause and reset), Lockstep, /clock and the status.
 //
 // Parameters (private, ~):
 //   world            a shipped world (empty, walled_room, racetrack) or a .world path
 //   robots           names of several robots to spawn (list or space-separated string); each
 //                    robot's parameters below (model ... disable_sensors, control_namespace)
 //                    are then read from ~<name>/ and its robot_name is <name>. Unset: one
-//                    robot from the parameters in ~ itself.
+//                    robot from the parameters in ~ itself. Empty ([] or ""): the world
+//                    alone, as `gzserver x.world`; robots arrive through spawn_urdf_model.
 //   model            xacro/URDF file; when empty, the URDF is read from robot_param
 //   model_dir        folder that relative mesh URIs of robot_param's URDF resolve against
 //                    (sim.launch sets it to the model file's folder)
@@ -47,32 +50,21 @@
 
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
-#include <sensor_msgs/JointState.h>
 #include <tf2_ros/static_transform_broadcaster.h>
-#include <std_srvs/Empty.h>
 
-#include <tianracer_control/ros/controller_adapter.h>
-
-#include "tianracer_sim/lidar/ray_caster.h"
-#include "tianracer_sim/render/renderer.h"
-#include "tianracer_sim/ros/borrowed_msgs.h"
 #include "tianracer_sim/ros/contact_publisher.h"
 #include "tianracer_sim/ros/gazebo_interface.h"
 #include "tianracer_sim/ros/lockstep.h"
-#include "tianracer_sim/ros/sensors/sensor_publisher.h"
-#include "tianracer_sim/scene/scene.h"
-#include "tianracer_sim/sim/frame_worker.h"
-#include "tianracer_sim/sim/robot_scene.h"
-#include "tianracer_sim/sim/simulation.h"
-#include "tianracer_sim/sim/world_physics.h"
-#include "tianracer_sim/world/world.h"
+#include "tianracer_sim/ros/robot_bridge.h"
+#include "tianracer_sim/simulator/simulator.h"
 
 namespace tianracer_sim {
 
-class SimNode : private SensorHost, private ModelSpawner {
+class SimNode : private ModelSpawner {
  public:
-  /// Reads parameters, loads the robot and starts its controllers. Throws std::exception with
-  /// a message naming the parameter, file or controller on a configuration error.
+  /// Reads parameters, loads the world and the robots and starts their controllers. Throws
+  /// std::exception with a message naming the parameter, file or controller on a
+  /// configuration error.
   SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh);
   ~SimNode();
 
@@ -80,60 +72,17 @@ class SimNode : private SensorHost, private ModelSpawner {
   void run();
 
  private:
-  struct JointStateStream {
-    ros::Publisher pub;
-    std::vector<int> joints;  // PhysicsRobot joint indices
-    Schedule schedule;
-    sensor_msgs::JointState msg;
-  };
-  /// One robot of the node; robot == nullptr once deleted (delete_model), so that the
-  /// indices sensors hold stay valid.
-  struct RobotIo {
-    SimRobot* robot = nullptr;
-    std::string ns;  // ros_control namespace, e.g. "/tianracer"
-    std::shared_ptr<tianracer_control::ControllerCommandSubscribers> commands;
-    std::vector<JointStateStream> joint_states;
-    RobotSceneBodies scene_bodies;
-    ros::Publisher ground_truth;
-    Schedule ground_truth_schedule;
-    std::string tf_prefix;  // "" for a robot alone; e.g. "tianracer_02"
-    std::string base_frame;  // tf_prefix + root link
-    std::vector<std::string> topics;  // sensor topics it claimed (topic_owner_)
-    std::vector<std::size_t> stats;   // its sensors' entries of stats_
-  };
-
-  /// A robot to add, however it came: from the node's parameters at start-up or from
-  /// spawn_urdf_model at run time. Both go through addRobot().
-  struct RobotRequest {
-    RobotModel model;
-    std::string name;
-    Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
-    bool auto_z = false;  // drop to the ground (z "auto")
-    /// The robot's own parameters: controllers, control_namespace, odom_frame,
-    /// disable_sensors (~ for one robot, ~<name>/ for several or spawned ones).
-    ros::NodeHandle rp;
-  };
-
-  /// The frames due at one step: rendered and published on camera_worker_'s thread from
-  /// render_scene_, a snapshot of scene_ at that step.
-  struct FrameJob {
-    ros::Time stamp;
-    std::vector<FrameRequest> frames;
-  };
-
   /// Logs each distinct warning once (loaders repeat theirs for every robot and spawn).
   static void warnOnce(const std::string& text);
+  // In sim_node_robots.cpp: robots from parameters (start-up) or spawn_urdf_model, both through
+  // addRobot(); delete_model.
   /// Loads one robot from the parameters in `rp`; `name` fixes its name (else ~robot_name).
   void loadRobot(const ros::NodeHandle& rp, const std::string& name);
-  /// Adds the robot with its controllers, topics and sensors. Throws on bad input (a
-  /// message naming the robot); nothing of the robot stays then.
-  void addRobot(RobotRequest request);
-  /// The rest of addRobot once the robot is in the simulation: scene, frames, topics,
-  /// contacts, sensors.
-  void setUpRobotIo(std::size_t index, const ros::NodeHandle& rp);
-  // In sim_node_spawn.cpp: models at run time.
-  /// Everything of robots_[index] out: topics, sensors, scene, physics.
-  void removeRobotAt(std::size_t index);
+  /// The robot into the simulator with its bridges (`rp`: its own parameters: controllers,
+  /// control_namespace, odom_frame, disable_sensors). Throws naming the robot; nothing of it
+  /// stays then.
+  void addRobot(RobotModel model, const std::string& name, const Eigen::Isometry3d& X_WB,
+                bool auto_z, const ros::NodeHandle& rp);
   // ModelSpawner: spawn_urdf_model, spawn_sdf_model and delete_model, between steps.
   void spawnRobot(const std::string& name, const std::string& urdf,
                   const Eigen::Isometry3d& X_WB) override;
@@ -142,80 +91,35 @@ class SimNode : private SensorHost, private ModelSpawner {
   void deleteModel(const std::string& name) override;
   /// Advertises `topic` for a robot's sensor; throws when another sensor publishes there.
   void claimTopic(const std::string& topic, const std::string& owner);
-  bool ensureRenderer();
-  /// Hands the frames requested at this step to the frame worker.
-  void submitFrames(const ros::Time& stamp);
-  void publishStatus();
-  void setUpSensors(size_t robot_index, const ros::NodeHandle& rp);
-  /// One sensor (or sensor-like model plugin) through the registry; a bad one is left out.
-  void setUpSensor(size_t robot_index, const SensorSpec& spec);
-  /// Brings the scene's robot bodies to the current physics poses, once per step.
-  void updateScene();
-  void setUpJointStates(RobotIo& io);
+
   void stepOnce();
   /// Publishes what is due at this step; `clock` false leaves /clock to the caller (lockstep).
   void publishDue(bool clock = true);
   void publishClock();
-  void restartSchedules();
+  void publishStatus();  // sim_node_status.cpp
 
-  // SensorHost: what sensor publishers use at a step.
-  const Scene& scene() override;
-  RayCaster& caster() override { return caster_; }
-  Eigen::Isometry3d linkPose(std::size_t robot, const std::string& link) const override;
-  bool linkState(std::size_t robot, const std::string& link, LinkState* state) const override;
-  void requestFrame(const FrameRequest& request) override { due_frames_.frames.push_back(request); }
-  void linkContacts(std::size_t robot, const std::string& link,
-                    std::vector<BumperContact>* out) override;
-  SensorStat& stat(std::size_t index) override { return stats_[index]; }
-
-  bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
-  bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
-  bool onResetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
-  bool onResetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  /// After reset_simulation (GazeboInterface): the node's schedules restart, /clock goes back.
+  void afterReset();
 
   ros::NodeHandle nh_, pnh_;
   ros::CallbackQueue queue_;  // commands and services run between steps, in this thread
-  std::unique_ptr<WorldDescription> world_;
+  ros::NodeHandle root_;      // "/" on queue_
   WorldLoadOptions world_options_;
-  /// What each model of world_ put into the physics (delete_model takes it out again).
-  std::map<std::string, WorldModelBodies> world_bodies_;
-  std::unique_ptr<Simulation> sim_;
-  Scene scene_;  // what sensors see: the world's models and every robot's links
-  std::uint64_t scene_step_ = ~0ull;  // step count the scene's poses belong to
-  RayCaster caster_;
-  std::unique_ptr<Renderer> renderer_;
-  bool renderer_failed_ = false;
-  // After renderer_: camera sensors render through it and go first.
-  std::vector<std::unique_ptr<SensorPublisher>> sensors_;
-  std::vector<std::size_t> sensor_robot_;  // robots_ index of each of sensors_
-  std::map<std::string, int> sensors_of_kind_;  // SensorKind id -> sensors set up
-  std::map<std::string, std::string> left_out_;  // the robot being loaded: sensor -> why left out
+  std::unique_ptr<Simulator> sim_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
-  std::vector<SensorStat> stats_;  // one per sensor, in set-up order
-  ros::Publisher diagnostics_pub_;
-  double status_period_ = 5.0;  // wall seconds between status reports
-  ros::WallTime status_wall_;
-  double status_sim_ = 0.0;
-  std::uint64_t seed_ = 0;
-  std::vector<RobotIo> robots_;
-  std::unique_ptr<ContactPublisher> contacts_;  // robots' contacts and their counts
-  std::vector<RobotContact> contact_scratch_;   // for linkContacts
-  std::map<std::string, std::string> topic_owner_;  // sensor topics: who publishes there
-
-  ros::Publisher clock_pub_;
+  std::vector<std::unique_ptr<RobotBridge>> robots_;  // in the order they were added
+  std::map<std::string, std::string> topic_owner_;    // sensor topics: who publishes there
+  std::unique_ptr<ContactPublisher> contacts_;        // robots' contacts on their topics
+  ros::Publisher clock_pub_, diagnostics_pub_;
   Schedule clock_schedule_;
   double ground_truth_rate_ = 50.0;
   double real_time_factor_ = 1.0;
-  bool paused_ = false;
   bool pacing_reset_ = true;
-  std::vector<ros::ServiceServer> services_;
-  std::unique_ptr<Lockstep> lockstep_;  // null unless ~lockstep/ names topics
+  double status_period_ = 5.0;  // wall seconds between status reports
+  ros::WallTime status_wall_;
+  double status_sim_ = 0.0;
+  std::unique_ptr<Lockstep> lockstep_;       // null unless ~lockstep/ names topics
   std::unique_ptr<GazeboInterface> gazebo_;  // gazebo_msgs topics and services
-
-  FrameJob due_frames_;  // filled each step, handed to the worker (capacity kept)
-  Scene render_scene_;    // the worker's snapshot of scene_
-  // Started with the first frame; reset first in ~SimNode (it uses the sensors above).
-  std::unique_ptr<FrameWorker<FrameJob>> camera_worker_;
 };
 
 }  // namespace tianracer_sim

@@ -16,6 +16,7 @@
 
 #include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/model/sensor_topics.h"
+#include "tianracer_sim/sensors/link_data.h"  // LinkContact
 
 namespace tianracer_sim {
 
@@ -37,16 +38,8 @@ BumperConfig parseBumperConfig(const SensorSpec& sensor, const std::string& mode
 /// gazebo_msgs/ContactsState on topic() at update_rate (nothing without the plugin).
 std::vector<SensorTopic> publishedTopics(const BumperConfig& config);
 
-/// One contact point of the sensor's link with something else, named as Gazebo names
-/// collisions ("model::link::collision").
-struct BumperContact {
-  std::string own;    // collision1
-  std::string other;  // collision2
-  Eigen::Vector3d position_W = Eigen::Vector3d::Zero();
-  Eigen::Vector3d normal_W = Eigen::Vector3d::UnitZ();
-  double depth = 0.0;
-  double impulse = 0.0;  // N s over the step
-};
+/// One contact point of the sensor's link with something else (own: "model::link").
+using BumperContact = LinkContact;
 
 /// One touching pair, in the output frame.
 struct BumperState {

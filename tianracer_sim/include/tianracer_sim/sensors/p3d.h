@@ -22,6 +22,7 @@
 
 #include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/model/sensor_topics.h"
+#include "tianracer_sim/sensors/link_data.h"  // LinkState
 
 namespace tianracer_sim {
 
@@ -48,13 +49,6 @@ P3dConfig parseP3dConfig(const SensorSpec& sensor, const std::string& model_name
                          const WarningSink& warn = {});
 /// nav_msgs/Odometry on topic() at update_rate.
 std::vector<SensorTopic> publishedTopics(const P3dConfig& config);
-
-/// A link's pose and its velocities in the world frame.
-struct LinkState {
-  Eigen::Isometry3d X_WL = Eigen::Isometry3d::Identity();
-  Eigen::Vector3d v_W = Eigen::Vector3d::Zero();  // of the link frame's origin
-  Eigen::Vector3d w_W = Eigen::Vector3d::Zero();
-};
 
 /// A link's velocities from its poses at consecutive steps, where the physics gives none:
 /// v = displacement / dt, w from the rotation over the step (0 at the first step).

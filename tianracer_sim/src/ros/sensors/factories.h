@@ -6,22 +6,25 @@
 #include <memory>
 
 #include "tianracer_sim/ros/sensors/sensor_publisher.h"
+#include "tianracer_sim/simulator/sim_sensors.h"
 
 namespace tianracer_sim {
 
-std::unique_ptr<SensorPublisher> makeLidarPublisher(const SensorSetup& setup);
-std::unique_ptr<SensorPublisher> makeCameraPublisher(const SensorSetup& setup);
-std::unique_ptr<SensorPublisher> makeMultiCameraPublisher(const SensorSetup& setup);
-std::unique_ptr<SensorPublisher> makeDepthCameraPublisher(const SensorSetup& setup);
-std::unique_ptr<SensorPublisher> makeImuPublisher(const SensorSetup& setup);
-std::unique_ptr<SensorPublisher> makeImuPluginPublisher(const SensorSetup& setup);
-std::unique_ptr<SensorPublisher> makeP3dPublisher(const SensorSetup& setup);
-std::unique_ptr<SensorPublisher> makeBumperPublisher(const SensorSetup& setup);
+std::unique_ptr<SensorListener> makeLidarPublisher(SimSensor& sensor, const PublisherSetup& setup);
+std::unique_ptr<SensorListener> makeCameraPublisher(SimSensor& sensor, const PublisherSetup& setup);
+std::unique_ptr<SensorListener> makeMultiCameraPublisher(SimSensor& sensor,
+                                                         const PublisherSetup& setup);
+std::unique_ptr<SensorListener> makeDepthCameraPublisher(SimSensor& sensor,
+                                                         const PublisherSetup& setup);
+std::unique_ptr<SensorListener> makeImuPublisher(SimSensor& sensor, const PublisherSetup& setup);
+std::unique_ptr<SensorListener> makeP3dPublisher(SimSensor& sensor, const PublisherSetup& setup);
+std::unique_ptr<SensorListener> makeBumperPublisher(SimSensor& sensor, const PublisherSetup& setup);
 
 struct CameraConfig;
 /// The camera's optical frame (z forward, x right, y down), which its images are stamped
-/// with, on static TF under the sensor's link (camera_publisher.cpp).
-void sendOpticalFrame(const SensorSetup& setup, const CameraConfig& camera);
+/// with, on static TF under the sensor's link `link` (camera_publisher.cpp).
+void sendOpticalFrame(const PublisherSetup& setup, const std::string& link,
+                      const CameraConfig& camera);
 
 }  // namespace tianracer_sim
 

@@ -1,0 +1,133 @@
+// The simulator's side of a sensor: one SimSensor per simulated sensor, owned by the Simulator,
+// holding its ROS-free core (ray sensor, camera, IMU, ...), its schedules, its latest output and
+// its counts. What consumes the output (the ROS node's publisher of the sensor, a Python
+// environment) is a SensorListener: it says which due outputs it wants, so that nothing is
+// cast or rendered for nobody, and it is told when they are ready.
+//
+// At each step (Simulator::sense()), in set-up order, for each sensor:
+//   due = update(t)                 motion history every step; which outputs are due now
+//   want = listener.wanted(due)     (no listener: everything due)
+//   sample(want) or skip()          cast / measure now, or request a frame (rendered on the
+//                                   frame worker from a snapshot of this step's scene)
+//   listener.onOutputs(...)         at the step for measured outputs, on the frame worker's
+//                                   thread for rendered ones
+#ifndef TIANRACER_SIM_SIMULATOR_SIM_SENSOR_H
+#define TIANRACER_SIM_SIMULATOR_SIM_SENSOR_H
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "tianracer_sim/lidar/ray_caster.h"
+#include "tianracer_sim/scene/scene.h"
+#include "tianracer_sim/sensors/link_data.h"
+#include "tianracer_sim/sim/schedule.h"
+
+namespace tianracer_sim {
+
+/// A model of the simulation (a robot or a world model), by an id that is never reused.
+using ModelId = int;
+constexpr ModelId kNoModel = -1;
+
+/// A link of a model: where a sensor sits and what it reads. Robots and world models alike.
+struct LinkRef {
+  ModelId model = kNoModel;
+  std::string link;
+};
+
+/// Bits naming a sensor's outputs; what each bit means is the sensor kind's (SimCamera::kImage...).
+using SensorOutputs = std::uint64_t;
+
+class SimSensor;
+
+/// A frame to render off the step thread: the sensor, its link's pose at the step and the
+/// outputs wanted.
+struct FrameRequest {
+  SimSensor* sensor = nullptr;
+  Eigen::Isometry3d X_WL = Eigen::Isometry3d::Identity();
+  SensorOutputs outputs = 0;
+};
+
+/// What a sensor reads from the simulation at a step: general questions about links and the
+/// scene, nothing specific to a sensor kind.
+class SensorWorld {
+ public:
+  virtual ~SensorWorld() = default;
+  /// The scene at this step (bodies brought to the physics poses on first use).
+  virtual const Scene& scene() = 0;
+  virtual RayCaster& caster() = 0;
+  /// Pose of the link in the world at this step.
+  virtual Eigen::Isometry3d linkPose(const LinkRef& link) const = 0;
+  /// Pose and world-frame velocities of the link, when the physics knows them exactly (a link
+  /// rigid with its model's root body); false otherwise (the caller differentiates poses).
+  virtual bool linkState(const LinkRef& link, LinkState* state) const = 0;
+  /// The contacts in the last step of the body that carries the link (a wheel on the ground
+  /// is not one), own named "model::link". Cleared first.
+  virtual void linkContacts(const LinkRef& link, std::vector<LinkContact>* out) = 0;
+  /// Renders the frame on the frame worker from a snapshot of this step's scene
+  /// (request.sensor->render()), then hands it to the sensor's listener there.
+  virtual void requestFrame(const FrameRequest& request) = 0;
+};
+
+/// The consumer of a sensor's outputs.
+class SensorListener {
+ public:
+  virtual ~SensorListener() = default;
+  /// Of the outputs due now, those someone wants; the others are not computed.
+  virtual SensorOutputs wanted(const SimSensor& sensor, SensorOutputs due) = 0;
+  /// `outputs` are ready for sim time t: called on the stepping thread for measured outputs,
+  /// on the frame worker's thread for rendered ones (SimSensor::rendered()).
+  virtual void onOutputs(const SimSensor& sensor, SensorOutputs outputs, double t) = 0;
+};
+
+class SimSensor {
+ public:
+  SimSensor(std::string kind, std::string name, LinkRef link, std::string model_name)
+      : kind_(std::move(kind)), name_(std::move(name)), link_(std::move(link)),
+        model_name_(std::move(model_name)) {}
+  virtual ~SimSensor() = default;
+  SimSensor(const SimSensor&) = delete;
+  SimSensor& operator=(const SimSensor&) = delete;
+
+  /// The SensorKind id (sensors/sensor_registry.h), e.g. "lidar".
+  const std::string& kind() const { return kind_; }
+  const std::string& name() const { return name_; }
+  const LinkRef& link() const { return link_; }
+  const std::string& modelName() const { return model_name_; }
+
+  /// Every step, after the physics: keeps what the sensor differentiates, advances the
+  /// schedules, returns the outputs due at sim time t.
+  virtual SensorOutputs update(double t, SensorWorld& world) = 0;
+  /// Computes `outputs` (a subset of the due ones, not empty): measured now, or a frame
+  /// requested (world.requestFrame()).
+  virtual void sample(SensorOutputs outputs, SensorWorld& world) = 0;
+  /// Due outputs that nobody wanted.
+  virtual void skip() {}
+  /// On the frame worker: renders a requested frame from `scene`.
+  virtual void render(const Scene& /*scene*/, const FrameRequest& /*request*/) {}
+  /// The outputs that render() produces (delivered from the frame worker).
+  virtual SensorOutputs rendered() const { return 0; }
+  /// The outputs whose samples the status counts (a camera's image, not its camera_info).
+  virtual SensorOutputs counted() const { return ~SensorOutputs(0); }
+  /// Time went back (reset_simulation): schedules restart at t, histories are forgotten.
+  virtual void restart(double t) = 0;
+
+  SensorListener* listener() const { return listener_.get(); }
+  void setListener(std::unique_ptr<SensorListener> listener) { listener_ = std::move(listener); }
+  SensorStat& stat() { return stat_; }
+  const SensorStat& stat() const { return stat_; }
+
+ private:
+  std::string kind_, name_;
+  LinkRef link_;
+  std::string model_name_;
+  std::unique_ptr<SensorListener> listener_;
+  SensorStat stat_;
+};
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_SIMULATOR_SIM_SENSOR_H

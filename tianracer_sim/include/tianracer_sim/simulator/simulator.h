@@ -1,0 +1,231 @@
+// The simulation without ROS: a world, its robots and world models, their sensors, the scene
+// sensors see, the step, the clock and the lockstep decisions. The ROS node (ros/sim_node.h)
+// is bridges around it; a Python environment can drive it directly:
+//
+//   Simulator sim(loadWorldFile("racetrack.world"), {});
+//   RobotSpawn car;  car.name = "tianracer";  car.model = loadRobotModel(urdf, "car", {});
+//   car.controllers = specs;  car.drop_to_ground = true;
+//   const ModelId id = sim.addRobot(std::move(car));
+//   sim.setCommand(id, "left_rear_wheel_velocity_controller", 30.0);
+//   sim.step(100);
+//   auto* lidar = dynamic_cast<const SimLidar*>(sim.findSensor(id, "laser"));
+//   lidar->ranges();
+//
+// Sensors compute only what is due (their rates in sim time) and wanted (their listener;
+// without one, everything due). Camera frames render on a worker thread from a snapshot of the
+// step's scene: waitFrames() before reading them. Everything happens on the caller's thread
+// except rendering; calls between steps only.
+#ifndef TIANRACER_SIM_SIMULATOR_SIMULATOR_H
+#define TIANRACER_SIM_SIMULATOR_SIMULATOR_H
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include <tianracer_control/joint_controllers.h>
+
+#include "tianracer_sim/common/warning.h"
+#include "tianracer_sim/lidar/ray_caster.h"
+#include "tianracer_sim/model/robot_model.h"
+#include "tianracer_sim/render/renderer.h"
+#include "tianracer_sim/scene/scene.h"
+#include "tianracer_sim/sensors/model_report.h"
+#include "tianracer_sim/sim/contact_tracker.h"
+#include "tianracer_sim/sim/entity_state.h"
+#include "tianracer_sim/sim/frame_worker.h"
+#include "tianracer_sim/sim/robot_scene.h"
+#include "tianracer_sim/sim/schedule.h"
+#include "tianracer_sim/sim/simulation.h"
+#include "tianracer_sim/sim/world_physics.h"
+#include "tianracer_sim/simulator/sim_sensor.h"
+#include "tianracer_sim/world/world.h"
+
+namespace tianracer_sim {
+
+/// Where the simulator's messages go (the ROS node logs them; empty sinks drop them).
+struct SimulatorLog {
+  WarningSink info;         // what was set up, one line each
+  WarningSink warn;         // loaders' and sensors' warnings (repeated per robot: log each once)
+  WarningSink error;        // a part left out (a sensor); the rest runs on
+  WarningSink frame_error;  // a camera frame failed; may come every frame: throttle
+};
+
+struct SimulatorOptions {
+  /// Physics step (s) in (0, 0.1]; 0 = the world's <max_step_size>.
+  double max_step_size = 0.0;
+  /// Seed of the sensors' noise: same seed, same noise.
+  std::uint64_t seed = 0;
+  SimulatorLog log;
+};
+
+/// A robot to add (start-up and spawn_urdf_model alike).
+struct RobotSpawn {
+  std::string name;  // unique among the models
+  RobotModel model;
+  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+  bool drop_to_ground = false;  // z such that the lowest collision point rests on z = 0
+  std::vector<tianracer_control::ControllerSpec> controllers;
+  std::string tf_prefix;  // prefixes the frames of its sensors' outputs
+  /// Sensor types or names left out (~disable_sensors).
+  std::vector<std::string> disabled_sensors;
+  /// Called once the robot is in the simulation (physics, controllers, scene), before its
+  /// sensors are set up (the ROS node sets up the robot's topics). A throw takes the robot out.
+  std::function<void(ModelId)> added;
+  /// Called for each sensor before it first runs (the ROS node attaches its publisher). A
+  /// throw leaves the sensor out, with the message as the reason.
+  std::function<void(SimSensor&)> attach;
+};
+
+/// Plain joint states of a robot: every movable joint, in the physics' order.
+struct JointStates {
+  std::vector<std::string> name;
+  std::vector<double> position, velocity, effort;
+};
+
+/// Which lockstep waits a step has (Simulator::advance()).
+struct StepWaits {
+  bool replies = false;  // the driver's answer to this step's sensor data
+  bool ticks = false;    // the nodes ticking on this step's /clock
+};
+
+class Simulator : public SensorWorld {
+ public:
+  /// Builds the world's models (static shapes, free bodies) and the scene. Throws
+  /// std::invalid_argument for a step outside (0, 0.1] s, PhysicsError / MeshError naming a
+  /// model of the world.
+  Simulator(WorldDescription world, SimulatorOptions options);
+  ~Simulator() override;
+  Simulator(const Simulator&) = delete;
+  Simulator& operator=(const Simulator&) = delete;
+
+  // --- models ---------------------------------------------------------------------------------
+  /// Adds a robot with its controllers and sensors (spawn.added() in between). Throws (a message naming the robot) on bad
+  /// input; nothing of the robot stays then. A bad sensor is left out (leftOut()), not thrown.
+  ModelId addRobot(RobotSpawn spawn);
+  /// Adds a world model (spawn_sdf_model) where model.X_WM says. Throws naming the model;
+  /// nothing of it stays then.
+  ModelId addWorldModel(ModelDescription model);
+  /// Takes a robot or world model out with everything of it (sensors, scene, physics). Throws
+  /// std::runtime_error for an unknown name or the ground plane.
+  void removeModel(const std::string& name);
+  /// The model of that name (robots and world models); kNoModel when none.
+  ModelId findModel(const std::string& name) const;
+  /// The robot of a model id; nullptr for world models and removed ones.
+  SimRobot* robot(ModelId id);
+  const SimRobot* robot(ModelId id) const;
+  /// Ids of the robots, in the order they were added.
+  std::vector<ModelId> robotIds() const;
+  /// The sensors of robot `id` left out, and why (the start-up table's "left out" rows).
+  const LeftOut& leftOut(ModelId id) const;
+
+  // --- time -----------------------------------------------------------------------------------
+  /// One physics step: controllers (at their period), physics, contacts. Returns the lockstep
+  /// waits due at the new time.
+  StepWaits advance();
+  /// The sensors due at this time: cast, measured or frames requested; handed to listeners.
+  void sense();
+  /// n times advance() then sense().
+  void step(int n = 1);
+  double time() const { return sim_.time(); }
+  double dt() const { return sim_.dt(); }
+  std::uint64_t stepCount() const { return sim_.stepCount(); }
+  /// gazebo's reset_simulation: time to 0, models to their spawn poses, controllers, sensors'
+  /// schedules and histories and lockstep restarted.
+  void resetSimulation();
+  /// gazebo's reset_world: poses only; time keeps running.
+  void resetWorld();
+  /// Paused is the run loop's business (advance() steps regardless); kept here so that every
+  /// bridge sees the same state.
+  bool paused() const { return paused_; }
+  void setPaused(bool paused) { paused_ = paused; }
+  /// Lockstep: which steps wait for the driver's replies and for the ticks (periods in sim s).
+  void setLockstep(bool replies, double reply_period, bool ticks, double tick_period);
+
+  // --- state as plain data --------------------------------------------------------------------
+  /// A model's canonical body: pose and twist in the world.
+  EntityState modelState(ModelId id) const;
+  void jointStates(ModelId robot, JointStates* out) const;
+  /// Sets the command of a robot's controller (as its /command topic does). False for an
+  /// unknown robot or controller, or a non-finite value (the previous command stays).
+  bool setCommand(ModelId robot, const std::string& controller, double value);
+  /// Every sensor, in set-up order (robots' sensors in the order their models list them).
+  const std::vector<std::unique_ptr<SimSensor>>& sensors() const { return sensors_; }
+  /// The sensor called `name` on model `id` (model plugins by their plugin name); nullptr if none.
+  SimSensor* findSensor(ModelId id, const std::string& name) const;
+  /// Waits for the frame in flight: rendered outputs are complete afterwards.
+  void waitFrames();
+  /// Contacts begun so far by robot `id` (a pair touching again after a gap counts again).
+  std::uint64_t contactCount(ModelId id) const;
+
+  // --- SensorWorld: what sensors read, addressed by model id and link name ---------------------
+  const Scene& scene() override;
+  RayCaster& caster() override { return caster_; }
+  Eigen::Isometry3d linkPose(const LinkRef& link) const override;
+  bool linkState(const LinkRef& link, LinkState* state) const override;
+  void linkContacts(const LinkRef& link, std::vector<LinkContact>* out) override;
+  void requestFrame(const FrameRequest& request) override { due_frames_.push_back(request); }
+
+  // --- the parts, for the bridges -------------------------------------------------------------
+  Simulation& simulation() { return sim_; }
+  const Simulation& simulation() const { return sim_; }
+  const WorldDescription& world() const { return *world_; }
+  const ContactTracker& contacts() const { return contacts_; }
+  const SimulatorOptions& options() const { return options_; }
+
+ private:
+  /// One model: a robot (robot != nullptr) or a world model. Kept as an empty slot once
+  /// removed, so that ids stay indices.
+  struct Model {
+    std::string name;  // "" once removed
+    SimRobot* robot = nullptr;
+    RobotSceneBodies scene_bodies;  // robots
+    WorldModelBodies bodies;        // world models
+    LeftOut left_out;
+  };
+  struct FrameJob {
+    double t = 0.0;
+    std::vector<FrameRequest> frames;
+  };
+
+  const Model* model(ModelId id) const;
+  /// The physics of a model (a robot, or a world model's free body); nullptr for static ones.
+  const PhysicsRobot* physicsOf(ModelId id) const;
+  void setUpSensors(ModelId id, const RobotSpawn& spawn);
+  void setUpSensor(ModelId id, const RobotSpawn& spawn, const SensorSpec& spec);
+  Renderer* ensureRenderer();
+  void restartLockstep(double t);
+  void updateScene();
+  void submitFrames();
+
+  SimulatorOptions options_;
+  std::unique_ptr<WorldDescription> world_;
+  Simulation sim_;
+  std::vector<Model> models_;
+  Scene scene_;  // what sensors see: the world's models and every robot's links
+  std::uint64_t scene_step_ = ~0ull;  // step count the scene's poses belong to
+  RayCaster caster_;
+  std::unique_ptr<Renderer> renderer_;
+  bool renderer_failed_ = false;
+  // After renderer_: camera sensors render through it and go first.
+  std::vector<std::unique_ptr<SimSensor>> sensors_;
+  std::map<std::string, int> sensors_of_kind_;  // SensorKind id -> sensors set up
+  ContactTracker contacts_;
+  std::vector<RobotContact> contact_scratch_;  // linkContacts
+  Schedule reply_schedule_, tick_schedule_;
+  bool lockstep_replies_ = false, lockstep_ticks_ = false;
+  bool paused_ = false;
+
+  std::vector<FrameRequest> due_frames_;  // filled each step, handed to the worker
+  Scene render_scene_;                    // the worker's snapshot of scene_
+  // Started with the first frame; reset first in ~Simulator (it uses the sensors above).
+  std::unique_ptr<FrameWorker<FrameJob>> frame_worker_;
+};
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_SIMULATOR_SIMULATOR_H

@@ -1,0 +1,208 @@
+// The sim node's robots and models: from the node's parameters at start-up and from
+// spawn_urdf_model / spawn_sdf_model at run time, both through addRobot() (the Simulator's
+// addRobot plus the robot's bridges); delete_model takes everything back out. The spawner calls
+// come from GazeboInterface on the node's callback thread, between steps.
+#include <algorithm>
+
+#include <ros/package.h>
+
+#include <tianracer_control/ros/controller_adapter.h>
+
+#include "tianracer_sim/ros/controller_params.h"
+#include "tianracer_sim/ros/params.h"
+#include "tianracer_sim/ros/sensors/sensor_publisher.h"
+#include "tianracer_sim/ros/sim_node.h"
+
+namespace tianracer_sim {
+
+namespace {
+
+LoadOptions loadOptions(const ros::NodeHandle& rp) {
+  LoadOptions options;
+  options.resolver.find_package = [](const std::string& pkg) { return ros::package::getPath(pkg); };
+  // Relative mesh URIs of a robot_description filled from a file resolve against its folder.
+  rp.param<std::string>("model_dir", options.resolver.base_dir, "");
+  return options;
+}
+
+}  // namespace
+
+void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name) {
+  LoadOptions options = loadOptions(rp);
+  options.warn = [](const std::string& w) { warnOnce(w); };
+  std::string model_file;
+  rp.param<std::string>("model", model_file, "");
+  RobotModel model;
+  if (!model_file.empty()) {
+    model = loadRobotModelFile(model_file, options);
+  } else {
+    std::string param;
+    rp.param<std::string>("robot_param", param, "robot_description");
+    std::string urdf;
+    if (!nh_.getParam(param, urdf)) {
+      throw ModelError("parameter " + nh_.resolveName(param) +
+                       " is not set: load the URDF (e.g. with xacro), give ~model, or set "
+                       "~robots to an empty list for the world alone");
+    }
+    if (urdf.find_first_not_of(" \t\r\n") == std::string::npos) {
+      throw ModelError("parameter " + nh_.resolveName(param) + " (robot_description) is empty");
+    }
+    model = loadRobotModel(urdf, nh_.resolveName(param), options);
+  }
+
+  std::string name = fixed_name;
+  const std::string model_ns =
+      trimSlashes(model.ext.ros_control ? model.ext.ros_control->robot_namespace : "");
+  if (name.empty()) {
+    rp.param<std::string>("robot_name", name, model_ns);
+    if (!model_ns.empty() && name != model_ns) {
+      // robot_state_publisher and the control nodes of the launch files follow robot_name.
+      ROS_WARN_STREAM("robot '" << name << "': ~robot_name is '" << name << "' but the model's "
+                      << "gazebo_ros_control robotNamespace is '/" << model_ns << "': its "
+                      << "controllers and joint_states are under /" << model_ns << ", not /"
+                      << name << " (give the model its namespace, e.g. model_args:=\"robot_namespace:=/"
+                      << name << "\", or robot_name:=" << model_ns << ")");
+    }
+  }
+  if (name.empty()) name = model.urdf->getName();
+  bool auto_z = true;
+  const Eigen::Isometry3d X_WB = getSpawnPose(rp, &auto_z);
+  addRobot(std::move(model), name, X_WB, auto_z, rp);
+}
+
+void SimNode::addRobot(RobotModel model, const std::string& name, const Eigen::Isometry3d& X_WB,
+                       bool auto_z, const ros::NodeHandle& rp) {
+  if (sim_->simulation().findRobot(name)) {
+    throw ModelError("robot '" + name + "' exists already: robot names must be unique");
+  }
+  RobotBridge::Options bridge;
+  bridge.ns = model.ext.ros_control ? model.ext.ros_control->robot_namespace : "";
+  if (bridge.ns.empty()) bridge.ns = "/" + name;
+  bridge.ns = "/" + trimSlashes(bridge.ns);
+  for (const auto& other : robots_) {
+    if (other->ns() == bridge.ns) {
+      throw ModelError("robot '" + name + "' (" + model.source + "): its ros_control namespace " +
+                       bridge.ns + " is already robot '" + sim_->robot(other->id())->name +
+                       "''s; give each robot its own (e.g. xacro robot_namespace:=/" + name + ")");
+    }
+  }
+  // Frames: tf_prefix from the robot's namespace, as robot_state_publisher finds it.
+  std::string key;
+  if (ros::NodeHandle(bridge.ns).searchParam("tf_prefix", key)) nh_.getParam(key, bridge.tf_prefix);
+  bridge.tf_prefix = trimSlashes(bridge.tf_prefix);
+  rp.param<std::string>("odom_frame", bridge.odom_frame, "odom");
+  bridge.ground_truth_rate = ground_truth_rate_;
+
+  RobotSpawn spawn;
+  spawn.name = name;
+  spawn.X_WB = X_WB;
+  spawn.drop_to_ground = auto_z;
+  spawn.tf_prefix = bridge.tf_prefix;
+  // Controllers: the list given, else every controller defined under the namespace.
+  std::string control_ns;
+  rp.param<std::string>("control_namespace", control_ns, bridge.ns);
+  ros::NodeHandle control_nh(control_ns);
+  bool given = false;
+  std::vector<std::string> names = getNameList(rp, "controllers", &given);
+  if (!given) names = listControllers(control_nh);
+  spawn.controllers = tianracer_control::loadControllerSpecs(control_nh, names);
+  spawn.disabled_sensors = getNameList(rp, "disable_sensors", &given);
+  if (!given) spawn.disabled_sensors = getNameList(pnh_, "disable_sensors", &given);
+  spawn.model = std::move(model);
+  // Each sensor gets its publisher; the topics it claims are the robot's.
+  auto topics = std::make_shared<std::vector<std::string>>();
+  PublisherSetup publisher;
+  publisher.robot_name = name;
+  publisher.tf_prefix = bridge.tf_prefix;
+  publisher.root = root_;
+  publisher.static_tf = &static_tf_;
+  publisher.claim_topic = [this, topics](const std::string& topic, const std::string& owner) {
+    claimTopic(topic, owner);
+    topics->push_back(topic);
+  };
+  spawn.attach = [publisher](SimSensor& sensor) {
+    sensor.setListener(makeSensorPublisher(sensor, publisher));
+  };
+
+  // The robot's topics before its sensors' (as a subscriber of joint_states sees them at start).
+  spawn.added = [&](ModelId id) {
+    const SimRobot& robot = *sim_->robot(id);
+    const PhysicsRobot& pr = sim_->simulation().physics().robot(robot.id);
+    ROS_INFO_STREAM("robot '" << name << "' (" << robot.model.source << "): "
+                    << pr.joints().size() << " movable joints, " << robot.handles.size()
+                    << " transmissions, controllers [" << [&] {
+                         std::string s;
+                         for (const auto& c : robot.controllers.controllers()) s += " " + c->name();
+                         return s + " ]";
+                       }()
+                    << " in " << bridge.ns << ", spawned at ("
+                    << pr.spawnPose().translation().transpose() << ")"
+                    << (bridge.tf_prefix.empty() ? "" : ", frames prefixed " + bridge.tf_prefix + "/"));
+    robots_.push_back(std::make_unique<RobotBridge>(*sim_, id, bridge, root_, static_tf_));
+    contacts_->addRobot(root_, robot.id, name, bridge.ns);
+  };
+  ModelId id = kNoModel;
+  try {
+    id = sim_->addRobot(std::move(spawn));
+  } catch (...) {
+    // Nothing half-spawned: what was set up goes again.
+    for (const std::string& topic : *topics) topic_owner_.erase(topic);
+    if (!robots_.empty() && !sim_->robot(robots_.back()->id())) {  // its bridge was made
+      contacts_->removeRobot(robots_.back()->physicsId());
+      robots_.pop_back();
+    }
+    throw;
+  }
+  robots_.back()->topics() = *topics;
+  const SimRobot& robot = *sim_->robot(id);
+  // A table that leaves something out is a warning (the user's model does less here than in
+  // Gazebo), unless the user left it out with ~disable_sensors.
+  const std::vector<ReportRow> report = modelReport(robot.model, name, sim_->leftOut(id));
+  if (leavesOutUnasked(report)) {
+    ROS_WARN_STREAM(formatModelReport(name, report));
+  } else {
+    ROS_INFO_STREAM(formatModelReport(name, report));
+  }
+}
+
+void SimNode::claimTopic(const std::string& topic, const std::string& owner) {
+  const auto [it, fresh] = topic_owner_.emplace(topic, owner);
+  if (!fresh) {
+    throw std::runtime_error(topic + " is already published by " + it->second +
+                             "; give each robot's sensors their own namespace (e.g. xacro "
+                             "sensor_namespace:=/<robot name>)");
+  }
+}
+
+void SimNode::spawnRobot(const std::string& name, const std::string& urdf,
+                         const Eigen::Isometry3d& X_WB) {
+  const ros::NodeHandle rp(pnh_, name);
+  LoadOptions options = loadOptions(rp);
+  options.warn = [](const std::string& w) { warnOnce(w); };
+  addRobot(loadRobotModel(urdf, "spawn_urdf_model '" + name + "'", options), name, X_WB, false, rp);
+}
+
+void SimNode::spawnWorldModel(const std::string& name, const std::string& sdf,
+                              const Eigen::Isometry3d& X_WM) {
+  ModelDescription model = loadModelString(sdf, "spawn_sdf_model '" + name + "'", "",
+                                           world_options_);
+  // gazebo_ros: the model's own <pose> is relative to initial_pose.
+  model.name = name;
+  model.X_WM = X_WM * model.X_WM;
+  sim_->addWorldModel(std::move(model));
+}
+
+void SimNode::deleteModel(const std::string& name) {
+  const ModelId id = sim_->findModel(name);
+  const auto it = std::find_if(robots_.begin(), robots_.end(),
+                               [id](const auto& r) { return r->id() == id; });
+  if (it != robots_.end()) {
+    for (const std::string& topic : (*it)->topics()) topic_owner_.erase(topic);
+    contacts_->removeRobot((*it)->physicsId());
+    // Its command subscribers go before the controllers they point into.
+    robots_.erase(it);
+  }
+  sim_->removeModel(name);
+}
+
+}  // namespace tianracer_sim

@@ -1,0 +1,492 @@
+#include "tianracer_sim/simulator/simulator.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "tianracer_sim/sensors/sensor_registry.h"
+#include "tianracer_sim/simulator/sim_sensors.h"
+
+namespace tianracer_sim {
+
+namespace {
+
+PhysicsOptions physicsFor(const WorldDescription& world, double max_step_size) {
+  PhysicsOptions physics = physicsOptionsFor(world);
+  if (max_step_size != 0.0) physics.dt = max_step_size;
+  if (!(physics.dt > 0.0 && physics.dt <= 0.1)) {
+    throw std::invalid_argument("max_step_size must be in (0, 0.1] s, got " +
+                                std::to_string(physics.dt));
+  }
+  return physics;
+}
+
+void say(const WarningSink& sink, const std::string& text) {
+  if (sink) sink(text);
+}
+
+}  // namespace
+
+Simulator::Simulator(WorldDescription world, SimulatorOptions options)
+    : options_(std::move(options)),
+      world_(std::make_unique<WorldDescription>(std::move(world))),
+      sim_(physicsFor(*world_, options_.max_step_size), options_.log.warn),
+      contacts_(staticShapeOwners(*world_)) {
+  int shapes = 0;
+  for (const ModelDescription& m : world_->models) {
+    Model entry;
+    entry.name = m.name;
+    entry.bodies = addModelToPhysics(*world_, m, &sim_.physics(), options_.log.warn);
+    shapes += entry.bodies.shapes;
+    models_.push_back(std::move(entry));
+  }
+  addToScene(*world_, scene_);
+  char line[512];
+  std::snprintf(line, sizeof(line), "world '%s' (%s): %zu models, %d collision shapes, ground plane %s",
+                world_->name.c_str(), world_->source.c_str(), world_->models.size(), shapes,
+                world_->ground_plane ? "yes" : "no");
+  say(options_.log.info, line);
+}
+
+Simulator::~Simulator() {
+  frame_worker_.reset();  // finish the frame in flight while its sensors still exist
+}
+
+// --- models ---------------------------------------------------------------------------------------
+
+ModelId Simulator::addRobot(RobotSpawn spawn) {
+  // Its cameras are set up on the renderer the frame worker may be drawing with.
+  waitFrames();
+  RobotConfig config;
+  config.name = spawn.name;
+  config.X_WB_spawn = spawn.X_WB;
+  config.drop_to_ground = spawn.drop_to_ground;
+  config.controllers = spawn.controllers;
+  config.model = std::move(spawn.model);
+  SimRobot& robot = sim_.addRobot(std::move(config));
+  const ModelId id = static_cast<ModelId>(models_.size());
+  Model entry;
+  entry.name = robot.name;
+  entry.robot = &robot;
+  models_.push_back(std::move(entry));
+  try {
+    models_[id].scene_bodies = addRobotToScene(robot.model, robot.name, &scene_);
+    scene_step_ = ~0ull;
+    contacts_.addRobot(robot.id);
+    if (spawn.added) spawn.added(id);
+    setUpSensors(id, spawn);
+  } catch (...) {
+    removeModel(robot.name);  // nothing half-spawned stays
+    throw;
+  }
+  return id;
+}
+
+ModelId Simulator::addWorldModel(ModelDescription model) {
+  Model entry;
+  entry.name = model.name;
+  entry.bodies = addModelToPhysics(*world_, model, &sim_.physics(), options_.log.warn);
+  // Static shapes were added link by link, collision by collision.
+  std::size_t k = 0;
+  for (const LinkDescription& link : model.links) {
+    for (std::size_t c = 0; c < link.collisions.size() && k < entry.bodies.statics.size(); ++c) {
+      contacts_.setStaticOwner(entry.bodies.statics[k++], model.name, link.name);
+    }
+  }
+  WorldDescription one;
+  one.models.push_back(model);
+  addToScene(one, scene_);
+  scene_step_ = ~0ull;
+  world_->models.push_back(std::move(model));
+  models_.push_back(std::move(entry));
+  return static_cast<ModelId>(models_.size() - 1);
+}
+
+void Simulator::removeModel(const std::string& name) {
+  const ModelId id = findModel(name);
+  if (id == kNoModel) {
+    throw std::runtime_error("model '" + name + "' cannot be deleted (the ground plane stays)");
+  }
+  // The frame in flight may be one of its cameras'.
+  waitFrames();
+  sensors_.erase(std::remove_if(sensors_.begin(), sensors_.end(),
+                                [id](const std::unique_ptr<SimSensor>& s) {
+                                  return s->link().model == id;
+                                }),
+                 sensors_.end());
+  Model& m = models_[id];
+  removeModelFromScene(name, &scene_);
+  scene_step_ = ~0ull;
+  if (m.robot) {
+    contacts_.removeRobot(m.robot->id);
+    sim_.removeRobot(name);
+  } else {
+    removeModelFromPhysics(m.bodies, &sim_.physics());
+    world_->models.erase(std::find_if(world_->models.begin(), world_->models.end(),
+                                      [&](const ModelDescription& d) { return d.name == name; }));
+  }
+  m = Model();
+}
+
+ModelId Simulator::findModel(const std::string& name) const {
+  if (name.empty()) return kNoModel;
+  for (std::size_t i = 0; i < models_.size(); ++i) {
+    if (models_[i].name == name) return static_cast<ModelId>(i);
+  }
+  return kNoModel;
+}
+
+const Simulator::Model* Simulator::model(ModelId id) const {
+  if (id < 0 || id >= static_cast<ModelId>(models_.size()) || models_[id].name.empty()) return nullptr;
+  return &models_[id];
+}
+
+SimRobot* Simulator::robot(ModelId id) {
+  const Model* m = model(id);
+  return m ? m->robot : nullptr;
+}
+
+const SimRobot* Simulator::robot(ModelId id) const {
+  const Model* m = model(id);
+  return m ? m->robot : nullptr;
+}
+
+std::vector<ModelId> Simulator::robotIds() const {
+  std::vector<ModelId> ids;
+  for (std::size_t i = 0; i < models_.size(); ++i) {
+    if (models_[i].robot) ids.push_back(static_cast<ModelId>(i));
+  }
+  return ids;
+}
+
+const LeftOut& Simulator::leftOut(ModelId id) const {
+  static const LeftOut none;
+  const Model* m = model(id);
+  return m ? m->left_out : none;
+}
+
+const PhysicsRobot* Simulator::physicsOf(ModelId id) const {
+  const Model* m = model(id);
+  if (!m) throw std::out_of_range("no model with id " + std::to_string(id));
+  if (m->robot) return &sim_.physics().robot(m->robot->id);
+  const int free = sim_.physics().freeBodyIndex(m->name);
+  return free >= 0 ? &sim_.physics().freeBody(free) : nullptr;
+}
+
+// --- sensors --------------------------------------------------------------------------------------
+
+void Simulator::setUpSensors(ModelId id, const RobotSpawn& spawn) {
+  const SimRobot& robot = *models_[id].robot;
+  const std::vector<std::string>& disabled = spawn.disabled_sensors;
+  auto off = [&](const std::string& what) {
+    return std::find(disabled.begin(), disabled.end(), what) != disabled.end();
+  };
+  for (const auto& [link, ext] : robot.model.ext.links) {
+    for (const SensorSpec& spec : ext.sensors) {
+      if (off(spec.type) || off(spec.name)) {
+        say(options_.log.info, "sensor '" + spec.name + "' (" + spec.type + ") on link " + link +
+                                   " disabled by ~disable_sensors");
+        models_[id].left_out[spec.name] = kDisabledBySensorList;
+        continue;
+      }
+      setUpSensor(id, spawn, spec);
+    }
+  }
+  // Model plugins that publish like sensors (an IMU plugin, ground truth) go the same way.
+  for (const PluginSpec& plugin : robot.model.ext.model_plugins) {
+    const SensorSpec spec = modelPluginSensor(plugin);
+    if (!findSensorKind(spec)) continue;
+    if (off(spec.name)) {
+      say(options_.log.info, "plugin '" + spec.name + "' (" + plugin.filename +
+                                 ") disabled by ~disable_sensors");
+      models_[id].left_out[spec.name] = kDisabledBySensorList;
+      continue;
+    }
+    setUpSensor(id, spawn, spec);
+  }
+}
+
+void Simulator::setUpSensor(ModelId id, const RobotSpawn& spawn, const SensorSpec& spec) {
+  Model& m = models_[id];
+  const SimRobot& robot = *m.robot;
+  const PhysicsRobot& pr = sim_.physics().robot(robot.id);
+  const std::string what = spec.type.empty() ? "plugin" : "sensor";
+  if (!spec.error.empty()) {
+    say(options_.log.error, "robot '" + robot.name + "': " + what + " '" + spec.name +
+                                "' left out: " + spec.error);
+    return;
+  }
+  const SensorKind* kind = findSensorKind(spec);
+  if (!kind) {
+    say(options_.log.warn, "robot '" + robot.name + "': sensor '" + spec.name + "' of type '" +
+                               spec.type + "' is not supported; left out");
+    return;
+  }
+  SimSensorSetup setup;
+  setup.spec = &spec;
+  setup.model = id;
+  setup.model_name = robot.name;
+  setup.tf_prefix = spawn.tf_prefix;
+  for (const auto& [body, body_link] : m.scene_bodies.links) {
+    if (body_link == spec.link) setup.own_body = body;
+  }
+  setup.seed = options_.seed;
+  setup.index = sensors_of_kind_[kind->id];
+  setup.gravity = sim_.physics().options().gravity;
+  setup.dt = sim_.physics().options().dt;
+  setup.warn = options_.log.warn;
+  setup.check_link = [&pr](const std::string& l) { (void)pr.linkPose(l); };
+  setup.renderer = [this]() { return ensureRenderer(); };
+  // A bad sensor is reported and left out; the robot and the other sensors run on.
+  try {
+    std::unique_ptr<SimSensor> sensor = makeSimSensor(*kind, setup);
+    if (!sensor) return;
+    if (spawn.attach) spawn.attach(*sensor);
+    sensors_.push_back(std::move(sensor));
+    ++sensors_of_kind_[kind->id];
+  } catch (const std::exception& e) {
+    say(options_.log.error, "robot '" + robot.name + "': " + what + " '" + spec.name +
+                                "' on link '" + spec.link + "' left out: " + e.what());
+    m.left_out[spec.name] = e.what();
+  }
+}
+
+SimSensor* Simulator::findSensor(ModelId id, const std::string& name) const {
+  for (const auto& s : sensors_) {
+    if (s->link().model == id && s->name() == name) return s.get();
+  }
+  return nullptr;
+}
+
+Renderer* Simulator::ensureRenderer() {
+  if (renderer_) return renderer_.get();
+  if (renderer_failed_) return nullptr;
+  try {
+    renderer_ = std::make_unique<Renderer>(options_.log.warn);
+    say(options_.log.info, "cameras render offscreen with " + renderer_->glInfo());
+    return renderer_.get();
+  } catch (const std::exception& e) {
+    renderer_failed_ = true;
+    say(options_.log.error, std::string("no offscreen rendering (") + e.what() +
+                                "): the simulation runs on without cameras");
+    return nullptr;
+  }
+}
+
+// --- time -----------------------------------------------------------------------------------------
+
+StepWaits Simulator::advance() {
+  sim_.step();
+  contacts_.update(sim_.physics(), sim_.time());
+  const double t = sim_.time();
+  StepWaits waits;
+  waits.replies = lockstep_replies_ && reply_schedule_.due(t);
+  waits.ticks = lockstep_ticks_ && tick_schedule_.due(t);
+  return waits;
+}
+
+void Simulator::sense() {
+  const double t = sim_.time();
+  for (const auto& s : sensors_) {
+    const SensorOutputs due = s->update(t, *this);
+    if (!due) continue;
+    SensorListener* listener = s->listener();
+    const SensorOutputs want = listener ? listener->wanted(*s, due) & due : due;
+    const SensorOutputs counted = s->counted();
+    if (due & counted) {
+      SensorStat& stat = s->stat();
+      if (want & counted) {
+        ++stat.count;
+        ++stat.renders;
+      } else {
+        ++stat.skipped;
+        s->skip();
+      }
+    }
+    if (!want) continue;
+    s->sample(want, *this);
+    const SensorOutputs now = want & ~s->rendered();
+    if (now && listener) listener->onOutputs(*s, now, t);
+  }
+  submitFrames();
+}
+
+void Simulator::step(int n) {
+  for (int k = 0; k < n; ++k) {
+    advance();
+    sense();
+  }
+}
+
+void Simulator::submitFrames() {
+  // What is due and wanted was decided at the step; the frames are rendered (and handed to the
+  // listeners) on the frame worker from a snapshot of this step's scene (frame_worker.h).
+  if (due_frames_.empty()) return;
+  updateScene();
+  if (!frame_worker_) {
+    frame_worker_ = std::make_unique<FrameWorker<FrameJob>>([this](FrameJob& job) {
+      try {
+        for (const FrameRequest& f : job.frames) {
+          f.sensor->render(render_scene_, f);
+          if (SensorListener* l = f.sensor->listener()) l->onOutputs(*f.sensor, f.outputs, job.t);
+        }
+      } catch (const std::exception& e) {
+        say(options_.log.frame_error, std::string("camera frame not published: ") + e.what());
+      }
+    });
+  }
+  frame_worker_->submit([&](FrameJob& job) {
+    job.t = sim_.time();
+    job.frames.clear();
+    std::swap(job.frames, due_frames_);
+    snapshotScene(scene_, &render_scene_);
+  });
+}
+
+void Simulator::waitFrames() {
+  if (frame_worker_) frame_worker_->wait();
+}
+
+void Simulator::resetSimulation() {
+  waitFrames();  // the frame in flight goes out before time jumps back
+  sim_.resetSimulation();
+  contacts_.reset();
+  const double t = sim_.time();
+  for (const auto& s : sensors_) s->restart(t);
+  restartLockstep(t);
+}
+
+void Simulator::resetWorld() {
+  sim_.resetWorld();
+  contacts_.reset();
+}
+
+void Simulator::setLockstep(bool replies, double reply_period, bool ticks, double tick_period) {
+  lockstep_replies_ = replies;
+  lockstep_ticks_ = ticks;
+  reply_schedule_.period = reply_period;
+  tick_schedule_.period = tick_period;
+  restartLockstep(sim_.time());
+}
+
+void Simulator::restartLockstep(double t) {
+  // The data at t itself went out before anyone could answer it (start, reset): the first wait
+  // is one period later.
+  reply_schedule_.next = t + reply_schedule_.period;
+  tick_schedule_.next = t + tick_schedule_.period;
+}
+
+// --- state ----------------------------------------------------------------------------------------
+
+EntityState Simulator::modelState(ModelId id) const {
+  EntityState s;
+  if (const PhysicsRobot* p = physicsOf(id)) {
+    s.X_WE = p->basePose();
+    s.V_WE = p->baseTwist();
+    return s;
+  }
+  for (const ModelDescription& d : world_->models) {
+    if (d.name == models_[id].name) s.X_WE = d.X_WM;
+  }
+  return s;
+}
+
+void Simulator::jointStates(ModelId id, JointStates* out) const {
+  const SimRobot* r = robot(id);
+  if (!r) throw std::out_of_range("model id " + std::to_string(id) + " is not a robot");
+  const PhysicsRobot& pr = sim_.physics().robot(r->id);
+  const std::size_t n = pr.joints().size();
+  out->name.resize(n);
+  out->position.resize(n);
+  out->velocity.resize(n);
+  out->effort.resize(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    out->name[j] = pr.joints()[j].name;
+    out->position[j] = pr.jointPosition(static_cast<int>(j));
+    out->velocity[j] = pr.jointVelocity(static_cast<int>(j));
+    out->effort[j] = pr.jointEffort(static_cast<int>(j));
+  }
+}
+
+bool Simulator::setCommand(ModelId id, const std::string& controller, double value) {
+  SimRobot* r = robot(id);
+  if (!r) return false;
+  tianracer_control::Controller* c = r->controllers.find(controller);
+  return c && c->hasCommand() && c->setCommand(value);
+}
+
+std::uint64_t Simulator::contactCount(ModelId id) const {
+  const SimRobot* r = robot(id);
+  return r ? contacts_.count(r->id) : 0;
+}
+
+// --- SensorWorld ----------------------------------------------------------------------------------
+
+void Simulator::updateScene() {
+  if (scene_step_ == sim_.stepCount()) return;
+  for (const Model& m : models_) {
+    if (m.robot) updateRobotScene(sim_.physics().robot(m.robot->id), m.scene_bodies, &scene_);
+  }
+  updateFreeBodyScene(sim_.physics(), &scene_);
+  scene_step_ = sim_.stepCount();
+}
+
+const Scene& Simulator::scene() {
+  updateScene();
+  return scene_;
+}
+
+Eigen::Isometry3d Simulator::linkPose(const LinkRef& link) const {
+  if (const PhysicsRobot* p = physicsOf(link.model)) return p->linkPose(link.link);
+  // A static world model: where the world file put it.
+  for (const ModelDescription& d : world_->models) {
+    if (d.name != models_[link.model].name) continue;
+    for (const LinkDescription& l : d.links) {
+      if (l.name == link.link) return d.X_WM * l.X_ML;
+    }
+  }
+  throw std::out_of_range("model '" + models_[link.model].name + "' has no link '" + link.link + "'");
+}
+
+bool Simulator::linkState(const LinkRef& link, LinkState* state) const {
+  const PhysicsRobot* p = physicsOf(link.model);
+  if (!p) {  // static: it does not move
+    *state = LinkState();
+    state->X_WL = linkPose(link);
+    return true;
+  }
+  const PhysicsRobot& pr = *p;
+  const auto it = pr.tree().links.find(link.link);
+  if (it == pr.tree().links.end() || it->second.first != 0) return false;
+  const Twist base = pr.baseTwist();
+  state->X_WL = pr.linkPose(link.link);
+  state->w_W = base.angular;
+  state->v_W = base.linear + base.angular.cross(state->X_WL.translation() -
+                                                pr.basePose().translation());
+  return true;
+}
+
+void Simulator::linkContacts(const LinkRef& link, std::vector<LinkContact>* out) {
+  out->clear();
+  const SimRobot* r = robot(link.model);
+  if (!r) return;  // contacts of world models' links: not tracked yet
+  PhysicsWorld& world = sim_.physics();
+  const PhysicsRobot& pr = world.robot(r->id);
+  const auto it = pr.tree().links.find(link.link);
+  if (it == pr.tree().links.end()) return;
+  robotContacts(world, r->id, &contact_scratch_);
+  for (const RobotContact& c : contact_scratch_) {
+    if (c.body != it->second.first) continue;
+    LinkContact b;
+    b.own = pr.name() + "::" + pr.tree().bodies.at(c.body).link;
+    std::string other_link;
+    contacts_.otherOf(world, c, &b.other, &other_link);
+    if (!other_link.empty()) b.other += "::" + other_link;
+    b.position_W = c.position_W;
+    b.normal_W = c.normal_W;
+    b.depth = c.depth;
+    b.impulse = c.impulse;
+    out->push_back(std::move(b));
+  }
+}
+
+}  // namespace tianracer_sim
