@@ -7,7 +7,7 @@ from catkin_pkg.packages import find_packages
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), '..', '..'))
 EXPECTED = {'tianracer', 'tianracer_description', 'tianracer_sim', 'tianracer_control',
-            'tianracer_bringup', 'tianracer_tests'}
+            'tianracer_assets', 'tianracer_bringup', 'tianracer_tests'}
 # Stand-ins for packages the system may lack; scripts/stand_in_packages.sh leaves each out
 # (CATKIN_IGNORE) where the system has the real one.
 STAND_INS = {'gazebo_msgs', 'ackermann_msgs', 'xacro', 'controller_manager_msgs',
@@ -35,12 +35,12 @@ class WorkspaceTest(unittest.TestCase):
                 self.assertRegex(m.email, r'^[^@\s]+@[^@\s]+\.[a-z]+$', name)
             pkg.validate()
 
-    def test_metapackage_depends_on_the_four_packages(self):
+    def test_metapackage_depends_on_the_five_packages(self):
         _, meta = self.packages['tianracer']
         self.assertTrue(any(e.tagname == 'metapackage' for e in meta.exports))
         self.assertEqual({d.name for d in meta.exec_depends},
                          {'tianracer_description', 'tianracer_sim', 'tianracer_control',
-                          'tianracer_bringup'})
+                          'tianracer_assets', 'tianracer_bringup'})
 
     def test_build_output_is_ignored_by_git(self):
         with open(os.path.join(REPO, '.gitignore')) as f:

@@ -6,9 +6,8 @@
 #include <sstream>
 
 #include <Eigen/Geometry>
-#include <assimp/Importer.hpp>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
+#include <tianracer_assets/mesh.h>
+#include <tianracer_assets/wheel_fit.h>
 #include <urdf_parser/urdf_parser.h>
 
 namespace tianracer_control {
@@ -53,46 +52,6 @@ const std::vector<std::string>& geometryKeys() {
       "wheelbase",   "hinge_separation", "wheel_radius", "rear_track",    "max_steering_angle",
       "rear_axle_x", "rear_axle_y",      "hinge_skew_x", "hinge_offset_y"};
   return keys;
-}
-
-std::string resolveMeshUri(const std::string& uri,
-                           const std::function<std::string(const std::string&)>& find_package) {
-  const std::string pkg_scheme = "package://", file_scheme = "file://";
-  if (uri.rfind(file_scheme, 0) == 0) return uri.substr(file_scheme.size());
-  if (uri.rfind(pkg_scheme, 0) != 0) return uri;
-  const std::string rest = uri.substr(pkg_scheme.size());
-  const auto slash = rest.find('/');
-  const std::string dir = find_package ? find_package(rest.substr(0, slash)) : "";
-  if (dir.empty()) return "";
-  return slash == std::string::npos ? dir : dir + rest.substr(slash);
-}
-
-double meshRadiusAboutAxis(const std::string& path, const Eigen::Vector3d& scale,
-                           const Eigen::Isometry3d& X, const Eigen::Vector3d& p,
-                           const Eigen::Vector3d& axis) {
-  Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(path, aiProcess_JoinIdenticalVertices);
-  if (!scene) {
-    throw AckermannError("mesh " + path + " could not be read: " + importer.GetErrorString());
-  }
-  // Walk the node tree so that node transforms are applied, as the mesh appears.
-  double r2 = -1.0;
-  std::function<void(const aiNode*, const aiMatrix4x4&)> visit = [&](const aiNode* node,
-                                                                     const aiMatrix4x4& parent) {
-    const aiMatrix4x4 T = parent * node->mTransformation;
-    for (unsigned i = 0; i < node->mNumMeshes; ++i) {
-      const aiMesh* mesh = scene->mMeshes[node->mMeshes[i]];
-      for (unsigned k = 0; k < mesh->mNumVertices; ++k) {
-        const aiVector3D v = T * mesh->mVertices[k];
-        const Eigen::Vector3d q = X * Eigen::Vector3d(v.x, v.y, v.z).cwiseProduct(scale) - p;
-        r2 = std::max(r2, (q - q.dot(axis) * axis).squaredNorm());
-      }
-    }
-    for (unsigned c = 0; c < node->mNumChildren; ++c) visit(node->mChildren[c], T);
-  };
-  visit(scene->mRootNode, aiMatrix4x4());
-  if (r2 < 0.0) throw AckermannError("mesh " + path + " has no vertices");
-  return std::sqrt(r2);
 }
 
 namespace {
@@ -275,10 +234,16 @@ UrdfGeometry geometryFromUrdf(const std::string& urdf_xml, const AckermannJointN
       radii.push_back(static_cast<const urdf::Sphere&>(*c->geometry).radius);
     } else if (c->geometry->type == urdf::Geometry::MESH) {
       const auto& mesh = static_cast<const urdf::Mesh&>(*c->geometry);
-      const std::string path = mesh_path ? mesh_path(mesh.filename) : "";
+      std::string path, why;
+      try {
+        path = mesh_path ? mesh_path(mesh.filename) : "";
+      } catch (const std::exception& e) {
+        why = std::string(" (") + e.what() + ")";
+      }
       if (path.empty()) {
         out.warnings.push_back(what + " collides with mesh " + mesh.filename +
-                               ", which could not be located: its radius is not measured");
+                               ", which could not be located" + why +
+                               ": its radius is not measured");
         continue;
       }
       // The axle: the wheel joint's axis through the link origin (the joint frame).
@@ -288,11 +253,23 @@ UrdfGeometry geometryFromUrdf(const std::string& urdf_xml, const AckermannJointN
         continue;
       }
       try {
-        radii.push_back(meshRadiusAboutAxis(
-            path, Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z),
-            toEigen(c->origin), Eigen::Vector3d::Zero(), axis.normalized()));
+        // The shared mesh loader and wheel fit: the radius the simulator's physics gives the
+        // same wheel (the largest distance of a vertex, scaled and posed, from the axle).
+        const auto triangles = tianracer_assets::MeshCache::global().get(
+            path, Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z));
+        const Eigen::Isometry3d X_JC = toEigen(c->origin);
+        std::vector<Eigen::Vector3d> vertices_J;
+        vertices_J.reserve(triangles->vertices.size());
+        for (const Eigen::Vector3f& v : triangles->vertices) vertices_J.push_back(X_JC * v.cast<double>());
+        const tianracer_assets::WheelFit fit = tianracer_assets::fitWheel(vertices_J, axis.normalized());
+        if (!(fit.radius > 0.0)) {
+          out.warnings.push_back(what + ": mesh " + path + " has too few vertices off the axle: " +
+                                 "no wheel radius from it");
+          continue;
+        }
+        radii.push_back(fit.radius);
         mesh_source = " (mesh vertices farthest from the axle)";
-      } catch (const AckermannError& e) {
+      } catch (const tianracer_assets::MeshError& e) {
         out.warnings.push_back(what + ": " + e.what() + ": no wheel radius from it");
       }
     } else {

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tianracer_assets/paths.h>
+
 #include "tianracer_control/urdf_geometry.h"
 
 using namespace tianracer_control;  // NOLINT: test file
@@ -21,6 +23,15 @@ std::string readFile(const std::string& path) {
 
 std::string urdf(const std::string& name) {
   return readFile(std::string(TEST_DATA_DIR) + "/urdf/" + name + ".urdf");
+}
+
+// The nodes' resolver (tianracer_assets) with tianracer_description as the one known package.
+MeshPathResolver descriptionResolver() {
+  tianracer_assets::UriResolver r;
+  r.find_package = [](const std::string& pkg) {
+    return pkg == "tianracer_description" ? std::string(TIANRACER_DESCRIPTION_DIR) : std::string();
+  };
+  return [r](const std::string& uri) { return r.resolve(uri); };
 }
 
 bool anyContains(const std::vector<std::string>& lines, const std::string& what) {
@@ -62,12 +73,8 @@ TEST(UrdfGeometry, FromJointOriginsThroughAFixedJoint) {
 TEST(UrdfGeometry, MeshWheelsAreMeasuredAboutTheirAxle) {
   // The generated wheel meshes reach exactly 0.032 m from the y axis (tianracer_description's
   // test checks the meshes themselves).
-  const auto find = [](const std::string& pkg) {
-    return pkg == "tianracer_description" ? std::string(TIANRACER_DESCRIPTION_DIR) : std::string();
-  };
-  const UrdfGeometry g =
-      geometryFromUrdf(urdf("ackermann_meshes"), AckermannJointNames(), "base_link",
-                       [&](const std::string& uri) { return resolveMeshUri(uri, find); });
+  const UrdfGeometry g = geometryFromUrdf(urdf("ackermann_meshes"), AckermannJointNames(),
+                                          "base_link", descriptionResolver());
   EXPECT_NEAR(g.values.at("wheel_radius").value, 0.032, 1e-6);
   EXPECT_NE(g.values.at("wheel_radius").source.find("mesh vertices farthest from the axle"),
             std::string::npos);
@@ -93,18 +100,19 @@ TEST(UrdfGeometry, UnreadableMeshIsReportedWithItsPath) {
                                           "base_link",
                                           [](const std::string&) { return "/nonexistent/w.stl"; });
   EXPECT_EQ(g.values.count("wheel_radius"), 0u);
-  EXPECT_TRUE(anyContains(g.warnings, "link 'left_rear_wheel': mesh /nonexistent/w.stl could "
-                                      "not be read"));
+  EXPECT_TRUE(anyContains(g.warnings, "link 'left_rear_wheel': mesh '/nonexistent/w.stl': "
+                                      "file not found: no wheel radius from it"));
 }
 
-TEST(UrdfGeometry, MeshUris) {
-  const auto find = [](const std::string& pkg) {
-    return pkg == "known" ? std::string("/opt/known") : std::string();
-  };
-  EXPECT_EQ(resolveMeshUri("package://known/meshes/a.stl", find), "/opt/known/meshes/a.stl");
-  EXPECT_EQ(resolveMeshUri("package://unknown/meshes/a.stl", find), "");
-  EXPECT_EQ(resolveMeshUri("file:///tmp/a.stl", find), "/tmp/a.stl");
-  EXPECT_EQ(resolveMeshUri("/tmp/a.stl", find), "/tmp/a.stl");
+TEST(UrdfGeometry, UnresolvableMeshUriIsReportedWithTheResolversReason) {
+  tianracer_assets::UriResolver r;  // no package lookup
+  const UrdfGeometry g =
+      geometryFromUrdf(urdf("ackermann_meshes"), AckermannJointNames(), "base_link",
+                       [&](const std::string& uri) { return r.resolve(uri); });
+  EXPECT_EQ(g.values.count("wheel_radius"), 0u);
+  EXPECT_TRUE(anyContains(g.warnings, "which could not be located (mesh URI "
+                                      "'package://tianracer_description/meshes/left_rear_wheel.STL': "
+                                      "no package lookup configured"));
 }
 
 TEST(UrdfGeometry, ParametersWin) {
@@ -165,12 +173,8 @@ TEST(UrdfGeometry, SeedTianracer) {
   std::size_t n;
   while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) xml.append(buf, n);
   if (pclose(pipe) != 0 || xml.empty()) GTEST_SKIP() << "xacro failed (not installed?)";
-  const auto find = [](const std::string& pkg) {
-    return pkg == "tianracer_description" ? std::string(TIANRACER_DESCRIPTION_DIR) : std::string();
-  };
   const UrdfGeometry g =
-      geometryFromUrdf(xml, AckermannJointNames(), "base_link",
-                       [&](const std::string& uri) { return resolveMeshUri(uri, find); });
+      geometryFromUrdf(xml, AckermannJointNames(), "base_link", descriptionResolver());
   EXPECT_NEAR(g.values.at("wheel_radius").value, 0.032, 1e-6);
   EXPECT_NEAR(g.values.at("wheelbase").value, 0.24996, 1e-9);
   EXPECT_NEAR(g.values.at("hinge_separation").value, 0.1366, 1e-9);

@@ -181,7 +181,7 @@ int main(int argc, char** argv) {
   std::size_t triangles = 0;
   for (const auto& item : scene.items) {
     if (item.visual && item.shape.type == ts::ShapeType::kMesh) {
-      triangles += ts::MeshCache::global().get(item.shape.mesh_path, item.shape.scale)->triangleCount();
+      triangles += ts::meshOf(item.shape)->triangleCount();
     }
   }
   const char* threads = std::getenv("LP_NUM_THREADS");

@@ -8,8 +8,6 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Geometry>
-
 #include "tianracer_control/ackermann.h"
 
 namespace tianracer_control {
@@ -69,27 +67,17 @@ struct UrdfGeometry {
 ///   rear_track         = |y_left_rear - y_right_rear|
 ///   wheel_radius       = radius of the rear wheel links' collision cylinder or sphere; for a
 ///                        collision mesh, the largest distance of its (scaled, posed) vertices
-///                        from the wheel joint's axis (needs `mesh_path` to find the file;
-///                        else absent, with a warning)
+///                        from the wheel joint's axis: tianracer_assets' mesh loader and wheel
+///                        fit, the ones the simulator sizes the wheel with (needs `mesh_path`
+///                        to find the file; else absent, with a warning)
 ///   max_steering_angle = min(|lower|, |upper|) over both hinges' limits
-/// `mesh_path` maps a mesh URI (package://, file:// or a path) to a file, "" if it cannot.
-/// Throws AckermannError when the XML does not parse as URDF.
+/// `mesh_path` maps a mesh URI (package://, model://, file:// or a path) to a file; it returns
+/// "" or throws (the message is passed on in the warning) when it cannot, e.g.
+/// tianracer_assets::UriResolver. Throws AckermannError when the XML does not parse as URDF.
 using MeshPathResolver = std::function<std::string(const std::string& uri)>;
 UrdfGeometry geometryFromUrdf(const std::string& urdf_xml, const AckermannJointNames& joints,
                               const std::string& base_link = "base_link",
                               const MeshPathResolver& mesh_path = MeshPathResolver());
-
-/// A mesh URI as a file path: "package://<pkg>/<rest>" -> find_package(pkg) + "/<rest>",
-/// "file://<path>" -> path, anything else unchanged; "" when the package is not found.
-std::string resolveMeshUri(const std::string& uri,
-                           const std::function<std::string(const std::string&)>& find_package);
-
-/// Largest distance from the line through `p` along unit `axis` of a mesh file's vertices
-/// mapped by X (scale first, then the pose). Throws AckermannError naming the file when
-/// assimp cannot read it or it has no vertices.
-double meshRadiusAboutAxis(const std::string& path, const Eigen::Vector3d& scale,
-                           const Eigen::Isometry3d& X, const Eigen::Vector3d& p,
-                           const Eigen::Vector3d& axis);
 
 /// The geometry in use and, per key (geometryKeys() order), its value and source.
 struct ResolvedGeometry {

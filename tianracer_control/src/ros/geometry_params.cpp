@@ -4,6 +4,7 @@
 
 #include <ros/console.h>
 #include <ros/package.h>
+#include <tianracer_assets/paths.h>
 
 namespace tianracer_control {
 
@@ -64,14 +65,13 @@ AckermannSetup loadAckermannSetup(const ros::NodeHandle& nh, const ros::NodeHand
     setup.base_frame = names.base_link;
     setup.prefix = names.prefix;
     if (params.size() < geometryKeys().size()) {
-      // Relative mesh paths (meshes/wheel.STL) are relative to the model file's folder.
-      const std::string model_dir = pnh.param<std::string>("model_dir", "");
-      urdf = geometryFromUrdf(xml, setup.joints, setup.base_frame, [&](const std::string& uri) {
-        const std::string path = resolveMeshUri(
-            uri, [](const std::string& pkg) { return ros::package::getPath(pkg); });
-        return !path.empty() && path[0] != '/' && !model_dir.empty() ? model_dir + "/" + path
-                                                                     : path;
-      });
+      // Mesh URIs resolve as in the simulator (tianracer_assets): package:// through rospack,
+      // model:// through GAZEBO_MODEL_PATH, relative paths against the model file's folder.
+      tianracer_assets::UriResolver resolver;
+      resolver.find_package = [](const std::string& pkg) { return ros::package::getPath(pkg); };
+      resolver.base_dir = pnh.param<std::string>("model_dir", "");
+      urdf = geometryFromUrdf(xml, setup.joints, setup.base_frame,
+                              [&](const std::string& uri) { return resolver.resolve(uri); });
       have_urdf = true;
     }
   } else {

@@ -321,7 +321,7 @@ void tessellate(const Shape& s, const Eigen::Isometry3d& X, double sagitta, Tria
       break;
     }
     case ShapeType::kMesh: {
-      const auto mesh = MeshCache::global().get(s.mesh_path, s.scale);
+      const auto mesh = meshOf(s);
       const uint32_t base = static_cast<uint32_t>(out->vertices.size() / 3);
       for (const Eigen::Vector3f& v : mesh->vertices) out->addVertex(X * v.cast<double>());
       for (std::size_t i = 0; i + 2 < mesh->indices.size(); i += 3)

@@ -5,9 +5,12 @@
 #include <limits>
 
 #include "tianracer_sim/mesh/mesh_loader.h"
-#include "tianracer_sim/physics/shape_fit.h"
+#include <tianracer_assets/wheel_fit.h>
 
 namespace tianracer_sim {
+
+using tianracer_assets::fitWheel;
+using tianracer_assets::WheelFit;
 
 std::unique_ptr<btCollisionShape> makeBox(const Eigen::Vector3d& size, double margin,
                                           const std::string& what) {
@@ -47,37 +50,6 @@ std::unique_ptr<btConvexHullShape> makeHull(const std::vector<btVector3>& points
   hull->recalcLocalAabb();
   hull->optimizeConvexHull();
   return hull;
-}
-
-WheelFit fitWheel(const std::vector<Eigen::Vector3d>& vertices_B, const Eigen::Vector3d& axis_B) {
-  WheelFit fit;
-  if (vertices_B.size() < 6 || !(axis_B.norm() > 0.0)) return fit;
-  const Eigen::Vector3d a = axis_B.normalized();
-  double amin = std::numeric_limits<double>::infinity(), amax = -amin, rmax = 0.0;
-  for (const auto& v : vertices_B) {
-    const double s = v.dot(a);
-    amin = std::min(amin, s);
-    amax = std::max(amax, s);
-    rmax = std::max(rmax, (v - s * a).norm());
-  }
-  if (!(rmax > 0.0)) return fit;
-  // Outer vertices must go all the way round the axis: 12 sectors of 30 degrees.
-  const Eigen::Vector3d e1 = a.unitOrthogonal(), e2 = a.cross(e1);
-  constexpr int kSectors = 12;
-  double sector_r[kSectors] = {0};
-  for (const auto& v : vertices_B) {
-    const Eigen::Vector3d r = v - v.dot(a) * a;
-    const double ang = std::atan2(r.dot(e2), r.dot(e1));
-    int k = static_cast<int>(std::floor((ang + M_PI) / (2.0 * M_PI) * kSectors));
-    k = std::min(std::max(k, 0), kSectors - 1);
-    sector_r[k] = std::max(sector_r[k], r.norm());
-  }
-  fit.roundness = *std::min_element(sector_r, sector_r + kSectors) / rmax;
-  fit.radius = rmax;
-  fit.width = amax - amin;
-  fit.center = 0.5 * (amin + amax) * a;
-  fit.is_wheel = fit.roundness > 0.98 && fit.width > 0.0;
-  return fit;
 }
 
 std::unique_ptr<btCollisionShape> makePrimitive(const Shape& s, double margin,
@@ -123,7 +95,7 @@ void makeStaticShape(const StaticShape& st, double margin, OwnedShape* out) {
       out->shape = std::make_unique<btStaticPlaneShape>(toBt(Eigen::Vector3d(s.normal.normalized())), 0.0);
       return;
     case ShapeType::kMesh: {
-      const auto mesh = MeshCache::global().get(s.mesh_path, s.scale);
+      const auto mesh = meshOf(s);
       storeTriangles(*mesh, out);
       out->shape = std::make_unique<btBvhTriangleMeshShape>(out->mesh_interface.get(), true);
       return;
@@ -143,7 +115,7 @@ std::unique_ptr<btCollisionShape> makeLinkShape(const TreeBody& body, const Coll
     // The exact triangles in the geometry frame. No margin: the surface is where the mesh
     // says (a margin would lift everything resting on it by that much), as ODE's trimesh
     // and our static meshes (btBvhTriangleMeshShape) have none.
-    const auto mesh = MeshCache::global().get(g.shape.mesh_path, g.shape.scale);
+    const auto mesh = meshOf(g.shape);
     auto owned = std::make_unique<OwnedShape>();
     storeTriangles(*mesh, owned.get());
     auto gimpact = std::make_unique<btGImpactMeshShape>(owned->mesh_interface.get());
@@ -158,7 +130,7 @@ std::unique_ptr<btCollisionShape> makeLinkShape(const TreeBody& body, const Coll
   WheelFit fit;
   std::vector<Eigen::Vector3d> verts_B;
   if (g.shape.type == ShapeType::kMesh) {
-    const auto mesh = MeshCache::global().get(g.shape.mesh_path, g.shape.scale);
+    const auto mesh = meshOf(g.shape);
     verts_B.reserve(mesh->vertices.size());
     for (const auto& v : mesh->vertices) verts_B.push_back(g.X_BG * v.cast<double>());
     if (wheel_joint && wheel_shape != WheelShape::kMeshHull) fit = fitWheel(verts_B, body.axis_B);

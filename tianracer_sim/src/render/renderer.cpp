@@ -50,7 +50,7 @@ std::string shapeKey(const Shape& shape) {
       std::ostringstream os;
       os.precision(17);
       os << "mesh:" << shape.mesh_path << '|' << shape.scale.x() << ',' << shape.scale.y() << ','
-         << shape.scale.z();
+         << shape.scale.z() << '|' << shape.submesh << '|' << shape.center_submesh;
       return os.str();
     }
   }
@@ -139,6 +139,8 @@ struct Renderer::Impl {
     ShapeType type = ShapeType::kBox;
     std::string mesh_path;
     Eigen::Vector3d mesh_scale = Eigen::Vector3d::Ones();
+    std::string mesh_submesh;
+    bool mesh_center = false;
     const Geometry* geometry = nullptr;  // into `geometry` (std::map: stable addresses)
     std::string material_name;
     float material_shininess = -2.0f;
@@ -154,7 +156,8 @@ struct Renderer::Impl {
   bool matches(const Slot& slot, const Shape& shape) const {
     if (!slot.resolved || slot.type != shape.type) return false;
     if (shape.type != ShapeType::kMesh) return true;
-    return slot.mesh_path == shape.mesh_path && slot.mesh_scale == shape.scale;
+    return slot.mesh_path == shape.mesh_path && slot.mesh_scale == shape.scale &&
+           slot.mesh_submesh == shape.submesh && slot.mesh_center == shape.center_submesh;
   }
 
   Slot& slotFor(std::size_t i, const SceneItem& item) {
@@ -164,6 +167,8 @@ struct Renderer::Impl {
       slot.type = item.shape.type;
       slot.mesh_path = item.shape.mesh_path;
       slot.mesh_scale = item.shape.scale;
+      slot.mesh_submesh = item.shape.submesh;
+      slot.mesh_center = item.shape.center_submesh;
       slot.geometry = geometryFor(item.shape);
       slot.drawable = slot.geometry != nullptr;
       slot.size_warned = false;
@@ -288,10 +293,10 @@ struct Renderer::Impl {
     if (shape.type != ShapeType::kMesh) return nullptr;  // primitives are made up front
     try {
       if (!mayHaveMaterials(shape.mesh_path)) {
-        const auto mesh = MeshCache::global().get(shape.mesh_path, shape.scale);
+        const auto mesh = meshOf(shape);
         return addGeometry(key, ri::meshSoup(*mesh));
       }
-      const auto mesh = MeshCache::global().getWithMaterials(shape.mesh_path, shape.scale);
+      const auto mesh = meshWithMaterialsOf(shape);
       std::vector<ri::MeshPart> parts;
       const ri::Soup soup = ri::meshSoup(*mesh, 40.0, &parts);
       return addGeometry(key, soup, parts, mesh);

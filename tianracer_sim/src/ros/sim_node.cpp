@@ -27,6 +27,10 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   std::string world_arg;
   pnh_.param<std::string>("world", world_arg, "empty");
   world_options_.warn = [](const std::string& w) { warnOnce(w); };
+  // A model or mesh that cannot be used is an error and the rest loads, as in Gazebo;
+  // ~strict_world:=true stops instead (CI).
+  world_options_.error = [](const std::string& e) { ROS_ERROR_STREAM(e); };
+  pnh_.param("strict_world", world_options_.strict, false);
   world_options_.find_package = [](const std::string& pkg) { return ros::package::getPath(pkg); };
   WorldDescription world = loadWorldFile(
       resolveWorld(world_arg, ros::package::getPath("tianracer_sim") + "/worlds"), world_options_);

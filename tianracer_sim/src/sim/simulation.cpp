@@ -89,7 +89,7 @@ double depthBelowBase(const RobotModel& model, const Eigen::Matrix3d& R_WB) {
         case ShapeType::kPlane:
           break;  // never on a robot (the rigid tree holds URDF geometry only)
         case ShapeType::kMesh: {
-          const auto mesh = MeshCache::global().get(g.shape.mesh_path, g.shape.scale);
+          const auto mesh = meshOf(g.shape);
           double m = std::numeric_limits<double>::infinity();
           for (const Eigen::Vector3f& v : mesh->vertices) {
             m = std::min(m, (X_WG * v.cast<double>()).z());

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include <tianracer_assets/paths.h>
+
 #include "tianracer_sim/scene/materials.h"
 #include "tianracer_sim/scene/ogre_material.h"
 
@@ -158,13 +160,7 @@ std::string resolveMaterialUri(const std::string& uri, const SdfMaterialContext&
   std::vector<std::string> candidates;
   if (uri.rfind("model://", 0) == 0) {
     const std::string rest = uri.substr(8);
-    std::vector<std::string> dirs;
-    if (const char* env = std::getenv("GAZEBO_MODEL_PATH")) {
-      std::stringstream ss(env);
-      std::string d;
-      while (std::getline(ss, d, ':'))
-        if (!d.empty()) dirs.push_back(d);
-    }
+    std::vector<std::string> dirs = tianracer_assets::gazeboModelPath();
     dirs.insert(dirs.end(), ctx.model_paths.begin(), ctx.model_paths.end());
     dirs.push_back(ctx.base_dir);
     dirs.push_back(joinPath(ctx.base_dir, "models"));

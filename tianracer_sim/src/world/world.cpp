@@ -7,6 +7,7 @@
 #include "tianracer_sim/world/sdf_material.h"
 #include "tianracer_sim/world/map_world.h"
 
+#include "tianracer_sim/mesh/mesh_loader.h"
 #include "tianracer_sim/scene/materials.h"
 
 #include <sys/stat.h>
@@ -192,6 +193,7 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
   const std::string what = "model '" + m.name + "'";
   std::set<std::string> link_names;
   std::vector<std::size_t> axes_in_model_frame;  // joints whose <axis> is in the model frame
+  int left_out_includes = 0;
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
     if (tag == "static") {
@@ -214,7 +216,12 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
       Eigen::Isometry3d X_MS;
       if (tag == "include") {
         const IncludeSpec spec = parseIncludeSpec(c);
-        sub = includeModel(c, spec);
+        std::optional<ModelDescription> included = includeModel(c, spec);
+        if (!included) {  // left out, reported
+          ++left_out_includes;
+          continue;
+        }
+        sub = std::move(*included);
         X_MS = sub.X_WM;
       } else {
         sub = parseModel(c);
@@ -243,22 +250,29 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
     }
   }
   // A joint naming no link of the model is left out; the rest of the model loads (its links
-  // then move as the remaining joints say).
+  // then move as the remaining joints say). When an <include> of the model was left out, the
+  // link was most likely in it: the joint goes with it, reported as the include was.
   std::vector<JointDescription> joints;
   for (JointDescription& j : m.joints) {
-    bool ok = true;
+    std::string missing;
     for (const std::string* end : {&j.parent, &j.child}) {
-      if (ok && *end != "world" && !link_names.count(*end)) {
-        warn(source_ + ":" + std::to_string(j.line) + ": " + what + " joint '" + j.name +
-             "': no link '" + *end + "' in the model (links: " + [&] {
-               std::string names;
-               for (const LinkDescription& l : m.links) names += (names.empty() ? "" : ", ") + l.name;
-               return names;
-             }() + "); the joint is left out");
-        ok = false;
-      }
+      if (missing.empty() && *end != "world" && !link_names.count(*end)) missing = *end;
     }
-    if (ok) joints.push_back(std::move(j));
+    if (missing.empty()) {
+      joints.push_back(std::move(j));
+      continue;
+    }
+    const std::string problem = what + " joint '" + j.name + "': no link '" + missing + "' in the model";
+    if (left_out_includes > 0) {
+      const XMLElement* joint_e = e->FirstChildElement("joint");
+      while (joint_e && joint_e->GetLineNum() != j.line) joint_e = joint_e->NextSiblingElement("joint");
+      leftOut(joint_e ? joint_e : e, problem + " (an <include> of it was left out)", "the joint is left out");
+      continue;
+    }
+    std::string names;
+    for (const LinkDescription& l : m.links) names += (names.empty() ? "" : ", ") + l.name;
+    warn(source_ + ":" + std::to_string(j.line) + ": " + problem + " (links: " + names +
+         "); the joint is left out");
   }
   m.joints = std::move(joints);
   return m;
@@ -302,11 +316,12 @@ LinkDescription Parser::parseLink(const XMLElement* e, const std::string& model)
         }
       }
       if (!geometry) fail(c, cwhat + " has no <geometry>");
-      const Shape shape = parseGeometry(geometry, cwhat);
+      const std::optional<Shape> shape = parseGeometry(geometry, cwhat, tag);
+      if (!shape) continue;  // left out, reported
       if (tag == "collision") {
-        l.collisions.push_back({name, shape, X_LS, friction, c->GetLineNum(), contact});
+        l.collisions.push_back({name, *shape, X_LS, friction, c->GetLineNum(), contact});
       } else {
-        l.visuals.push_back({name, shape, X_LS, material, c->GetLineNum()});
+        l.visuals.push_back({name, *shape, X_LS, material, c->GetLineNum()});
       }
     } else {
       unsupported(c);
@@ -346,7 +361,8 @@ InertialDescription Parser::parseInertial(const XMLElement* e, const std::string
   return in;
 }
 
-Shape Parser::parseGeometry(const XMLElement* e, const std::string& what) {
+std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::string& what,
+                                           const std::string& kind) {
   const XMLElement* g = e->FirstChildElement();
   if (!g) fail(e, what + ": <geometry> is empty");
   if (g->NextSiblingElement())
@@ -409,17 +425,45 @@ Shape Parser::parseGeometry(const XMLElement* e, const std::string& what) {
     s.type = ShapeType::kMesh;
     std::string uri;
     const XMLElement* uri_e = g;
-    children({"uri", "scale"}, [&](const XMLElement* c, const std::string& tag) {
+    const XMLElement* bad_scale = nullptr;
+    children({"uri", "scale", "submesh"}, [&](const XMLElement* c, const std::string& tag) {
       if (tag == "uri") {
         uri = text(c);
         uri_e = c;
-      } else {
+      } else if (tag == "scale") {
         s.scale = vector3(c, what + " mesh");
-        if (!(s.scale.minCoeff() > 0.0)) fail(c, what + ": <mesh> <scale> must be > 0");
+        if (!(s.scale.minCoeff() > 0.0)) bad_scale = c;
+      } else {
+        // <submesh>: the file's parts of one name (mesh/mesh_loader.h), centred or not.
+        for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
+          const std::string ktag = k->Name();
+          if (ktag == "name") s.submesh = text(k);
+          else if (ktag == "center") s.center_submesh = boolean(k, what + " <submesh>");
+          else unsupported(k);
+        }
       }
     });
     if (uri.empty()) fail(g, what + ": <mesh> has no <uri>");
-    s.mesh_path = resolveMesh(uri_e, uri, what);
+    const std::string consequence = "the " + kind + " is left out";
+    if (bad_scale) {
+      leftOut(bad_scale, what + ": <mesh> <scale> '" + text(bad_scale) +
+                             "' must be > 0 in x, y and z (mesh '" + uri + "')",
+              consequence);
+      return std::nullopt;
+    }
+    const std::optional<std::string> path = resolveMesh(uri_e, uri, what, kind);
+    if (!path) return std::nullopt;
+    s.mesh_path = *path;
+    if (options_.require_meshes) {
+      // Read now (cached for the physics and sensors): a file that is no mesh, or has no
+      // triangles or no such <submesh>, leaves out this geometry only, not the world.
+      try {
+        meshOf(s);
+      } catch (const MeshError& err) {
+        leftOut(uri_e, what + ": " + err.what(), consequence);
+        return std::nullopt;
+      }
+    }
   } else {
     fail(g, what + ": unknown geometry <" + type +
                 "> (supported: box, cylinder, sphere, plane, mesh)");
@@ -427,8 +471,16 @@ Shape Parser::parseGeometry(const XMLElement* e, const std::string& what) {
   return s;
 }
 
-std::string Parser::resolveMesh(const XMLElement* e, const std::string& uri,
-                                const std::string& what) {
+void Parser::leftOut(const XMLElement* e, const std::string& problem,
+                     const std::string& consequence) {
+  const std::string message = at(e) + problem;
+  if (options_.strict) throw WorldError(message);
+  const WarningSink& sink = options_.error ? options_.error : options_.warn;
+  if (sink) sink(message + "; " + consequence);
+}
+
+std::optional<std::string> Parser::resolveMesh(const XMLElement* e, const std::string& uri,
+                                               const std::string& what, const std::string& kind) {
   std::string path;
   std::vector<std::string> tried;
   if (startsWith(uri, "model://")) {
@@ -449,14 +501,16 @@ std::string Parser::resolveMesh(const XMLElement* e, const std::string& uri,
     try {
       path = resolver.resolve(uri);
     } catch (const ModelError& err) {
-      fail(e, what + ": " + err.what());
+      leftOut(e, what + ": " + err.what(), "the " + kind + " is left out");
+      return std::nullopt;
     }
     tried.push_back(path);
   }
   if (options_.require_meshes && !isFile(path)) {
     std::string msg = what + ": mesh '" + uri + "' not found (";
     for (std::size_t i = 0; i < tried.size(); ++i) msg += (i ? ", " : "tried ") + tried[i];
-    fail(e, msg + ")");
+    leftOut(e, msg + ")", "the " + kind + " is left out");
+    return std::nullopt;
   }
   return path;
 }

@@ -5,13 +5,11 @@
 #include <sys/stat.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <functional>
-#include <map>
-#include <mutex>
 #include <sstream>
+
+#include <tianracer_assets/paths.h>
 
 namespace tianracer_sim {
 namespace world_internal {
@@ -41,61 +39,6 @@ std::string dirName(const std::string& path) {
 
 bool startsWith(const std::string& s, const std::string& prefix) {
   return s.compare(0, prefix.size(), prefix) == 0;
-}
-
-std::vector<std::string> splitPath(const char* env) {
-  std::vector<std::string> dirs;
-  if (!env) return dirs;
-  std::stringstream ss(env);
-  std::string d;
-  while (std::getline(ss, d, ':'))
-    if (!d.empty()) dirs.push_back(d);
-  return dirs;
-}
-
-/// The gazebo_model_path exports of the ROS packages under ROS_PACKAGE_PATH
-/// (<export><gazebo_ros gazebo_model_path="${prefix}/models"/></export>), crawled as rospack
-/// does (a folder with package.xml is a package; CATKIN_IGNORE and hidden folders are skipped).
-/// Computed once per ROS_PACKAGE_PATH value.
-std::vector<std::string> rosExportedModelPaths() {
-  static std::mutex mutex;
-  static std::map<std::string, std::vector<std::string>> cache;
-  const char* env = std::getenv("ROS_PACKAGE_PATH");
-  const std::string key = env ? env : "";
-  std::lock_guard<std::mutex> lock(mutex);
-  auto it = cache.find(key);
-  if (it != cache.end()) return it->second;
-  std::vector<std::string> out;
-  namespace fs = std::filesystem;
-  std::function<void(const fs::path&, int)> crawl = [&](const fs::path& dir, int depth) {
-    std::error_code ec;
-    if (fs::exists(dir / "package.xml", ec)) {
-      tinyxml2::XMLDocument doc;
-      if (doc.LoadFile((dir / "package.xml").c_str()) != tinyxml2::XML_SUCCESS) return;
-      const XMLElement* pkg = doc.RootElement();
-      const XMLElement* exp = pkg ? pkg->FirstChildElement("export") : nullptr;
-      for (const XMLElement* g = exp ? exp->FirstChildElement("gazebo_ros") : nullptr; g;
-           g = g->NextSiblingElement("gazebo_ros")) {
-        const char* attr = g->Attribute("gazebo_model_path");
-        if (!attr) continue;
-        std::string path = attr;
-        const auto p = path.find("${prefix}");
-        if (p != std::string::npos) path.replace(p, 9, dir.string());
-        out.push_back(path);
-      }
-      return;
-    }
-    if (depth > 8 || fs::exists(dir / "CATKIN_IGNORE", ec)) return;
-    std::vector<fs::path> subs;
-    for (fs::directory_iterator d(dir, ec), end; !ec && d != end; d.increment(ec)) {
-      if (d->is_directory(ec) && d->path().filename().string()[0] != '.') subs.push_back(d->path());
-    }
-    std::sort(subs.begin(), subs.end());  // same order on every run
-    for (const fs::path& sub : subs) crawl(sub, depth + 1);
-  };
-  for (const std::string& root : splitPath(env)) crawl(root, 0);
-  cache[key] = out;
-  return out;
 }
 
 namespace {
@@ -223,23 +166,29 @@ void Parser::parseInclude(const XMLElement* e, WorldDescription& world) {
     DirectionalLight sun;  // Gazebo's sun model: the defaults of DirectionalLight
     if (spec.has_pose) sun.direction = spec.X.linear() * sun.direction;
     world.sun = sun;
-  } else {
-    world.models.push_back(includeModel(e, spec));
+  } else if (std::optional<ModelDescription> m = includeModel(e, spec)) {
+    world.models.push_back(std::move(*m));
   }
 }
 
 std::vector<std::string> Parser::modelDirs() const {
-  std::vector<std::string> dirs = splitPath(std::getenv("GAZEBO_MODEL_PATH"));
+  std::vector<std::string> dirs = tianracer_assets::gazeboModelPath();
   dirs.insert(dirs.end(), options_.model_paths.begin(), options_.model_paths.end());
   dirs.insert(dirs.end(), model_roots_.begin(), model_roots_.end());
-  if (const char* home = std::getenv("HOME")) dirs.push_back(join(home, ".gazebo/models"));
-  for (const std::string& d : rosExportedModelPaths()) dirs.push_back(d);
+  const std::string user = tianracer_assets::userModelDir();
+  if (!user.empty()) dirs.push_back(user);
+  for (const std::string& d : tianracer_assets::rosExportedModelPaths()) dirs.push_back(d);
   dirs.push_back(base_dir_);
   dirs.push_back(join(base_dir_, "models"));
-  return dirs;
+  // Each folder once, at its first place (the messages list every folder searched).
+  std::vector<std::string> unique;
+  for (const std::string& d : dirs) {
+    if (std::find(unique.begin(), unique.end(), d) == unique.end()) unique.push_back(d);
+  }
+  return unique;
 }
 
-ModelDescription Parser::includeModel(const XMLElement* e, const IncludeSpec& spec) {
+std::optional<ModelDescription> Parser::includeModel(const XMLElement* e, const IncludeSpec& spec) {
   // The model's folder: model://NAME in the model folders, or a file:// / plain path.
   std::string dir;
   std::vector<std::string> tried;
@@ -264,7 +213,9 @@ ModelDescription Parser::includeModel(const XMLElement* e, const IncludeSpec& sp
     for (const std::string& t : tried) msg += " " + t;
     if (startsWith(spec.uri, "model://"))
       msg += " (set GAZEBO_MODEL_PATH, or export gazebo_model_path from a ROS package)";
-    fail(e, msg);
+    // Gazebo's sdformat parser reports "Unable to find uri[...]" and goes on without it.
+    leftOut(e, msg, "the model is left out");
+    return std::nullopt;
   }
   // model.config names the model file(s): the highest SDF version we read (<= 1.7) wins.
   std::string file;
@@ -288,7 +239,9 @@ ModelDescription Parser::includeModel(const XMLElement* e, const IncludeSpec& sp
   } else if (isFile(join(dir, "model.sdf"))) {
     file = join(dir, "model.sdf");
   } else {
-    fail(e, "<include> of '" + spec.uri + "': " + dir + " has neither model.config nor model.sdf");
+    leftOut(e, "<include> of '" + spec.uri + "': " + dir + " has neither model.config nor model.sdf",
+            "the model is left out");
+    return std::nullopt;
   }
   std::string canonical = file;
   std::error_code ec;
@@ -303,7 +256,7 @@ ModelDescription Parser::includeModel(const XMLElement* e, const IncludeSpec& sp
   if (!in) fail(e, "<include> of '" + spec.uri + "': cannot read " + file);
   std::stringstream ss;
   ss << in.rdbuf();
-  Parser sub(file, dir, options_);
+  Parser sub(file, dir, options_);  // a strict world is strict in its models too
   sub.include_stack_ = include_stack_;
   sub.include_stack_.push_back(canonical);
   sub.model_roots_ = model_roots_;

@@ -24,10 +24,6 @@ std::string join(const std::string& dir, const std::string& rest);
 /// "." for a bare file name.
 std::string dirName(const std::string& path);
 bool startsWith(const std::string& s, const std::string& prefix);
-/// A ':'-separated list of folders (empty entries dropped).
-std::vector<std::string> splitPath(const char* env);
-/// The gazebo_model_path exports of the ROS packages under ROS_PACKAGE_PATH.
-std::vector<std::string> rosExportedModelPaths();
 
 /// State shared by the parse functions of one file.
 class Parser : public XmlReader {
@@ -53,7 +49,9 @@ class Parser : public XmlReader {
   ModelDescription parseModel(const XMLElement* e);
   LinkDescription parseLink(const XMLElement* e, const std::string& model);
   InertialDescription parseInertial(const XMLElement* e, const std::string& what);
-  Shape parseGeometry(const XMLElement* e, const std::string& what);
+  /// The shape, or nullopt when it is left out (leftOut() has reported why).
+  std::optional<Shape> parseGeometry(const XMLElement* e, const std::string& what,
+                                     const std::string& kind);
   Friction parseSurface(const XMLElement* e, const std::string& what, ContactDescription* contact);
   struct IncludeSpec {
     std::string uri, name;
@@ -62,8 +60,9 @@ class Parser : public XmlReader {
     std::optional<bool> is_static;
   };
   IncludeSpec parseIncludeSpec(const XMLElement* e);
-  /// Resolves and parses the model an <include> names, with its <name>/<pose>/<static>.
-  ModelDescription includeModel(const XMLElement* e, const IncludeSpec& spec);
+  /// Resolves and parses the model an <include> names, with its <name>/<pose>/<static>;
+  /// nullopt when its model is not found (left out, leftOut()).
+  std::optional<ModelDescription> includeModel(const XMLElement* e, const IncludeSpec& spec);
   /// Folders searched for model://NAME: GAZEBO_MODEL_PATH, the load options' model_paths, the
   /// folders of enclosing includes, ~/.gazebo/models, ROS packages' exported
   /// gazebo_model_path, the world file's folder and its models/ subfolder.
@@ -74,7 +73,13 @@ class Parser : public XmlReader {
   /// *axis_in_model_frame: the <axis> is given in the model frame (parseModel turns it).
   JointDescription parseJoint(const XMLElement* e, const std::string& model,
                               bool* axis_in_model_frame);
-  std::string resolveMesh(const XMLElement* e, const std::string& uri, const std::string& what);
+  /// The file of a mesh URI; nullopt when it is not found (left out, leftOut()).
+  std::optional<std::string> resolveMesh(const XMLElement* e, const std::string& uri,
+                                         const std::string& what, const std::string& kind);
+  /// A part of the world that cannot be used: `problem` goes to the options' error sink with
+  /// `consequence` ("the collision is left out") and parsing goes on, as in Gazebo; with
+  /// strict options it is a WorldError.
+  void leftOut(const XMLElement* e, const std::string& problem, const std::string& consequence);
 
   std::string source_;
   std::string base_dir_;

@@ -101,10 +101,45 @@ class SimBadInput(unittest.TestCase):
         self.assert_fails(["meshes/lines.obj': no triangles"],
                           '_model:=' + os.path.join(DATA, 'invalid_no_triangles_mesh.urdf'))
 
-    def test_world_with_an_empty_mesh(self):
+    def test_world_with_an_empty_mesh_stops_with_strict_world(self):
         rospy.set_param('/robot_description', self.urdf)
         self.assert_fails(["worlds/meshes/empty.stl': file is empty"],
-                          '_world:=' + os.path.join(WORLDS, 'invalid_empty_mesh.world'))
+                          '_world:=' + os.path.join(WORLDS, 'invalid_empty_mesh.world'),
+                          '_strict_world:=true')
+
+    def test_world_with_a_missing_model_stops_with_strict_world(self):
+        rospy.set_param('/robot_description', self.urdf)
+        self.assert_fails(["missing_model.world:7: <include> of 'model://no_such_model': model not "
+                           'found; searched:'],
+                          '_world:=' + os.path.join(WORLDS, 'missing_model.world'),
+                          '_strict_world:=true', '_disable_sensors:=camera depth')
+
+    def test_world_with_a_missing_model_loads_the_rest(self):
+        # As Gazebo: an error naming the URI and the folders searched, another for the empty
+        # mesh, and the node runs with the rest of the world (the wall is seen by the physics).
+        rospy.set_param('/robot_description', self.urdf)
+        proc = subprocess.Popen([node_binary(), '__name:=sim_under_test',
+                                 '_world:=' + os.path.join(WORLDS, 'missing_model.world'),
+                                 '_disable_sensors:=camera depth'],
+                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+        try:
+            from gazebo_msgs.srv import GetWorldProperties
+            from nav_msgs.msg import Odometry
+            rospy.wait_for_message('/tianracer/ground_truth/odom', Odometry, timeout=60)
+            self.assertIsNone(proc.poll())
+            rospy.wait_for_service('/gazebo/get_world_properties', timeout=30)
+            models = rospy.ServiceProxy('/gazebo/get_world_properties', GetWorldProperties)().model_names
+            for name in ('statue', 'wall'):
+                self.assertIn(name, models)
+            self.assertNotIn('no_such_model', models)
+        finally:
+            proc.terminate()
+            out = proc.communicate(timeout=30)[0].decode(errors='replace')
+        self.assertIn("missing_model.world:7: <include> of 'model://no_such_model': model not found; "
+                      'searched:', out)
+        self.assertIn('; the model is left out', out)
+        self.assertIn("model 'statue' link 'base' collision 'collision': mesh '", out)
+        self.assertIn("worlds/meshes/empty.stl': file is empty; the collision is left out", out)
 
     def test_world_syntax_error_names_the_line(self):
         rospy.set_param('/robot_description', self.urdf)

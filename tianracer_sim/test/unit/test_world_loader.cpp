@@ -31,9 +31,17 @@ struct Collected {
   }
 };
 
+// The error that stops a strict load (~strict_world); errors that leave out a model or a mesh
+// in a normal load are in test_world_meshes.cpp.
+WorldLoadOptions strict() {
+  WorldLoadOptions o;
+  o.strict = true;
+  return o;
+}
+
 std::string errorOf(const std::string& file) {
   try {
-    loadWorldFile(file);
+    loadWorldFile(file, strict());
   } catch (const WorldError& e) {
     return e.what();
   }
@@ -42,7 +50,7 @@ std::string errorOf(const std::string& file) {
 
 std::string errorOfString(const std::string& xml) {
   try {
-    loadWorldString(xml, "inline.world", kData);
+    loadWorldString(xml, "inline.world", kData, strict());
   } catch (const WorldError& e) {
     return e.what();
   }
@@ -179,6 +187,16 @@ TEST(WorldLoader, MissingMesh) {
   WorldLoadOptions o;
   o.require_meshes = false;
   EXPECT_NO_THROW(loadWorldFile(kData + "invalid_missing_mesh.world", o));
+  // Not strict (Gazebo's way): the same message as an error, and the world loads without the
+  // mesh's geometry.
+  std::vector<std::string> errors;
+  WorldLoadOptions lenient;
+  lenient.error = [&](const std::string& m) { errors.push_back(m); };
+  const WorldDescription w = loadWorldFile(kData + "invalid_missing_mesh.world", lenient);
+  ASSERT_FALSE(errors.empty());
+  EXPECT_NE(errors[0].find(e), std::string::npos) << errors[0];
+  ASSERT_EQ(w.models.size(), 1u);
+  EXPECT_EQ(w.models[0].name, "statue");
 }
 
 TEST(WorldLoader, NonexistentFile) {
@@ -396,7 +414,7 @@ TEST(WorldLoader, GazeboSavedWorldWithStateAndIncludes) {
 
 std::string errorWithModels(const std::string& xml) {
   try {
-    WorldLoadOptions o;
+    WorldLoadOptions o = strict();
     o.model_paths = {kData + "gazebo_models"};
     loadWorldString(xml, "inline.world", kData, o);
   } catch (const WorldError& e) {

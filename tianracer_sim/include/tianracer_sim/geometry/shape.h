@@ -19,7 +19,9 @@ enum class ShapeType { kBox, kCylinder, kSphere, kPlane, kMesh };
 ///  - sphere: `radius`;
 ///  - plane: infinite plane through S's origin with normal `normal` (S frame), `size` x/y is the
 ///    visual extent (0 = unbounded);
-///  - mesh: `mesh_path` (absolute, resolved), scaled component-wise by `scale`.
+///  - mesh: `mesh_path` (absolute, resolved), scaled component-wise by `scale`; `submesh` (an
+///    SDF <submesh><name>) keeps only the file's parts of that name, `center_submesh` centres
+///    them on S's origin first (mesh/mesh_loader.h places every mesh so).
 struct Shape {
   ShapeType type = ShapeType::kBox;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();
@@ -28,6 +30,8 @@ struct Shape {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
   std::string mesh_path;
   Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+  std::string submesh;
+  bool center_submesh = false;
 };
 
 /// True when every number of the shape is finite (what a physics or sensor backend may build).

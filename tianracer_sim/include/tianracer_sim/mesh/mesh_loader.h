@@ -1,89 +1,34 @@
-// Mesh files (STL, DAE, OBJ, ... anything assimp reads) as plain indexed triangle lists, loaded
-// once per (path, scale) and shared by physics (collision hulls, wheel fitting) and rendering.
+// The simulator's meshes: a mesh Shape as every consumer places it (physics, ray casting,
+// rendering, robot placement), through tianracer_assets' loader and its one process-wide cache.
 // ROS-free.
 #ifndef TIANRACER_SIM_MESH_MESH_LOADER_H
 #define TIANRACER_SIM_MESH_MESH_LOADER_H
 
-#include <cstdint>
-#include <map>
 #include <memory>
-#include <mutex>
-#include <stdexcept>
-#include <string>
-#include <tuple>
-#include <vector>
 
-#include <Eigen/Core>
+#include <tianracer_assets/mesh.h>
 
-#include "tianracer_sim/common/diagnostic.h"
+#include "tianracer_sim/geometry/shape.h"
 
 namespace tianracer_sim {
 
-/// A mesh file that is missing, unreadable, empty or has no triangles. The message names the path.
-using MeshError = InputError;
+using tianracer_assets::loadMeshFile;
+using tianracer_assets::loadMeshFileWithMaterials;
+using tianracer_assets::MeshCache;
+using tianracer_assets::MeshError;
+using tianracer_assets::MeshMaterial;
+using tianracer_assets::MeshSource;
+using tianracer_assets::TriangleMesh;
 
-/// A material of a mesh file (COLLADA <effect>, OBJ .mtl), as assimp reads it.
-struct MeshMaterial {
-  std::string name;
-  bool has_diffuse = false;
-  Eigen::Vector4f diffuse{1.0f, 1.0f, 1.0f, 1.0f};
-  bool has_ambient = false;
-  Eigen::Vector4f ambient{0.0f, 0.0f, 0.0f, 1.0f};
-  std::string texture_uri;  // the diffuse texture as the file names it ("" = none)
-  std::string texture;      // ... resolved to an existing file ("" when not found)
-  std::string texture_error;  // why `texture_uri` did not resolve (names the paths tried)
-};
+/// What a kMesh shape loads: its file, scale and submesh.
+tianracer_assets::MeshSource meshSourceOf(const Shape& shape);
 
-/// Triangles only (assimp triangulates polygons and drops points and lines), identical vertices
-/// joined, node transforms and the caller's scale applied; coordinates in the file's frame.
-struct TriangleMesh {
-  std::vector<Eigen::Vector3f> vertices;
-  std::vector<uint32_t> indices;  // 3 per triangle, into vertices
+/// The triangles of a kMesh shape (its file's parts, placed as Gazebo places them, scaled), from
+/// MeshCache::global(). Throws MeshError naming the file.
+std::shared_ptr<const TriangleMesh> meshOf(const Shape& shape);
 
-  // Filled by loadMeshFileWithMaterials only (rendering); the vertices above are then still
-  // joined by position alone, so normals are smoothed across texture seams.
-  std::vector<Eigen::Vector2f> corner_uvs;  // 3 per triangle, parallel to indices; empty = none
-  std::vector<int> triangle_material;       // per triangle, into materials
-  std::vector<MeshMaterial> materials;
-
-  std::size_t triangleCount() const { return indices.size() / 3; }
-  /// Axis-aligned bounds of the vertices (min, max).
-  Eigen::Vector3f boundsMin() const;
-  Eigen::Vector3f boundsMax() const;
-};
-
-/// Loads `path` without caching. Throws MeshError naming the path.
-TriangleMesh loadMeshFile(const std::string& path,
-                          const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
-
-/// Loads `path` with its texture coordinates (first UV channel; OpenGL's convention, v up from
-/// the bottom of the image) and materials. A diffuse texture is looked for as the file writes
-/// it (file:// URIs and %20 decoded), relative to the mesh's folder, then by its file name in
-/// the mesh's folder and in ../materials/textures (where Gazebo models keep them). Embedded
-/// textures are not read (texture_error says so). Throws MeshError as loadMeshFile.
-TriangleMesh loadMeshFileWithMaterials(const std::string& path,
-                                       const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
-
-/// Thread-safe cache keyed by (path, scale): each file is parsed once per scale.
-class MeshCache {
- public:
-  /// Returns the cached mesh, loading it on first use. Throws MeshError (not cached).
-  std::shared_ptr<const TriangleMesh> get(const std::string& path,
-                                          const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
-  /// The same through loadMeshFileWithMaterials (cached separately).
-  std::shared_ptr<const TriangleMesh> getWithMaterials(
-      const std::string& path, const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
-  std::size_t size() const;
-  void clear();
-
-  /// The process-wide cache the physics and the renderer share.
-  static MeshCache& global();
-
- private:
-  using Key = std::tuple<std::string, double, double, double, bool>;
-  mutable std::mutex mutex_;
-  std::map<Key, std::shared_ptr<const TriangleMesh>> meshes_;
-};
+/// The same with texture coordinates and materials (rendering), cached separately.
+std::shared_ptr<const TriangleMesh> meshWithMaterialsOf(const Shape& shape);
 
 }  // namespace tianracer_sim
 

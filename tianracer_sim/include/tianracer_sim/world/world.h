@@ -148,7 +148,18 @@ struct WorldLoadOptions {
   std::vector<std::string> model_paths;
   /// package:// lookup for mesh URIs ("" when unknown); may be empty.
   std::function<std::string(const std::string& package)> find_package;
-  bool require_meshes = true;  // a mesh file that does not exist is an error
+  /// Check every mesh on load: the file exists and is a mesh (mesh/mesh_loader.h: readable,
+  /// with triangles, the <submesh> there). false: paths are only resolved.
+  bool require_meshes = true;
+  /// Receives each error that leaves part of the world out, the way Gazebo logs such an error
+  /// and loads the rest (sdformat's parser skips an <include> it cannot find, MeshShape has no
+  /// mesh): an <include> whose model is not found (naming the URI and every folder searched), a
+  /// mesh that is not found, cannot be read, holds no triangles or lacks the <submesh>, a mesh
+  /// <scale> that is not > 0. The model, or the collision or visual, is left out. Empty: they go
+  /// to `warn`.
+  WarningSink error;
+  /// Throw WorldError at the first such error instead (the node's ~strict_world, for CI).
+  bool strict = false;
   /// A map world's wall height (m) where its YAML sets no wall_height (map_world.h).
   double map_wall_height = 0.5;
 };

@@ -1,12 +1,14 @@
-// Fitting collision shapes to meshes: which wheel mesh is round about its axis, and how big.
-#ifndef TIANRACER_SIM_PHYSICS_SHAPE_FIT_H
-#define TIANRACER_SIM_PHYSICS_SHAPE_FIT_H
+// Which wheel mesh is round about its axle, and how big: the one wheel sizing the simulator's
+// physics (wheel collision shapes) and tianracer_control (wheel_radius from robot_description)
+// share. ROS-free, Eigen only.
+#ifndef TIANRACER_ASSETS_WHEEL_FIT_H
+#define TIANRACER_ASSETS_WHEEL_FIT_H
 
 #include <vector>
 
 #include <Eigen/Geometry>
 
-namespace tianracer_sim {
+namespace tianracer_assets {
 
 /// Wheel fit of a mesh about an axis through the origin of frame B: vertices given in B.
 struct WheelFit {
@@ -20,6 +22,6 @@ struct WheelFit {
 /// axis and cover every 30 degree sector around it.
 WheelFit fitWheel(const std::vector<Eigen::Vector3d>& vertices_B, const Eigen::Vector3d& axis_B);
 
-}  // namespace tianracer_sim
+}  // namespace tianracer_assets
 
-#endif  // TIANRACER_SIM_PHYSICS_SHAPE_FIT_H
+#endif  // TIANRACER_ASSETS_WHEEL_FIT_H

@@ -1,13 +1,13 @@
-// The diagnostic policy both packages share (diagnostic.h): the location format, the error
+// The diagnostic policy the three ROS-free libraries share (diagnostic.h): the location format, the error
 // type and warn-once.
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "tianracer_control/diagnostic.h"
+#include "tianracer_assets/diagnostic.h"
 
-namespace tianracer_control {
+namespace tianracer_assets {
 namespace {
 
 TEST(Diagnostic, OneLocationFormatAsCompilersWriteIt) {
@@ -53,4 +53,4 @@ TEST(Diagnostic, WarnOnceForwardsEachMessageOnceAndEachKeyOnce) {
 }
 
 }  // namespace
-}  // namespace tianracer_control
+}  // namespace tianracer_assets

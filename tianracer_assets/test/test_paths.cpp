@@ -1,18 +1,22 @@
-// MeshResolver: package://, file://, absolute and relative URIs, and the errors.
+// UriResolver: package://, model://, file://, absolute and relative URIs, and the errors; the
+// model path from the environment.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
-#include "tianracer_sim/model/robot_model.h"
+#include "tianracer_assets/paths.h"
 
-namespace tianracer_sim {
+namespace tianracer_assets {
 namespace {
 
 using ::testing::HasSubstr;
 
-MeshResolver resolver() {
-  MeshResolver r;
+UriResolver resolver() {
+  UriResolver r;
   r.find_package = [](const std::string& p) -> std::string {
     if (p == "tianracer_description") return "/ws/src/tianracer_description";
     if (p == "slash") return "/ws/src/slash/";
@@ -22,22 +26,22 @@ MeshResolver resolver() {
   return r;
 }
 
-std::string error(const MeshResolver& r, const std::string& uri) {
+std::string error(const UriResolver& r, const std::string& uri) {
   try {
     r.resolve(uri);
-  } catch (const ModelError& e) {
+  } catch (const ResourceError& e) {
     return e.what();
   }
   return "";
 }
 
-TEST(MeshResolver, Package) {
+TEST(UriResolver, Package) {
   EXPECT_EQ(resolver().resolve("package://tianracer_description/meshes/base_link.STL"),
             "/ws/src/tianracer_description/meshes/base_link.STL");
   EXPECT_EQ(resolver().resolve("package://slash/a/b.stl"), "/ws/src/slash/a/b.stl");
 }
 
-TEST(MeshResolver, FileAbsoluteAndRelative) {
+TEST(UriResolver, FileAbsoluteAndRelative) {
   EXPECT_EQ(resolver().resolve("file:///abs/mesh.dae"), "/abs/mesh.dae");
   EXPECT_EQ(resolver().resolve("/abs/mesh.stl"), "/abs/mesh.stl");
   EXPECT_EQ(resolver().resolve("meshes/wheel.stl"), "/models/car/meshes/wheel.stl");
@@ -45,14 +49,14 @@ TEST(MeshResolver, FileAbsoluteAndRelative) {
   EXPECT_EQ(resolver().resolve("file://meshes/wheel.stl"), "/models/car/meshes/wheel.stl");
 }
 
-TEST(MeshResolver, ResolvesWithoutTouchingTheDisk) {
+TEST(UriResolver, ResolvesWithoutTouchingTheDisk) {
   // Existence is the loader's business (require_meshes), not the resolver's.
   EXPECT_EQ(resolver().resolve("package://tianracer_description/nope.stl"),
             "/ws/src/tianracer_description/nope.stl");
 }
 
-TEST(MeshResolver, Errors) {
-  const MeshResolver r = resolver();
+TEST(UriResolver, Errors) {
+  const UriResolver r = resolver();
   EXPECT_THAT(error(r, "package://unknown_pkg/m.stl"),
               HasSubstr("mesh URI 'package://unknown_pkg/m.stl': package 'unknown_pkg' not found"));
   EXPECT_THAT(error(r, "package://tianracer_description"),
@@ -64,7 +68,7 @@ TEST(MeshResolver, Errors) {
   EXPECT_THAT(error(r, ""), HasSubstr("empty mesh URI"));
   EXPECT_THAT(error(r, "file://"), HasSubstr("has no path"));
 
-  MeshResolver bare;  // no package lookup, no folder
+  UriResolver bare;  // no package lookup, no folder
   EXPECT_THAT(error(bare, "package://tianracer_description/m.stl"),
               HasSubstr("no package lookup configured to find 'tianracer_description'"));
   EXPECT_THAT(error(bare, "meshes/m.stl"),
@@ -72,22 +76,51 @@ TEST(MeshResolver, Errors) {
   EXPECT_EQ(bare.resolve("/abs/m.stl"), "/abs/m.stl");
 }
 
-TEST(MeshResolver, ModelPath) {
-  MeshResolver r = resolver();
-  const std::string data = TEST_DATA_DIR;
-  // test/data/urdf/meshes holds the test meshes: a "model" named meshes in test/data/urdf.
-  r.model_paths = {"/nonexistent/models", data + "/urdf"};
-  EXPECT_EQ(r.resolve("model://meshes/cube.stl"), data + "/urdf/meshes/cube.stl");
+// A model folder <root>/<model>/meshes/<file> in the test's temporary directory.
+std::string modelRoot() {
+  const std::string root = ::testing::TempDir() + "/paths_models";
+  std::filesystem::create_directories(root + "/meshes_model/meshes");
+  std::ofstream(root + "/meshes_model/meshes/cube.stl") << "solid cube\nendsolid cube\n";
+  return root;
+}
+
+TEST(UriResolver, ModelPath) {
+  UriResolver r = resolver();
+  const std::string data = modelRoot();
+  r.model_paths = {"/nonexistent/models", data};
+  EXPECT_EQ(r.resolve("model://meshes_model/meshes/cube.stl"), data + "/meshes_model/meshes/cube.stl");
   // A miss names the URI and every folder searched.
   EXPECT_THAT(error(r, "model://no_such_model/meshes/x.dae"),
               HasSubstr("mesh URI 'model://no_such_model/meshes/x.dae' not found in the model path"));
   EXPECT_THAT(error(r, "model://no_such_model/meshes/x.dae"),
-              HasSubstr("searched /nonexistent/models, " + data + "/urdf"));
+              HasSubstr("searched /nonexistent/models, " + data));
   EXPECT_THAT(error(r, "model://"), HasSubstr("is not model://<model>/<path>"));
 }
 
+TEST(UriResolver, ModelPathFromTheEnvironmentWhenNoneIsGiven) {
+  const std::string data = modelRoot();
+  setenv("GAZEBO_MODEL_PATH", ("/nonexistent/a::" + data).c_str(), 1);
+  setenv("HOME", "/nonexistent/home", 1);
+  UriResolver r;
+  EXPECT_EQ(r.resolve("model://meshes_model/meshes/cube.stl"), data + "/meshes_model/meshes/cube.stl");
+  EXPECT_THAT(error(r, "model://nope/x.stl"),
+              HasSubstr("searched /nonexistent/a, " + data + ", /nonexistent/home/.gazebo/models"));
+  unsetenv("GAZEBO_MODEL_PATH");
+}
+
+TEST(ModelPath, GazeboModelPathDropsEmptyEntries) {
+  setenv("GAZEBO_MODEL_PATH", ":/a::/b/:", 1);
+  EXPECT_EQ(gazeboModelPath(), (std::vector<std::string>{"/a", "/b/"}));
+  unsetenv("GAZEBO_MODEL_PATH");
+  EXPECT_TRUE(gazeboModelPath().empty());
+  setenv("HOME", "/home/u", 1);
+  EXPECT_EQ(userModelDir(), "/home/u/.gazebo/models");
+  unsetenv("HOME");
+  EXPECT_EQ(userModelDir(), "");
+}
+
 }  // namespace
-}  // namespace tianracer_sim
+}  // namespace tianracer_assets
 
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);  // gtest only: gmock matchers are header-only

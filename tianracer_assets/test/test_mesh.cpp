@@ -5,12 +5,11 @@
 #include <fstream>
 #include <string>
 
-#include "tianracer_sim/mesh/mesh_loader.h"
+#include "tianracer_assets/mesh.h"
 
-namespace tianracer_sim {
+namespace tianracer_assets {
 namespace {
 
-const std::string kCube = std::string(TEST_DATA_DIR) + "/physics/cube_10cm.stl";
 const std::string kWheel = std::string(TIANRACER_DESCRIPTION_DIR) + "/meshes/left_rear_wheel.STL";
 
 std::string writeTemp(const std::string& name, const std::string& content) {
@@ -18,6 +17,26 @@ std::string writeTemp(const std::string& name, const std::string& content) {
   std::ofstream(path) << content;
   return path;
 }
+
+// A 10 cm cube centred on the origin as an ASCII STL: 12 facets, each repeating its corners.
+std::string cubeStl() {
+  const int quads[6][4][3] = {{{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}},
+                              {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}},
+                              {{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}}, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}}};
+  std::string s = "solid cube\n";
+  auto corner = [](const int* c) {
+    std::string v = "vertex";
+    for (int k = 0; k < 3; ++k) v += c[k] ? " 0.05" : " -0.05";
+    return v + "\n";
+  };
+  for (const auto& q : quads) {
+    s += "facet normal 0 0 0\nouter loop\n" + corner(q[0]) + corner(q[1]) + corner(q[2]) + "endloop\nendfacet\n";
+    s += "facet normal 0 0 0\nouter loop\n" + corner(q[0]) + corner(q[2]) + corner(q[3]) + "endloop\nendfacet\n";
+  }
+  return s + "endsolid cube\n";
+}
+
+const std::string kCube = writeTemp("cube_10cm.stl", cubeStl());
 
 std::string errorOf(const std::string& path) {
   try {
@@ -101,4 +120,4 @@ TEST(MeshLoader, DirectoryIsNotAMesh) {
 }
 
 }  // namespace
-}  // namespace tianracer_sim
+}  // namespace tianracer_assets
