@@ -29,9 +29,12 @@ APT_PACKAGES=(
   python3-matplotlib python3-tqdm
   # the CPU hog of the load check (./test.sh --load)
   stress-ng
+  # the Python bindings of the simulation (tianracer_sim.simulator) and tianracer_gym
+  pybind11-dev python3-rospkg
 )
-# xacro: the ROS 1 one (2.x is the ROS 2 one, TOOLCHAIN.md); ray: scenario batches (`batch`)
-PIP_PACKAGES=(xacro==1.13.3 ray==2.60.0)
+# xacro: the ROS 1 one (2.x is the ROS 2 one, TOOLCHAIN.md); ray: scenario batches (`batch`);
+# gymnasium: tianracer_gym's environments (docs/learning.md)
+PIP_PACKAGES=(xacro==1.13.3 ray==2.60.0 gymnasium==1.2.2)
 
 say()  { printf '==> [setup] %s\n' "$*"; }
 fail() { printf '\nERROR [setup] %s\n' "$*" >&2; exit 1; }

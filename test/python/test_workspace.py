@@ -7,7 +7,7 @@ from catkin_pkg.packages import find_packages
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), '..', '..'))
 EXPECTED = {'tianracer', 'tianracer_description', 'tianracer_sim', 'tianracer_control',
-            'tianracer_assets', 'tianracer_bringup', 'tianracer_tests'}
+            'tianracer_assets', 'tianracer_bringup', 'tianracer_gym', 'tianracer_tests'}
 # Stand-ins for packages the system may lack; scripts/stand_in_packages.sh leaves each out
 # (CATKIN_IGNORE) where the system has the real one.
 STAND_INS = {'gazebo_msgs', 'ackermann_msgs', 'xacro', 'controller_manager_msgs',

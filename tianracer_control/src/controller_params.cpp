@@ -53,9 +53,9 @@ const char* ParamValue::typeName() const {
 
 std::string controllerPrefix(const std::string& name) { return "controller '" + name + "': "; }
 
-// The line first, as in every located message (diagnostic.h): "line 7: controller 'x': ".
+// The place first, as in every located message (diagnostic.h): "c.yaml:7: controller 'x': ".
 std::string ControllerParams::prefix() const {
-  return formatLocation("", spec_.line) + controllerPrefix(spec_.name);
+  return formatLocation(spec_.source, spec_.line) + controllerPrefix(spec_.name);
 }
 
 const ParamValue* ControllerParams::lookup(const std::string& key) {

@@ -78,7 +78,8 @@ struct ControllerSpec {
   std::string name;
   std::string type;
   ParamValue params = ParamValue::dict();
-  int line = 0;  // source line where known (0 = unknown)
+  std::string source;  // the file it was read from, where known ("" = the parameter server)
+  int line = 0;        // source line where known (0 = unknown)
 };
 
 /// What a controller class reads its parameters through (controller_nh.getParam without ROS).
@@ -91,7 +92,7 @@ class ControllerParams {
 
   const std::string& name() const { return spec_.name; }
   const std::string& type() const { return spec_.type; }
-  /// "line <n>: controller '<name>': " ("controller '<name>': " when the line is unknown)
+  /// "<source>:<line>: controller '<name>': " (diagnostic.h's formatLocation: the parts known)
   std::string prefix() const;
 
   /// An int or a double; nullopt when absent.

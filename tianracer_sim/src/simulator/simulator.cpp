@@ -350,6 +350,7 @@ void Simulator::resetSimulation() {
   waitFrames();  // the frame in flight goes out before time jumps back
   sim_.resetSimulation();
   contacts_.reset();
+  scene_step_ = ~0ull;  // the step count goes back to one the scene may have been drawn at
   const double t = sim_.time();
   for (const auto& s : sensors_) s->restart(t);
   restartLockstep(t);
@@ -358,6 +359,7 @@ void Simulator::resetSimulation() {
 void Simulator::resetWorld() {
   sim_.resetWorld();
   contacts_.reset();
+  scene_step_ = ~0ull;  // models moved between steps
 }
 
 void Simulator::setLockstep(bool replies, double reply_period, bool ticks, double tick_period) {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include <yaml-cpp/yaml.h>
+#include <tianracer_control/controller_yaml.h>
 
 #include "tianracer_sim/sim/simulation.h"
 
@@ -29,42 +29,11 @@ inline RobotModel loadTianracer() {
   return loadRobotModelFile(descriptionDir() + "/urdf/tianracer_description.xacro", options);
 }
 
-/// A YAML node as the parameter server holds it (rosparam load: ints, doubles, bools, strings).
-inline tianracer_control::ParamValue toParamValue(const YAML::Node& node) {
-  using tianracer_control::ParamValue;
-  if (node.IsMap()) {
-    ParamValue tree = ParamValue::dict();
-    for (const auto& entry : node) tree[entry.first.as<std::string>()] = toParamValue(entry.second);
-    return tree;
-  }
-  if (node.IsSequence()) {
-    ParamValue::List items;
-    for (const auto& item : node) items.push_back(toParamValue(item));
-    return ParamValue::list(std::move(items));
-  }
-  int i = 0;
-  double d = 0.0;
-  bool b = false;
-  if (YAML::convert<int>::decode(node, i)) return ParamValue(i);
-  if (YAML::convert<double>::decode(node, d)) return ParamValue(d);
-  if (YAML::convert<bool>::decode(node, b)) return ParamValue(b);
-  return ParamValue(node.as<std::string>());
-}
-
 /// The controllers of a ros_control YAML under `ns`, as the node reads them from the
-/// parameter server.
+/// parameter server (tianracer_control's reader, shared with the Python simulation).
 inline std::vector<tianracer_control::ControllerSpec> loadControllerYaml(const std::string& file,
                                                                         const std::string& ns) {
-  std::vector<tianracer_control::ControllerSpec> specs;
-  const YAML::Node root = YAML::LoadFile(file)[ns];
-  for (const auto& entry : root) {
-    tianracer_control::ControllerSpec spec;
-    spec.name = entry.first.as<std::string>();
-    spec.type = entry.second["type"].as<std::string>();
-    spec.params = toParamValue(entry.second);
-    specs.push_back(spec);
-  }
-  return specs;
+  return tianracer_control::loadControllerYamlFile(file, ns);
 }
 
 inline std::vector<tianracer_control::ControllerSpec> shippedControllers() {

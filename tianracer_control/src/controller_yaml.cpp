@@ -1,0 +1,207 @@
+#include "tianracer_control/controller_yaml.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cerrno>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
+
+namespace tianracer_control {
+
+namespace {
+
+enum class Kind { kNull, kBool, kInt, kDouble, kString, kList, kDict };
+
+bool isBool(const std::string& s, bool* value) {
+  // YAML 1.1 booleans, as rosparam (PyYAML) reads them.
+  static const char* yes[] = {"true", "True", "TRUE", "yes", "Yes", "YES", "on", "On", "ON"};
+  static const char* no[] = {"false", "False", "FALSE", "no", "No", "NO", "off", "Off", "OFF"};
+  for (const char* y : yes) {
+    if (s == y) return *value = true, true;
+  }
+  for (const char* n : no) {
+    if (s == n) return *value = false, true;
+  }
+  return false;
+}
+
+bool isInt(const std::string& s) {
+  if (s.empty()) return false;
+  errno = 0;
+  char* end = nullptr;
+  std::strtoll(s.c_str(), &end, 10);
+  return errno == 0 && end == s.c_str() + s.size();
+}
+
+bool isNumber(const std::string& s, double* value) {
+  if (s.empty()) return false;
+  if (s == ".inf" || s == "+.inf" || s == ".Inf" || s == ".INF") return *value = HUGE_VAL, true;
+  if (s == "-.inf" || s == "-.Inf" || s == "-.INF") return *value = -HUGE_VAL, true;
+  if (s == ".nan" || s == ".NaN" || s == ".NAN") return *value = NAN, true;
+  char* end = nullptr;
+  *value = std::strtod(s.c_str(), &end);
+  return end == s.c_str() + s.size() && s.find_first_of("xXnNiI") == std::string::npos;
+}
+
+Kind kindOf(const YAML::Node& n) {
+  switch (n.Type()) {
+    case YAML::NodeType::Sequence: return Kind::kList;
+    case YAML::NodeType::Map: return Kind::kDict;
+    case YAML::NodeType::Scalar: break;
+    default: return Kind::kNull;
+  }
+  if (n.Tag() == "!") return Kind::kString;  // quoted
+  const std::string& s = n.Scalar();
+  bool b;
+  double d;
+  if (isBool(s, &b)) return Kind::kBool;
+  if (isInt(s)) return Kind::kInt;
+  if (isNumber(s, &d)) return Kind::kDouble;
+  return Kind::kString;
+}
+
+const char* kindName(Kind k) {
+  switch (k) {
+    case Kind::kNull: return "nothing";
+    case Kind::kBool: return "a bool";
+    case Kind::kInt: return "an int";
+    case Kind::kDouble: return "a double";
+    case Kind::kString: return "a string";
+    case Kind::kList: return "a list";
+    case Kind::kDict: return "a dictionary";
+  }
+  return "?";
+}
+
+/// A YAML value as the parameter server holds it after `rosparam load` (XmlRpcValue's kinds).
+ParamValue toParamValue(const YAML::Node& n) {
+  switch (kindOf(n)) {
+    case Kind::kDict: {
+      ParamValue tree = ParamValue::dict();
+      for (const auto& kv : n) tree[kv.first.as<std::string>()] = toParamValue(kv.second);
+      return tree;
+    }
+    case Kind::kList: {
+      ParamValue::List items;
+      for (const auto& item : n) items.push_back(toParamValue(item));
+      return ParamValue::list(std::move(items));
+    }
+    case Kind::kBool: {
+      bool b = false;
+      isBool(n.Scalar(), &b);
+      return ParamValue(b);
+    }
+    case Kind::kInt: {
+      // XmlRpc ints are 32-bit; a larger one stays a number (rosparam makes it a double).
+      const long long v = std::strtoll(n.Scalar().c_str(), nullptr, 10);
+      if (v >= INT32_MIN && v <= INT32_MAX) return ParamValue(static_cast<int>(v));
+      return ParamValue(static_cast<double>(v));
+    }
+    case Kind::kDouble: {
+      double d = 0.0;
+      isNumber(n.Scalar(), &d);
+      return ParamValue(d);
+    }
+    case Kind::kString:
+      return ParamValue(n.Scalar());
+    case Kind::kNull:
+      break;
+  }
+  return ParamValue::other();
+}
+
+/// One controller's entry as the parameter-server adapter (ros/controller_adapter.h) reads it:
+/// the whole dictionary, its type taken out by name; the controller class reads the rest and
+/// names this file and line in its errors.
+ControllerSpec readSpec(const YAML::Node& params, const std::string& source,
+                        const std::string& name) {
+  const int line = params.Mark().line + 1;
+  const std::string pre = "controller '" + name + "': ";
+  if (!params.IsMap()) {
+    throw ControllerError({source, line, name},
+                          pre + "its parameters must be a dictionary, got " + kindName(kindOf(params)));
+  }
+  ControllerSpec spec;
+  spec.name = name;
+  spec.source = source;
+  spec.line = line;
+  spec.params = toParamValue(params);
+  if (const YAML::Node type = params["type"]) {
+    if (kindOf(type) != Kind::kString) {
+      throw ControllerError({source, type.Mark().line + 1, "type"},
+                            pre + "type must be a string, got " + kindName(kindOf(type)));
+    }
+    spec.type = type.Scalar();
+  }
+  return spec;
+}
+
+std::vector<std::string> splitNamespace(const std::string& ns) {
+  std::vector<std::string> parts;
+  std::stringstream in(ns);
+  for (std::string part; std::getline(in, part, '/');) {
+    if (!part.empty()) parts.push_back(part);
+  }
+  return parts;
+}
+
+}  // namespace
+
+std::vector<ControllerSpec> loadControllerYaml(const std::string& yaml, const std::string& source,
+                                               const std::string& ns,
+                                               const std::vector<std::string>& names) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml);
+  } catch (const YAML::Exception& e) {
+    throw ControllerError({source, e.mark.line + 1, ""}, "not valid YAML: " + e.msg);
+  }
+  YAML::Node at = root;
+  std::string path;
+  for (const std::string& part : splitNamespace(ns)) {
+    path += "/" + part;
+    const YAML::Node& here = at;  // const: operator[] must not add the key
+    if (!here.IsMap() || !here[part]) {
+      throw ControllerError(source + ": no controllers under " + path +
+                            " (the YAML's top key is the controllers' namespace, e.g. tianracer:)");
+    }
+    at.reset(here[part]);
+  }
+  if (!at.IsMap()) {
+    throw ControllerError(source + ": " + (path.empty() ? std::string("the top level") : path) +
+                          " is not a dictionary of controllers");
+  }
+  std::vector<std::string> wanted = names;
+  if (wanted.empty()) {
+    for (const auto& kv : at) {
+      if (kv.second.IsMap() && kv.second["type"]) wanted.push_back(kv.first.as<std::string>());
+    }
+    std::sort(wanted.begin(), wanted.end());
+  }
+  std::vector<ControllerSpec> specs;
+  for (const std::string& name : wanted) {
+    const YAML::Node& dict = at;
+    const YAML::Node params = dict[name];
+    if (!params) {
+      throw ControllerError("controller '" + name + "': no parameters at " + path + "/" + name +
+                            " in " + source);
+    }
+    specs.push_back(readSpec(params, source, name));
+  }
+  return specs;
+}
+
+std::vector<ControllerSpec> loadControllerYamlFile(const std::string& path, const std::string& ns,
+                                                   const std::vector<std::string>& names) {
+  std::ifstream in(path);
+  if (!in) throw ControllerError("controller YAML " + path + ": cannot be read");
+  std::stringstream text;
+  text << in.rdbuf();
+  return loadControllerYaml(text.str(), path, ns, names);
+}
+
+}  // namespace tianracer_control

@@ -1,0 +1,110 @@
+"""TianracerVectorEnv: N TianracerEnvs in one process, stepped together on C++ threads with the
+GIL released (tianracer_sim.simulator.SimulationBatch), with the gymnasium.vector API and
+autoreset (NEXT_STEP: the step after an episode ends resets that env and ignores its action).
+
+Each env i is exactly the single TianracerEnv with the same arguments and reset seed seed + i:
+same observations, rewards and ends, bit for bit.
+"""
+import copy
+
+import numpy as np
+from gymnasium.vector import AutoresetMode, VectorEnv
+from gymnasium.vector.utils import batch_space
+
+from tianracer_sim import simulator
+
+from .env import TianracerEnv
+
+
+class TianracerVectorEnv(VectorEnv):
+    metadata = {"render_modes": [], "autoreset_mode": AutoresetMode.NEXT_STEP}
+
+    def __init__(self, num_envs, threads=0, copy_observations=True, **env_kwargs):
+        if int(num_envs) < 1:
+            raise ValueError("num_envs must be >= 1, got %r" % (num_envs,))
+        self.num_envs = int(num_envs)
+        self.envs = [TianracerEnv(**env_kwargs) for _ in range(self.num_envs)]
+        first = self.envs[0]
+        self.batch = simulator.SimulationBatch([e.sim for e in self.envs], threads)
+        self.single_observation_space = first.observation_space
+        self.single_action_space = first.action_space
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+        self.copy_observations = copy_observations
+        self._obs = {key: np.zeros((self.num_envs,) + tuple(shape), dtype=np.dtype(dtype))
+                     for key, shape, dtype in first.sim.observation_specs}
+        self._contacts = np.zeros(self.num_envs, dtype=np.int64)
+        self._autoreset = np.zeros(self.num_envs, dtype=bool)
+        self._rewards = np.zeros(self.num_envs, dtype=np.float64)
+        self._terminated = np.zeros(self.num_envs, dtype=bool)
+        self._truncated = np.zeros(self.num_envs, dtype=bool)
+
+    @property
+    def threads(self):
+        return self.batch.threads
+
+    def _row(self, i):
+        return {k: v[i] for k, v in self._obs.items()}
+
+    def _result_obs(self):
+        return copy.deepcopy(self._obs) if self.copy_observations else self._obs
+
+    def reset(self, *, seed=None, options=None):
+        if seed is None:
+            seeds = [None] * self.num_envs
+        elif isinstance(seed, int):
+            seeds = [seed + i for i in range(self.num_envs)]
+        else:
+            seeds = list(seed)
+            if len(seeds) != self.num_envs:
+                raise ValueError("reset: %d seeds for %d envs" % (len(seeds), self.num_envs))
+        self._np_random_seed = seeds[0] if seed is not None else None
+        infos = {}
+        for i, env in enumerate(self.envs):
+            _, info = env.reset(seed=seeds[i], options=options)
+            self.batch.read(i, self._obs)
+            env._fix(self._row(i))
+            infos = self._add_info(infos, info, i)
+        self._autoreset[:] = False
+        return self._result_obs(), infos
+
+    def step(self, actions):
+        actions = np.asarray(actions)
+        if actions.shape != self.action_space.shape:
+            raise ValueError("actions have shape %s; the action space is %s" %
+                             (actions.shape, self.action_space))
+        rows = np.empty(actions.shape, dtype=np.float64)
+        active = ~self._autoreset
+        for i in np.flatnonzero(active):
+            rows[i] = self.envs[i]._checked(actions[i])
+        rows[~active] = 0.0
+        infos = {}
+        # Envs whose episode ended at the last step start a new one (their action is ignored).
+        for i in np.flatnonzero(~active):
+            _, info = self.envs[i].reset()
+            self.batch.read(i, self._obs)
+            self.envs[i]._fix(self._row(i))
+            infos = self._add_info(infos, info, i)
+        self._contacts[:] = 0
+        if active.any():
+            self.batch.step(rows, self.envs[0].action_mode, self.envs[0].steps_per_action,
+                            self._obs, active, self._contacts)
+        self._rewards[:] = 0.0
+        self._terminated[:] = False
+        self._truncated[:] = False
+        for i in np.flatnonzero(active):
+            env = self.envs[i]
+            obs = self._row(i)
+            env._fix(obs)
+            _, reward, terminated, truncated, info = env._outcome(obs, int(self._contacts[i]))
+            self._rewards[i] = reward
+            self._terminated[i] = terminated
+            self._truncated[i] = truncated
+            infos = self._add_info(infos, info, i)
+        self._autoreset = self._terminated | self._truncated
+        return (self._result_obs(), self._rewards.copy(), self._terminated.copy(),
+                self._truncated.copy(), infos)
+
+    def close_extras(self, **kwargs):
+        self.batch = None
+        self.envs = []

@@ -1,0 +1,78 @@
+"""TianracerVectorEnv: the same results as N single envs (bit for bit, autoreset included), the
+gymnasium.vector API, and the threads."""
+import unittest
+
+import support  # noqa: F401  (ROS_PACKAGE_PATH)
+
+import gymnasium as gym
+import numpy as np
+
+import tianracer_gym
+from tianracer_gym import TianracerEnv, TianracerVectorEnv, packages
+
+N = 3
+KWARGS = dict(model=packages.gym_model(), control_config=packages.default_control_config(),
+              observe=('scan', 'odom', 'camera_small'), max_episode_time=0.3,
+              control_period=0.02)
+
+
+def actions(k):
+    """Actions of step k for env i: different per env, some wall hits at full lock."""
+    return np.array([[2.5, 0.5 * np.sin(0.3 * k + i)] for i in range(N)], np.float32)
+
+
+class VectorEqualsSingles(unittest.TestCase):
+    def test_same_results_as_n_single_envs_with_autoreset(self):
+        vec = TianracerVectorEnv(N, threads=2, **KWARGS)
+        self.assertEqual(vec.threads, 2)
+        singles = [TianracerEnv(**KWARGS) for _ in range(N)]
+        obs, _ = vec.reset(seed=100)
+        single_obs = [e.reset(seed=100 + i)[0] for i, e in enumerate(singles)]
+        self.assertTrue(vec.observation_space.contains(obs))
+        for i in range(N):
+            for key in obs:
+                self.assertEqual(obs[key][i].tobytes(), single_obs[i][key].tobytes(), key)
+        resets = 0
+        pending = [False] * N  # NEXT_STEP autoreset: the step after an end resets
+        for k in range(40):
+            a = actions(k)
+            obs, rewards, terminated, truncated, infos = vec.step(a)
+            for i, env in enumerate(singles):
+                if pending[i]:
+                    o, _ = env.reset()
+                    r, te, tr = 0.0, False, False
+                    resets += 1
+                else:
+                    o, r, te, tr, _ = env.step(a[i])
+                pending[i] = te or tr
+                for key in o:
+                    self.assertEqual(obs[key][i].tobytes(), o[key].tobytes(),
+                                     'step %d env %d %s' % (k, i, key))
+                self.assertEqual(rewards[i], r)
+                self.assertEqual(terminated[i], te)
+                self.assertEqual(truncated[i], tr)
+        self.assertGreaterEqual(resets, N)  # every env went through an autoreset
+        vec.close()
+
+    def test_make_vec_gives_the_threaded_vector_env(self):
+        envs = gym.make_vec(tianracer_gym.ENV_ID, num_envs=2, observe=('odom',))
+        self.assertIsInstance(envs.unwrapped, TianracerVectorEnv)
+        obs, infos = envs.reset(seed=0)
+        self.assertEqual(obs['odom'].shape, (2, 13))
+        obs, rewards, terminated, truncated, infos = envs.step(envs.action_space.sample())
+        self.assertEqual(rewards.shape, (2,))
+        self.assertIn('progress', infos)
+        envs.close()
+
+    def test_bad_actions_are_refused_before_any_env_steps(self):
+        vec = TianracerVectorEnv(2, observe=('odom',))
+        vec.reset(seed=0)
+        t = [e.sim.time for e in vec.envs]
+        with self.assertRaises(ValueError) as c:
+            vec.step(np.array([[1.0, 0.0], [9.0, 0.0]], np.float32))
+        self.assertIn('outside the action space', str(c.exception))
+        self.assertEqual([e.sim.time for e in vec.envs], t)
+
+
+if __name__ == '__main__':
+    unittest.main()
