@@ -2,6 +2,7 @@
 #include "tianracer_sim/lidar/ray_caster.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -571,9 +572,10 @@ void RayCaster::update(const Scene& scene, int ignore_body) {
 }
 
 void RayCaster::castRays(const Eigen::Vector3d& origin_W,
-                         const std::vector<Eigen::Vector3f>& directions, float t_max,
-                         float* distances) {
+                         const std::vector<Eigen::Vector3f>& directions, float t_min,
+                         float t_max, float* distances) {
   Impl& m = *impl_;
+  assert(t_min >= 0.0f && t_min <= t_max);
   const int n = static_cast<int>(directions.size());
   const float inf = std::numeric_limits<float>::infinity();
   // Embree aborts (an assertion in Debian's build) on a ray origin that is not finite or beyond
@@ -594,7 +596,7 @@ void RayCaster::castRays(const Eigen::Vector3d& origin_W,
         rh.ray.org_x = o.x(), rh.ray.org_y = o.y(), rh.ray.org_z = o.z();
         rh.ray.dir_x = directions[i].x(), rh.ray.dir_y = directions[i].y(),
         rh.ray.dir_z = directions[i].z();
-        rh.ray.tnear = 0.0f;
+        rh.ray.tnear = t_min;
         rh.ray.tfar = t_max;
         rh.ray.time = 0.0f;
         rh.ray.mask = 0xFFFFFFFFu;
@@ -619,7 +621,7 @@ void RayCaster::castRays(const Eigen::Vector3d& origin_W,
           rh.ray.org_x[j] = o.x(), rh.ray.org_y[j] = o.y(), rh.ray.org_z[j] = o.z();
           rh.ray.dir_x[j] = directions[i].x(), rh.ray.dir_y[j] = directions[i].y(),
           rh.ray.dir_z[j] = directions[i].z();
-          rh.ray.tnear[j] = 0.0f;
+          rh.ray.tnear[j] = t_min;
           rh.ray.tfar[j] = t_max;
           rh.ray.time[j] = 0.0f;
           rh.ray.mask[j] = 0xFFFFFFFFu;
@@ -642,7 +644,7 @@ void RayCaster::castRays(const Eigen::Vector3d& origin_W,
         rh.ray.org_x = o.x(), rh.ray.org_y = o.y(), rh.ray.org_z = o.z();
         rh.ray.dir_x = directions[i].x(), rh.ray.dir_y = directions[i].y(),
         rh.ray.dir_z = directions[i].z();
-        rh.ray.tnear = 0.0f;
+        rh.ray.tnear = t_min;
         rh.ray.tfar = t_max;
         rh.ray.time = 0.0f;
         rh.ray.mask = 0xFFFFFFFFu;

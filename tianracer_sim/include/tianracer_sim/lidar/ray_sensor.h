@@ -98,7 +98,8 @@ class RayCaster;
 struct Scene;
 
 /// Applies the range model to true ranges (distances from the sensor origin, +inf for no hit):
-///   r >= range_max -> +inf;  r <= range_min -> -inf;
+///   r >= range_max -> +inf;  r <= range_min -> -inf (REP 117, as Gazebo's RaySensor; rays
+///   cast from range_min reach that only for a surface at range_min);
 ///   else r + N(mean, stddev) clamped to [range_min, range_max] (noise enabled), r otherwise.
 /// Noise is drawn only for in-range beams, in beam order, from `rng`.
 void applyRangeModel(const RaySensorConfig& config, std::mt19937_64& rng, float* ranges, int n);
@@ -121,7 +122,9 @@ struct RayScanBuffers {
 /// One scan from the sensor pose X_WS: ray (j, i) at index j * samples + i along
 /// (cos p_j cos a_i, cos p_j sin a_i, sin p_j) in the sensor frame, a_i = config.angle(i),
 /// p_j = config.verticalAngle(j) (a planar lidar: j = 0, p = 0), true ranges from the caster
-/// (moving bodies updated first, the scene body `ignore_body` seen through), then
+/// over [range_min, range_max] as in Gazebo (what lies nearer than range_min is not seen;
+/// ranges are distances from the sensor origin; moving bodies updated first, the scene body
+/// `ignore_body` seen through), then
 /// applyRangeModel() (applyCloudRangeModel() for a velodyne) with noise from `rng`.
 /// `ranges` is resized to rayCount(); no allocation once warm.
 void scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,
