@@ -349,7 +349,6 @@ struct RayCaster::Impl {
     RTCGeometry instance = nullptr;
     std::vector<Analytic> prims;  // never resized after the user geometry is created
     Eigen::Matrix4d X_WB_last = Eigen::Matrix4d::Zero();
-    unsigned mask = 0xFFFFFFFFu;  // instance mask: 0 while its body is ignored
   };
 
   RTCDevice device = nullptr;
@@ -357,7 +356,6 @@ struct RayCaster::Impl {
   std::vector<std::unique_ptr<SubScene>> subs;
   std::vector<std::pair<int, Eigen::Matrix4d>> static_poses;  // rebuild when one changes
   bool built = false;
-  bool masks_supported = false;
   std::size_t n_bodies = 0, n_items = 0;
   std::size_t n_triangles = 0, n_analytic = 0, n_moving = 0;
   std::string last_error;
@@ -368,7 +366,6 @@ struct RayCaster::Impl {
   Impl() {
     device = rtcNewDevice(nullptr);
     if (!device) throw RayCasterError("Embree: rtcNewDevice failed");
-    masks_supported = rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED) != 0;
     rtcSetDeviceErrorFunction(
         device,
         [](void* user, RTCError, const char* str) {
@@ -533,7 +530,7 @@ void RayCaster::build(const Scene& scene) {
   m.built = true;
 }
 
-void RayCaster::update(const Scene& scene, int ignore_body) {
+void RayCaster::update(const Scene& scene) {
   Impl& m = *impl_;
   bool rebuild = !m.built || m.n_bodies != scene.bodies.size() || m.n_items != scene.items.size();
   for (std::size_t i = 0; !rebuild && i < m.static_poses.size(); ++i) {
@@ -541,21 +538,9 @@ void RayCaster::update(const Scene& scene, int ignore_body) {
     rebuild = !scene.bodies[sp.first].is_static || scene.bodies[sp.first].X_WB.matrix() != sp.second;
   }
   if (rebuild) build(scene);
-  if (ignore_body >= 0 && !m.masks_supported) {
-    throw RayCasterError(
-        "Embree: this library was built without ray masks (EMBREE_RAY_MASK), so a "
-        "lidar cannot see through its own housing");
-  }
   bool changed = false;
   for (auto& sub : m.subs) {
     if (sub->body < 0) continue;
-    const unsigned mask = sub->body == ignore_body ? 0u : 0xFFFFFFFFu;
-    if (mask != sub->mask) {
-      rtcSetGeometryMask(sub->instance, mask);
-      rtcCommitGeometry(sub->instance);
-      sub->mask = mask;
-      changed = true;
-    }
     const Eigen::Isometry3d& X = scene.bodies[sub->body].X_WB;
     if (X.matrix() == sub->X_WB_last) continue;
     float xfm[12];

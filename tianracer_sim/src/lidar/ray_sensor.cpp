@@ -328,9 +328,9 @@ RaySensor::RaySensor(RaySensorConfig config) : config_(std::move(config)), rng_(
 
 void scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,
               const RaySensorConfig& config, std::mt19937_64& rng, RayScanBuffers* buffers,
-              std::vector<float>* ranges, int ignore_body) {
+              std::vector<float>* ranges) {
   RayScanBuffers& b = *buffers;
-  caster.update(scene, ignore_body);
+  caster.update(scene);
   const int samples = std::max(0, config.samples);
   const int rings = std::max(1, config.vertical_samples);
   const int n = samples * rings;
@@ -370,17 +370,16 @@ void scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_
 }
 
 std::vector<float> scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,
-                            const RaySensorConfig& config, std::mt19937_64& rng,
-                            int ignore_body) {
+                            const RaySensorConfig& config, std::mt19937_64& rng) {
   RayScanBuffers buffers;
   std::vector<float> ranges;
-  scanRays(caster, scene, X_WS, config, rng, &buffers, &ranges, ignore_body);
+  scanRays(caster, scene, X_WS, config, rng, &buffers, &ranges);
   return ranges;
 }
 
 const std::vector<float>& RaySensor::scan(RayCaster& caster, const Scene& scene,
-                                          const Eigen::Isometry3d& X_WL, int own_body) {
-  scanRays(caster, scene, X_WL * config_.X_LS, config_, rng_, &buffers_, &ranges_, own_body);
+                                          const Eigen::Isometry3d& X_WL) {
+  scanRays(caster, scene, X_WL * config_.X_LS, config_, rng_, &buffers_, &ranges_);
   return ranges_;
 }
 

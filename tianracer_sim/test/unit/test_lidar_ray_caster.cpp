@@ -529,9 +529,11 @@ TEST(RayCaster, MovingBodyIsSeenByTheNextScan) {
   expectScanMatchesReference(scene, pose(0, 0, 0.5), c, r, 1e-3);
 }
 
-TEST(RayCaster, SensorSeesThroughItsOwnHousingButNotAnotherOne) {
-  // Two lidars in housings (0.1 m cubes) 1 m apart in a 6 m room: each scan ignores its own
-  // housing and sees the other's.
+TEST(RayCaster, SensorSeesPastItsOwnHousingAndSeesAnotherOne) {
+  // Two lidars in housings (0.1 m cubes, their faces 5 cm from the sensor: within range_min)
+  // 1 m apart in a 6 m room: each sees the other's housing and the walls past its own. Its
+  // own link is not special: a part of it beyond range_min is seen, as in Gazebo, whose rays
+  // test every collision of the world (physics/ode/ODEMultiRayShape.cc, UpdateCallback).
   Scene scene;
   addRoom(scene, -3, 3, -3, 3);
   int housing[2];
@@ -545,18 +547,17 @@ TEST(RayCaster, SensorSeesThroughItsOwnHousingButNotAnotherOne) {
     scene.items.push_back(boxItem(housing[k], pose(0, 0, 0), {0.1, 0.1, 0.1}));
   }
   RayCaster caster;
-  const RaySensorConfig c = seedConfig();  // beam 540 along +x, 1080 at +135 deg
+  const RaySensorConfig c = seedConfig();  // beam 540 along +x, 180 at -90 deg
   std::mt19937_64 rng(1);
-  std::vector<float> r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng, housing[0]);
+  std::vector<float> r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
   EXPECT_NEAR(r[540], expected(c, 0.95), 1e-5);  // the other housing's near face
-  EXPECT_NEAR(r[180], expected(c, 3.0), 1e-5);     // -90 deg: the room's wall
-  r = scanRays(caster, scene, pose(1, 0, 0.5, M_PI), c, rng, housing[1]);
+  EXPECT_NEAR(r[180], expected(c, 3.0), 1e-5);   // -90 deg: the room's wall
+  r = scanRays(caster, scene, pose(1, 0, 0.5, M_PI), c, rng);
   EXPECT_NEAR(r[540], expected(c, 0.95), 1e-5);
-  // Ignoring nothing, its own housing (5 cm away) lies within range_min: not seen either.
+  // A bracket of car 0's own lidar link, 0.4 m to its right: seen.
+  scene.items.push_back(boxItem(housing[0], pose(0, -0.45, 0), {0.1, 0.1, 0.1}));
   r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
-  EXPECT_NEAR(r[540], expected(c, 0.95), 1e-5);
-  // And back to ignoring it (the masks are restored per scan).
-  r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng, housing[0]);
+  EXPECT_NEAR(r[180], expected(c, 0.4), 1e-5);
   EXPECT_NEAR(r[540], expected(c, 0.95), 1e-5);
 }
 

@@ -64,11 +64,9 @@ class RayCaster {
   /// update() when the number of bodies or items has changed since the last build.
   void build(const Scene& scene);
   /// Sets the moving bodies' transforms from the scene (commits only if one changed). Static
-  /// bodies are read at build time only. Rays pass through the moving body `ignore_body`
-  /// (a Scene body index; -1 = none): a lidar sits inside its own housing, as Gazebo's rays
-  /// start at range_min outside it. Needs Embree's ray masks (throws RayCasterError
-  /// when the library was built without them).
-  void update(const Scene& scene, int ignore_body = -1);
+  /// bodies are read at build time only. Every body is seen, the sensor's own included, as by
+  /// Gazebo's rays (a housing within range_min is passed because rays start there).
+  void update(const Scene& scene);
 
   /// Distance from `origin_W` along each ray to the first collision surface with t in
   /// [t_min, t_max], or +inf. A ray that starts inside a solid (t_min inside it) hits the
