@@ -102,12 +102,25 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
                                              static_cast<ModelSpawner*>(this),
                                              [this] { afterReset(); });
 
+  StepBridge::Hooks step_hooks;
+  step_hooks.begin = [this] {
+    if (!initial_published_) publishInitial();
+  };
+  step_hooks.step = [this] { stepOnce(); };
+  step_hooks.finish = [this] {
+    sim_->waitFrames();  // the last step's camera frames are out
+    const bool grid = lockstep_ && lockstep_->clockOnTicksOnly();
+    if (clock_published_ != sim_->time() && !grid) publishClock();
+  };
+  step_ = std::make_unique<StepBridge>(pnh_, *sim_, &queue_, step_hooks);
+
   ROS_INFO("tianracer_sim: step %.4f s, real_time_factor %g%s, %s", sim_->dt(), real_time_factor_,
            real_time_factor_ == 0.0 ? " (as fast as possible)" : "",
            sim_->paused() ? "paused" : "running");
 }
 
 SimNode::~SimNode() {
+  step_.reset();    // answers the calls still waiting
   robots_.clear();  // command subscribers point into the controllers
   sim_.reset();     // the frame in flight goes out while the node still exists
 }
@@ -129,11 +142,11 @@ void SimNode::publishClock() {
 }
 
 void SimNode::publishInitial() {
-  // Started paused, the state at the start time goes out when the physics first runs (Gazebo
-  // publishes nothing while paused): then every node connected by then gets it, and a node
-  // that connects a moment sooner or later cannot change what it receives (the wheel odometry
-  // node's first joint_states: the determinism rostest). With lockstep replies the driver's
-  // answer to it is awaited as at any reply step.
+  // Started paused, the state at the start time goes out when the physics first runs (unpause
+  // or ~step; Gazebo publishes nothing while paused): then every node connected by then gets
+  // it, and a node that connects a moment sooner or later cannot change what it receives (the
+  // wheel odometry node's first joint_states: the determinism rostest). With lockstep replies
+  // the driver's answer to it is awaited as at any reply step.
   const bool replies = lockstep_ && !lockstep_->options().replies.empty();
   if (replies) lockstep_->markReplies();
   publishDue(!replies);
@@ -189,6 +202,10 @@ void SimNode::run() {
   bool paused_clock = false;  // the paused time went out on /clock
   while (ros::ok()) {
     queue_.callAvailable(ros::WallDuration(0.0));
+    if (step_->serve()) {  // ~step and ~step_and_wait calls (they pause the simulation)
+      publishStatus();
+      continue;
+    }
     if (sim_->paused()) {
       // /clock is throttled (~clock_rate): on pausing, the paused time goes out once more, so
       // that every node's clock reaches it and a client can wait for exactly that time.
