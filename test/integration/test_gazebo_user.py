@@ -15,7 +15,11 @@
 Everything is timed in sim time; wall time only bounds the waits.
 """
 import math
+import os
+import signal
+import subprocess
 import sys
+import tempfile
 import threading
 import time
 import unittest
@@ -68,7 +72,7 @@ class GazeboUserTest(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node('test_gazebo_user')
         cls.logs, cls.lock = [], threading.Lock()
-        rospy.Subscriber('/rosout', Log, cls.on_log, queue_size=1000)
+        cls.rosout = rospy.Subscriber('/rosout', Log, cls.on_log, queue_size=1000)
         cls.truth = Latest(NS + '/ground_truth/odom', Odometry)
         cls.joints = Latest(NS + '/joint_states', JointState)
         cls.tf = tf2_ros.Buffer()
@@ -157,18 +161,38 @@ class GazeboUserTest(unittest.TestCase):
         self.command({LEFT: 0.0, RIGHT: 0.0}, 0.5)
 
     def test_f_bad_input_gets_controller_managers_errors_and_the_sim_goes_on(self):
-        errors = [
+        # /rosout keeps nothing for late subscribers: the bad spawner starts once this test hears
+        # the sim node's log, and its own errors are read from its output.
+        self.assertTrue(wall_wait(lambda: '/gazebo' in [
+            getattr(c, 'callerid_pub', None) for c in self.rosout.impl.connections], 60.0),
+            'not connected to /gazebo on /rosout')
+        manager_errors = [
             "Could not load controller 'no_such_controller' because the type was not specified. "
             "Did you load the controller configuration on the parameter server (namespace: "
             "'%s/no_such_controller')?" % NS,
             "Could not load controller 'diff_drive_controller' because controller type "
             "'diff_drive_controller/DiffDriveController' does not exist.",
-            'Failed to load no_such_controller',
-            'Failed to load diff_drive_controller',
         ]
-        for text in errors:
-            self.assertTrue(wall_wait(lambda: text in [t for _, t in self.said(Log.ERROR)],
-                                      60.0), '%r not in %r' % (text, self.said(Log.ERROR)))
+        spawner_errors = ['Failed to load no_such_controller', 'Failed to load diff_drive_controller']
+        with tempfile.TemporaryFile('w+') as out:
+            spawner = subprocess.Popen(
+                ['rosrun', 'controller_manager', 'spawner', 'no_such_controller',
+                 'diff_drive_controller', '__name:=bad_spawner'],
+                env=dict(os.environ, ROS_NAMESPACE=NS), stdout=out, stderr=subprocess.STDOUT)
+            try:
+                for text in manager_errors:
+                    self.assertTrue(wall_wait(lambda: text in [t for _, t in self.said(Log.ERROR)],
+                                              60.0), '%r not in %r' % (text, self.said(Log.ERROR)))
+
+                def printed():
+                    out.seek(0)
+                    return out.read()
+                for text in spawner_errors:
+                    self.assertTrue(wall_wait(lambda: text in printed(), 60.0),
+                                    '%r not in the spawner\'s output %r' % (text, printed()))
+            finally:
+                spawner.send_signal(signal.SIGINT)
+                spawner.wait(60)
         self.assertFalse(self.switch(['not_loaded'], [], STRICT, False, 0.0).ok)
         text = ("Could not start controller with name 'not_loaded' because no controller with "
                 "this name exists")

@@ -5,6 +5,9 @@ import sys
 import tempfile
 import unittest
 
+
+# catkin runs nosetests with -P (no path adjustment): the test folder's helpers by path.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import support
 
 EXAMPLES = os.path.join(support.REPO, 'examples')

@@ -2,6 +2,11 @@
 gymnasium.vector API, and the threads."""
 import unittest
 
+import os
+import sys
+
+# catkin runs nosetests with -P (no path adjustment): the test folder's helpers by path.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import support  # noqa: F401  (ROS_PACKAGE_PATH)
 
 import gymnasium as gym

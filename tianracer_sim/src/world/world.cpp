@@ -249,9 +249,11 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
       j.axis = (child->X_ML.linear() * j.X_CJ.linear()).transpose() * j.axis;
     }
   }
-  // A joint naming no link of the model is left out; the rest of the model loads (its links
-  // then move as the remaining joints say). When an <include> of the model was left out, the
-  // link was most likely in it: the joint goes with it, reported as the include was.
+  // A joint naming no link of the model is left out with an error, and the rest of the model
+  // loads (its links then move as the remaining joints say); ~strict_world stops. Gazebo throws
+  // "Couldn't Find Child Link[...]" from Joint::Load (gazebo/physics/Joint.cc), which gzserver
+  // logs as an [Err] for that joint. When an <include> of the model was left out, the link was
+  // most likely in it, and the message says so.
   std::vector<JointDescription> joints;
   for (JointDescription& j : m.joints) {
     std::string missing;
@@ -262,17 +264,18 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
       joints.push_back(std::move(j));
       continue;
     }
-    const std::string problem = what + " joint '" + j.name + "': no link '" + missing + "' in the model";
+    std::string why;
     if (left_out_includes > 0) {
-      const XMLElement* joint_e = e->FirstChildElement("joint");
-      while (joint_e && joint_e->GetLineNum() != j.line) joint_e = joint_e->NextSiblingElement("joint");
-      leftOut(joint_e ? joint_e : e, problem + " (an <include> of it was left out)", "the joint is left out");
-      continue;
+      why = " (an <include> of it was left out)";
+    } else {
+      for (const LinkDescription& l : m.links) why += (why.empty() ? "" : ", ") + l.name;
+      why = " (links: " + why + ")";
     }
-    std::string names;
-    for (const LinkDescription& l : m.links) names += (names.empty() ? "" : ", ") + l.name;
-    warn(source_ + ":" + std::to_string(j.line) + ": " + problem + " (links: " + names +
-         "); the joint is left out");
+    const XMLElement* joint_e = e->FirstChildElement("joint");
+    while (joint_e && joint_e->GetLineNum() != j.line) joint_e = joint_e->NextSiblingElement("joint");
+    leftOut(joint_e ? joint_e : e,
+            what + " joint '" + j.name + "': no link '" + missing + "' in the model" + why,
+            "the joint is left out");
   }
   m.joints = std::move(joints);
   return m;

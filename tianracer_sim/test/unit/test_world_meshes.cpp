@@ -117,10 +117,16 @@ TEST(WorldMeshes, JointsToALeftOutIncludeGoWithIt) {
                                      "(an <include> of it was left out); the joint is left out"));
   ASSERT_NE(model(l.world, "outer"), nullptr);
   EXPECT_TRUE(model(l.world, "outer")->joints.empty());
-  // Without a left-out include, a joint to a link the model lacks still stops the load.
-  EXPECT_THROW(load("<model name='outer'><link name='base'/><joint name='j' type='fixed'>"
-                    "<parent>base</parent><child>nope</child></joint></model>"),
-               WorldError);
+  // Without a left-out include, a joint to a link the model lacks is left out with an error
+  // naming the model's links; ~strict_world stops.
+  const std::string bad_joint = "<model name='outer'><link name='base'/><joint name='j' type='fixed'>"
+                                "<parent>base</parent><child>nope</child></joint></model>";
+  const Loaded alone = load(bad_joint);
+  ASSERT_EQ(alone.errors.size(), 1u);
+  EXPECT_THAT(alone.errors[0], HasSubstr("model 'outer' joint 'j': no link 'nope' in the model "
+                                         "(links: base); the joint is left out"));
+  EXPECT_TRUE(model(alone.world, "outer")->joints.empty());
+  EXPECT_THROW(load(bad_joint, true), WorldError);
 }
 
 TEST(WorldMeshes, MissingMeshLeavesOutThatCollisionOnly) {
