@@ -226,9 +226,6 @@ void Simulator::setUpSensor(ModelId id, const RobotSpawn& spawn, const SensorSpe
   setup.model = id;
   setup.model_name = robot.name;
   setup.tf_prefix = spawn.tf_prefix;
-  for (const auto& [body, body_link] : m.scene_bodies.links) {
-    if (body_link == spec.link) setup.own_body = body;
-  }
   setup.seed = options_.seed;
   setup.index = sensors_of_kind_[kind->id];
   setup.gravity = sim_.physics().options().gravity;
