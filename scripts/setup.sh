@@ -31,6 +31,8 @@ APT_PACKAGES=(
   stress-ng
   # the Python bindings of the simulation (tianracer_sim.simulator) and tianracer_gym
   pybind11-dev python3-rospkg
+  # the node's ~step_and_wait action
+  libactionlib-dev python3-actionlib libactionlib-msgs-dev python3-actionlib-msgs
 )
 # xacro: the ROS 1 one (2.x is the ROS 2 one, TOOLCHAIN.md); ray: scenario batches (`batch`);
 # gymnasium: tianracer_gym's environments (docs/learning.md)

@@ -20,6 +20,7 @@ time. docs/learning.md has the details; in short:
 """
 import collections
 import math
+import os
 
 import gymnasium as gym
 import numpy as np
@@ -67,6 +68,9 @@ class TianracerEnv(gym.Env):
             if control_config is None:
                 control_config = packages.default_control_config()
         self._warn = warn or (lambda w: None)
+        # What the vector env needs to make more of the same without running xacro again.
+        self.model_dir = model_dir if urdf is not None else os.path.dirname(os.path.abspath(model))
+        self.control_config = control_config
         self.sim = simulator.Simulation(
             model=model or "", model_args=list(model_args), urdf=urdf or "", model_dir=model_dir,
             robot_name=robot_name, control_config=control_config or "",

@@ -23,8 +23,11 @@ class TianracerVectorEnv(VectorEnv):
         if int(num_envs) < 1:
             raise ValueError("num_envs must be >= 1, got %r" % (num_envs,))
         self.num_envs = int(num_envs)
-        self.envs = [TianracerEnv(**env_kwargs) for _ in range(self.num_envs)]
-        first = self.envs[0]
+        first = TianracerEnv(**env_kwargs)
+        # The others from the first one's URDF: xacro runs once.
+        same = dict(env_kwargs, urdf=first.sim.urdf, model=None, model_args=(),
+                    model_dir=first.model_dir, control_config=first.control_config)
+        self.envs = [first] + [TianracerEnv(**same) for _ in range(self.num_envs - 1)]
         self.batch = simulator.SimulationBatch([e.sim for e in self.envs], threads)
         self.single_observation_space = first.observation_space
         self.single_action_space = first.action_space

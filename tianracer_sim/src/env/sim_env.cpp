@@ -139,6 +139,7 @@ SimEnv::SimEnv(EnvConfig config) : config_(std::move(config)) {
   world_ = loadWorldFile(resolveWorld(config_.world, worlds_dir), world_options);
 
   build(config_.seed);
+  senseInitial();  // as the node's data at its start
 }
 
 SimEnv::~SimEnv() = default;
@@ -222,11 +223,14 @@ void SimEnv::build(std::uint64_t seed) {
     }
   }
   if (drive_) drive_->reset();
+  initial_ = false;
+}
 
-  // The initial observation, at time 0.
+void SimEnv::senseInitial() {
   sim_->sense();
   sim_->waitFrames();
   stampState();
+  initial_ = true;
 }
 
 Observation SimEnv::resolve(const std::string& what) const {
@@ -433,7 +437,9 @@ std::uint64_t SimEnv::step(int n) {
 }
 
 void SimEnv::reset(const std::optional<Eigen::Isometry3d>& X_WB, bool rest_on_ground) {
-  sim_->resetSimulation();
+  // A simulation just built (reseed) starts from here as the node does from its start: the
+  // sensors' first samples are the ones at time 0 below.
+  if (initial_ || sim_->stepCount() != 0) sim_->resetSimulation();
   if (X_WB) {
     if (!X_WB->matrix().allFinite()) throw EnvError("reset pose is not finite");
     Eigen::Isometry3d X = *X_WB;
@@ -446,9 +452,7 @@ void SimEnv::reset(const std::optional<Eigen::Isometry3d>& X_WB, bool rest_on_gr
   }
   if (drive_) drive_->reset();
   for (Observation& o : observations_) o.stamp = std::numeric_limits<double>::quiet_NaN();
-  sim_->sense();
-  sim_->waitFrames();
-  stampState();
+  senseInitial();
 }
 
 void SimEnv::stampState() {

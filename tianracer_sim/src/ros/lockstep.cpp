@@ -124,21 +124,30 @@ std::vector<std::string> Lockstep::tickTopics() const {
 
 void Lockstep::mark(Group& group) {
   queue_->callAvailable(ros::WallDuration(0.0));  // what already came answers an earlier step
-  for (auto& topic : group) topic->arrived = false;
+  for (auto& topic : group) {
+    topic->arrived = false;
+    // A new publisher (a node started mid-run) is waited for from this tick on: its sim-time
+    // timer started on the tick grid (clockOnTicksOnly()) ticks here.
+    const std::uint32_t publishers = topic->sub.getNumPublishers();
+    if (publishers > topic->publishers) topic->absent = false;
+    topic->publishers = publishers;
+  }
 }
 
 void Lockstep::await(Group& group, double t, const char* after) {
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(options_.timeout);
   while (ros::ok()) {
     bool all = true;
-    for (const auto& topic : group) all = all && (topic->arrived || topic->absent);
+    for (const auto& topic : group) {
+      all = all && (topic->arrived || topic->absent || topic->sub.getNumPublishers() == 0);
+    }
     if (all) return;
     const ros::WallTime now = ros::WallTime::now();
     if (now >= deadline) break;
     queue_->callAvailable(std::min(deadline - now, ros::WallDuration(0.01)));
   }
   for (auto& topic : group) {
-    if (topic->arrived || topic->absent) continue;
+    if (topic->arrived || topic->absent || topic->sub.getNumPublishers() == 0) continue;
     topic->absent = true;
     ++timeouts_;
     if (!topic->reported) {

@@ -102,12 +102,25 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
                                              static_cast<ModelSpawner*>(this),
                                              [this] { afterReset(); });
 
+  StepBridge::Hooks step_hooks;
+  step_hooks.begin = [this] {
+    if (!initial_published_) publishInitial();
+  };
+  step_hooks.step = [this] { stepOnce(); };
+  step_hooks.finish = [this] {
+    sim_->waitFrames();  // the last step's camera frames are out
+    const bool grid = lockstep_ && lockstep_->clockOnTicksOnly();
+    if (clock_published_ != sim_->time() && !grid) publishClock();
+  };
+  step_ = std::make_unique<StepBridge>(pnh_, *sim_, &queue_, step_hooks);
+
   ROS_INFO("tianracer_sim: step %.4f s, real_time_factor %g%s, %s", sim_->dt(), real_time_factor_,
            real_time_factor_ == 0.0 ? " (as fast as possible)" : "",
            sim_->paused() ? "paused" : "running");
 }
 
 SimNode::~SimNode() {
+  step_.reset();    // answers the calls still waiting
   robots_.clear();  // command subscribers point into the controllers
   sim_.reset();     // the frame in flight goes out while the node still exists
 }
@@ -125,6 +138,23 @@ void SimNode::publishClock() {
   rosgraph_msgs::Clock clock;
   clock.clock = ros::Time(sim_->time());
   clock_pub_.publish(clock);
+  clock_published_ = sim_->time();
+}
+
+void SimNode::publishInitial() {
+  // Started paused, the state at the start time goes out when the physics first runs (unpause
+  // or ~step; Gazebo publishes nothing while paused): then every node connected by then gets
+  // it, and a node that connects a moment sooner or later cannot change what it receives (the
+  // wheel odometry node's first joint_states: the determinism rostest). With lockstep replies
+  // the driver's answer to it is awaited as at any reply step.
+  const bool replies = lockstep_ && !lockstep_->options().replies.empty();
+  if (replies) lockstep_->markReplies();
+  publishDue(!replies);
+  if (replies) {
+    lockstep_->awaitReplies(sim_->time());
+    publishClock();
+  }
+  initial_published_ = true;
 }
 
 void SimNode::publishDue(bool clock) {
@@ -140,8 +170,10 @@ void SimNode::stepOnce() {
   const StepWaits waits = sim_->advance();
   contacts_->publish(sim_->simulation().physics(), sim_->time());
   const double t = sim_->time();
+  // With tick topics /clock keeps to the tick grid (Lockstep::clockOnTicksOnly()).
+  const bool grid = lockstep_ && lockstep_->clockOnTicksOnly();
   if (!waits.replies && !waits.ticks) {
-    publishDue();
+    publishDue(!grid);
   } else {
     // The driver answers this step's sensor data before the clock moves on to this step, so
     // that nodes on sim-time timers (the cmd_vel node) tick with its answer in hand.
@@ -149,7 +181,7 @@ void SimNode::stepOnce() {
     publishDue(false);
     if (waits.replies) lockstep_->awaitReplies(t);
     if (waits.ticks) lockstep_->markTicks();
-    publishClock();
+    if (waits.ticks || !grid) publishClock();
     if (waits.ticks) lockstep_->awaitTicks(t);
   }
   gazebo_->afterStep();
@@ -157,15 +189,11 @@ void SimNode::stepOnce() {
 
 void SimNode::run() {
   publishClock();
-  // Started paused, the state at the start time goes out when the physics first runs (Gazebo
-  // publishes nothing while paused): then every node connected by the unpause gets it, and a
-  // node that connects a moment sooner or later cannot change what it receives (the wheel
-  // odometry node's first joint_states: the determinism rostest). With lockstep replies the
-  // driver's answer to it is awaited as at any reply step.
-  bool start_due = true;
+  // Running from the start, the start state goes out at once (nobody may be connected yet, so
+  // no answer is awaited); started paused, at the first step (publishInitial()).
   if (!sim_->paused()) {
     publishDue();
-    start_due = false;
+    initial_published_ = true;
   }
   status_wall_ = ros::WallTime::now();
   status_sim_ = sim_->time();
@@ -174,10 +202,17 @@ void SimNode::run() {
   bool paused_clock = false;  // the paused time went out on /clock
   while (ros::ok()) {
     queue_.callAvailable(ros::WallDuration(0.0));
+    if (step_->serve()) {  // ~step and ~step_and_wait calls (they pause the simulation)
+      publishStatus();
+      continue;
+    }
     if (sim_->paused()) {
       // /clock is throttled (~clock_rate): on pausing, the paused time goes out once more, so
       // that every node's clock reaches it and a client can wait for exactly that time.
-      if (!paused_clock) publishClock();
+      // With lockstep ticks /clock keeps to the tick grid (Lockstep::clockOnTicksOnly()): a
+      // paused time off the grid is not published (a node started now would tick off the grid).
+      const bool grid = lockstep_ && lockstep_->clockOnTicksOnly();
+      if (!paused_clock && !(grid && clock_published_ != sim_->time())) publishClock();
       paused_clock = true;
       queue_.callAvailable(ros::WallDuration(0.01));
       publishStatus();
@@ -185,16 +220,7 @@ void SimNode::run() {
       continue;
     }
     paused_clock = false;
-    if (start_due) {
-      start_due = false;
-      const bool replies = lockstep_ && !lockstep_->options().replies.empty();
-      if (replies) lockstep_->markReplies();
-      publishDue(!replies);
-      if (replies) {
-        lockstep_->awaitReplies(sim_->time());
-        publishClock();
-      }
-    }
+    if (!initial_published_) publishInitial();
     if (pacing_reset_) {
       wall0 = ros::WallTime::now();
       sim0 = sim_->time();

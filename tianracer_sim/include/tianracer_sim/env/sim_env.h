@@ -135,7 +135,8 @@ class SimEnv {
   void reset(const std::optional<Eigen::Isometry3d>& X_WB = std::nullopt,
              bool rest_on_ground = true);
   /// A new simulation with this noise seed (what reset(seed=...) needs to repeat exactly):
-  /// the model, controllers and world are reused. Call reset() next.
+  /// the model, controllers and world are reused. Call reset() next: its sample at time 0 is
+  /// the sensors' first, as at the node's start.
   void reseed(std::uint64_t seed);
 
   // --- reading -----------------------------------------------------------------------------
@@ -159,6 +160,7 @@ class SimEnv {
   void build(std::uint64_t seed);
   Observation resolve(const std::string& what) const;
   void stampState();  // odom and joints are read at the current time
+  void senseInitial();  // the samples at time 0
 
   EnvConfig config_;
   std::string urdf_, robot_name_;
@@ -172,6 +174,7 @@ class SimEnv {
   std::unique_ptr<AckermannDrive> drive_;
   std::string drive_problem_;
   EnvTiming timing_;
+  bool initial_ = false;  // the samples at time 0 were taken
 };
 
 }  // namespace tianracer_sim

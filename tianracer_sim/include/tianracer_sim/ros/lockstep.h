@@ -46,8 +46,10 @@ class Lockstep {
   void markReplies() { mark(replies_); }
   void markTicks() { mark(ticks_); }
   /// Serves `queue` until each topic of the group has a message since its mark, or the wall
-  /// timeout. A topic that timed out is not waited for again until its next message (a driver
-  /// that stopped costs one timeout, not one per period); reported once per topic.
+  /// timeout. A topic that timed out is not waited for again until its next message or a new
+  /// publisher (a driver that stopped costs one timeout, not one per period; one that starts
+  /// later is waited for from its next tick on); reported once per topic. A topic nobody
+  /// publishes on is not waited for.
   void awaitReplies(double t) { await(replies_, t, "the sensor data of"); }
   void awaitTicks(double t) { await(ticks_, t, "the /clock of"); }
   /// With tick_commands: the controllers' command topics now (start-up, spawn, delete_model,
@@ -57,6 +59,10 @@ class Lockstep {
   void setCommandTopics(const std::vector<std::string>& topics);
   /// The tick topics waited for (resolved names), in order.
   std::vector<std::string> tickTopics() const;
+  /// With tick topics, /clock goes out at tick steps only (every tick step does), so that a
+  /// node starting mid-run reads a time on the tick grid and its sim-time timers, which count
+  /// from the time they start at (roscpp's and rospy's), tick on the grid too.
+  bool clockOnTicksOnly() const { return options_.waitsForTicks(); }
   const LockstepOptions& options() const { return options_; }
   std::uint64_t timeouts() const { return timeouts_; }
 
@@ -65,9 +71,10 @@ class Lockstep {
     std::string name;
     ros::Subscriber sub;
     bool arrived = false;
-    bool absent = false;  // timed out; waited for again once a message arrives
+    bool absent = false;  // timed out; waited for again once a message or a publisher arrives
     bool reported = false;
     bool command = false;  // from setCommandTopics(), not named in ~lockstep/ticks
+    std::uint32_t publishers = 0;  // at the last mark
   };
   using Group = std::vector<std::unique_ptr<Topic>>;
   void subscribe(ros::NodeHandle& nh, const std::vector<std::string>& names, Group* group);

@@ -59,6 +59,7 @@
 #include "tianracer_sim/ros/gazebo_interface.h"
 #include "tianracer_sim/ros/lockstep.h"
 #include "tianracer_sim/ros/robot_bridge.h"
+#include "tianracer_sim/ros/step_bridge.h"
 #include "tianracer_sim/simulator/simulator.h"
 
 namespace tianracer_sim {
@@ -103,6 +104,9 @@ class SimNode : private ModelSpawner {
   /// Publishes what is due at this step; `clock` false leaves /clock to the caller (lockstep).
   void publishDue(bool clock = true);
   void publishClock();
+  /// Started paused, the data of the start time go out at the first step (unpause or ~step),
+  /// so that what connects while it is paused gets them too.
+  void publishInitial();
   void publishStatus();  // sim_node_status.cpp
 
   /// After reset_simulation (GazeboInterface): the node's schedules restart, /clock goes back.
@@ -127,6 +131,9 @@ class SimNode : private ModelSpawner {
   double status_sim_ = 0.0;
   std::unique_ptr<Lockstep> lockstep_;       // null unless ~lockstep/ names topics
   std::unique_ptr<GazeboInterface> gazebo_;  // gazebo_msgs topics and services
+  std::unique_ptr<StepBridge> step_;         // ~step and ~step_and_wait
+  bool initial_published_ = false;
+  double clock_published_ = -1.0;  // sim time of the last /clock
 };
 
 }  // namespace tianracer_sim
