@@ -109,7 +109,10 @@ TEST(WorldModelSensors, AFallingModelsSensorMovesWithIt) {
 }
 
 TEST(WorldModelSensors, ASpawnedModelBringsItsSensorsAndTakesThemAway) {
-  Simulator sim(loadWorldFile(kWorld), {});
+  std::vector<std::string> errors;
+  SimulatorOptions options;
+  options.log.error = [&](const std::string& e) { errors.push_back(e); };
+  Simulator sim(loadWorldFile(kWorld), options);
   const std::size_t before = sim.sensors().size();
   ModelDescription spawned = loadModelString(
       "<sdf version='1.6'><model name='spawned'><static>true</static><link name='l'>"
@@ -127,6 +130,9 @@ TEST(WorldModelSensors, ASpawnedModelBringsItsSensorsAndTakesThemAway) {
   const ModelId id = sim.addWorldModel(std::move(spawned));
   ASSERT_EQ(sim.sensors().size(), before + 1);
   EXPECT_EQ(sim.findSensor(id, "bad"), nullptr);  // a bad rate: left out, the model is there
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0], "model 'spawned': sensor 'bad' left out: spawn_sdf_model 'spawned':1: "
+                       "sensor 'bad' on link 'l': <update_rate> value '-2' must be finite and >= 0");
   const auto* side = dynamic_cast<const SimLidar*>(sim.findSensor(id, "side"));
   ASSERT_NE(side, nullptr);
   sim.step(100);

@@ -45,7 +45,7 @@ ros::NodeHandle prepareCamera(const PublisherSetup& setup, const SimSensor& sens
                               const CameraConfig& camera) {
   ros::NodeHandle cam_nh(setup.root, resolveTopic(camera.robot_namespace, camera.camera_name));
   setup.claim_topic(cam_nh.getNamespace(),
-                    "robot '" + setup.robot_name + "' camera '" + sensor.name() + "'");
+                    setup.owner() + " camera '" + sensor.name() + "'");
   sendOpticalFrame(setup, sensor.link().link, camera);
   return cam_nh;
 }

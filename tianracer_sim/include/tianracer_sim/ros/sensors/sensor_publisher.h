@@ -27,6 +27,8 @@ struct PublisherSetup {
   /// A world model's sensor: its link is on no TF tree (nothing puts a world model's links
   /// there, neither does Gazebo), so a camera's optical frame hangs from its frameName.
   bool world_model = false;
+  /// "robot 'NAME'" or "model 'NAME'": who publishes, in messages.
+  std::string owner() const { return (world_model ? "model '" : "robot '") + robot_name + "'"; }
   /// Throws when another sensor already publishes `topic`.
   std::function<void(const std::string& topic, const std::string& owner)> claim_topic;
 };
