@@ -17,95 +17,21 @@ import math
 import os
 import subprocess
 import sys
-import threading
-import time
-import unittest
 
 import rosnode
 import rospy
 import rostest
-from controller_manager_msgs.srv import (ListControllers, LoadController, SwitchController,
-                                         SwitchControllerRequest, UnloadController)
-from nav_msgs.msg import Odometry
-from rosgraph_msgs.msg import Log
-from sensor_msgs.msg import JointState
-from std_msgs.msg import Bool, Float64
+from controller_manager_msgs.srv import ListControllers
+from std_msgs.msg import Bool
 
-NS = '/tianracer'
-CONTROLLERS = ['joint_state_controller', 'left_rear_wheel_velocity_controller',
-               'right_rear_wheel_velocity_controller', 'left_steering_hinge_position_controller',
-               'right_steering_hinge_position_controller']
-LEFT, RIGHT = CONTROLLERS[1], CONTROLLERS[2]
-STRICT, BEST_EFFORT = SwitchControllerRequest.STRICT, SwitchControllerRequest.BEST_EFFORT
+from controller_test_support import (BEST_EFFORT, CONTROLLERS, LEFT, NS, RIGHT, STRICT,
+                                     ControllerTestCase, run_spawner, sim_sleep, wall_wait)
 
 
-def wall_wait(predicate, timeout):
-    end = time.time() + timeout
-    while time.time() < end and not rospy.is_shutdown():
-        if predicate():
-            return True
-        time.sleep(0.05)
-    return predicate()
-
-
-def sim_sleep(seconds):
-    target = rospy.get_time() + seconds
-    assert wall_wait(lambda: rospy.get_time() >= target, 120.0), 'sim time stood still'
-
-
-class Latest(object):
-    def __init__(self, topic, cls):
-        self.msg = None
-        rospy.Subscriber(topic, cls, self._cb, queue_size=10)
-
-    def _cb(self, msg):
-        self.msg = msg
-
-
-class ControllerManagerTest(unittest.TestCase):
+class ControllerManagerTest(ControllerTestCase):
     @classmethod
     def setUpClass(cls):
-        rospy.init_node('test_controller_manager')
-        cls.logs, cls.lock = [], threading.Lock()
-        rospy.Subscriber('/rosout', Log, cls.on_log, queue_size=1000)
-        cls.truth = Latest(NS + '/ground_truth/odom', Odometry)
-        cls.joints = Latest(NS + '/joint_states', JointState)
-        cm = NS + '/controller_manager/'
-        rospy.wait_for_service(cm + 'list_controllers', timeout=240.0)
-        cls.list = rospy.ServiceProxy(cm + 'list_controllers', ListControllers)
-        cls.load = rospy.ServiceProxy(cm + 'load_controller', LoadController)
-        cls.unload = rospy.ServiceProxy(cm + 'unload_controller', UnloadController)
-        cls.switch = rospy.ServiceProxy(cm + 'switch_controller', SwitchController)
-        cls.pubs = {name: rospy.Publisher('%s/%s/command' % (NS, name), Float64, queue_size=1)
-                    for name in CONTROLLERS[1:]}
-
-    @classmethod
-    def on_log(cls, msg):
-        with cls.lock:
-            cls.logs.append((msg.name, msg.level, msg.msg))
-
-    def errors_since(self, n):
-        with self.lock:
-            return [text for name, level, text in self.logs[n:] if level >= Log.ERROR]
-
-    def log_count(self):
-        with self.lock:
-            return len(self.logs)
-
-    def states(self):
-        return {c.name: c.state for c in self.list().controller}
-
-    def command(self, values, seconds):
-        """Publishes the commands ({controller: value}) at 20 Hz for `seconds` of sim time."""
-        end = rospy.get_time() + seconds
-        while rospy.get_time() < end and not rospy.is_shutdown():
-            for name, value in values.items():
-                self.pubs[name].publish(Float64(value))
-            sim_sleep(0.05)
-
-    def wheel_velocity(self, joint):
-        msg = self.joints.msg
-        return msg.velocity[msg.name.index(joint)]
+        cls.start('test_controller_manager')
 
     def test_a_no_controller_before_the_spawner(self):
         self.assertEqual(self.states(), {})
@@ -211,18 +137,19 @@ class ControllerManagerTest(unittest.TestCase):
         self.assertTrue(wall_wait(lambda: self.states() == {}, 60.0), self.states())
 
     def test_h_a_spawner_for_a_robot_that_does_not_exist_gives_up(self):
-        # /ghost's spawner (--timeout 3) was started with everything else.
-        self.assertTrue(wall_wait(lambda: not any(n.startswith('/ghost/')
-                                                  for n in rosnode.get_node_names()), 120.0),
-                        rosnode.get_node_names())
-        with self.lock:
-            said = [text for name, level, text in self.logs if name.startswith('/ghost/')]
-        self.assertIn("Controller Spawner couldn't find the expected controller_manager ROS "
-                      "interface.", said)
+        # Started here, not by the launch file, so that its last words cannot go out before
+        # this test listens: they are read from its output.
+        with run_spawner(['--timeout', '3', 'joint_state_controller'], '/ghost',
+                         'controller_spawner') as out:
+            text = ("Controller Spawner couldn't find the expected controller_manager ROS "
+                    "interface.")
+            self.assertTrue(wall_wait(lambda: text in out.text(), 120.0), out.text())
+            self.assertTrue(wall_wait(lambda: not any(n.startswith('/ghost/')
+                                                      for n in rosnode.get_node_names()), 120.0),
+                            rosnode.get_node_names())
         t0 = rospy.get_time()
         sim_sleep(0.5)
         self.assertGreater(rospy.get_time(), t0)
-
 
 if __name__ == '__main__':
     rostest.rosrun('tianracer_tests', 'controller_manager', ControllerManagerTest, sys.argv)

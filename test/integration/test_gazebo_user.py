@@ -15,98 +15,27 @@
 Everything is timed in sim time; wall time only bounds the waits.
 """
 import math
-import os
-import signal
-import subprocess
 import sys
-import tempfile
-import threading
-import time
-import unittest
 
 import rosnode
 import rospy
 import rostest
 import tf2_ros
-from controller_manager_msgs.srv import ListControllers, SwitchController, SwitchControllerRequest
 from gazebo_msgs.srv import GetWorldProperties
-from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Log
-from sensor_msgs.msg import JointState
-from std_msgs.msg import Float64
 
-NS = '/tianracer'
-CONTROLLERS = ['joint_state_controller', 'left_rear_wheel_velocity_controller',
-               'right_rear_wheel_velocity_controller', 'left_steering_hinge_position_controller',
-               'right_steering_hinge_position_controller']
-LEFT, RIGHT = CONTROLLERS[1], CONTROLLERS[2]
+from controller_test_support import (CONTROLLERS, LEFT, NS, RIGHT, STRICT, ControllerTestCase,
+                                     run_spawner, sim_sleep, wall_wait)
+
 STEERING = {CONTROLLERS[3]: 0.0, CONTROLLERS[4]: 0.0}
-STRICT = SwitchControllerRequest.STRICT
 
 
-def wall_wait(predicate, timeout):
-    end = time.time() + timeout
-    while time.time() < end and not rospy.is_shutdown():
-        if predicate():
-            return True
-        time.sleep(0.05)
-    return predicate()
-
-
-def sim_sleep(seconds):
-    target = rospy.get_time() + seconds
-    assert wall_wait(lambda: rospy.get_time() >= target, 120.0), 'sim time stood still'
-
-
-class Latest(object):
-    def __init__(self, topic, cls):
-        self.msg = None
-        rospy.Subscriber(topic, cls, self._cb, queue_size=10)
-
-    def _cb(self, msg):
-        self.msg = msg
-
-
-class GazeboUserTest(unittest.TestCase):
+class GazeboUserTest(ControllerTestCase):
     @classmethod
     def setUpClass(cls):
-        rospy.init_node('test_gazebo_user')
-        cls.logs, cls.lock = [], threading.Lock()
-        cls.rosout = rospy.Subscriber('/rosout', Log, cls.on_log, queue_size=1000)
-        cls.truth = Latest(NS + '/ground_truth/odom', Odometry)
-        cls.joints = Latest(NS + '/joint_states', JointState)
+        cls.start('test_gazebo_user')
         cls.tf = tf2_ros.Buffer()
         cls.tf_listener = tf2_ros.TransformListener(cls.tf)
-        cm = NS + '/controller_manager/'
-        rospy.wait_for_service(cm + 'list_controllers', timeout=240.0)
-        cls.list = rospy.ServiceProxy(cm + 'list_controllers', ListControllers)
-        cls.switch = rospy.ServiceProxy(cm + 'switch_controller', SwitchController)
-        cls.pubs = {name: rospy.Publisher('%s/%s/command' % (NS, name), Float64, queue_size=1)
-                    for name in CONTROLLERS[1:]}
-
-    @classmethod
-    def on_log(cls, msg):
-        with cls.lock:
-            cls.logs.append((msg.name, msg.level, msg.msg))
-
-    def said(self, level=Log.DEBUG):
-        with self.lock:
-            return [(name, text) for name, lvl, text in self.logs if lvl >= level]
-
-    def states(self):
-        return {c.name: c.state for c in self.list().controller}
-
-    def command(self, values, seconds):
-        """Publishes the commands ({controller: value}) at 20 Hz for `seconds` of sim time."""
-        end = rospy.get_time() + seconds
-        while rospy.get_time() < end and not rospy.is_shutdown():
-            for name, value in values.items():
-                self.pubs[name].publish(Float64(value))
-            sim_sleep(0.05)
-
-    def wheel_velocity(self, joint):
-        msg = self.joints.msg
-        return msg.velocity[msg.name.index(joint)]
 
     def test_a_gzserver_runs_the_world_and_spawn_model_the_car(self):
         self.assertIn('/gazebo', rosnode.get_node_names())
@@ -161,11 +90,9 @@ class GazeboUserTest(unittest.TestCase):
         self.command({LEFT: 0.0, RIGHT: 0.0}, 0.5)
 
     def test_f_bad_input_gets_controller_managers_errors_and_the_sim_goes_on(self):
-        # /rosout keeps nothing for late subscribers: the bad spawner starts once this test hears
-        # the sim node's log, and its own errors are read from its output.
-        self.assertTrue(wall_wait(lambda: '/gazebo' in [
-            getattr(c, 'callerid_pub', None) for c in self.rosout.impl.connections], 60.0),
-            'not connected to /gazebo on /rosout')
+        # The bad spawner starts once this test hears the sim node's log (run_spawner).
+        self.assertTrue(wall_wait(lambda: self.hears('/gazebo'), 60.0),
+                        'not connected to /gazebo on /rosout')
         manager_errors = [
             "Could not load controller 'no_such_controller' because the type was not specified. "
             "Did you load the controller configuration on the parameter server (namespace: "
@@ -174,25 +101,14 @@ class GazeboUserTest(unittest.TestCase):
             "'diff_drive_controller/DiffDriveController' does not exist.",
         ]
         spawner_errors = ['Failed to load no_such_controller', 'Failed to load diff_drive_controller']
-        with tempfile.TemporaryFile('w+') as out:
-            spawner = subprocess.Popen(
-                ['rosrun', 'controller_manager', 'spawner', 'no_such_controller',
-                 'diff_drive_controller', '__name:=bad_spawner'],
-                env=dict(os.environ, ROS_NAMESPACE=NS), stdout=out, stderr=subprocess.STDOUT)
-            try:
-                for text in manager_errors:
-                    self.assertTrue(wall_wait(lambda: text in [t for _, t in self.said(Log.ERROR)],
-                                              60.0), '%r not in %r' % (text, self.said(Log.ERROR)))
-
-                def printed():
-                    out.seek(0)
-                    return out.read()
-                for text in spawner_errors:
-                    self.assertTrue(wall_wait(lambda: text in printed(), 60.0),
-                                    '%r not in the spawner\'s output %r' % (text, printed()))
-            finally:
-                spawner.send_signal(signal.SIGINT)
-                spawner.wait(60)
+        with run_spawner(['no_such_controller', 'diff_drive_controller'], NS,
+                         'bad_spawner') as out:
+            for text in manager_errors:
+                self.assertTrue(wall_wait(lambda: text in [t for _, t in self.said(Log.ERROR)],
+                                          60.0), '%r not in %r' % (text, self.said(Log.ERROR)))
+            for text in spawner_errors:
+                self.assertTrue(wall_wait(lambda: text in out.text(), 60.0),
+                                '%r not in the spawner\'s output %r' % (text, out.text()))
         self.assertFalse(self.switch(['not_loaded'], [], STRICT, False, 0.0).ok)
         text = ("Could not start controller with name 'not_loaded' because no controller with "
                 "this name exists")

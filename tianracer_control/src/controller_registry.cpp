@@ -2,12 +2,10 @@
 
 #include <algorithm>
 
-#include "tianracer_control/controllers/effort_forward_controller.h"
 #include "tianracer_control/controllers/effort_joint_position_controller.h"
 #include "tianracer_control/controllers/effort_joint_velocity_controller.h"
+#include "tianracer_control/controllers/forward_command_controller.h"
 #include "tianracer_control/controllers/joint_state_controller.h"
-#include "tianracer_control/controllers/position_forward_controller.h"
-#include "tianracer_control/controllers/velocity_forward_controller.h"
 
 namespace tianracer_control {
 
@@ -17,9 +15,12 @@ const ControllerRegistry& builtinControllers() {
     r.add(JointStateController::kType, &JointStateController::create);
     r.add(EffortJointPositionController::kType, &EffortJointPositionController::create);
     r.add(EffortJointVelocityController::kType, &EffortJointVelocityController::create);
-    r.add(EffortForwardController::kType, &EffortForwardController::create);
-    r.add(VelocityForwardController::kType, &VelocityForwardController::create);
-    r.add(PositionForwardController::kType, &PositionForwardController::create);
+    using Iface = JointHandle::Interface;
+    r.add(ForwardCommandController::kEffortType, &ForwardCommandController::create<Iface::kEffort>);
+    r.add(ForwardCommandController::kVelocityType,
+          &ForwardCommandController::create<Iface::kVelocity>);
+    r.add(ForwardCommandController::kPositionType,
+          &ForwardCommandController::create<Iface::kPosition>);
     return r;
   }();
   return registry;

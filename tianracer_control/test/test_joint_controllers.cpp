@@ -188,7 +188,7 @@ TEST(EffortJointVelocityController, PidOnVelocityError) {
   EXPECT_NEAR(car.left_rear.command, 2.0, 1e-12);
 }
 
-TEST(VelocityForwardController, PassesTheVelocityThroughClamped) {
+TEST(ForwardCommandController, VelocityPassesThroughClamped) {
   Car car;
   ControllerSet set;
   auto& c = set.load(spec("w", "velocity_controllers/JointVelocityController",
@@ -206,7 +206,7 @@ TEST(VelocityForwardController, PassesTheVelocityThroughClamped) {
   EXPECT_EQ(car.left_rear.command, 100.0);
 }
 
-TEST(VelocityForwardController, NoLimitMeansNoClamp) {
+TEST(ForwardCommandController, VelocityWithNoLimitIsNotClamped) {
   Car car;
   car.left_rear.velocity_limit = 0.0;
   ControllerSet set;
@@ -217,7 +217,7 @@ TEST(VelocityForwardController, NoLimitMeansNoClamp) {
   EXPECT_EQ(car.left_rear.command, 1e6);
 }
 
-TEST(PositionForwardController, StartsAtCurrentPositionAndClamps) {
+TEST(ForwardCommandController, PositionStartsAtCurrentPositionAndClamps) {
   Car car;
   car.pos_joint.position = 0.7;
   ControllerSet set;
@@ -230,7 +230,7 @@ TEST(PositionForwardController, StartsAtCurrentPositionAndClamps) {
   EXPECT_EQ(car.pos_joint.command, 2.0);
 }
 
-TEST(EffortForwardController, ClampsToEffortLimit) {
+TEST(ForwardCommandController, EffortClampsToEffortLimit) {
   Car car;
   ControllerSet set;
   auto& c = set.load(spec("e", "effort_controllers/JointEffortController",

@@ -18,9 +18,9 @@ Constraints respected (checked by test/test_description.cpp):
   * nothing that is not a wheel goes below z = -0.003 in base_link (ground is at -0.0095);
   * the chassis stays out of the wheels' volumes, front wheels swept over +-0.6 rad of steering;
   * the lidar's scanning head (a 42 mm puck, z from -0.005 to +0.025 in the lidar frame) encloses
-    its scan plane (z = +0.0124), so another car's lidar sees it; the simulator's rays pass
-    through their own lidar link. The rest of the car stays below z = 0.125 in base_link, so the
-    car's own lidar sees past it;
+    its scan plane (z = +0.0124), so another car's lidar sees it; its own rays start at range min
+    (0.1 m), past the head, as Gazebo's do. The rest of the car stays below z = 0.125 in
+    base_link, so the car's own lidar sees past it;
   * camera and depth-camera meshes stay behind their optical frames (x <= 0) so they do not
     appear in their own images.
 

@@ -550,7 +550,8 @@ TEST(Meshes, LidarHeadEnclosesScanPlaneAndRestOfCarBelowLidar)
     for (const auto& v : mesh.vertices)
       max_z = std::max(max_z, (X_BL * v).z());
     // The lidar's scanning head reaches 12.6 mm above its scan plane, so that other cars' lidars
-    // see it (its own rays pass through it); the rest of the car stays clear by 11 mm.
+    // see it (its own rays start at range min, 0.1 m, past it); the rest of the car stays clear
+    // by 11 mm.
     if (link == "lidar")
       EXPECT_NEAR(max_z, scan_plane_z + 0.0126, 1e-6) << link;
     else

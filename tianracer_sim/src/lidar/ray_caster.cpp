@@ -2,6 +2,7 @@
 #include "tianracer_sim/lidar/ray_caster.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -348,7 +349,6 @@ struct RayCaster::Impl {
     RTCGeometry instance = nullptr;
     std::vector<Analytic> prims;  // never resized after the user geometry is created
     Eigen::Matrix4d X_WB_last = Eigen::Matrix4d::Zero();
-    unsigned mask = 0xFFFFFFFFu;  // instance mask: 0 while its body is ignored
   };
 
   RTCDevice device = nullptr;
@@ -356,7 +356,6 @@ struct RayCaster::Impl {
   std::vector<std::unique_ptr<SubScene>> subs;
   std::vector<std::pair<int, Eigen::Matrix4d>> static_poses;  // rebuild when one changes
   bool built = false;
-  bool masks_supported = false;
   std::size_t n_bodies = 0, n_items = 0;
   std::size_t n_triangles = 0, n_analytic = 0, n_moving = 0;
   std::string last_error;
@@ -367,7 +366,6 @@ struct RayCaster::Impl {
   Impl() {
     device = rtcNewDevice(nullptr);
     if (!device) throw RayCasterError("Embree: rtcNewDevice failed");
-    masks_supported = rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED) != 0;
     rtcSetDeviceErrorFunction(
         device,
         [](void* user, RTCError, const char* str) {
@@ -532,7 +530,7 @@ void RayCaster::build(const Scene& scene) {
   m.built = true;
 }
 
-void RayCaster::update(const Scene& scene, int ignore_body) {
+void RayCaster::update(const Scene& scene) {
   Impl& m = *impl_;
   bool rebuild = !m.built || m.n_bodies != scene.bodies.size() || m.n_items != scene.items.size();
   for (std::size_t i = 0; !rebuild && i < m.static_poses.size(); ++i) {
@@ -540,21 +538,9 @@ void RayCaster::update(const Scene& scene, int ignore_body) {
     rebuild = !scene.bodies[sp.first].is_static || scene.bodies[sp.first].X_WB.matrix() != sp.second;
   }
   if (rebuild) build(scene);
-  if (ignore_body >= 0 && !m.masks_supported) {
-    throw RayCasterError(
-        "Embree: this library was built without ray masks (EMBREE_RAY_MASK), so a "
-        "lidar cannot see through its own housing");
-  }
   bool changed = false;
   for (auto& sub : m.subs) {
     if (sub->body < 0) continue;
-    const unsigned mask = sub->body == ignore_body ? 0u : 0xFFFFFFFFu;
-    if (mask != sub->mask) {
-      rtcSetGeometryMask(sub->instance, mask);
-      rtcCommitGeometry(sub->instance);
-      sub->mask = mask;
-      changed = true;
-    }
     const Eigen::Isometry3d& X = scene.bodies[sub->body].X_WB;
     if (X.matrix() == sub->X_WB_last) continue;
     float xfm[12];
@@ -571,9 +557,10 @@ void RayCaster::update(const Scene& scene, int ignore_body) {
 }
 
 void RayCaster::castRays(const Eigen::Vector3d& origin_W,
-                         const std::vector<Eigen::Vector3f>& directions, float t_max,
-                         float* distances) {
+                         const std::vector<Eigen::Vector3f>& directions, float t_min,
+                         float t_max, float* distances) {
   Impl& m = *impl_;
+  assert(t_min >= 0.0f && t_min <= t_max);
   const int n = static_cast<int>(directions.size());
   const float inf = std::numeric_limits<float>::infinity();
   // Embree aborts (an assertion in Debian's build) on a ray origin that is not finite or beyond
@@ -594,7 +581,7 @@ void RayCaster::castRays(const Eigen::Vector3d& origin_W,
         rh.ray.org_x = o.x(), rh.ray.org_y = o.y(), rh.ray.org_z = o.z();
         rh.ray.dir_x = directions[i].x(), rh.ray.dir_y = directions[i].y(),
         rh.ray.dir_z = directions[i].z();
-        rh.ray.tnear = 0.0f;
+        rh.ray.tnear = t_min;
         rh.ray.tfar = t_max;
         rh.ray.time = 0.0f;
         rh.ray.mask = 0xFFFFFFFFu;
@@ -619,7 +606,7 @@ void RayCaster::castRays(const Eigen::Vector3d& origin_W,
           rh.ray.org_x[j] = o.x(), rh.ray.org_y[j] = o.y(), rh.ray.org_z[j] = o.z();
           rh.ray.dir_x[j] = directions[i].x(), rh.ray.dir_y[j] = directions[i].y(),
           rh.ray.dir_z[j] = directions[i].z();
-          rh.ray.tnear[j] = 0.0f;
+          rh.ray.tnear[j] = t_min;
           rh.ray.tfar[j] = t_max;
           rh.ray.time[j] = 0.0f;
           rh.ray.mask[j] = 0xFFFFFFFFu;
@@ -642,7 +629,7 @@ void RayCaster::castRays(const Eigen::Vector3d& origin_W,
         rh.ray.org_x = o.x(), rh.ray.org_y = o.y(), rh.ray.org_z = o.z();
         rh.ray.dir_x = directions[i].x(), rh.ray.dir_y = directions[i].y(),
         rh.ray.dir_z = directions[i].z();
-        rh.ray.tnear = 0.0f;
+        rh.ray.tnear = t_min;
         rh.ray.tfar = t_max;
         rh.ray.time = 0.0f;
         rh.ray.mask = 0xFFFFFFFFu;

@@ -1,16 +1,26 @@
 // <sensor type="ray"> -> RaySensorConfig, its validation, the range model (ray_sensor.h) and
 // RaySensor.
 //
+// Rays start at <range><min>, as Gazebo's do: gazebo-classic gazebo/physics/MultiRayShape.cc
+// (Init) builds each ray from start = pose + min * axis to end = pose + max * axis, the ODE
+// colliders (physics/ode/ODEMultiRayShape.cc, UpdateCallback) test it against every collision
+// of the world, the sensor's own link included, and GetRange() returns min + the hit's distance
+// along the ray ("Add min range, because we measured from min range"): a distance from the
+// sensor origin. So whatever lies nearer than range_min (the lidar's own housing) is not seen,
+// a ray that starts inside a solid sees the solid's far side (ODE's ray-box and ray-cylinder
+// colliders), and REP 117's masks (RaySensor.cc/GpuRaySensor.cc: r <= min -> -inf, r >= max ->
+// +inf) leave -inf only for a surface at exactly range_min.
+//
 // Deliberate differences from Gazebo, documented here once:
-//  - rays start at the sensor origin (Gazebo starts them at range_min and so sees through
-//    anything closer); a surface closer than range_min reads -inf (REP 117: too close);
+//  - gpu_ray is cast as ray, against collisions; Gazebo's GPU laser (sensors/GpuRaySensor.cc)
+//    renders visuals with range min as its cameras' near clip plane, so off a camera's axis it
+//    sees through a little more than range min (range min / cos of the angle to the axis);
 //  - <horizontal><resolution> other than 1 is accepted but rays = samples (Gazebo casts
 //    samples*resolution rays and interpolates);
 //  - <range><resolution> is not applied to ranges (neither does Gazebo's RaySensor);
 //  - with <vertical><samples> > 1 the rays fan out in elevation too; that is a 3D lidar, whose
 //    velodyne plugin keeps points strictly inside max(min_range, <range><min>) and
-//    min(max_range, <range><max>) (the plugin subtracts <range><min> and 1 cm from the upper
-//    limit, because Gazebo's rays start at <range><min>; ours start at the sensor);
+//    min(max_range, <range><max>) (velodyne_gazebo_plugins GazeboRosVelodyneLaser.cpp, OnScan);
 //  - points carry intensity 0 (Gazebo: the surface's laser_retro, 0 by default);
 //  - frameName defaults to the link name, not gazebo_ros_laser's "/world"; a leading '/' is
 //    dropped (tf2 frame ids have none).
@@ -318,9 +328,9 @@ RaySensor::RaySensor(RaySensorConfig config) : config_(std::move(config)), rng_(
 
 void scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,
               const RaySensorConfig& config, std::mt19937_64& rng, RayScanBuffers* buffers,
-              std::vector<float>* ranges, int ignore_body) {
+              std::vector<float>* ranges) {
   RayScanBuffers& b = *buffers;
-  caster.update(scene, ignore_body);
+  caster.update(scene);
   const int samples = std::max(0, config.samples);
   const int rings = std::max(1, config.vertical_samples);
   const int n = samples * rings;
@@ -347,9 +357,11 @@ void scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_
   b.dirs_W.resize(n);
   const Eigen::Matrix3d R_WS = X_WS.linear();
   for (int i = 0; i < n; ++i) b.dirs_W[i] = (R_WS * b.dirs_S[i]).cast<float>();
-  // Look a little past range_max: anything there maps to +inf anyway.
+  // Rays start at range_min (Gazebo's MultiRayShape) and look a little past range_max:
+  // anything there maps to +inf anyway.
+  const float t_min = static_cast<float>(config.range_min);
   const float t_max = static_cast<float>(config.range_max * (1.0 + 1e-6) + 1e-6);
-  caster.castRays(X_WS.translation(), b.dirs_W, t_max, ranges->data());
+  caster.castRays(X_WS.translation(), b.dirs_W, t_min, t_max, ranges->data());
   if (config.velodyne) {
     applyCloudRangeModel(config, rng, ranges->data(), n);
   } else {
@@ -358,17 +370,16 @@ void scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_
 }
 
 std::vector<float> scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,
-                            const RaySensorConfig& config, std::mt19937_64& rng,
-                            int ignore_body) {
+                            const RaySensorConfig& config, std::mt19937_64& rng) {
   RayScanBuffers buffers;
   std::vector<float> ranges;
-  scanRays(caster, scene, X_WS, config, rng, &buffers, &ranges, ignore_body);
+  scanRays(caster, scene, X_WS, config, rng, &buffers, &ranges);
   return ranges;
 }
 
 const std::vector<float>& RaySensor::scan(RayCaster& caster, const Scene& scene,
-                                          const Eigen::Isometry3d& X_WL, int own_body) {
-  scanRays(caster, scene, X_WL * config_.X_LS, config_, rng_, &buffers_, &ranges_, own_body);
+                                          const Eigen::Isometry3d& X_WL) {
+  scanRays(caster, scene, X_WL * config_.X_LS, config_, rng_, &buffers_, &ranges_);
   return ranges_;
 }
 

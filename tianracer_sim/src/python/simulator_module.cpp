@@ -233,26 +233,14 @@ class Batch {
 PYBIND11_MODULE(simulator, m) {
   m.doc() = "The tianracer simulation without ROS (docs/learning.md).";
 
-  // Bad input of the loaders is a ValueError in Python (with the loaders' messages).
-  static py::exception<ModelError> model_error(m, "ModelError", PyExc_ValueError);
-  static py::exception<WorldError> world_error(m, "WorldError", PyExc_ValueError);
-  static py::exception<tianracer_control::ControllerError> controller_error(m, "ControllerError",
-                                                                            PyExc_ValueError);
-  static py::exception<SensorError> sensor_error(m, "SensorError", PyExc_ValueError);
-  static py::exception<PhysicsError> physics_error(m, "PhysicsError", PyExc_ValueError);
+  // Bad input (a model, world, controller YAML, sensor or physics setting that cannot be used:
+  // the one InputError of diagnostic.h, message with file and line) is a ValueError in Python.
+  static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
-    } catch (const ModelError& e) {
-      model_error(e.what());
-    } catch (const WorldError& e) {
-      world_error(e.what());
-    } catch (const tianracer_control::ControllerError& e) {
-      controller_error(e.what());
-    } catch (const SensorError& e) {
-      sensor_error(e.what());
-    } catch (const PhysicsError& e) {
-      physics_error(e.what());
+    } catch (const InputError& e) {
+      input_error(e.what());
     }
   });
 

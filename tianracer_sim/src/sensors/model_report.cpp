@@ -18,10 +18,6 @@ std::string fmt(double v) { return formatShort(v); }
 std::vector<std::string> typeDifferences(const SensorSpec& s) {
   std::vector<std::string> out;
   if (s.type == "gpu_ray") out.push_back("ray-cast on the CPU (Embree), exactly as type ray");
-  if (s.type == "ray" || s.type == "gpu_ray") {
-    out.push_back("rays start at the sensor: a surface nearer than the minimum range reads -inf "
-                  "(Gazebo starts them at the minimum range)");
-  }
   if (s.type == "camera" || s.type == "depth" || s.type == "multicamera") {
     out.push_back("images are stamped in <frameName>_optical_frame (z forward), not the plain "
                   "frame");

@@ -134,7 +134,7 @@ std::unique_ptr<SimSensor> makeSimSensor(const SensorKind& kind, const SimSensor
 
 SimLidar::SimLidar(const SimSensorSetup& setup, RaySensorConfig config)
     : SimSensor("lidar", config.name, linkOf(setup, config.link), setup.model_name),
-      own_body_(setup.own_body), sensor_(config) {
+      sensor_(config) {
   setup.check_link(config.link);
   schedule_.period = periodOf(config.update_rate);
   stat().name = config.name;
@@ -148,7 +148,7 @@ SensorOutputs SimLidar::update(double t, SensorWorld&) {
 
 void SimLidar::sample(SensorOutputs, SensorWorld& world) {
   const Scene& scene = world.scene();
-  ranges_ = &sensor_.scan(world.caster(), scene, world.linkPose(link()), own_body_);
+  ranges_ = &sensor_.scan(world.caster(), scene, world.linkPose(link()));
 }
 
 // --- camera ---------------------------------------------------------------------------------------

@@ -259,17 +259,9 @@ void Simulator::setUpSensor(ModelId id, const SensorSpec& spec, const std::strin
   setup.model_name = m.name;
   setup.tf_prefix = tf_prefix;
   if (m.robot) {
-    for (const auto& [body, body_link] : m.scene_bodies.links) {
-      if (body_link == spec.link) setup.own_body = body;
-    }
     const PhysicsRobot& pr = sim_.physics().robot(m.robot->id);
     setup.check_link = [&pr](const std::string& l) { (void)pr.linkPose(l); };
   } else {
-    // addToScene names a world model's bodies "<model>::<link>".
-    const std::string body = m.name + "::" + spec.link;
-    for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
-      if (scene_.bodies[b].name == body) setup.own_body = static_cast<int>(b);
-    }
     setup.check_link = [this, id](const std::string& l) { (void)linkPose(LinkRef{id, l}); };
   }
   setup.seed = options_.seed;

@@ -114,6 +114,53 @@ TEST(LidarCloud, RangesMatchAnAnalyticRoom) {
   EXPECT_LT(worst, 1e-3);
 }
 
+// A real 3D lidar model (velodyne_description's VLP-16) puts the sensor 37.7 mm above the base
+// of its housing collision, a cylinder of radius 51.6 mm and height 71.7 mm, with <range><min>
+// 0.9 and the plugin's min_range 0.9. Rays start at range_min, as Gazebo's do, so every ray
+// passes the housing and the cloud is the room (before: every ray hit the housing, no point).
+TEST(LidarCloud, ALidarInsideItsHousingSeesTheRoom) {
+  RaySensorConfig c = velodyne16();
+  c.range_min = 0.9;
+  c.cloud_min_range = 0.9;
+  c.cloud_max_range = 130.0;
+  RayCaster caster;
+  Scene scene = room();
+  SceneBody lidar;
+  lidar.name = "robot::velodyne_base_link";
+  lidar.model = "robot";
+  lidar.is_static = false;
+  lidar.X_WB.translation() = Eigen::Vector3d(0.3, 0.2, 0.5);
+  const int b = scene.addBody(lidar);
+  SceneItem housing;
+  housing.body = b;
+  housing.X_BS.translation() = Eigen::Vector3d(0, 0, 0.03585);
+  housing.shape.type = ShapeType::kCylinder;
+  housing.shape.radius = 0.0516;
+  housing.shape.length = 0.0717;
+  housing.collision = true;
+  housing.visual = false;
+  scene.items.push_back(housing);
+  RaySensor sensor(c);
+  Eigen::Isometry3d X_BS = Eigen::Isometry3d::Identity();
+  X_BS.translation() = Eigen::Vector3d(0, 0, 0.0377);  // velodyne_base_scan_joint
+  const Eigen::Isometry3d X_WS = scene.bodies[b].X_WB * X_BS;
+  const std::vector<float>& r = sensor.scan(caster, scene, X_WS);
+  ASSERT_EQ(r.size(), 16u * 1800u);
+  double worst = 0.0;
+  for (std::size_t k = 0; k < r.size(); ++k) {
+    const double ref = exactRange(X_WS.translation(), sensor.directions()[k]);
+    ASSERT_TRUE(std::isfinite(r[k])) << "ray " << k << " has no point";
+    worst = std::max(worst, std::abs(r[k] - ref));
+  }
+  EXPECT_LT(worst, 1e-3);
+  // A housing that reaches past range_min (radius 1 m) is what the rays see, from inside: its
+  // wall at 1 m is kept, as in Gazebo.
+  scene.items.back().shape.radius = 1.0;
+  RayCaster rebuilt;  // a caster rebuilds on added bodies or items, not on changed shapes
+  const std::vector<float>& inside = sensor.scan(rebuilt, scene, X_WS);
+  EXPECT_NEAR(inside[8 * 1800 + 900], 1.0 / std::cos(c.verticalAngle(8)), 1e-4);
+}
+
 TEST(LidarCloud, RangeModel) {
   RaySensorConfig c = velodyne16();
   c.cloud_min_range = 0.9;

@@ -62,6 +62,13 @@ SceneItem cylinderItem(int body, const Eigen::Isometry3d& X_BS, double r, double
   return it;
 }
 
+SceneItem sphereItem(int body, const Eigen::Isometry3d& X_BS, double r) {
+  SceneItem it = boxItem(body, X_BS, Eigen::Vector3d::Zero());
+  it.shape.type = ShapeType::kSphere;
+  it.shape.radius = r;
+  return it;
+}
+
 int addStatic(Scene& scene, const std::string& name) {
   SceneBody b;
   b.name = name + "::link";
@@ -82,8 +89,10 @@ void addRoom(Scene& scene, double x0, double x1, double y0, double y1) {
 
 // ---- Double-precision reference ---------------------------------------------------------------
 
+// Each gives the first surface point at t >= t_min (the ray's start, range_min): from inside a
+// solid that is its far side, as ODE's ray colliders report it.
 double refBox(const Eigen::Isometry3d& X_WS, const Eigen::Vector3d& half, const Eigen::Vector3d& o,
-              const Eigen::Vector3d& d) {
+              const Eigen::Vector3d& d, double t_min) {
   const Eigen::Isometry3d X_SW = X_WS.inverse();
   const Eigen::Vector3d os = X_SW * o, ds = X_SW.linear() * d;
   double t0 = -kInf, t1 = kInf;
@@ -97,12 +106,12 @@ double refBox(const Eigen::Isometry3d& X_WS, const Eigen::Vector3d& half, const 
     t0 = std::max(t0, a);
     t1 = std::min(t1, b);
   }
-  if (t0 > t1 || t1 < 0) return kInf;
-  return t0 >= 0 ? t0 : t1;
+  if (t0 > t1 || t1 < t_min) return kInf;
+  return t0 >= t_min ? t0 : t1;
 }
 
 double refCylinder(const Eigen::Isometry3d& X_WS, double r, double half_length,
-                   const Eigen::Vector3d& o, const Eigen::Vector3d& d) {
+                   const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_min) {
   const Eigen::Isometry3d X_SW = X_WS.inverse();
   const Eigen::Vector3d os = X_SW * o, ds = X_SW.linear() * d;
   double best = kInf;
@@ -111,32 +120,47 @@ double refCylinder(const Eigen::Isometry3d& X_WS, double r, double half_length,
   const double disc = b * b - a * c;
   if (a > 0 && disc >= 0) {
     for (double t : {(-b - std::sqrt(disc)) / a, (-b + std::sqrt(disc)) / a})
-      if (t >= 0 && std::abs(os.z() + t * ds.z()) <= half_length) best = std::min(best, t);
+      if (t >= t_min && std::abs(os.z() + t * ds.z()) <= half_length) best = std::min(best, t);
   }
   if (ds.z() != 0) {
     for (double z : {-half_length, half_length}) {
       const double t = (z - os.z()) / ds.z();
-      if (t >= 0 && (os + t * ds).head<2>().squaredNorm() <= r * r) best = std::min(best, t);
+      if (t >= t_min && (os + t * ds).head<2>().squaredNorm() <= r * r) best = std::min(best, t);
     }
   }
   return best;
 }
 
-/// Exact first hit over the scene's boxes and cylinders (meshes are unit cubes: boxes).
-double reference(const Scene& scene, const Eigen::Vector3d& o, const Eigen::Vector3d& d) {
+double refSphere(const Eigen::Vector3d& c, double r, const Eigen::Vector3d& o,
+                 const Eigen::Vector3d& d, double t_min) {
+  const Eigen::Vector3d oc = o - c;
+  const double b = oc.dot(d), disc = b * b - (oc.squaredNorm() - r * r);
+  if (disc < 0) return kInf;
+  for (double t : {-b - std::sqrt(disc), -b + std::sqrt(disc)})
+    if (t >= t_min) return t;
+  return kInf;
+}
+
+/// Exact first hit at t >= t_min over the scene's boxes, cylinders and spheres (meshes are unit
+/// cubes: boxes).
+double reference(const Scene& scene, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                 double t_min) {
   double best = kInf;
   for (const SceneItem& it : scene.items) {
     if (!it.collision) continue;
     const Eigen::Isometry3d X = scene.bodies[it.body].X_WB * it.X_BS;
     switch (it.shape.type) {
       case ShapeType::kBox:
-        best = std::min(best, refBox(X, it.shape.size / 2, o, d));
+        best = std::min(best, refBox(X, it.shape.size / 2, o, d, t_min));
         break;
       case ShapeType::kMesh:
-        best = std::min(best, refBox(X, it.shape.scale / 2, o, d));
+        best = std::min(best, refBox(X, it.shape.scale / 2, o, d, t_min));
         break;
       case ShapeType::kCylinder:
-        best = std::min(best, refCylinder(X, it.shape.radius, it.shape.length / 2, o, d));
+        best = std::min(best, refCylinder(X, it.shape.radius, it.shape.length / 2, o, d, t_min));
+        break;
+      case ShapeType::kSphere:
+        best = std::min(best, refSphere(X.translation(), it.shape.radius, o, d, t_min));
         break;
       default:
         ADD_FAILURE() << "no reference for this shape";
@@ -159,7 +183,7 @@ void expectScanMatchesReference(const Scene& scene, const Eigen::Isometry3d& X_W
   for (int i = 0; i < c.samples; ++i) {
     const double a = c.angle(i);
     const Eigen::Vector3d d = X_WS.linear() * Eigen::Vector3d(std::cos(a), std::sin(a), 0.0);
-    const double want = expected(c, reference(scene, X_WS.translation(), d));
+    const double want = expected(c, reference(scene, X_WS.translation(), d, c.range_min));
     if (std::isinf(want)) {
       EXPECT_EQ(ranges[i], want) << "beam " << i;
     } else {
@@ -256,6 +280,89 @@ TEST_P(RayCasterModes, GrazingConvexCorners) {
   expectScanMatchesReference(scene, X_WS, c, r, 1e-3);
 }
 
+// Gazebo's rays start at <range><min> (gazebo-classic physics/MultiRayShape.cc) and report
+// min + the distance along the ray, i.e. the distance from the sensor origin. A lidar inside a
+// housing smaller than range_min (0.1 m) -- an 8 cm box, a cylinder of radius 6 cm, a sphere of
+// radius 7 cm, a 9 cm mesh cube, on a robot's link or static -- sees the room's walls through it.
+TEST_P(RayCasterModes, RaysStartAtRangeMinThroughAHousing) {
+  const RaySensorConfig c = seedConfig();
+  const Eigen::Isometry3d X_WS = pose(0.3, -0.2, 0.5, 0.4);
+  for (int kind = 0; kind < 4; ++kind) {
+    for (bool moving : {true, false}) {
+      Scene scene;
+      addRoom(scene, -2, 2, -2, 2);
+      SceneBody lidar;
+      lidar.name = "robot::lidar_link";
+      lidar.model = "robot";
+      lidar.is_static = !moving;
+      lidar.X_WB = X_WS;
+      const int b = scene.addBody(lidar);
+      const Eigen::Isometry3d X_BS = pose(0.005, -0.01, 0.02, 0.3);  // off-centre, turned
+      if (kind == 0) scene.items.push_back(boxItem(b, X_BS, {0.08, 0.08, 0.08}));
+      if (kind == 1) scene.items.push_back(cylinderItem(b, X_BS, 0.06, 0.1));
+      if (kind == 2) scene.items.push_back(sphereItem(b, X_BS, 0.07));
+      if (kind == 3) {
+        SceneItem cube = boxItem(b, X_BS, Eigen::Vector3d::Zero());
+        cube.shape.type = ShapeType::kMesh;
+        cube.shape.mesh_path = kCube;
+        cube.shape.scale = Eigen::Vector3d(0.09, 0.09, 0.09);
+        scene.items.push_back(cube);
+      }
+      RayCaster caster(options());
+      std::mt19937_64 rng(1);
+      const std::vector<float> r = scanRays(caster, scene, X_WS, c, rng);
+      for (int i = 0; i < c.samples; ++i) {
+        const double a = c.angle(i) + 0.4;
+        const double dx = std::cos(a), dy = std::sin(a);
+        const double want = std::min(dx > 0 ? (2.0 - 0.3) / dx : (-2.0 - 0.3) / dx,
+                                     dy > 0 ? (2.0 + 0.2) / dy : (-2.0 + 0.2) / dy);
+        ASSERT_NEAR(r[i], want, 2e-5) << "housing " << kind << " moving " << moving << " beam " << i;
+      }
+      expectScanMatchesReference(scene, X_WS, c, r, 1e-3);
+    }
+  }
+}
+
+// Only what lies wholly nearer than range_min is unseen: a 2 mm plate ending 1 mm short of
+// range_min is not seen, one starting 1 mm beyond it is (at its distance from the sensor), and
+// one across it is seen from inside, at its far face (ODE's ray-box collider: a ray that starts
+// inside a box hits the face it leaves by).
+TEST_P(RayCasterModes, ObjectJustInsideRangeMinIsNotSeenJustOutsideIs) {
+  const RaySensorConfig c = seedConfig();  // range_min 0.1
+  for (const auto& [near_face, far_face, want] :
+       {std::tuple<double, double, double>{0.097, 0.099, 3.0}, {0.101, 0.103, 0.101},
+        {0.095, 0.105, 0.105}}) {
+    Scene scene;
+    addRoom(scene, -3, 3, -3, 3);
+    const int b = addStatic(scene, "plate");
+    scene.items.push_back(boxItem(b, pose((near_face + far_face) / 2, 0, 0.5),
+                                  {far_face - near_face, 0.4, 1.0}));
+    RayCaster caster(options());
+    std::mt19937_64 rng(1);
+    const std::vector<float> r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
+    EXPECT_NEAR(r[540], want, 1e-6) << "plate from " << near_face << " to " << far_face;
+    expectScanMatchesReference(scene, pose(0, 0, 0.5), c, r, 1e-3);
+  }
+}
+
+// A housing that reaches past range_min is seen from inside, as in Gazebo: a 30 cm cube
+// around the sensor reads its far faces (0.15 m ahead) on every beam.
+TEST_P(RayCasterModes, HousingBeyondRangeMinIsSeenFromInside) {
+  Scene scene;
+  addRoom(scene, -2, 2, -2, 2);
+  const int b = addStatic(scene, "box");
+  scene.items.push_back(boxItem(b, pose(0, 0, 0.5), {0.3, 0.3, 0.3}));
+  RayCaster caster(options());
+  const RaySensorConfig c = seedConfig();
+  std::mt19937_64 rng(1);
+  const std::vector<float> r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
+  for (int i = 0; i < c.samples; ++i) {
+    const double a = c.angle(i);
+    ASSERT_NEAR(r[i], 0.15 / std::max(std::abs(std::cos(a)), std::abs(std::sin(a))), 1e-5)
+        << "beam " << i;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(
     AllModes, RayCasterModes,
     ::testing::Combine(::testing::Values(PrimitiveMode::kHybrid, PrimitiveMode::kAnalytic,
@@ -278,9 +385,10 @@ TEST(RayCaster, RangeLimitsMapToInfinity) {
   RayCaster caster;
   RaySensorConfig c = seedConfig();
   std::mt19937_64 rng(1);
-  // 5 cm from the east wall: beam 540 (0 deg) reads below range_min.
+  // 5 cm from the east wall (10 cm thick): beam 540 (0 deg) starts at range_min inside the
+  // wall and reads its outer face, 15 cm away (what Gazebo's rays do).
   std::vector<float> r = scanRays(caster, scene, pose(1.95, 0, 0.5), c, rng);
-  EXPECT_EQ(r[540], -std::numeric_limits<float>::infinity());
+  EXPECT_NEAR(r[540], 0.15, 1e-5);
   EXPECT_NEAR(r[1080], 2.0 * std::sqrt(2.0), 1.0);  // other beams are finite
   EXPECT_TRUE(std::isfinite(r[1080]));
   // range_max 1.5 in a 4 m room: every beam from the centre is out of range.
@@ -311,6 +419,17 @@ TEST(RayCaster, SensorFarOutsideTheWorldSeesNothing) {
     for (float v : r) EXPECT_EQ(v, std::numeric_limits<float>::infinity()) << x;
   }
   EXPECT_NEAR(scanRays(caster, scene, pose(0, 0, 0.5), c, rng)[540], 2.0, 0.05);  // still works
+}
+
+// REP 117's masks, as Gazebo's RaySensor applies them to min + the distance along the ray:
+// at or below range_min -inf, at or beyond range_max (no hit) +inf.
+TEST(RayCaster, RangeModelMasksTheLimitsToInfinity) {
+  const RaySensorConfig c = seedConfig();
+  std::mt19937_64 rng(3);
+  const float inf = std::numeric_limits<float>::infinity();
+  std::vector<float> r = {0.0f, 0.0999f, 0.1001f, 5.0f, 9.999f, 10.0f, inf};
+  applyRangeModel(c, rng, r.data(), static_cast<int>(r.size()));
+  EXPECT_EQ(r, (std::vector<float>{-inf, -inf, 0.1001f, 5.0f, 9.999f, inf, inf}));
 }
 
 TEST(RayCaster, RangeModelClampsNoise) {
@@ -410,9 +529,11 @@ TEST(RayCaster, MovingBodyIsSeenByTheNextScan) {
   expectScanMatchesReference(scene, pose(0, 0, 0.5), c, r, 1e-3);
 }
 
-TEST(RayCaster, SensorSeesThroughItsOwnHousingButNotAnotherOne) {
-  // Two lidars in housings (0.1 m cubes) 1 m apart in a 6 m room: each scan ignores its own
-  // housing and sees the other's.
+TEST(RayCaster, SensorSeesPastItsOwnHousingAndSeesAnotherOne) {
+  // Two lidars in housings (0.1 m cubes, their faces 5 cm from the sensor: within range_min)
+  // 1 m apart in a 6 m room: each sees the other's housing and the walls past its own. Its
+  // own link is not special: a part of it beyond range_min is seen, as in Gazebo, whose rays
+  // test every collision of the world (physics/ode/ODEMultiRayShape.cc, UpdateCallback).
   Scene scene;
   addRoom(scene, -3, 3, -3, 3);
   int housing[2];
@@ -426,18 +547,17 @@ TEST(RayCaster, SensorSeesThroughItsOwnHousingButNotAnotherOne) {
     scene.items.push_back(boxItem(housing[k], pose(0, 0, 0), {0.1, 0.1, 0.1}));
   }
   RayCaster caster;
-  const RaySensorConfig c = seedConfig();  // beam 540 along +x, 1080 at +135 deg
+  const RaySensorConfig c = seedConfig();  // beam 540 along +x, 180 at -90 deg
   std::mt19937_64 rng(1);
-  std::vector<float> r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng, housing[0]);
+  std::vector<float> r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
   EXPECT_NEAR(r[540], expected(c, 0.95), 1e-5);  // the other housing's near face
-  EXPECT_NEAR(r[180], expected(c, 3.0), 1e-5);     // -90 deg: the room's wall
-  r = scanRays(caster, scene, pose(1, 0, 0.5, M_PI), c, rng, housing[1]);
+  EXPECT_NEAR(r[180], expected(c, 3.0), 1e-5);   // -90 deg: the room's wall
+  r = scanRays(caster, scene, pose(1, 0, 0.5, M_PI), c, rng);
   EXPECT_NEAR(r[540], expected(c, 0.95), 1e-5);
-  // Ignoring nothing, a sensor inside a housing sees its inside: closer than range_min.
+  // A bracket of car 0's own lidar link, 0.4 m to its right: seen.
+  scene.items.push_back(boxItem(housing[0], pose(0, -0.45, 0), {0.1, 0.1, 0.1}));
   r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
-  EXPECT_EQ(r[540], -std::numeric_limits<float>::infinity());
-  // And back to ignoring it (the masks are restored per scan).
-  r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng, housing[0]);
+  EXPECT_NEAR(r[180], expected(c, 0.4), 1e-5);
   EXPECT_NEAR(r[540], expected(c, 0.95), 1e-5);
 }
 

@@ -51,7 +51,6 @@ TEST(SensorsModelReport, GoldenTable) {
   sensor  lidar               gpu_ray                       base_link     simulated, with differences
           /scan sensor_msgs/LaserScan @ 10 Hz
           difference: ray-cast on the CPU (Embree), exactly as type ray
-          difference: rays start at the sensor: a surface nearer than the minimum range reads -inf (Gazebo starts them at the minimum range)
   sensor  sonar               sonar                         base_link     left out
           why: sensor type 'sonar' is not simulated
   sensor  imu_bad_rate        imu                           base_link     left out

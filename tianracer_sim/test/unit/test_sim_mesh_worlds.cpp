@@ -87,7 +87,7 @@ TEST(MeshWorlds, CarStandsOnAZUpCourseWithANodeMatrixAndTheLidarSeesItsWalls) {
     expected.push_back(t);
   }
   std::vector<float> ranges(dirs.size());
-  caster.castRays(o_W, dirs, 10.0f, ranges.data());
+  caster.castRays(o_W, dirs, 0.0f, 10.0f, ranges.data());
   for (std::size_t k = 0; k < dirs.size(); ++k) {
     ASSERT_NEAR(ranges[k], expected[k], 0.005) << "beam " << k << " deg";
   }

@@ -95,7 +95,7 @@ TEST(WorldModelSensors, AFallingModelsSensorMovesWithIt) {
   ASSERT_NE(beam, nullptr);
   sim.step(1);
   ASSERT_EQ(beam->ranges().size(), 1u);
-  EXPECT_NEAR(beam->ranges()[0], 2.0, 0.02);  // the ground 2 m below the box's centre
+  EXPECT_NEAR(beam->ranges()[0], 2.0, 0.02);  // the ground 2 m below the box's centre's level
   const auto* truth = dynamic_cast<const SimP3d*>(sim.findSensor(faller, "faller_truth"));
   ASSERT_NE(truth, nullptr);
   EXPECT_NEAR(truth->reading().position.z(), 2.0, 1e-3);

@@ -49,7 +49,8 @@ struct RayCasterOptions {
 
 /// Casts rays and nothing else: beam layout, range limits and noise belong to the sensor
 /// (RaySensor). Not thread-safe: one caster per thread (each owns its Embree device and
-/// scenes). Rays start at their origin (t = 0).
+/// scenes). A ray is the segment t in [t_min, t_max] of origin + t * direction: what lies
+/// nearer than t_min is not seen, and distances are still measured from the origin.
 class RayCaster {
  public:
   explicit RayCaster(RayCasterOptions options = {});
@@ -63,17 +64,17 @@ class RayCaster {
   /// update() when the number of bodies or items has changed since the last build.
   void build(const Scene& scene);
   /// Sets the moving bodies' transforms from the scene (commits only if one changed). Static
-  /// bodies are read at build time only. Rays pass through the moving body `ignore_body`
-  /// (a Scene body index; -1 = none): a lidar sits inside its own housing, as Gazebo's rays
-  /// start at range_min outside it. Needs Embree's ray masks (throws RayCasterError
-  /// when the library was built without them).
-  void update(const Scene& scene, int ignore_body = -1);
+  /// bodies are read at build time only. Every body is seen, the sensor's own included, as by
+  /// Gazebo's rays (a housing within range_min is passed because rays start there).
+  void update(const Scene& scene);
 
-  /// Distance along each ray to the first collision surface in [0, t_max), or +inf.
-  /// `directions` are unit vectors in the world frame, one result per direction. Call
-  /// update() first so that moving bodies are where the scene says.
+  /// Distance from `origin_W` along each ray to the first collision surface with t in
+  /// [t_min, t_max], or +inf. A ray that starts inside a solid (t_min inside it) hits the
+  /// solid's far side, as ODE's ray colliders do. `directions` are unit vectors in the world
+  /// frame, one result per direction. Call update() first so that moving bodies are where the
+  /// scene says.
   void castRays(const Eigen::Vector3d& origin_W, const std::vector<Eigen::Vector3f>& directions,
-                float t_max, float* distances);
+                float t_min, float t_max, float* distances);
 
   /// Statistics of the last build.
   std::size_t triangleCount() const;

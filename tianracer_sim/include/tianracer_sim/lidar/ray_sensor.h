@@ -98,7 +98,8 @@ class RayCaster;
 struct Scene;
 
 /// Applies the range model to true ranges (distances from the sensor origin, +inf for no hit):
-///   r >= range_max -> +inf;  r <= range_min -> -inf;
+///   r >= range_max -> +inf;  r <= range_min -> -inf (REP 117, as Gazebo's RaySensor; rays
+///   cast from range_min reach that only for a surface at range_min);
 ///   else r + N(mean, stddev) clamped to [range_min, range_max] (noise enabled), r otherwise.
 /// Noise is drawn only for in-range beams, in beam order, from `rng`.
 void applyRangeModel(const RaySensorConfig& config, std::mt19937_64& rng, float* ranges, int n);
@@ -121,16 +122,16 @@ struct RayScanBuffers {
 /// One scan from the sensor pose X_WS: ray (j, i) at index j * samples + i along
 /// (cos p_j cos a_i, cos p_j sin a_i, sin p_j) in the sensor frame, a_i = config.angle(i),
 /// p_j = config.verticalAngle(j) (a planar lidar: j = 0, p = 0), true ranges from the caster
-/// (moving bodies updated first, the scene body `ignore_body` seen through), then
-/// applyRangeModel() (applyCloudRangeModel() for a velodyne) with noise from `rng`.
-/// `ranges` is resized to rayCount(); no allocation once warm.
+/// over [range_min, range_max] as in Gazebo (what lies nearer than range_min is not seen,
+/// every body beyond it is, the sensor's own included; ranges are distances from the sensor
+/// origin; moving bodies updated first), then applyRangeModel() (applyCloudRangeModel() for a
+/// velodyne) with noise from `rng`. `ranges` is resized to rayCount(); no allocation once warm.
 void scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,
               const RaySensorConfig& config, std::mt19937_64& rng, RayScanBuffers* buffers,
-              std::vector<float>* ranges, int ignore_body = -1);
+              std::vector<float>* ranges);
 /// As above with buffers of its own (allocates; for tests and tools).
 std::vector<float> scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,
-                            const RaySensorConfig& config, std::mt19937_64& rng,
-                            int ignore_body = -1);
+                            const RaySensorConfig& config, std::mt19937_64& rng);
 
 /// A configured ray sensor with its own noise generator (std::mt19937_64 seeded with
 /// config.seed): the same seed and the same scenes give identical scans.
@@ -142,11 +143,10 @@ class RaySensor {
   const RaySensorConfig& config() const { return config_; }
   void reseed(std::uint64_t seed) { rng_.seed(seed); }
 
-  /// One scan from X_WS = X_WL * X_LS (X_WL: the pose of the sensor's link in the world),
-  /// seeing through the scene body `own_body` (the sensor's link; -1 = none).
+  /// One scan from X_WS = X_WL * X_LS (X_WL: the pose of the sensor's link in the world).
   /// The returned buffer is reused by the next call (no allocation once warm).
   const std::vector<float>& scan(RayCaster& caster, const Scene& scene,
-                                 const Eigen::Isometry3d& X_WL, int own_body = -1);
+                                 const Eigen::Isometry3d& X_WL);
   /// Unit ray directions in the sensor frame, in range order (valid after a scan).
   const std::vector<Eigen::Vector3d>& directions() const { return buffers_.dirs_S; }
 

@@ -29,7 +29,6 @@ struct SimSensorSetup {
   ModelId model = kNoModel;
   std::string model_name;     // also Gazebo's default namespace of some plugins
   std::string tf_prefix;      // "" or e.g. "tianracer_02": prefixes the frames of its outputs
-  int own_body = -1;          // scene body of the sensor's link (a lidar sees through it)
   std::uint64_t seed = 0;     // the simulation's seed
   int index = 0;              // sensors of this kind set up before this one
   Eigen::Vector3d gravity{0.0, 0.0, -9.8};  // the world's, m/s^2
@@ -61,7 +60,6 @@ class SimLidar : public SimSensor {
   void restart(double t) override { schedule_.restart(t); }
 
  private:
-  int own_body_;
   RaySensor sensor_;
   Schedule schedule_;
   const std::vector<float>* ranges_ = &empty_;
