@@ -471,6 +471,15 @@ RobotExtensions parseExtensionsXml(const XMLElement* robot, const std::string& s
 
 }  // namespace model_internal
 
+SensorSpec parseSensorElement(const XMLElement* sensor, const std::string& link,
+                              const std::string& source) {
+  return parseSensor(sensor, link, source);
+}
+
+PluginSpec parsePluginElement(const XMLElement* plugin, const std::string& source) {
+  return parsePlugin(plugin, source);
+}
+
 RobotExtensions parseExtensions(const std::string& urdf_xml, const std::string& source,
                                 const WarningSink& warn) {
   tinyxml2::XMLDocument doc;

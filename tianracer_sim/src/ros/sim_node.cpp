@@ -61,6 +61,8 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   options.log.warn = [](const std::string& w) { warnOnce(w); };
   options.log.error = [](const std::string& m) { ROS_ERROR_STREAM(m); };
   options.log.frame_error = [](const std::string& m) { ROS_ERROR_STREAM_THROTTLE(10.0, m); };
+  // Sensors on the world's models (and spawn_sdf_model's) publish as a robot's do.
+  options.attach_world_sensor = [this](SimSensor& sensor) { attachWorldSensor(sensor); };
   sim_ = std::make_unique<Simulator>(std::move(world), std::move(options));
   sim_->setPaused(paused);
 

@@ -188,6 +188,20 @@ void SimNode::claimTopic(const std::string& topic, const std::string& owner) {
   }
 }
 
+void SimNode::attachWorldSensor(SimSensor& sensor) {
+  PublisherSetup publisher;
+  publisher.robot_name = sensor.modelName();
+  publisher.root = root_;
+  publisher.static_tf = &static_tf_;
+  publisher.world_model = true;
+  const std::string model = sensor.modelName();
+  publisher.claim_topic = [this, model](const std::string& topic, const std::string& owner) {
+    claimTopic(topic, owner);
+    world_model_topics_[model].push_back(topic);
+  };
+  sensor.setListener(makeSensorPublisher(sensor, publisher));
+}
+
 void SimNode::spawnRobot(const std::string& name, const std::string& urdf,
                          const Eigen::Isometry3d& X_WB) {
   const ros::NodeHandle rp(pnh_, name);
@@ -219,6 +233,12 @@ void SimNode::deleteModel(const std::string& name) {
     updateCommandTopics();
   }
   sim_->removeModel(name);
+  // A world model's sensor topics are free again once its sensors (and publishers) are gone.
+  const auto topics = world_model_topics_.find(name);
+  if (topics != world_model_topics_.end()) {
+    for (const std::string& topic : topics->second) topic_owner_.erase(topic);
+    world_model_topics_.erase(topics);
+  }
 }
 
 }  // namespace tianracer_sim

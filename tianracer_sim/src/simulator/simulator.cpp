@@ -40,6 +40,7 @@ Simulator::Simulator(WorldDescription world, SimulatorOptions options)
     models_.push_back(std::move(entry));
   }
   addToScene(*world_, scene_);
+  for (std::size_t id = 0; id < models_.size(); ++id) setUpWorldModelSensors(static_cast<ModelId>(id));
   char line[512];
   std::snprintf(line, sizeof(line), "world '%s' (%s): %zu models, %d collision shapes, ground plane %s",
                 world_->name.c_str(), world_->source.c_str(), world_->models.size(), shapes,
@@ -82,6 +83,8 @@ ModelId Simulator::addRobot(RobotSpawn spawn) {
 }
 
 ModelId Simulator::addWorldModel(ModelDescription model) {
+  // Its cameras are set up on the renderer the frame worker may be drawing with.
+  waitFrames();
   Model entry;
   entry.name = model.name;
   entry.bodies = addModelToPhysics(*world_, model, &sim_.physics(), options_.log.warn);
@@ -98,7 +101,9 @@ ModelId Simulator::addWorldModel(ModelDescription model) {
   scene_step_ = ~0ull;
   world_->models.push_back(std::move(model));
   models_.push_back(std::move(entry));
-  return static_cast<ModelId>(models_.size() - 1);
+  const ModelId id = static_cast<ModelId>(models_.size() - 1);
+  setUpWorldModelSensors(id);
+  return id;
 }
 
 void Simulator::removeModel(const std::string& name) {
@@ -188,7 +193,7 @@ void Simulator::setUpSensors(ModelId id, const RobotSpawn& spawn) {
         models_[id].left_out[spec.name] = kDisabledBySensorList;
         continue;
       }
-      setUpSensor(id, spawn, spec);
+      setUpSensor(id, spec, spawn.tf_prefix, spawn.attach);
     }
   }
   // Model plugins that publish like sensors (an IMU plugin, ground truth) go the same way.
@@ -201,48 +206,80 @@ void Simulator::setUpSensors(ModelId id, const RobotSpawn& spawn) {
       models_[id].left_out[spec.name] = kDisabledBySensorList;
       continue;
     }
-    setUpSensor(id, spawn, spec);
+    setUpSensor(id, spec, spawn.tf_prefix, spawn.attach);
   }
 }
 
-void Simulator::setUpSensor(ModelId id, const RobotSpawn& spawn, const SensorSpec& spec) {
+void Simulator::setUpWorldModelSensors(ModelId id) {
+  // A world model's sensors are made as a robot's are: Gazebo's sensors::SensorManager creates
+  // every <sensor> of every link, whatever the model (gazebo/sensors/SensorManager.cc), and
+  // their gazebo_ros plugins publish under their own robotNamespace ("" = "/": a world model
+  // has no namespace of its own; gazebo_plugins/src/gazebo_ros_camera_utils.cpp,
+  // gazebo_ros_laser.cpp).
+  const std::string& name = models_[id].name;
+  for (const ModelDescription& d : world_->models) {
+    if (d.name != name) continue;
+    for (const LinkDescription& link : d.links) {
+      for (const SensorSpec& spec : link.sensors) {
+        setUpSensor(id, spec, "", options_.attach_world_sensor);
+      }
+    }
+    // Model plugins that publish like sensors (ground truth, an IMU plugin), as for a robot.
+    for (const PluginSpec& plugin : d.plugins) {
+      const SensorSpec spec = modelPluginSensor(plugin);
+      if (!findSensorKind(spec)) {
+        say(options_.log.warn, plugin.source + ":" + std::to_string(plugin.line) + ": model '" +
+                                   name + "': plugin '" + plugin.name + "' (" + plugin.filename +
+                                   ") is not simulated; ignored");
+        continue;
+      }
+      setUpSensor(id, spec, "", options_.attach_world_sensor);
+    }
+  }
+}
+
+void Simulator::setUpSensor(ModelId id, const SensorSpec& spec, const std::string& tf_prefix,
+                            const std::function<void(SimSensor&)>& attach) {
   Model& m = models_[id];
-  const SimRobot& robot = *m.robot;
-  const PhysicsRobot& pr = sim_.physics().robot(robot.id);
+  const std::string owner = (m.robot ? "robot '" : "model '") + m.name + "'";
   const std::string what = spec.type.empty() ? "plugin" : "sensor";
   if (!spec.error.empty()) {
-    say(options_.log.error, "robot '" + robot.name + "': " + what + " '" + spec.name +
-                                "' left out: " + spec.error);
+    say(options_.log.error, owner + ": " + what + " '" + spec.name + "' left out: " + spec.error);
     return;
   }
   const SensorKind* kind = findSensorKind(spec);
   if (!kind) {
-    say(options_.log.warn, "robot '" + robot.name + "': sensor '" + spec.name + "' of type '" +
-                               spec.type + "' is not supported; left out");
+    say(options_.log.warn, owner + ": sensor '" + spec.name + "' of type '" + spec.type +
+                               "' is not supported; left out");
     return;
   }
   SimSensorSetup setup;
   setup.spec = &spec;
   setup.model = id;
-  setup.model_name = robot.name;
-  setup.tf_prefix = spawn.tf_prefix;
+  setup.model_name = m.name;
+  setup.tf_prefix = tf_prefix;
+  if (m.robot) {
+    const PhysicsRobot& pr = sim_.physics().robot(m.robot->id);
+    setup.check_link = [&pr](const std::string& l) { (void)pr.linkPose(l); };
+  } else {
+    setup.check_link = [this, id](const std::string& l) { (void)linkPose(LinkRef{id, l}); };
+  }
   setup.seed = options_.seed;
   setup.index = sensors_of_kind_[kind->id];
   setup.gravity = sim_.physics().options().gravity;
   setup.dt = sim_.physics().options().dt;
   setup.warn = options_.log.warn;
-  setup.check_link = [&pr](const std::string& l) { (void)pr.linkPose(l); };
   setup.renderer = [this]() { return ensureRenderer(); };
-  // A bad sensor is reported and left out; the robot and the other sensors run on.
+  // A bad sensor is reported and left out; the model and the other sensors run on.
   try {
     std::unique_ptr<SimSensor> sensor = makeSimSensor(*kind, setup);
     if (!sensor) return;
-    if (spawn.attach) spawn.attach(*sensor);
+    if (attach) attach(*sensor);
     sensors_.push_back(std::move(sensor));
     ++sensors_of_kind_[kind->id];
   } catch (const std::exception& e) {
-    say(options_.log.error, "robot '" + robot.name + "': " + what + " '" + spec.name +
-                                "' on link '" + spec.link + "' left out: " + e.what());
+    say(options_.log.error, owner + ": " + what + " '" + spec.name + "' on link '" + spec.link +
+                                "' left out: " + e.what());
     m.left_out[spec.name] = e.what();
   }
 }

@@ -204,6 +204,12 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
       LinkDescription l = parseLink(c, m.name);
       if (!link_names.insert(l.name).second) fail(c, what + ": duplicate link name '" + l.name + "'");
       m.links.push_back(std::move(l));
+    } else if (tag == "plugin") {
+      try {
+        m.plugins.push_back(parsePluginElement(c, source_));
+      } catch (const ModelError& err) {
+        leftOutError(err, "the plugin is left out");
+      }
     } else if (tag == "allow_auto_disable") {
       m.allow_auto_disable = boolean(c, what);
     } else if (tag == "joint") {
@@ -325,6 +331,13 @@ LinkDescription Parser::parseLink(const XMLElement* e, const std::string& model)
         l.collisions.push_back({name, *shape, X_LS, friction, c->GetLineNum(), contact});
       } else {
         l.visuals.push_back({name, *shape, X_LS, material, c->GetLineNum()});
+      }
+    } else if (tag == "sensor") {
+      // The robot loader's <sensor> parser: the sensor kinds read the rest from its XML.
+      try {
+        l.sensors.push_back(parseSensorElement(c, l.name, source_));
+      } catch (const ModelError& err) {
+        leftOutError(err, "the sensor is left out");
       }
     } else {
       unsupported(c);
@@ -477,6 +490,14 @@ std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::strin
 void Parser::leftOut(const XMLElement* e, const std::string& problem,
                      const std::string& consequence) {
   const std::string message = at(e) + problem;
+  if (options_.strict) throw WorldError(message);
+  const WarningSink& sink = options_.error ? options_.error : options_.warn;
+  if (sink) sink(message + "; " + consequence);
+}
+
+void Parser::leftOutError(const InputError& error, const std::string& consequence) {
+  // The message starts with the place already.
+  const std::string message = error.what();
   if (options_.strict) throw WorldError(message);
   const WarningSink& sink = options_.error ? options_.error : options_.warn;
   if (sink) sink(message + "; " + consequence);

@@ -275,8 +275,14 @@ void Parser::mergeSubModel(ModelDescription* m, const ModelDescription& sub,
                            const Eigen::Isometry3d& X_MS) {
   for (LinkDescription l : sub.links) {
     l.name = sub.name + "::" + l.name;
+    for (SensorSpec& sensor : l.sensors) sensor.link = l.name;
     l.X_ML = X_MS * l.X_ML;
     m->links.push_back(std::move(l));
+  }
+  for (PluginSpec p : sub.plugins) {
+    auto body = p.params.find("bodyName");
+    if (body != p.params.end() && !body->second.empty()) body->second = sub.name + "::" + body->second;
+    m->plugins.push_back(std::move(p));
   }
   for (JointDescription j : sub.joints) {
     j.name = sub.name + "::" + j.name;

@@ -80,6 +80,9 @@ class Parser : public XmlReader {
   /// `consequence` ("the collision is left out") and parsing goes on, as in Gazebo; with
   /// strict options it is a WorldError.
   void leftOut(const XMLElement* e, const std::string& problem, const std::string& consequence);
+  /// As leftOut, for an error whose message names its place already (the robot loader's
+  /// <sensor> and <plugin> parsers).
+  void leftOutError(const InputError& error, const std::string& consequence);
 
   std::string source_;
   std::string base_dir_;

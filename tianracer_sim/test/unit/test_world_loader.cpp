@@ -133,10 +133,15 @@ TEST(WorldLoader, FeaturesWorld) {
   EXPECT_EQ(c.count("<cast_shadows> in <light>"), 1);
   EXPECT_EQ(c.count("<light name='bulb'> (point) is approximated by a directional light"), 1);
   EXPECT_EQ(c.count("<plugin> in <world>"), 1);
-  EXPECT_EQ(c.count("<plugin> in <model>"), 1);
+  // A model's <plugin> is the model's (the Simulator sets up those it simulates, reports the
+  // rest: test_simulator_world_model_sensors.cpp).
+  EXPECT_EQ(c.count("<plugin> in <model>"), 0);
+  ASSERT_EQ(crate.plugins.size(), 1u);
+  EXPECT_EQ(crate.plugins[0].filename, "libmodel_plugin.so");
+  EXPECT_EQ(crate.plugins[0].line, 88);
   EXPECT_EQ(c.count("<fdir1> in <ode>"), 1);
   EXPECT_EQ(c.count("<cast_shadows> in <visual>"), 1);
-  EXPECT_EQ(c.warnings.size(), 9u) << ::testing::PrintToString(c.warnings);
+  EXPECT_EQ(c.warnings.size(), 8u) << ::testing::PrintToString(c.warnings);
 }
 
 TEST(WorldLoader, AddToScene) {

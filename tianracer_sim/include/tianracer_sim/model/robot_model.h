@@ -16,6 +16,10 @@
 
 #include "tianracer_sim/common/diagnostic.h"
 
+namespace tinyxml2 {
+class XMLElement;
+}
+
 namespace tianracer_sim {
 
 /// Errors in a model file; the message names the file, element and value.
@@ -138,6 +142,17 @@ std::string expandXacro(const std::string& path, const std::vector<std::string>&
 /// As above; what xacro prints on stderr while succeeding (deprecations...) goes to `warn`.
 std::string expandXacro(const std::string& path, const std::vector<std::string>& args,
                         const WarningSink& warn);
+
+/// Parses one SDF <sensor> element on `link` (a robot's <gazebo reference> or a world model's
+/// <link>: SDF's <sensor> is the same in both) into the SensorSpec the sensor registry takes.
+/// Throws ModelError "<source>:<line>: ..." for a sensor without name or type or a <plugin>
+/// without filename; a bad <pose>, <update_rate> or <always_on> is kept in SensorSpec::error.
+SensorSpec parseSensorElement(const tinyxml2::XMLElement* sensor, const std::string& link,
+                              const std::string& source);
+
+/// Parses one <plugin> element (filename, name, its children as text). Throws ModelError
+/// "<source>:<line>: ..." for a plugin without filename.
+PluginSpec parsePluginElement(const tinyxml2::XMLElement* plugin, const std::string& source);
 
 /// Parses only the extension tags (gazebo, transmission) of a URDF string; used by the fuzzer.
 RobotExtensions parseExtensions(const std::string& urdf_xml, const std::string& source,

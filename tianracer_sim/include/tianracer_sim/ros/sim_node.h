@@ -99,6 +99,10 @@ class SimNode : private ModelSpawner {
   void updateCommandTopics();
   /// Advertises `topic` for a robot's sensor; throws when another sensor publishes there.
   void claimTopic(const std::string& topic, const std::string& owner);
+  /// The publisher of a world model's sensor (SimulatorOptions::attach_world_sensor): the same
+  /// as a robot's sensor of its kind, without tf_prefix; a camera's optical frame hangs from
+  /// its frameName.
+  void attachWorldSensor(SimSensor& sensor);
 
   void stepOnce();
   /// Publishes what is due at this step; `clock` false leaves /clock to the caller (lockstep).
@@ -120,6 +124,7 @@ class SimNode : private ModelSpawner {
   tf2_ros::StaticTransformBroadcaster static_tf_;
   std::vector<std::unique_ptr<RobotBridge>> robots_;  // in the order they were added
   std::map<std::string, std::string> topic_owner_;    // sensor topics: who publishes there
+  std::map<std::string, std::vector<std::string>> world_model_topics_;  // by world model name
   std::unique_ptr<ContactPublisher> contacts_;        // robots' contacts on their topics
   ros::Publisher clock_pub_, diagnostics_pub_;
   Schedule clock_schedule_;

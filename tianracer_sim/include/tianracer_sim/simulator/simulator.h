@@ -61,6 +61,10 @@ struct SimulatorOptions {
   /// Seed of the sensors' noise: same seed, same noise.
   std::uint64_t seed = 0;
   SimulatorLog log;
+  /// Called for each sensor of a world model (the world's, in the constructor, and
+  /// addWorldModel's) before it first runs, as RobotSpawn::attach is for a robot's. A throw
+  /// leaves the sensor out, with the message as the reason.
+  std::function<void(SimSensor&)> attach_world_sensor;
 };
 
 /// A robot to add (start-up and spawn_urdf_model alike).
@@ -107,8 +111,9 @@ class Simulator : public SensorWorld {
   /// Adds a robot with its controllers and sensors (spawn.added() in between). Throws (a message naming the robot) on bad
   /// input; nothing of the robot stays then. A bad sensor is left out (leftOut()), not thrown.
   ModelId addRobot(RobotSpawn spawn);
-  /// Adds a world model (spawn_sdf_model) where model.X_WM says. Throws naming the model;
-  /// nothing of it stays then.
+  /// Adds a world model (spawn_sdf_model) where model.X_WM says, with the sensors of its links
+  /// (as the world's models get theirs). Throws naming the model; nothing of it stays then. A
+  /// bad sensor is left out (leftOut()), not thrown.
   ModelId addWorldModel(ModelDescription model);
   /// Takes a robot or world model out with everything of it (sensors, scene, physics). Throws
   /// std::runtime_error for an unknown name or the ground plane.
@@ -120,7 +125,7 @@ class Simulator : public SensorWorld {
   const SimRobot* robot(ModelId id) const;
   /// Ids of the robots, in the order they were added.
   std::vector<ModelId> robotIds() const;
-  /// The sensors of robot `id` left out, and why (the start-up table's "left out" rows).
+  /// The sensors of model `id` (a robot or a world model) left out, and why (the start-up table's "left out" rows).
   const LeftOut& leftOut(ModelId id) const;
 
   // --- time -----------------------------------------------------------------------------------
@@ -212,7 +217,11 @@ class Simulator : public SensorWorld {
   /// The physics of a model (a robot, or a world model's free body); nullptr for static ones.
   const PhysicsRobot* physicsOf(ModelId id) const;
   void setUpSensors(ModelId id, const RobotSpawn& spawn);
-  void setUpSensor(ModelId id, const RobotSpawn& spawn, const SensorSpec& spec);
+  /// The sensors of world model `id`'s links, attached through options_.attach_world_sensor.
+  void setUpWorldModelSensors(ModelId id);
+  /// One sensor of robot or world model `id`; a bad one is reported and left out.
+  void setUpSensor(ModelId id, const SensorSpec& spec, const std::string& tf_prefix,
+                   const std::function<void(SimSensor&)>& attach);
   Renderer* ensureRenderer();
   void restartLockstep(double t);
   void updateScene();

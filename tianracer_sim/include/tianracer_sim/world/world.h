@@ -11,7 +11,7 @@
 // see parseLight), static or dynamic <model>s with <pose>, <joint>s and <link>s (<pose>,
 // <inertial>, <collision>, <visual>; geometry box, cylinder, sphere, plane, mesh; <material>
 // colours or Gazebo script names; <surface><friction><ode> mu/mu2, <surface><contact><ode>
-// kp/kd/max_vel/min_depth), and a saved <state> (model and link poses override <pose>, as
+// kp/kd/max_vel/min_depth; <sensor> with its <plugin>s, as a robot's), model <plugin>s, and a saved <state> (model and link poses override <pose>, as
 // Gazebo does on load; <insertions>, <deletions>). Everything else is reported once per element
 // name through the WarningSink, with file and line; nothing is dropped silently.
 #ifndef TIANRACER_SIM_WORLD_WORLD_H
@@ -91,6 +91,11 @@ struct LinkDescription {
   bool self_collide = false;
   std::vector<CollisionDescription> collisions;
   std::vector<VisualDescription> visuals;
+  /// <sensor>s, in the form robots' <gazebo reference> sensors take (SensorSpec::link is this
+  /// link's name, "<sub>::<link>" in a merged nested model): the Simulator sets them up with
+  /// the same sensor registry as a robot's (Gazebo: sensors::SensorManager makes a link's
+  /// sensors whatever model the link belongs to, gazebo/sensors/SensorManager.cc).
+  std::vector<SensorSpec> sensors;
   int line = 0;
 };
 
@@ -122,6 +127,11 @@ struct ModelDescription {
   Eigen::Isometry3d X_WM = Eigen::Isometry3d::Identity();
   std::vector<LinkDescription> links;
   std::vector<JointDescription> joints;
+  /// <plugin>s of the model. Those that publish like sensors (libgazebo_ros_p3d,
+  /// libgazebo_ros_imu: sensors/sensor_registry.h) are set up as a robot's model plugins; the
+  /// Simulator reports the others as not simulated. A nested model's come with its bodyName
+  /// as "<sub>::<link>".
+  std::vector<PluginSpec> plugins;
   int line = 0;
 };
 

@@ -13,7 +13,7 @@ class BumperPublisher : public SensorListener {
   BumperPublisher(SimBumper& sensor, const PublisherSetup& setup) {
     const BumperConfig& config = sensor.config();
     const std::string topic = config.topic();
-    setup.claim_topic(topic, "robot '" + setup.robot_name + "' contact sensor '" + config.name + "'");
+    setup.claim_topic(topic, setup.owner() + " contact sensor '" + config.name + "'");
     ros::NodeHandle root = setup.root;
     pub_ = root.advertise<gazebo_msgs::ContactsState>(topic, 10);
     sensor.stat().name = topic;

@@ -19,7 +19,13 @@ void sendOpticalFrame(const PublisherSetup& setup, const std::string& link,
   geometry_msgs::TransformStamped tf;
   tf.header.frame_id = tianracer_control::resolveFrame(setup.tf_prefix, link);
   tf.child_frame_id = camera.opticalFrame();
-  const Eigen::Isometry3d X_LO = camera.X_LO();
+  Eigen::Isometry3d X_LO = camera.X_LO();
+  if (setup.world_model) {
+    // Nothing puts a world model's links on TF (neither does Gazebo): the optical frame hangs
+    // from the frameName the plugin names (the sensor's frame), which the user may place.
+    tf.header.frame_id = camera.frame_name;
+    X_LO = camera.X_LS.inverse() * X_LO;
+  }
   const Eigen::Quaterniond q(X_LO.linear());
   tf.transform.translation.x = X_LO.translation().x();
   tf.transform.translation.y = X_LO.translation().y();
@@ -39,7 +45,7 @@ ros::NodeHandle prepareCamera(const PublisherSetup& setup, const SimSensor& sens
                               const CameraConfig& camera) {
   ros::NodeHandle cam_nh(setup.root, resolveTopic(camera.robot_namespace, camera.camera_name));
   setup.claim_topic(cam_nh.getNamespace(),
-                    "robot '" + setup.robot_name + "' camera '" + sensor.name() + "'");
+                    setup.owner() + " camera '" + sensor.name() + "'");
   sendOpticalFrame(setup, sensor.link().link, camera);
   return cam_nh;
 }

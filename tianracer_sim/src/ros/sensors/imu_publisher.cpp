@@ -14,7 +14,7 @@ class ImuPublisher : public SensorListener {
   ImuPublisher(SimImu& sensor, const PublisherSetup& setup) {
     const ImuConfig& config = sensor.config();
     const std::string topic = config.topic();
-    setup.claim_topic(topic, "robot '" + setup.robot_name + "' IMU '" + config.name + "'");
+    setup.claim_topic(topic, setup.owner() + " IMU '" + config.name + "'");
     ros::NodeHandle root = setup.root;
     pub_ = root.advertise<sensor_msgs::Imu>(topic, 10);
     if (config.model_plugin && !config.service_name.empty()) {

@@ -14,7 +14,7 @@ class LidarPublisher : public SensorListener {
   LidarPublisher(SimLidar& sensor, const PublisherSetup& setup) {
     const RaySensorConfig& config = sensor.config();
     const std::string topic = publishedTopics(config).front().topic;
-    setup.claim_topic(topic, "robot '" + setup.robot_name + "' sensor '" + config.name + "'");
+    setup.claim_topic(topic, setup.owner() + " sensor '" + config.name + "'");
     ros::NodeHandle root = setup.root;
     if (config.velodyne) {
       pub_ = root.advertise<sensor_msgs::PointCloud2>(topic, 5);

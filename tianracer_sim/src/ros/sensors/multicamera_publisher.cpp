@@ -18,7 +18,7 @@ class MultiCameraPublisher : public SensorListener {
  public:
   MultiCameraPublisher(SimMultiCamera& sensor, const PublisherSetup& setup) {
     const MultiCameraConfig& config = sensor.config();
-    const std::string owner = "robot '" + setup.robot_name + "' multicamera '" + sensor.name() + "'";
+    const std::string owner = setup.owner() + " multicamera '" + sensor.name() + "'";
     std::set<std::string> frames_sent;
     cameras_.resize(sensor.size());
     for (std::size_t i = 0; i < sensor.size(); ++i) {

@@ -12,7 +12,7 @@ class P3dPublisher : public SensorListener {
   P3dPublisher(SimP3d& sensor, const PublisherSetup& setup) {
     const P3dConfig& config = sensor.config();
     const std::string topic = config.topic();
-    setup.claim_topic(topic, "robot '" + setup.robot_name + "' p3d '" + config.name + "'");
+    setup.claim_topic(topic, setup.owner() + " p3d '" + config.name + "'");
     ros::NodeHandle root = setup.root;
     pub_ = root.advertise<nav_msgs::Odometry>(topic, 10);
     sensor.stat().name = topic;

@@ -19,10 +19,16 @@ namespace tianracer_sim {
 
 /// Everything a publisher needs to be set up.
 struct PublisherSetup {
-  std::string robot_name;
+  std::string robot_name;  // the robot's or world model's name
   std::string tf_prefix;  // "" or e.g. "tianracer_02"
   ros::NodeHandle root;   // "/" on the node's callback queue
+  /// Where a camera's optical frame goes: link -> "<frameName>_optical_frame".
   tf2_ros::StaticTransformBroadcaster* static_tf = nullptr;
+  /// A world model's sensor: its link is on no TF tree (nothing puts a world model's links
+  /// there, neither does Gazebo), so a camera's optical frame hangs from its frameName.
+  bool world_model = false;
+  /// "robot 'NAME'" or "model 'NAME'": who publishes, in messages.
+  std::string owner() const { return (world_model ? "model '" : "robot '") + robot_name + "'"; }
   /// Throws when another sensor already publishes `topic`.
   std::function<void(const std::string& topic, const std::string& owner)> claim_topic;
 };
