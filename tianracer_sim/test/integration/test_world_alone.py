@@ -8,12 +8,11 @@
   controllers' topics turn its wheels and drive it forward (ground truth x).
 Sim time throughout; wall time only bounds the waits.
 """
-import threading
-import time
 import unittest
 
 import rospy
 import rostest
+from tianracer_sim.sim_time import Stream, clock_stamp, wait_for as wait_until
 from gazebo_msgs.msg import ModelStates
 from gazebo_msgs.srv import GetWorldProperties, SpawnModel
 from geometry_msgs.msg import Pose
@@ -26,53 +25,30 @@ WALL_TIMEOUT = 120.0
 WHEEL_RADIUS = 0.032
 
 
-class Latest(object):
-    """The last message of a topic and how many came."""
-
-    def __init__(self, topic, cls):
-        self.lock = threading.Lock()
-        self.msg, self.count = None, 0
-        self.sub = rospy.Subscriber(topic, cls, self.cb, queue_size=10)
-
-    def cb(self, msg):
-        with self.lock:
-            self.msg, self.count = msg, self.count + 1
-
-    def get(self):
-        with self.lock:
-            return self.msg, self.count
-
-
 def wait_for(cond, what):
-    deadline = time.time() + WALL_TIMEOUT
-    while time.time() < deadline and not rospy.is_shutdown():
-        value = cond()
-        if value:
-            return value
-        time.sleep(0.05)
-    raise AssertionError('timed out waiting for ' + what)
+    return wait_until(cond, what, WALL_TIMEOUT)
 
 
 class WorldAloneTest(unittest.TestCase):
     def test_world_alone_then_spawn(self):
         rospy.init_node('test_world_alone')
-        clock = Latest('/clock', Clock)
-        states = Latest('/gazebo/model_states', ModelStates)
-        joints = Latest('/tianracer/joint_states', JointState)
-        truth = Latest('/tianracer/ground_truth/odom', Odometry)
+        clock = Stream('/clock', Clock, stamp=clock_stamp, keep=1)
+        states = Stream('/gazebo/model_states', ModelStates, stamp=lambda m: 0.0, keep=1)
+        joints = Stream('/tianracer/joint_states', JointState, keep=1)
+        truth = Stream('/tianracer/ground_truth/odom', Odometry, keep=1)
 
         # The world runs alone: sim time passes, the world's models are there, no robot.
-        first = wait_for(lambda: clock.get()[0], '/clock')
-        wait_for(lambda: clock.get()[0].clock.to_sec() > first.clock.to_sec() + 0.5,
+        first = wait_for(lambda: clock.latest(), '/clock')
+        wait_for(lambda: clock.latest().clock.to_sec() > first.clock.to_sec() + 0.5,
                  '/clock to advance 0.5 s')
-        msg = wait_for(lambda: states.get()[0], '/gazebo/model_states')
+        msg = wait_for(lambda: states.latest(), '/gazebo/model_states')
         self.assertIn('ground_plane', msg.name)
         self.assertGreater(len(msg.name), 1, 'walled_room has walls: %s' % msg.name)
         self.assertNotIn('tianracer', msg.name)
         rospy.wait_for_service('/gazebo/get_world_properties', timeout=WALL_TIMEOUT)
         props = rospy.ServiceProxy('/gazebo/get_world_properties', GetWorldProperties)()
         self.assertEqual(sorted(props.model_names), sorted(msg.name))
-        self.assertEqual(joints.get()[1], 0, 'joint_states before any robot')
+        self.assertEqual(joints.count(), 0, 'joint_states before any robot')
 
         # The car arrives by spawn and drives.
         rospy.wait_for_service('/gazebo/spawn_urdf_model', timeout=WALL_TIMEOUT)
@@ -83,25 +59,25 @@ class WorldAloneTest(unittest.TestCase):
         res = spawn(model_name='tianracer', model_xml=rospy.get_param('/car_description'),
                     robot_namespace='/tianracer', initial_pose=pose, reference_frame='world')
         self.assertTrue(res.success, res.status_message)
-        js = wait_for(lambda: joints.get()[0], '/tianracer/joint_states after the spawn')
+        js = wait_for(lambda: joints.latest(), '/tianracer/joint_states after the spawn')
         self.assertIn('left_rear_wheel_joint', js.name)
-        wait_for(lambda: truth.get()[0], 'ground truth')
+        wait_for(lambda: truth.latest(), 'ground truth')
         wheels = [rospy.Publisher('/tianracer/%s_rear_wheel_velocity_controller/command' % side,
                                   Float64, queue_size=1, latch=True) for side in ('left', 'right')]
         for pub in wheels:
             pub.publish(Float64(0.5 / WHEEL_RADIUS))
 
         def wheel_speed():
-            js = joints.get()[0]
+            js = joints.latest()
             return js.velocity[js.name.index('left_rear_wheel_joint')]
         # Once the commands are in (connections take wall time), 1 s of sim time at 0.5 m/s.
         wait_for(lambda: wheel_speed() > 0.8 * 0.5 / WHEEL_RADIUS, 'the wheels to turn')
-        start = truth.get()[0].pose.pose.position.x
-        t0 = clock.get()[0].clock.to_sec()
-        wait_for(lambda: clock.get()[0].clock.to_sec() > t0 + 1.0, '1 s of sim time driving')
-        x = truth.get()[0].pose.pose.position.x
+        start = truth.latest().pose.pose.position.x
+        t0 = clock.latest().clock.to_sec()
+        wait_for(lambda: clock.latest().clock.to_sec() > t0 + 1.0, '1 s of sim time driving')
+        x = truth.latest().pose.pose.position.x
         self.assertGreater(x - start, 0.3, 'the spawned car drives: x %.3f -> %.3f' % (start, x))
-        msg = states.get()[0]
+        msg = states.latest()
         self.assertIn('tianracer', msg.name)
 
 

@@ -11,12 +11,11 @@ spawned again.
 Sim time throughout; wall time only bounds the waits.
 """
 import math
-import threading
-import time
 import unittest
 
 import rospy
 import rostest
+from tianracer_sim.sim_time import Stream, clock_stamp, wait_for as wait_until
 from gazebo_msgs.srv import DeleteModel, SpawnModel
 from geometry_msgs.msg import Pose
 from nav_msgs.msg import Odometry
@@ -36,66 +35,43 @@ SPAWNED = """<sdf version='1.6'><model name='spawned'><static>true</static><link
 </link></model></sdf>"""
 
 
-class Latest(object):
-    """The last message of a topic and how many came."""
-
-    def __init__(self, topic, cls):
-        self.lock = threading.Lock()
-        self.msg, self.count = None, 0
-        self.sub = rospy.Subscriber(topic, cls, self.cb, queue_size=10)
-
-    def cb(self, msg):
-        with self.lock:
-            self.msg, self.count = msg, self.count + 1
-
-    def get(self):
-        with self.lock:
-            return self.msg, self.count
-
-
 def wait_for(cond, what):
-    deadline = time.time() + WALL_TIMEOUT
-    while time.time() < deadline and not rospy.is_shutdown():
-        value = cond()
-        if value:
-            return value
-        time.sleep(0.05)
-    raise AssertionError('timed out waiting for ' + what)
+    return wait_until(cond, what, WALL_TIMEOUT)
 
 
 class WorldModelSensorsTest(unittest.TestCase):
     def test_world_model_sensors(self):
         rospy.init_node('test_world_model_sensors')
-        clock = Latest('/clock', Clock)
-        scan = Latest('/post/scan', LaserScan)
-        image = Latest('/post_camera/image_raw', Image)
-        info = Latest('/post_camera/camera_info', CameraInfo)
-        depth = Latest('/post_depth/depth/image_raw', Image)
-        beam = Latest('/faller/beam', LaserScan)
-        truth = Latest('/faller/odom', Odometry)
+        clock = Stream('/clock', Clock, stamp=clock_stamp, keep=1)
+        scan = Stream('/post/scan', LaserScan, keep=1)
+        image = Stream('/post_camera/image_raw', Image, keep=1)
+        info = Stream('/post_camera/camera_info', CameraInfo, keep=1)
+        depth = Stream('/post_depth/depth/image_raw', Image, keep=1)
+        beam = Stream('/faller/beam', LaserScan, keep=1)
+        truth = Stream('/faller/odom', Odometry, keep=1)
         static_frames = {}
 
         def on_static(msg):
             for t in msg.transforms:
                 static_frames[t.child_frame_id] = t
         rospy.Subscriber('/tf_static', TFMessage, on_static)
-        wait_for(lambda: clock.get()[0], '/clock')
+        wait_for(lambda: clock.latest(), '/clock')
 
         # The post's lidar: the box's near face 2.5 m straight ahead.
-        msg = wait_for(lambda: scan.get()[0], '/post/scan')
+        msg = wait_for(lambda: scan.latest(), '/post/scan')
         self.assertEqual(msg.header.frame_id, 'post_laser')
         self.assertEqual(len(msg.ranges), 181)
         self.assertAlmostEqual(msg.ranges[90], 2.5, delta=0.05)
 
         # Its camera: the red box in the middle of the image.
-        msg = wait_for(lambda: image.get()[0], '/post_camera/image_raw')
+        msg = wait_for(lambda: image.latest(), '/post_camera/image_raw')
         self.assertEqual(msg.header.frame_id, 'post_camera_frame_optical_frame')
         self.assertEqual((msg.width, msg.height, msg.encoding), (160, 120, 'rgb8'))
         mid = (msg.height // 2) * msg.step + (msg.width // 2) * 3
         r, g, b = bytearray(msg.data[mid:mid + 3])
         self.assertGreater(r, 2 * g, 'red box in the middle: %d %d %d' % (r, g, b))
         self.assertGreater(r, 2 * b, 'red box in the middle: %d %d %d' % (r, g, b))
-        msg = wait_for(lambda: info.get()[0], '/post_camera/camera_info')
+        msg = wait_for(lambda: info.latest(), '/post_camera/camera_info')
         self.assertEqual(msg.header.frame_id, 'post_camera_frame_optical_frame')
         self.assertEqual((msg.width, msg.height), (160, 120))
 
@@ -109,7 +85,7 @@ class WorldModelSensorsTest(unittest.TestCase):
         self.assertAlmostEqual(t.transform.translation.x, 0.0, delta=1e-9)
 
         # Its depth camera: 2.5 m in the middle.
-        msg = wait_for(lambda: depth.get()[0], '/post_depth/depth/image_raw')
+        msg = wait_for(lambda: depth.latest(), '/post_depth/depth/image_raw')
         self.assertEqual(msg.header.frame_id, 'post_depth_frame_optical_frame')
         self.assertEqual(msg.encoding, '32FC1')
         mid = (msg.height // 2) * msg.step + (msg.width // 2) * 4
@@ -117,15 +93,15 @@ class WorldModelSensorsTest(unittest.TestCase):
         self.assertAlmostEqual(d, 2.5, delta=0.05)
 
         # The falling box's beam, under its robotNamespace, ends with the box at rest.
-        msg = wait_for(lambda: beam.get()[0], '/faller/beam')
+        msg = wait_for(lambda: beam.latest(), '/faller/beam')
         self.assertEqual(msg.header.frame_id, 'faller_beam')
-        wait_for(lambda: clock.get()[0].clock.to_sec() > 2.5, '2.5 s of sim time')
-        t = clock.get()[0].clock.to_sec()
-        msg = wait_for(lambda: beam.get()[0] if beam.get()[0].header.stamp.to_sec() >= t else None,
+        wait_for(lambda: clock.latest().clock.to_sec() > 2.5, '2.5 s of sim time')
+        t = clock.latest().clock.to_sec()
+        msg = wait_for(lambda: beam.latest() if beam.latest().header.stamp.to_sec() >= t else None,
                        'a beam after the fall')
         self.assertAlmostEqual(msg.ranges[0], 0.1, delta=0.02)
         # Its ground truth plugin (libgazebo_ros_p3d on the world model) agrees.
-        msg = wait_for(lambda: truth.get()[0], '/faller/odom')
+        msg = wait_for(lambda: truth.latest(), '/faller/odom')
         self.assertEqual((msg.header.frame_id, msg.child_frame_id), ('world', 'body'))
         self.assertAlmostEqual(msg.pose.pose.position.z, 0.1, delta=0.02)
 
@@ -137,14 +113,14 @@ class WorldModelSensorsTest(unittest.TestCase):
         pose.position.x, pose.position.y, pose.position.z = 3.0, -1.5, 0.5
         pose.orientation.z, pose.orientation.w = math.sin(math.pi / 4), math.cos(math.pi / 4)
         for attempt in range(2):
-            spawned = Latest('/spawned/scan', LaserScan)
+            spawned = Stream('/spawned/scan', LaserScan, keep=1)
             res = spawn(model_name='spawned', model_xml=SPAWNED, robot_namespace='',
                         initial_pose=pose, reference_frame='world')
             self.assertTrue(res.success, res.status_message)
-            msg = wait_for(lambda: spawned.get()[0], '/spawned/scan (spawn %d)' % attempt)
+            msg = wait_for(lambda: spawned.latest(), '/spawned/scan (spawn %d)' % attempt)
             self.assertEqual(msg.header.frame_id, 'spawned_laser')
             self.assertAlmostEqual(msg.ranges[1], 1.0, delta=0.05)
-            spawned.sub.unregister()
+            spawned.unregister()
             res = delete(model_name='spawned')
             self.assertTrue(res.success, res.status_message)
 
