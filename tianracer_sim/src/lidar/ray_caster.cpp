@@ -218,6 +218,17 @@ void analyticOccluded(const RTCOccludedFunctionNArguments* args) {
   }
 }
 
+// A direction component as handed to Embree. Embree replaces |x| < 1e-18 by +1e-18 before
+// taking reciprocals (zero_fix/rcp_safe, kernels/common/ray.h and common/math/vec3fa.h), which
+// drops the sign of a tiny negative component, while its coherent packet and stream traversal
+// picks one octant for the packet from the components' signs (bvh_intersector_stream.cpp,
+// initPacketsAndFrustum). A packet with such a component then skips nodes it passes through:
+// a level lidar at t = 0, its rotation carrying 1e-18 rounding from the URDF chain, lost a
+// whole packet of 16 beams. Below 1e-12 (1e-8 m at 10 km) the component is made an exact +0.
+inline float embreeComponent(double x) {
+  return std::abs(x) < 1e-12 ? 0.0f : static_cast<float>(x);
+}
+
 /// Triangles of one sub-scene, in its frame.
 struct TriangleSoup {
   std::vector<float> vertices;  // xyz
@@ -579,8 +590,9 @@ void RayCaster::castRays(const Eigen::Vector3d& origin_W,
       for (int i = 0; i < n; ++i) {
         RTCRayHit rh;
         rh.ray.org_x = o.x(), rh.ray.org_y = o.y(), rh.ray.org_z = o.z();
-        rh.ray.dir_x = directions[i].x(), rh.ray.dir_y = directions[i].y(),
-        rh.ray.dir_z = directions[i].z();
+        rh.ray.dir_x = embreeComponent(directions[i].x());
+        rh.ray.dir_y = embreeComponent(directions[i].y());
+        rh.ray.dir_z = embreeComponent(directions[i].z());
         rh.ray.tnear = t_min;
         rh.ray.tfar = t_max;
         rh.ray.time = 0.0f;
@@ -604,8 +616,9 @@ void RayCaster::castRays(const Eigen::Vector3d& origin_W,
           const int i = start + std::min(j, count - 1);
           valid[j] = j < count ? -1 : 0;
           rh.ray.org_x[j] = o.x(), rh.ray.org_y[j] = o.y(), rh.ray.org_z[j] = o.z();
-          rh.ray.dir_x[j] = directions[i].x(), rh.ray.dir_y[j] = directions[i].y(),
-          rh.ray.dir_z[j] = directions[i].z();
+          rh.ray.dir_x[j] = embreeComponent(directions[i].x());
+          rh.ray.dir_y[j] = embreeComponent(directions[i].y());
+          rh.ray.dir_z[j] = embreeComponent(directions[i].z());
           rh.ray.tnear[j] = t_min;
           rh.ray.tfar[j] = t_max;
           rh.ray.time[j] = 0.0f;
@@ -627,8 +640,9 @@ void RayCaster::castRays(const Eigen::Vector3d& origin_W,
       for (int i = 0; i < n; ++i) {
         RTCRayHit& rh = m.stream[i];
         rh.ray.org_x = o.x(), rh.ray.org_y = o.y(), rh.ray.org_z = o.z();
-        rh.ray.dir_x = directions[i].x(), rh.ray.dir_y = directions[i].y(),
-        rh.ray.dir_z = directions[i].z();
+        rh.ray.dir_x = embreeComponent(directions[i].x());
+        rh.ray.dir_y = embreeComponent(directions[i].y());
+        rh.ray.dir_z = embreeComponent(directions[i].z());
         rh.ray.tnear = t_min;
         rh.ray.tfar = t_max;
         rh.ray.time = 0.0f;

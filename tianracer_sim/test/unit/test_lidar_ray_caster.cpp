@@ -230,6 +230,24 @@ TEST_P(RayCasterModes, SquareRoomEveryBeamIncludingCorners) {
   EXPECT_NEAR(r[540], 2.0, 1e-6);
 }
 
+// A level sensor whose rotation carries the 1e-17 rounding of a URDF chain (the seed's lidar
+// at t = 0 in walled_room): its beams' z components are a few 1e-19, below Embree's 1e-18
+// reciprocal floor, some of one sign and some of the other. Every beam still hits the room
+// (ray_caster.cpp embreeComponent; once a whole packet of 16 beams came back +inf).
+TEST_P(RayCasterModes, LevelSensorWithRoundingInItsRotationSeesEveryWall) {
+  Scene scene;
+  addRoom(scene, -3, 3, -2, 2);
+  RayCaster caster(options());
+  const RaySensorConfig c = seedConfig();
+  Eigen::Isometry3d X_WS = pose(0.0936, -8.3e-5, 0.1457);
+  X_WS.linear() << 1, 4.79421e-19, -1.73472e-18,  //
+      5.64124e-19, 1, -1.69136e-17,               //
+      3.46945e-18, -1.65087e-17, 1;
+  std::mt19937_64 rng(1);
+  const std::vector<float> r = scanRays(caster, scene, X_WS, c, rng);
+  expectScanMatchesReference(scene, X_WS, c, r, tolerance());
+}
+
 // A rectangular room with rotated boxes, a cylinder and a mesh, seen from a generic pose.
 TEST_P(RayCasterModes, ClutteredRoomMatchesExactGeometry) {
   Scene scene;
