@@ -323,6 +323,16 @@ void PhysicsRobot::setBaseTwist(const Twist& twist) {
   s_->wake();
 }
 
+void PhysicsRobot::setModelTwist(const Twist& twist) {
+  if (!twist.linear.allFinite() || !twist.angular.allFinite()) {
+    ++s_->rejected;
+    return;
+  }
+  for (std::size_t i = 0; i < s_->joints.size(); ++i)
+    s_->mbOfJoint(static_cast<int>(i))->setJointVel(s_->linkOfJoint(static_cast<int>(i)), 0.0);
+  setBaseTwist(twist);
+}
+
 void PhysicsRobot::resetToSpawn() {
   for (std::size_t i = 0; i < s_->joints.size(); ++i) {
     btMultiBody* mb = s_->mbOfJoint(static_cast<int>(i));

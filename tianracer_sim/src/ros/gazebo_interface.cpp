@@ -210,14 +210,19 @@ std::vector<std::string> GazeboInterface::modelNames() const {
   return names;
 }
 
-bool GazeboInterface::setBase(PhysicsRobot* body, const EntityState& s, std::string* error) {
+bool GazeboInterface::setBase(PhysicsRobot* body, const EntityState& s, bool stop_joints,
+                              std::string* error) {
   if (const std::string bad = checkModelState(s.X_WE, s.V_WE); !bad.empty()) {
     *error = bad;
     return false;
   }
   PhysicsRobot& pr = *body;
   pr.setBasePose(s.X_WE);
-  pr.setBaseTwist(s.V_WE);
+  if (stop_joints) {
+    pr.setModelTwist(s.V_WE);
+  } else {
+    pr.setBaseTwist(s.V_WE);
+  }
   return true;
 }
 
@@ -270,7 +275,7 @@ bool GazeboInterface::setModelState(gazebo_msgs::SetModelState::Request& req,
   } else if (!fromTwistMsg(m.twist, &in_frame.V_WE)) {
     res.status_message = "set_model_state: twist of '" + m.model_name +
                          "' is not finite; state unchanged";
-  } else if (!setBase(physicsOf(e), fromFrame(in_frame, frame), &error)) {
+  } else if (!setBase(physicsOf(e), fromFrame(in_frame, frame), true, &error)) {
     res.status_message = "set_model_state: " + error + " for '" + m.model_name +
                          "'; state unchanged";
   } else {
@@ -328,7 +333,7 @@ bool GazeboInterface::setLinkState(gazebo_msgs::SetLinkState::Request& req,
     EntityState B;
     B.X_WE = L.X_WE * X_LB;
     B.V_WE = shiftTwist(L.V_WE, L.X_WE.translation(), B.X_WE.translation());
-    if (!setBase(physicsOf(e), B, &error)) {
+    if (!setBase(physicsOf(e), B, false, &error)) {
       res.status_message = "set_link_state: " + error + " for '" + l.link_name +
                            "' (its model's base); state unchanged";
     } else {

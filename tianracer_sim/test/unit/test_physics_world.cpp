@@ -237,6 +237,29 @@ TEST(PhysicsWorld, ResetToSpawnAndSetState) {
   EXPECT_TRUE(r.baseTwist().angular.isApprox(t.angular, 1e-12));
 }
 
+// set_model_state's velocity (Gazebo's Model::SetLinearVel/SetAngularVel give every link the
+// twist): the joints stop. setBaseTwist (set_link_state's rigid move) keeps their rates.
+TEST(PhysicsWorld, ModelTwistStopsTheJointsBaseTwistKeepsThem) {
+  PhysicsWorld w;
+  PhysicsRobot& r = w.robot(addTestRobot(w, modelFrom(kArm), at(0, 0, 1), "arm"));
+  r.setJointState(0, 0.3, 2.0);
+  const Twist t{Eigen::Vector3d(0.5, -0.2, 0.1), Eigen::Vector3d(0.1, 0.2, 0.3)};
+  r.setBaseTwist(t);
+  EXPECT_EQ(r.jointVelocity(0), 2.0);
+  r.setModelTwist(t);
+  EXPECT_EQ(r.jointVelocity(0), 0.0);
+  EXPECT_EQ(r.jointPosition(0), 0.3);
+  EXPECT_TRUE(r.baseTwist().linear.isApprox(t.linear, 1e-12));
+  EXPECT_TRUE(r.baseTwist().angular.isApprox(t.angular, 1e-12));
+  // Not finite: refused and counted, nothing changes.
+  r.setJointState(0, 0.3, 2.0);
+  const std::uint64_t rejected = r.rejectedCommands();
+  r.setModelTwist({Eigen::Vector3d(std::nan(""), 0, 0), Eigen::Vector3d::Zero()});
+  EXPECT_EQ(r.rejectedCommands(), rejected + 1);
+  EXPECT_EQ(r.jointVelocity(0), 2.0);
+  EXPECT_TRUE(r.baseTwist().linear.isApprox(t.linear, 1e-12));
+}
+
 // Same inputs, same bits: two worlds stepped side by side.
 TEST(PhysicsWorld, Deterministic) {
   auto run = [](std::vector<double>* out) {

@@ -163,7 +163,13 @@ class PhysicsRobot {
   Eigen::Isometry3d basePose() const;
   Twist baseTwist() const;
   void setBasePose(const Eigen::Isometry3d& X_WB);
+  /// The rigid velocity field of the model frame, joint rates kept.
   void setBaseTwist(const Twist& twist);
+  /// What /gazebo/set_model_state does to a model's velocity: every link gets the twist, so the
+  /// joints stop (Gazebo's Model::SetLinearVel/SetAngularVel set each link's velocity, Model.cc;
+  /// gazebo_ros_api_plugin.cpp setModelState calls both). Here as a rigid motion: joint rates 0,
+  /// then setBaseTwist.
+  void setModelTwist(const Twist& twist);
   /// Spawn pose, joints at 0, all velocities and commands zero (free bodies: their initial pose).
   void resetToSpawn();
   const Eigen::Isometry3d& spawnPose() const;

@@ -134,7 +134,9 @@ class GazeboInterface {
   PhysicsRobot* physicsOf(const Entity& e) const;
   /// The frame named by reference_frame (world when isWorldFrame()).
   bool frameState(const std::string& name, EntityState* frame, std::string* error) const;
-  bool setBase(PhysicsRobot* body, const EntityState& X_WB, std::string* error);
+  /// The model's base state; `stop_joints` as set_model_state (PhysicsRobot::setModelTwist),
+  /// otherwise the joint rates are kept (set_link_state).
+  bool setBase(PhysicsRobot* body, const EntityState& X_WB, bool stop_joints, std::string* error);
   std::vector<std::string> modelNames() const;
   void rebuildStateMessages();
   void onModelStateTopic(const gazebo_msgs::ModelState::ConstPtr& msg);
