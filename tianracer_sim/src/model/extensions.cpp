@@ -72,16 +72,21 @@ std::string valueOf(const XMLElement* e) {
   return text(e);
 }
 
-/// A finite, non-negative number, or a ModelError naming the element and value.
-double nonNegative(const XMLElement* e, const std::string& what, const std::string& source) {
+/// A finite number (>= 0 unless `negative_ok`), or a ModelError naming the element and value.
+double finiteNumber(const XMLElement* e, const std::string& what, const std::string& source,
+                    bool negative_ok) {
   const std::string v = valueOf(e);
   const auto d = parseNumber(v);
   if (!d) throw ModelError(mi::at(source, e) + what + ": <" + e->Name() + "> value '" + v +
                            "' is not a number");
-  if (!std::isfinite(*d) || *d < 0.0)
+  if (!std::isfinite(*d) || (*d < 0.0 && !negative_ok))
     throw ModelError(mi::at(source, e) + what + ": <" + e->Name() + "> value '" + v +
-                     "' must be finite and >= 0");
+                     (negative_ok ? "' must be finite" : "' must be finite and >= 0"));
   return *d;
+}
+
+double nonNegative(const XMLElement* e, const std::string& what, const std::string& source) {
+  return finiteNumber(e, what, source, false);
 }
 
 bool toBool(const XMLElement* e, const std::string& what, const std::string& source) {
@@ -162,10 +167,10 @@ void parseLinkExtension(const XMLElement* g, const std::string& link, LinkExtens
   const std::string what = "<gazebo reference='" + link + "'>";
   for (const XMLElement* c = g->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
-    if (tag == "mu1") {
-      ext.mu1 = nonNegative(c, what, source);
+    if (tag == "mu1") {  // a negative mu is no limit (toSurface), as in Gazebo
+      ext.mu1 = finiteNumber(c, what, source, true);
     } else if (tag == "mu2") {
-      ext.mu2 = nonNegative(c, what, source);
+      ext.mu2 = finiteNumber(c, what, source, true);
     } else if (tag == "kp") {
       ext.kp = nonNegative(c, what, source);
     } else if (tag == "kd") {

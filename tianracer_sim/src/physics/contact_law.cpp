@@ -2,14 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace tianracer_sim {
 
 Surface toSurface(const SurfaceParams& p, const Eigen::Matrix3d& R_CL, double default_max_vel) {
   Surface s;
-  s.mu1 = std::max(0.0, p.mu1);
-  s.mu2 = std::max(0.0, p.mu2);
+  // A negative mu means no limit: Gazebo's FrictionPyramid::SetMu stores GZ_FLT_MAX for it
+  // (gazebo/physics/SurfaceParams.cc); Gazebo's library models (pr2_gripper, ragdoll) use -1.
+  const auto mu = [](double m) {
+    return m < 0.0 ? static_cast<double>(std::numeric_limits<float>::max()) : m;
+  };
+  s.mu1 = mu(p.mu1);
+  s.mu2 = mu(p.mu2);
   s.kp = p.kp > 0.0 ? p.kp : kRigidKp;
   s.kd = std::max(0.0, p.kd);
   if (p.fdir1.allFinite() && p.fdir1.norm() > 1e-9) {

@@ -555,8 +555,9 @@ Friction Parser::parseSurface(const XMLElement* e, const std::string& what,
       }
       for (const XMLElement* p = k->FirstChildElement(); p; p = p->NextSiblingElement()) {
         const std::string tag = p->Name();
-        if (ctag == "friction" && tag == "mu") f.mu = nonNegative(p, what + " friction");
-        else if (ctag == "friction" && tag == "mu2") f.mu2 = nonNegative(p, what + " friction");
+        // A negative mu is no limit (toSurface), as Gazebo reads it.
+        if (ctag == "friction" && tag == "mu") f.mu = number(p, what + " friction");
+        else if (ctag == "friction" && tag == "mu2") f.mu2 = number(p, what + " friction");
         else if (ctag == "contact" && tag == "kp") contact->kp = positive(p, what + " contact");
         else if (ctag == "contact" && tag == "kd") contact->kd = nonNegative(p, what + " contact");
         else if (ctag == "contact" && tag == "max_vel") contact->max_vel = number(p, what + " contact");

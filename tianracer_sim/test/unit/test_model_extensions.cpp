@@ -77,6 +77,9 @@ TEST(Extensions, SurfaceValuesInBothForms) {
   EXPECT_EQ(*w.max_vel, 0.01);
   EXPECT_EQ(*w.min_depth, 0.0);
   EXPECT_TRUE(p.warnings.empty());
+  // A negative mu is Gazebo's "no limit" (contact_law.cpp toSurface), not an error.
+  EXPECT_EQ(*p.parse(robot("<gazebo reference='wheel'><mu1>-1</mu1></gazebo>")).links.at("wheel").mu1,
+            -1.0);
 }
 
 TEST(Extensions, BadSurfaceValuesNameElementAndValue) {
@@ -90,6 +93,8 @@ TEST(Extensions, BadSurfaceValuesNameElementAndValue) {
               HasSubstr("<kd> value 'inf' must be finite and >= 0"));
   EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><mu2/></gazebo>")),
               HasSubstr("<mu2> value '' is not a number"));
+  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><mu1>-inf</mu1></gazebo>")),
+              HasSubstr("<mu1> value '-inf' must be finite"));
   EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><fdir1>1 0</fdir1></gazebo>")),
               HasSubstr("<fdir1> value '1 0' is not 3 finite numbers"));
   EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><fdir1>1 nan 0</fdir1></gazebo>")),
