@@ -50,12 +50,16 @@ PrincipalInertia principalInertia(const Eigen::Matrix3d& inertia) {
   return p;
 }
 
-bool isPhysicalInertia(const Eigen::Matrix3d& inertia, double rel_tol) {
+bool isPositiveDefiniteInertia(const Eigen::Matrix3d& inertia) {
   if (!inertia.allFinite()) return false;
   const double scale = std::max(inertia.cwiseAbs().maxCoeff(), 1e-300);
   if ((inertia - inertia.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale) return false;
+  return principalInertia(inertia).moments.minCoeff() > 0.0;
+}
+
+bool isPhysicalInertia(const Eigen::Matrix3d& inertia, double rel_tol) {
+  if (!isPositiveDefiniteInertia(inertia)) return false;
   const Eigen::Vector3d m = principalInertia(inertia).moments;
-  if (m.minCoeff() <= 0.0) return false;
   const double tol = rel_tol * m.sum();
   return m(0) + m(1) >= m(2) - tol && m(1) + m(2) >= m(0) - tol && m(0) + m(2) >= m(1) - tol;
 }

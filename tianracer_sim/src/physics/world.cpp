@@ -178,7 +178,8 @@ int PhysicsWorld::addFreeBody(RigidTree tree, const std::vector<SurfaceParams>& 
     if (!(m.mass > 0.0) || !std::isfinite(m.mass)) {
       throw PhysicsError(body + ": mass must be positive, got " + std::to_string(m.mass));
     }
-    if (!isPhysicalInertia(m.inertia)) throw PhysicsError(body + ": inertia is not physical");
+    if (!isPositiveDefiniteInertia(m.inertia))
+      throw PhysicsError(body + ": inertia is not symmetric positive definite");
   }
   if (tree.canonical_body < 0 || tree.canonical_body >= static_cast<int>(tree.bodies.size())) {
     throw PhysicsError(what + ": canonical body " + std::to_string(tree.canonical_body) +

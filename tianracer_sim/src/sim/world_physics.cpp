@@ -277,13 +277,16 @@ RigidTree worldModelTree(const WorldDescription& world, const ModelDescription& 
       }
     }
     if (!isPhysicalInertia(body.mass.inertia)) {
+      // No rigid body has such moments, but ODE checks only that the inertia is positive
+      // definite (dMassCheck), so Gazebo simulates it as given (the library's create base:
+      // izz 1.53 over ixx, iyy 0.059). So do we, with a warning.
       const Eigen::Vector3d I = principalInertia(body.mass.inertia).moments;
       std::ostringstream os;
       os << at(world, model.line) << what << " link '" << body.link
          << "': the principal moments of inertia of the links moving with it, (" << I.x() << " "
          << I.y() << " " << I.z() << "), violate the triangle inequality (each at most the sum "
-         << "of the other two)";
-      throw PhysicsError(os.str());
+         << "of the other two); simulated as given, as Gazebo does";
+      if (warn) warn(os.str());
     }
   }
   return tree;

@@ -32,6 +32,8 @@ struct PrincipalInertia {
 };
 PrincipalInertia principalInertia(const Eigen::Matrix3d& inertia);
 
+/// True when the inertia is finite, symmetric and positive definite (what ODE's dMassCheck asks).
+bool isPositiveDefiniteInertia(const Eigen::Matrix3d& inertia);
 /// True when the inertia is symmetric positive definite and satisfies the triangle inequality
 /// of principal moments (I_a + I_b >= I_c), with a relative tolerance.
 bool isPhysicalInertia(const Eigen::Matrix3d& inertia, double rel_tol = 1e-9);
