@@ -161,7 +161,9 @@ struct Result {
   std::vector<std::string> left_out;  // errors that left part of it out
   int warnings = 0;
   bool is_static = true;
-  bool free_body = false;  // a dynamic model not joined to the world
+  bool free_body = false;     // simulated as moving bodies (with or without a world joint)
+  bool world_joint = false;   // a joint with the world as its parent holds it in place
+  std::string held_static;    // why the physics holds a dynamic model static, if it does
   int collisions = 0;
   Bounds bounds;
   bool flat = false, on_ground = false;
@@ -249,6 +251,7 @@ Result run(const std::string& models_dir, const std::string& name, double settle
   }
   const ts::ModelDescription& m = world.models.front();
   r.is_static = m.is_static;
+  for (const ts::JointDescription& j : m.joints) r.world_joint |= j.parent == "world";
   for (const ts::LinkDescription& l : m.links) {
     const Eigen::Isometry3d X_WL = m.X_WM * l.X_ML;
     for (const ts::CollisionDescription& c : l.collisions) {
@@ -264,8 +267,12 @@ Result run(const std::string& models_dir, const std::string& name, double settle
 
   const auto t1 = std::chrono::steady_clock::now();
   try {
-    ts::Simulation sim(ts::physicsOptionsFor(world), [&](const std::string&) { ++r.warnings; });
-    ts::addWorldToPhysics(world, &sim.physics(), [&](const std::string&) { ++r.warnings; });
+    const auto warn = [&](const std::string& w) {
+      ++r.warnings;
+      if (r.held_static.empty() && w.find("held static") != std::string::npos) r.held_static = w;
+    };
+    ts::Simulation sim(ts::physicsOptionsFor(world), warn);
+    ts::addWorldToPhysics(world, &sim.physics(), warn);
     const ts::PhysicsRobot* body = sim.findModel(m.name);
     if (body) r.X_start = body->basePose();
     r.free_body = body != nullptr;
@@ -308,7 +315,16 @@ Result run(const std::string& models_dir, const std::string& name, double settle
     r.verdict = "static";
   } else if (!r.free_body) {
     r.verdict = "static";
+    r.why = r.held_static.empty() ? "welded to the world by fixed joints" : "held static: " + r.held_static;
+  } else if (r.world_joint) {
+    // Its other joints are simulated: it must stay where its world joint holds it, unless
+    // something in it swings (then it moves, as a pendulum does in Gazebo).
+    r.verdict = rests ? "rests" : "moves";
     r.why = "joined to the world by a joint";
+    if (!rests) {
+      r.why += "; its base moved up to " + fmt(r.max_distance * 100.0, 1) + " cm and " +
+               fmt(r.max_angle, 3) + " rad within " + hold_s;
+    }
   } else if (r.flat && r.on_ground) {
     r.verdict = rests ? "rests" : "differs";
     if (!rests) {
