@@ -130,7 +130,7 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
       std::unique_ptr<OwnedShape> mesh;
       std::unique_ptr<btCollisionShape> shape = makeLinkShape(
           body, g, options.collision_margin,
-          r->world_model ? WheelShape::kMeshHull : options.wheel_shape,  // no tyres on models
+          options.wheel_shape,
           r->world_model,  // a world model's meshes are concave, as in Gazebo
           (r->world_model ? "model '" : "robot '") + r->name + "' link '" + g.link + "'", &X_BS,
           &is_wheel, &mesh);
@@ -191,7 +191,7 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
     if (r->surfaces[b]->wheel) ++wheels;
   }
   for (auto& sf : r->surfaces) {
-    if (!sf->wheel || !(options.tyre_stiffness > 0.0)) continue;
+    if (r->world_model || !sf->wheel || !(options.tyre_stiffness > 0.0)) continue;  // no tyres on models
     sf->tyre_stiffness = options.tyre_stiffness;
     sf->tyre_damping =
         2.0 * options.tyre_damping_ratio * std::sqrt(options.tyre_stiffness * mass / wheels);

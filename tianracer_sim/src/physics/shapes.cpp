@@ -125,8 +125,11 @@ std::unique_ptr<btCollisionShape> makeLinkShape(const TreeBody& body, const Coll
     return gimpact;
   }
 
-  // Wheels: a round mesh (or a cylinder along the axis) on a continuous joint's child link.
-  const bool wheel_joint = body.parent >= 0 && body.joint_type == TreeJointType::kContinuous;
+  // Wheels: a round mesh (or a cylinder along the axis) on the child link of a joint that turns
+  // for ever (continuous, or SDF's revolute without <limit>: pioneer2dx, create).
+  const bool wheel_joint =
+      body.parent >= 0 && (body.joint_type == TreeJointType::kContinuous ||
+                           (body.joint_type == TreeJointType::kRevolute && !body.has_position_limits));
   WheelFit fit;
   std::vector<Eigen::Vector3d> verts_B;
   if (g.shape.type == ShapeType::kMesh) {
@@ -138,7 +141,10 @@ std::unique_ptr<btCollisionShape> makeLinkShape(const TreeBody& body, const Coll
     const Eigen::Vector3d cyl_axis = g.X_BG.linear().col(2);
     const Eigen::Vector3d c = g.X_BG.translation();
     const Eigen::Vector3d off = c - c.dot(body.axis_B) * body.axis_B;
-    if (std::abs(std::abs(cyl_axis.dot(body.axis_B)) - 1.0) < 1e-9 && off.norm() < 1e-9) {
+    // Within 1 mrad and 0.1 mm of the axle: Gazebo's library writes pi/2 as 1.5707 (96 urad
+    // short), which tilts a wheel's cylinder off its axle and moves it off by microns. The
+    // fitted wheel sits on the axle.
+    if (std::abs(std::abs(cyl_axis.dot(body.axis_B)) - 1.0) < 5e-7 && off.norm() < 1e-4) {
       fit.is_wheel = true;
       fit.radius = g.shape.radius;
       fit.width = g.shape.length;

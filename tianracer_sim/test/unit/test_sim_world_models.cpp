@@ -495,6 +495,39 @@ TEST(WorldModels, JointNamingAMissingLinkIsLeftOutAndTheWorldLoads) {
   EXPECT_NEAR(w.model("crate").basePose().translation().z(), 0.1, 1e-3);
 }
 
+// A two-wheeled base on a frictionless castor, written as Gazebo's library writes one (create,
+// pioneer2dx): wheel cylinders turned by "0 1.5707 1.5707" (96 urad short of pi/2) on revolute
+// joints without <limit>. It must stand still. With the cylinders as plain Bullet cylinders
+// lying on the plane it rolled off, faster and faster (the library's create: 5.2 cm in 30 s).
+TEST(WorldModels, TwoWheeledBaseOnAFrictionlessCastorStandsStill) {
+  std::string wheels;
+  for (const char* side : {"left", "right"}) {
+    const std::string y = std::string(side) == "left" ? "0.13" : "-0.13";
+    wheels += std::string("<link name='") + side + "_wheel'><pose>0 " + y +
+              " 0.033 0 0 0</pose><inertial><mass>0.1</mass><inertia><ixx>0.001</ixx><iyy>0.001"
+              "</iyy><izz>0.001</izz></inertia></inertial><collision name='c'><pose>0 0 0 0 "
+              "1.5707 1.5707</pose><geometry><cylinder><radius>0.033</radius><length>0.023"
+              "</length></cylinder></geometry><surface><friction><ode><mu>10</mu><mu2>10</mu2>"
+              "</ode></friction></surface></collision></link><joint name='" + side +
+              "' type='revolute'><parent>base</parent><child>" + side + "_wheel</child><axis>"
+              "<xyz>0 1 0</xyz></axis></joint>";
+  }
+  ModelWorld w("<model name='bot'><link name='base'><inertial><pose>0.002 0 0.03 0 0 0</pose>"
+               "<mass>2.2</mass><inertia><ixx>0.02</ixx><iyy>0.02</iyy><izz>0.03</izz></inertia>"
+               "</inertial><collision name='castor'><pose>0.13 0 0.018 0 0 0</pose><geometry>"
+               "<sphere><radius>0.018</radius></sphere></geometry><surface><friction><ode><mu>0"
+               "</mu><mu2>0</mu2></ode></friction></surface></collision></link>" +
+               wheels + "</model>");
+  EXPECT_TRUE(w.warnings.empty()) << w.allWarnings();
+  PhysicsRobot& bot = w.model("bot");
+  w.run(1.0);
+  const Eigen::Vector3d start = bot.basePose().translation();
+  w.run(20.0);
+  const double moved = (bot.basePose().translation() - start).norm();
+  std::cout << "[two-wheeled base] moved " << moved * 1000 << " mm in 20 s\n";
+  EXPECT_LT(moved, 1e-3);
+}
+
 TEST(WorldModels, BadMassOrInertiaOfAMovingLinkIsReportedAndTheModelHeldStatic) {
   const std::string crate = "<model name='crate'><pose>2 0 0.5 0 0 0</pose><link name='link'>" +
                             boxInertial(1, 0.2, 0.2, 0.2) + boxCollision(0.2, 0.2, 0.2) +
