@@ -92,8 +92,10 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
   // Colliders, one per body with collisions: a compound in the COM frame.
   r->colliders.resize(nb);
   int collision_index = 0;
+  std::vector<Eigen::Isometry3d> X_MB(nb);  // bodies in the model frame at q = 0
   for (int b = 0; b < nb; ++b) {
     const TreeBody& body = tree.bodies[b];
+    X_MB[b] = body.parent < 0 ? body.X_PB : X_MB[body.parent] * body.X_PB;
     if (body.collisions.empty()) {
       // Bullet files a joint motor or limit under the island of its link's collider and skips
       // it when there is none: a body without geometry gets a 1 mm sphere that collides with
@@ -130,7 +132,12 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
       std::unique_ptr<OwnedShape> mesh;
       std::unique_ptr<btCollisionShape> shape = makeLinkShape(
           body, g, options.collision_margin,
-          options.wheel_shape,
+          // A world model's wheel is fitted (one contact under the axle) only while its axle
+          // is level: a cambered cylinder touches with its rim, lower than R (polaris: 1.52
+          // rad, 7 mm), and Gazebo collides the true cylinder.
+          !r->world_model || std::abs((X_MB[b].linear() * body.axis_B).z()) < 1e-3
+              ? options.wheel_shape
+              : WheelShape::kMeshHull,
           r->world_model,  // a world model's meshes are concave, as in Gazebo
           (r->world_model ? "model '" : "robot '") + r->name + "' link '" + g.link + "'", &X_BS,
           &is_wheel, &mesh);
