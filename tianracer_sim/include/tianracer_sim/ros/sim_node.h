@@ -121,7 +121,10 @@ class SimNode : private ModelSpawner {
   ros::NodeHandle root_;      // "/" on queue_
   WorldLoadOptions world_options_;
   std::unique_ptr<Simulator> sim_;
-  tf2_ros::StaticTransformBroadcaster static_tf_;
+  /// Made with the first robot: /tf_static is advertised only once something is sent on it
+  /// (a world alone offers gazebo_ros's topics only).
+  std::unique_ptr<tf2_ros::StaticTransformBroadcaster> static_tf_;
+  tf2_ros::StaticTransformBroadcaster& staticTf();
   std::vector<std::unique_ptr<RobotBridge>> robots_;  // in the order they were added
   std::map<std::string, std::string> topic_owner_;    // sensor topics: who publishes there
   std::map<std::string, std::vector<std::string>> world_model_topics_;  // by world model name
