@@ -71,7 +71,7 @@ class ParseTest(unittest.TestCase):
         self.refused('-urdf -file a'.split())                     # -model
 
     def test_joint_positions(self):
-        a = sm.parse_args('-urdf -param d -model c -J pivot 0.5 -J elbow -1e-1'.split())
+        a = sm.parse_args('-urdf -param d -model c -J pivot 0.5 -J elbow -0.1'.split())
         self.assertEqual(a.joints, [['pivot', 0.5], ['elbow', -0.1]])
         self.assertEqual(sm.configuration_service(a), '/gazebo/set_model_configuration')
         self.assertIn('-J pivot nan', self.refused('-urdf -param d -model c -J pivot nan'.split()))

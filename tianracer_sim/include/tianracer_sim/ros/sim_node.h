@@ -28,6 +28,9 @@
 //   clock_rate       /clock messages per sim second (0 = every step; default 200)
 //   ground_truth_rate  <ns>/ground_truth/odom rate (Hz, default 50)
 //   gazebo_states_rate /gazebo/model_states and link_states rate (Hz, default 50; 0 = every step)
+//   enable_ros_network gazebo_ros's: false = no /gazebo topics or services (default true)
+//   step_services    ~step and ~step_and_wait (default true; gazebo_ros's gzserver: false)
+//   diagnostics      publish /diagnostics (default true; gazebo_ros's gzserver: false)
 //   seed             seed of the sensors' noise (default 0): same seed, same noise
 //   odom_frame       static TF world -> <odom_frame> at the spawn pose (default odom; "" = none)
 //   disable_sensors  sensor types (ray, camera, depth) or names to leave out (list or string)
