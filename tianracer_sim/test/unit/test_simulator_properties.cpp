@@ -10,6 +10,7 @@
 #include <limits>
 #include <string>
 
+#include "tianracer_sim/simulator/sim_sensors.h"
 #include "tianracer_sim/simulator/simulator.h"
 #include "tianracer_sim/world/world.h"
 
@@ -254,6 +255,40 @@ TEST(SimulatorProperties, LightsAreReadSetAndDeleted) {
   sim.deleteLight("lamp");
   EXPECT_EQ(sim.lights().size(), 1u);
   EXPECT_THROW(sim.deleteLight("lamp"), InputError);
+}
+
+// set_light_properties changes what cameras render: the red box seen by a world model's
+// camera (world_model_sensors.world, lit by model://sun) is brighter with the sun turned onto
+// its near face, and darker when the sun's diffuse then goes to 0.
+TEST(SimulatorProperties, ACameraRendersTheChangedLight) {
+  Simulator sim(loadWorldFile(std::string(TEST_DATA_DIR) + "/worlds/world_model_sensors.world"), {});
+  const auto* camera =
+      dynamic_cast<const SimCamera*>(sim.findSensor(sim.findModel("sensor_post"), "post_camera"));
+  ASSERT_NE(camera, nullptr);
+  const CameraConfig& c = camera->camera().config();
+  const std::size_t middle = (static_cast<std::size_t>(c.height / 2) * c.width + c.width / 2) * 3;
+  // The sun shining from behind the camera onto the box's near face (its world direction,
+  // -0.5 0.1 -0.9, leaves that face dark), full white.
+  LightChange bright;
+  bright.diffuse = Eigen::Vector4f(1, 1, 1, 1);
+  bright.attenuation = sim.lights()[0].attenuation;
+  bright.direction = Eigen::Vector3d(1.0, 0.0, -0.3);
+  sim.setLight("sun", bright);
+  sim.step(250);
+  sim.waitFrames();
+  const int lit = camera->camera().image()[middle];
+  LightChange dark;
+  dark.diffuse = Eigen::Vector4f(0, 0, 0, 1);
+  dark.specular = Eigen::Vector4f(0, 0, 0, 1);
+  dark.attenuation = sim.lights()[0].attenuation;
+  sim.setLight("sun", dark);
+  sim.step(250);
+  sim.waitFrames();
+  const int unlit = camera->camera().image()[middle];
+  std::cout << "[set_light_properties] red of the box: " << lit << " in the sun, " << unlit
+            << " with the sun's diffuse at 0 (ambient only)\n";
+  EXPECT_LT(unlit, lit - 20);
+  EXPECT_GT(unlit, 0);  // the ambient light stays
 }
 
 }  // namespace
