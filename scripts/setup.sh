@@ -21,6 +21,7 @@ APT_PACKAGES=(
   libeigen3-dev libassimp-dev libosmesa6-dev libembree-dev libpng-dev libstb-dev ros-robot-state-publisher python3-pip g++ cmake make
   git pkg-config libtinyxml2-dev libyaml-cpp-dev libgtest-dev libgmock-dev liburdfdom-tools
   libstd-srvs-dev python3-std-srvs libtopic-tools-dev libdiagnostic-msgs-dev python3-diagnostic-msgs
+  libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   libros-rosgraph-msgs-dev python3-rosgraph-msgs python3-numpy python3-pil python3-yaml python3-catkin-pkg python3-nose
 
   # the real viewers and the tutorial's joint sliders (display.launch, the rviz check under Xvfb),

@@ -36,7 +36,8 @@ import tf_check  # noqa: E402
 CAR2 = '/tianracer_02'
 # World-wide topics: one for both cars (the Gazebo interface's are the world's, as in Gazebo).
 SHARED = {'/clock', '/tf', '/tf_static', '/diagnostics', '/rosout', '/gazebo/model_states',
-          '/gazebo/link_states', '/gazebo/set_model_state', '/gazebo/set_link_state'}
+          '/gazebo/link_states', '/gazebo/set_model_state', '/gazebo/set_link_state',
+          '/gazebo/parameter_descriptions', '/gazebo/parameter_updates'}
 CAR1_NODES = {'/tianracer_sim', '/robot_state_publisher', '/cmd_vel_node', '/wheel_odometry_node'}
 
 

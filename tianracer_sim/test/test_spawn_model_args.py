@@ -70,9 +70,14 @@ class ParseTest(unittest.TestCase):
         self.refused('-urdf -file a -param b -model b'.split())   # one source
         self.refused('-urdf -file a'.split())                     # -model
 
+    def test_joint_positions(self):
+        a = sm.parse_args('-urdf -param d -model c -J pivot 0.5 -J elbow -0.1'.split())
+        self.assertEqual(a.joints, [['pivot', 0.5], ['elbow', -0.1]])
+        self.assertEqual(sm.configuration_service(a), '/gazebo/set_model_configuration')
+        self.assertIn('-J pivot nan', self.refused('-urdf -param d -model c -J pivot nan'.split()))
+        self.assertIn('-J pivot one', self.refused('-urdf -param d -model c -J pivot one'.split()))
+
     def test_unsupported_and_bad_values_are_named(self):
-        self.assertIn('set_model_configuration',
-                      self.refused('-urdf -param d -model c -J joint 0.5'.split()))
         self.assertIn('model database', self.refused('-sdf -database cone -model c'.split()))
         self.assertIn('-x nan', self.refused('-urdf -param d -model c -x nan'.split()))
         self.assertIn('-Y inf', self.refused('-urdf -param d -model c -Y inf'.split()))

@@ -265,7 +265,10 @@ def main(argv, mode):
     if not any(r.startswith('__name:=') for r in remaps):
         remaps.append('__name:=gazebo')
     full_name = node_name(remaps, env)
-    params = {'world': world, 'paused': a.paused, 'robots': []}
+    # gazebo_ros's interface exactly: no ~step services and no /diagnostics, which Gazebo has
+    # not (ROS arguments _step_services:=true / _diagnostics:=true bring them back).
+    params = {'world': world, 'paused': a.paused, 'robots': [], 'step_services': False,
+              'diagnostics': False}
     if a.seed is not None:
         params['seed'] = a.seed
     _set_params(full_name, params, prog)

@@ -109,7 +109,7 @@ void PhysicsWorld::Impl::applyCommands(RobotState* r) {
     const RobotState::Command& c = r->commands[i];
     btMultiBody* mb = r->mbOfJoint(static_cast<int>(i));
     const int link = r->linkOfJoint(static_cast<int>(i));
-    double tau = c.mode == RobotState::Mode::kEffort ? c.effort : 0.0;
+    double tau = (c.mode == RobotState::Mode::kEffort ? c.effort : 0.0) + r->ext_effort[i];
     if (j.damping > 0.0) tau -= j.damping * mb->getJointVel(link);
     if (j.spring_stiffness != 0.0) tau -= j.spring_stiffness * (mb->getJointPos(link) - j.spring_reference);
     if (tau != 0.0) mb->addJointTorque(link, tau);
@@ -257,6 +257,21 @@ void PhysicsRobot::setJointLimits(int i, double lower, double upper) {
   s_->wake();
 }
 
+void PhysicsRobot::setJointExternalEffort(int i, double effort) {
+  checkJoint(s_, i);
+  if (!std::isfinite(effort)) {
+    ++s_->rejected;
+    return;
+  }
+  if (effort != s_->ext_effort[i]) s_->wake();
+  s_->ext_effort[i] = effort;
+}
+
+double PhysicsRobot::jointExternalEffort(int i) const {
+  checkJoint(s_, i);
+  return s_->ext_effort[i];
+}
+
 std::uint64_t PhysicsRobot::rejectedCommands() const { return s_->rejected; }
 
 // The model frame M: X_WM = X_WB X_BM with B the canonical body's frame (robots: body 0, X_BM
@@ -340,6 +355,7 @@ void PhysicsRobot::resetToSpawn() {
     mb->setJointVel(s_->linkOfJoint(static_cast<int>(i)), 0.0);
     s_->commands[i] = RobotState::Command();
     s_->applied_effort[i] = 0.0;
+    s_->ext_effort[i] = 0.0;
   }
   // Every tree's root frame is the spawn frame at spawn (rigid_tree.h).
   for (const RobotState::Part& part : s_->parts) {

@@ -243,6 +243,7 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
   }
   r->commands.assign(r->joints.size(), RobotState::Command());
   r->applied_effort.assign(r->joints.size(), 0.0);
+  r->ext_effort.assign(r->joints.size(), 0.0);
   for (const TreeBody& body : tree.bodies) {
     for (const auto& l : body.merged_links) r->link_names.push_back(l);
   }

@@ -2,6 +2,7 @@
 #include "tianracer_sim/physics/world.h"
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "world_impl.h"
@@ -298,9 +299,72 @@ void PhysicsWorld::Impl::readEfforts(RobotState* r) {
 }
 
 double PhysicsWorld::dt() const { return impl_->options.dt; }
-double PhysicsWorld::time() const { return static_cast<double>(impl_->steps) * impl_->options.dt; }
+double PhysicsWorld::time() const {
+  return impl_->time_base + static_cast<double>(impl_->steps - impl_->step_base) * impl_->options.dt;
+}
 std::uint64_t PhysicsWorld::stepCount() const { return impl_->steps; }
-void PhysicsWorld::resetTime() { impl_->steps = 0; }
+void PhysicsWorld::resetTime() {
+  impl_->steps = 0;
+  impl_->step_base = 0;
+  impl_->time_base = 0.0;
+}
+
+void PhysicsWorld::setTimeStep(double dt) {
+  if (!(dt > 0.0 && dt <= kMaxTimeStep)) {
+    throw PhysicsError("physics: time step must be in (0, " + std::to_string(kMaxTimeStep) +
+                       "] s, got " + std::to_string(dt));
+  }
+  if (dt == impl_->options.dt) return;
+  impl_->time_base = time();
+  impl_->step_base = impl_->steps;
+  impl_->options.dt = dt;
+  impl_->world->getSolverInfo().m_timeStep = dt;
+}
+
+void PhysicsWorld::setGravity(const Eigen::Vector3d& g) {
+  if (!g.allFinite() || g.cwiseAbs().maxCoeff() > kMaxGravity) {
+    std::ostringstream os;
+    os << "physics: gravity (" << g.transpose() << ") must be finite, each component <= "
+       << kMaxGravity << " m/s^2";
+    throw PhysicsError(os.str());
+  }
+  impl_->options.gravity = g;
+  impl_->world->setGravity(toBt(g));
+  // Bodies asleep would not feel the change.
+  for (auto& r : impl_->robots)
+    if (r) r->wake();
+  for (auto& b : impl_->free_bodies)
+    if (b) b->wake();
+}
+
+void PhysicsWorld::setSolverIterations(int iterations) {
+  if (iterations < 1 || iterations > kMaxSolverIterations) {
+    throw PhysicsError("physics: solver iterations must be in [1, " +
+                       std::to_string(kMaxSolverIterations) + "], got " + std::to_string(iterations));
+  }
+  impl_->options.solver_iterations = iterations;
+  impl_->world->getSolverInfo().m_numIterations = iterations;
+}
+
+void PhysicsWorld::setContactMaxCorrectingVel(double v) {
+  if (!(v > 0.0) || !std::isfinite(v)) {
+    throw PhysicsError("physics: contact_max_correcting_vel must be finite and > 0, got " +
+                       std::to_string(v));
+  }
+  impl_->options.contact_max_correcting_vel = v;
+  static_cast<MultiBodyWorld*>(impl_->world.get())->max_correcting_vel = v;
+}
+
+SolverSettings PhysicsWorld::solverSettings() const {
+  const btContactSolverInfo& si = impl_->world->getSolverInfo();
+  SolverSettings s;
+  s.iterations = si.m_numIterations;
+  s.sor = si.m_sor;
+  s.residual_threshold = si.m_leastSquaresResidualThreshold;
+  s.global_cfm = si.m_globalCfm;
+  s.erp = si.m_erp2;
+  return s;
+}
 int PhysicsWorld::robotCount() const { return static_cast<int>(impl_->robots.size()); }
 
 PhysicsRobot& PhysicsWorld::robot(RobotId id) {

@@ -59,6 +59,9 @@ struct RobotState {
   std::vector<bool> motor_in_world;
   std::vector<Command> commands;
   std::vector<double> applied_effort;
+  /// Per joint: an effort added to whatever else acts (apply_joint_effort), every step until
+  /// replaced; 0 = none.
+  std::vector<double> ext_effort;
   std::uint64_t rejected = 0;
 
   // Scratch for forward kinematics (no allocation once warm).
@@ -119,6 +122,10 @@ struct PhysicsWorld::Impl {
   std::unique_ptr<StaticBody> ground;
 
   std::uint64_t steps = 0;
+  /// The time at step `step_base`: time = time_base + (steps - step_base) dt, so that a new dt
+  /// (setTimeStep) changes the step from then on and not the time already run.
+  double time_base = 0.0;
+  std::uint64_t step_base = 0;
 
   explicit Impl(const PhysicsOptions& o);
   ~Impl();

@@ -71,6 +71,11 @@ GazeboInterface::GazeboInterface(ros::NodeHandle nh, Simulator& sim, const Optio
   // The node publishes its ground truth at the start time; these first come a period later,
   // then on the same steps.
   next_ = sim_.time() + period_;
+  if (!options_.enable_ros_network) {
+    // gazebo_ros_api_plugin.cpp, advertiseServices(): only /clock (the owner's) remains.
+    ROS_INFO("ROS gazebo topics/services are disabled (~enable_ros_network false)");
+    return;
+  }
   model_states_pub_ = nh.advertise<gazebo_msgs::ModelStates>("model_states", 1);
   link_states_pub_ = nh.advertise<gazebo_msgs::LinkStates>("link_states", 1);
   set_model_state_sub_ =
@@ -101,6 +106,7 @@ GazeboInterface::GazeboInterface(ros::NodeHandle nh, Simulator& sim, const Optio
         nh.advertiseService("spawn_sdf_model", &GazeboInterface::spawnSdfModel, this));
     services_.push_back(nh.advertiseService("delete_model", &GazeboInterface::deleteModel, this));
   }
+  advertiseProperties(nh);
   ROS_INFO("%s and %s at %g Hz (sim time)%s", model_states_pub_.getTopic().c_str(),
            link_states_pub_.getTopic().c_str(), options_.states_rate,
            options_.states_rate > 0.0 ? "" : " (every step)");
@@ -477,6 +483,7 @@ bool GazeboInterface::clearBodyWrenches(gazebo_msgs::BodyRequest::Request& req,
 // --- stepping -----------------------------------------------------------------------------------
 
 void GazeboInterface::beforeStep() {
+  applyJointEfforts();
   if (wrenches_.empty()) return;
   for (const WrenchSchedule::Total& w : wrenches_.totals(sim_.time())) {
     Entity e;
@@ -602,6 +609,7 @@ bool GazeboInterface::resetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Res
 
 void GazeboInterface::onReset() {
   wrenches_.clear();
+  joint_efforts_.clear();
   beforeStep();  // switches the forces off
   next_ = sim_.time();
 }

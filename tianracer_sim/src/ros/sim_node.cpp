@@ -65,11 +65,20 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   options.attach_world_sensor = [this](SimSensor& sensor) { attachWorldSensor(sensor); };
   sim_ = std::make_unique<Simulator>(std::move(world), std::move(options));
   sim_->setPaused(paused);
+  {
+    // The pace as Gazebo holds it (set_physics_properties' max_update_rate changes it).
+    PhysicsProperties physics = sim_->physicsProperties();
+    physics.max_update_rate = real_time_factor_ / sim_->dt();
+    sim_->setPhysicsProperties(physics);
+  }
 
   // /clock first, so that nodes waiting for sim time see it as soon as we step.
   nh_.setParam("/use_sim_time", true);
   clock_pub_ = root_.advertise<rosgraph_msgs::Clock>("/clock", 10);
-  diagnostics_pub_ = root_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10);
+  // Not gazebo_ros's: gazebo_ros's gzserver stand-in turns it off (~diagnostics false).
+  bool diagnostics = true;
+  pnh_.param("diagnostics", diagnostics, true);
+  if (diagnostics) diagnostics_pub_ = root_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10);
   contacts_ = std::make_unique<ContactPublisher>(sim_->contacts());
 
   bool several = false;
@@ -100,6 +109,8 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   gazebo.setCallbackQueue(&queue_);
   GazeboInterface::Options gazebo_options;
   gazebo_options.states_rate = getDouble(pnh_, "gazebo_states_rate", gazebo_options.states_rate);
+  // gazebo_ros's ~enable_ros_network (its node is /gazebo: the gzserver stand-in's name).
+  pnh_.param("enable_ros_network", gazebo_options.enable_ros_network, true);
   gazebo_ = std::make_unique<GazeboInterface>(gazebo, *sim_, gazebo_options,
                                              static_cast<ModelSpawner*>(this),
                                              [this] { afterReset(); });
@@ -114,7 +125,11 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
     const bool grid = lockstep_ && lockstep_->clockOnTicksOnly();
     if (clock_published_ != sim_->time() && !grid) publishClock();
   };
-  step_ = std::make_unique<StepBridge>(pnh_, *sim_, &queue_, step_hooks);
+  // ~step and ~step_and_wait are not gazebo_ros's: gazebo_ros's gzserver stand-in turns them
+  // off (~step_services false) so that /gazebo offers exactly gazebo_ros's interface.
+  bool step_services = true;
+  pnh_.param("step_services", step_services, true);
+  if (step_services) step_ = std::make_unique<StepBridge>(pnh_, *sim_, &queue_, step_hooks);
 
   ROS_INFO("tianracer_sim: step %.4f s, real_time_factor %g%s, %s", sim_->dt(), real_time_factor_,
            real_time_factor_ == 0.0 ? " (as fast as possible)" : "",
@@ -204,7 +219,7 @@ void SimNode::run() {
   bool paused_clock = false;  // the paused time went out on /clock
   while (ros::ok()) {
     queue_.callAvailable(ros::WallDuration(0.0));
-    if (step_->serve()) {  // ~step and ~step_and_wait calls (they pause the simulation)
+    if (step_ && step_->serve()) {  // ~step and ~step_and_wait calls (they pause the simulation)
       publishStatus();
       continue;
     }
@@ -230,6 +245,12 @@ void SimNode::run() {
     }
     stepOnce();
     if ((sim_->stepCount() & 255) == 0) publishStatus();
+    // set_physics_properties may have changed the pace (max_update_rate or the step).
+    if (const double rtf = sim_->maxUpdateRate() * sim_->dt(); rtf != real_time_factor_) {
+      real_time_factor_ = rtf;
+      wall0 = ros::WallTime::now();
+      sim0 = sim_->time();
+    }
     if (real_time_factor_ > 0.0) {
       const ros::WallTime target = wall0 + ros::WallDuration((sim_->time() - sim0) / real_time_factor_);
       const ros::WallTime now = ros::WallTime::now();
@@ -243,6 +264,11 @@ void SimNode::run() {
       }
     }
   }
+}
+
+tf2_ros::StaticTransformBroadcaster& SimNode::staticTf() {
+  if (!static_tf_) static_tf_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
+  return *static_tf_;
 }
 
 void SimNode::afterReset() {

@@ -128,7 +128,7 @@ void SimNode::addRobot(RobotModel model, const std::string& name, const Eigen::I
   publisher.robot_name = name;
   publisher.tf_prefix = bridge.tf_prefix;
   publisher.root = root_;
-  publisher.static_tf = &static_tf_;
+  publisher.static_tf = &staticTf();
   publisher.claim_topic = [this, topics](const std::string& topic, const std::string& owner) {
     claimTopic(topic, owner);
     topics->push_back(topic);
@@ -151,7 +151,7 @@ void SimNode::addRobot(RobotModel model, const std::string& name, const Eigen::I
                     << " in " << bridge.ns << ", spawned at ("
                     << pr.spawnPose().translation().transpose() << ")"
                     << (bridge.tf_prefix.empty() ? "" : ", frames prefixed " + bridge.tf_prefix + "/"));
-    robots_.push_back(std::make_unique<RobotBridge>(*sim_, id, bridge, root_, static_tf_));
+    robots_.push_back(std::make_unique<RobotBridge>(*sim_, id, bridge, root_, staticTf()));
     contacts_->addRobot(root_, robot.id, name, bridge.ns);
   };
   ModelId id = kNoModel;
@@ -192,7 +192,7 @@ void SimNode::attachWorldSensor(SimSensor& sensor) {
   PublisherSetup publisher;
   publisher.robot_name = sensor.modelName();
   publisher.root = root_;
-  publisher.static_tf = &static_tf_;
+  publisher.static_tf = &staticTf();
   publisher.world_model = true;
   const std::string model = sensor.modelName();
   publisher.claim_topic = [this, model](const std::string& topic, const std::string& owner) {

@@ -82,7 +82,7 @@ void SimNode::publishStatus() {
     stat.skipped = 0;
   }
   ROS_INFO_STREAM(line.str());
-  diagnostics_pub_.publish(array);
+  if (diagnostics_pub_) diagnostics_pub_.publish(array);
   status_wall_ = now;
   status_sim_ = sim_->time();
 }

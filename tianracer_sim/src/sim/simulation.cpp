@@ -11,6 +11,12 @@
 
 namespace tianracer_sim {
 
+namespace {
+double controlPeriod(const SimRobot& robot) {
+  return robot.model.ext.ros_control ? robot.model.ext.ros_control->control_period : 0.0;
+}
+}  // namespace
+
 namespace tc = tianracer_control;
 
 namespace {
@@ -124,8 +130,7 @@ SimRobot& Simulation::addRobot(RobotConfig config) {
   try {
     buildJointHandles(robot->model, physics_robot, &robot->handles, &robot->handle_joint);
     // gazebo_ros_control's controlPeriod: controllers run every N physics steps.
-    const double period = robot->model.ext.ros_control ? robot->model.ext.ros_control->control_period
-                                                       : 0.0;
+    const double period = controlPeriod(*robot);
     if (period > 0.0) {
       robot->control_every = std::max(1, static_cast<int>(std::lround(period / physics_.dt())));
       if (std::fabs(robot->control_every * physics_.dt() - period) > 1e-9 && warn_) {
@@ -271,6 +276,14 @@ void Simulation::restartControllers(SimRobot& robot) {
   read(robot);
   robot.controllers.reset(physics_.time());
   write(robot);
+}
+
+void Simulation::setTimeStep(double dt) {
+  physics_.setTimeStep(dt);
+  for (auto& robot : robots_) {
+    const double period = controlPeriod(*robot);
+    robot->control_every = period > 0.0 ? std::max(1, static_cast<int>(std::lround(period / dt))) : 1;
+  }
 }
 
 void Simulation::resetSimulation() {

@@ -40,6 +40,8 @@ Simulator::Simulator(WorldDescription world, SimulatorOptions options)
     models_.push_back(std::move(entry));
   }
   addToScene(*world_, scene_);
+  // The run loop's pace: Gazebo's real-time factor is real_time_update_rate * max_step_size.
+  max_update_rate_ = world_->physics.real_time_factor / sim_.dt();
   for (std::size_t id = 0; id < models_.size(); ++id) setUpWorldModelSensors(static_cast<ModelId>(id));
   char line[512];
   std::snprintf(line, sizeof(line), "world '%s' (%s): %zu models, %d collision shapes, ground plane %s",

@@ -161,6 +161,8 @@ WorldDescription loadMapWorld(const std::string& yaml_path, const WorldLoadOptio
   world.name = "map";
   world.ground_plane = true;
   world.sun = DirectionalLight();
+  world.sun->name = "sun";
+  world.sun->attenuation = {0.9, 0.01, 0.001};  // Gazebo's sun/model.sdf
   ModelDescription model;
   model.name = "map";
   model.is_static = true;

@@ -140,6 +140,7 @@ void Parser::parseLight(const XMLElement* e, WorldDescription& world) {
   if (type != "directional" && type != "point" && type != "spot")
     fail(e, what + ": unknown light type '" + type + "' (directional, point, spot)");
   DirectionalLight light;
+  light.name = name;
   light.direction = Eigen::Vector3d(0, 0, -1);  // SDF default
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   double constant = 1.0, linear = 0.0, quadratic = 0.0;
@@ -148,12 +149,12 @@ void Parser::parseLight(const XMLElement* e, WorldDescription& world) {
     if (tag == "direction") {
       light.direction = vector3(c, what);
     } else if (tag == "diffuse") {
-      light.diffuse = color(c, what);
+      light.given_diffuse = color(c, what);
     } else if (tag == "specular") {
-      light.specular = color(c, what);
+      light.given_specular = color(c, what);
     } else if (tag == "pose") {
       X = pose(c, what);
-    } else if (tag == "attenuation" && type != "directional") {
+    } else if (tag == "attenuation") {  // kept for get_light_properties; drawn: below
       for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
         const std::string ktag = k->Name();
         if (ktag == "constant") constant = nonNegative(k, what);
@@ -168,14 +169,15 @@ void Parser::parseLight(const XMLElement* e, WorldDescription& world) {
   if (type == "point") light.direction = Eigen::Vector3d(0, 0, -1);
   if (light.direction.norm() == 0.0) fail(e, what + ": <direction> must not be zero");
   light.direction = (X.linear() * light.direction).normalized();
+  light.attenuation = {constant, linear, quadratic};
+  if (type != "directional") light.attenuation_height = std::max(0.0, X.translation().z());
+  litColours(&light);
   if (type != "directional") {
     // The renderer has directional lights only. A point light becomes one shining straight
     // down, a spot light one along its direction; both dimmed by their attenuation at the
     // light's height above the ground, 1 / (constant + linear h + quadratic h^2) (at most 1).
-    const double h = std::max(0.0, X.translation().z());
-    const double k = std::min(1.0, 1.0 / std::max(1e-9, constant + linear * h + quadratic * h * h));
-    light.diffuse.head<3>() *= static_cast<float>(k);
-    light.specular.head<3>() *= static_cast<float>(k);
+    const double h = light.attenuation_height;
+    const double k = attenuationFactor(light);
     std::ostringstream os;
     os << what << " (" << type << ") is approximated by a directional light along ("
        << light.direction.transpose() << "), its colour scaled by its attenuation at height " << h

@@ -163,7 +163,9 @@ void Parser::parseInclude(const XMLElement* e, WorldDescription& world) {
     world.ground_plane = true;
     world.X_WG = spec.X;
   } else if (spec.uri == "model://sun") {
-    DirectionalLight sun;  // Gazebo's sun model: the defaults of DirectionalLight
+    DirectionalLight sun;  // Gazebo's sun model (sun/model.sdf): the defaults of DirectionalLight
+    sun.name = "sun";
+    sun.attenuation = {0.9, 0.01, 0.001};
     if (spec.has_pose) sun.direction = spec.X.linear() * sun.direction;
     world.sun = sun;
   } else if (std::optional<ModelDescription> m = includeModel(e, spec)) {

@@ -121,6 +121,21 @@ struct Twist {
 class PhysicsWorld;
 struct RobotState;
 
+/// The solver's settings as Bullet holds them (get_physics_properties answers them in ODE's
+/// fields: docs/gazebo_interface.md).
+struct SolverSettings {
+  int iterations = 0;
+  double sor = 1.0;
+  double residual_threshold = 0.0;
+  double global_cfm = 0.0;
+  double erp = 0.0;  // joint-limit and contact error reduction (btContactSolverInfo::m_erp2)
+};
+
+/// Bounds of what set_physics_properties may set.
+constexpr double kMaxTimeStep = 0.1;      // s, as the node's ~max_step_size
+constexpr double kMaxGravity = 1e3;       // m/s^2, each component
+constexpr int kMaxSolverIterations = 10000;
+
 /// One robot in a PhysicsWorld. Joint indices follow joints(); link names are URDF links.
 /// Obtained from PhysicsWorld::robot(); valid as long as the world. Every call that moves it
 /// or pushes it (poses, twists, joint states, wrenches, commands, reset) wakes it.
@@ -156,6 +171,11 @@ class PhysicsRobot {
   void setJointDamping(int i, double damping);
   void setJointFriction(int i, double friction);
   void setJointLimits(int i, double lower, double upper);
+  /// An effort (N m or N) added to whatever else drives joint i (Gazebo's Joint::SetForce,
+  /// apply_joint_effort), at every step until replaced; 0 = none; resetToSpawn clears it.
+  /// Non-finite values are rejected and counted.
+  void setJointExternalEffort(int i, double effort);
+  double jointExternalEffort(int i) const;
   /// Count of rejected (NaN/inf) commands since creation.
   std::uint64_t rejectedCommands() const;
 
@@ -274,6 +294,16 @@ class PhysicsWorld {
   std::uint64_t stepCount() const;
   /// Time and step count back to 0 (robots are reset separately).
   void resetTime();
+  /// Gazebo's SetMaxStepSize / SetGravity and ODE's "iters" and "contact_max_correcting_vel"
+  /// (set_physics_properties): from the next step on. The time already run stays; a step in
+  /// (0, kMaxTimeStep], finite gravity within kMaxGravity, iterations in
+  /// [1, kMaxSolverIterations], a finite velocity > 0. Anything else throws PhysicsError naming
+  /// the value and changes nothing.
+  void setTimeStep(double dt);
+  void setGravity(const Eigen::Vector3d& gravity);
+  void setSolverIterations(int iterations);
+  void setContactMaxCorrectingVel(double velocity);
+  SolverSettings solverSettings() const;
 
   /// Robots ever added, removed ones included (ids are never reused).
   int robotCount() const;

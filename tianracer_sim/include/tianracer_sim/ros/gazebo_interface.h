@@ -17,7 +17,20 @@
 #include <string>
 #include <vector>
 
+#include <dynamic_reconfigure/Reconfigure.h>
 #include <gazebo_msgs/ApplyBodyWrench.h>
+#include <gazebo_msgs/ApplyJointEffort.h>
+#include <gazebo_msgs/DeleteLight.h>
+#include <gazebo_msgs/GetJointProperties.h>
+#include <gazebo_msgs/GetLightProperties.h>
+#include <gazebo_msgs/GetLinkProperties.h>
+#include <gazebo_msgs/GetPhysicsProperties.h>
+#include <gazebo_msgs/JointRequest.h>
+#include <gazebo_msgs/SetJointProperties.h>
+#include <gazebo_msgs/SetLightProperties.h>
+#include <gazebo_msgs/SetLinkProperties.h>
+#include <gazebo_msgs/SetModelConfiguration.h>
+#include <gazebo_msgs/SetPhysicsProperties.h>
 #include <gazebo_msgs/BodyRequest.h>
 #include <gazebo_msgs/DeleteModel.h>
 #include <gazebo_msgs/GetLinkState.h>
@@ -68,6 +81,9 @@ class GazeboInterface {
     /// every step (1 kHz), more than a rospy subscriber reads; 50 Hz is the ground truth's and
     /// joint_states' rate, on the same steps, so a relay's odometry lines up with them.
     double states_rate = 50.0;
+    /// gazebo_ros's ~enable_ros_network: false = none of the /gazebo topics and services
+    /// (/clock stays, it is the owner's).
+    bool enable_ros_network = true;
   };
 
   /// Advertises on `gazebo_nh` (the /gazebo namespace, with the owner's callback queue). The
@@ -114,8 +130,39 @@ class GazeboInterface {
   bool resetSimulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   /// Poses only; time keeps running.
   bool resetWorld(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  // Properties (gazebo_properties.cpp): the Simulator's state changes behind gazebo_ros's
+  // services of the same names.
+  bool getJointProperties(gazebo_msgs::GetJointProperties::Request& req,
+                          gazebo_msgs::GetJointProperties::Response& res);
+  bool setJointProperties(gazebo_msgs::SetJointProperties::Request& req,
+                          gazebo_msgs::SetJointProperties::Response& res);
+  bool getPhysicsProperties(gazebo_msgs::GetPhysicsProperties::Request& req,
+                            gazebo_msgs::GetPhysicsProperties::Response& res);
+  bool setPhysicsProperties(gazebo_msgs::SetPhysicsProperties::Request& req,
+                            gazebo_msgs::SetPhysicsProperties::Response& res);
+  bool getLightProperties(gazebo_msgs::GetLightProperties::Request& req,
+                          gazebo_msgs::GetLightProperties::Response& res);
+  bool setLightProperties(gazebo_msgs::SetLightProperties::Request& req,
+                          gazebo_msgs::SetLightProperties::Response& res);
+  bool deleteLight(gazebo_msgs::DeleteLight::Request& req, gazebo_msgs::DeleteLight::Response& res);
+  bool getLinkProperties(gazebo_msgs::GetLinkProperties::Request& req,
+                         gazebo_msgs::GetLinkProperties::Response& res);
+  bool setLinkProperties(gazebo_msgs::SetLinkProperties::Request& req,
+                         gazebo_msgs::SetLinkProperties::Response& res);
+  bool setModelConfiguration(gazebo_msgs::SetModelConfiguration::Request& req,
+                             gazebo_msgs::SetModelConfiguration::Response& res);
+  bool applyJointEffort(gazebo_msgs::ApplyJointEffort::Request& req,
+                        gazebo_msgs::ApplyJointEffort::Response& res);
+  bool clearJointForces(gazebo_msgs::JointRequest::Request& req,
+                        gazebo_msgs::JointRequest::Response& res);
+  /// dynamic_reconfigure's set_parameters over the physics properties (gazebo_ros's
+  /// physics reconfigure: its parameter names).
+  bool setParameters(dynamic_reconfigure::Reconfigure::Request& req,
+                     dynamic_reconfigure::Reconfigure::Response& res);
 
  private:
+  /// Applies the joint efforts due in the coming step (and clears those that ended).
+  void applyJointEfforts();
   /// A model or link found by name.
   struct Entity {
     SimRobot* robot = nullptr;                // a robot, or
@@ -148,6 +195,18 @@ class GazeboInterface {
   /// Time went back or the world was reset: wrenches are cleared and the publishing schedule
   /// restarts.
   void onReset();
+  void advertiseProperties(ros::NodeHandle& nh);
+  /// The physics properties as dynamic_reconfigure's Config, published on parameter_updates.
+  void publishPhysicsConfig();
+
+  /// apply_joint_effort's jobs (gazebo_ros's ForceJointJob): effort from start to end.
+  struct JointEffortJob {
+    std::string joint;
+    double effort = 0.0, start = 0.0, end = 0.0;  // end < 0: until cleared
+  };
+  std::vector<JointEffortJob> joint_efforts_;
+  std::vector<std::string> joints_pushed_;  // joints with an effort applied in the last step
+  ros::Publisher reconfigure_descriptions_pub_, reconfigure_updates_pub_;
 
   Simulator& simulator_;
   Simulation& sim_;

@@ -28,6 +28,9 @@
 //   clock_rate       /clock messages per sim second (0 = every step; default 200)
 //   ground_truth_rate  <ns>/ground_truth/odom rate (Hz, default 50)
 //   gazebo_states_rate /gazebo/model_states and link_states rate (Hz, default 50; 0 = every step)
+//   enable_ros_network gazebo_ros's: false = no /gazebo topics or services (default true)
+//   step_services    ~step and ~step_and_wait (default true; gazebo_ros's gzserver: false)
+//   diagnostics      publish /diagnostics (default true; gazebo_ros's gzserver: false)
 //   seed             seed of the sensors' noise (default 0): same seed, same noise
 //   odom_frame       static TF world -> <odom_frame> at the spawn pose (default odom; "" = none)
 //   disable_sensors  sensor types (ray, camera, depth) or names to leave out (list or string)
@@ -121,7 +124,10 @@ class SimNode : private ModelSpawner {
   ros::NodeHandle root_;      // "/" on queue_
   WorldLoadOptions world_options_;
   std::unique_ptr<Simulator> sim_;
-  tf2_ros::StaticTransformBroadcaster static_tf_;
+  /// Made with the first robot: /tf_static is advertised only once something is sent on it
+  /// (a world alone offers gazebo_ros's topics only).
+  std::unique_ptr<tf2_ros::StaticTransformBroadcaster> static_tf_;
+  tf2_ros::StaticTransformBroadcaster& staticTf();
   std::vector<std::unique_ptr<RobotBridge>> robots_;  // in the order they were added
   std::map<std::string, std::string> topic_owner_;    // sensor topics: who publishes there
   std::map<std::string, std::vector<std::string>> world_model_topics_;  // by world model name

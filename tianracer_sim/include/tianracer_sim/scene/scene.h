@@ -51,12 +51,46 @@ struct SceneItem {
   bool collision = false;  // hit by rays (and used by physics)
 };
 
-/// The sun (or any directional light) of the world.
-struct DirectionalLight {
-  Eigen::Vector3d direction{-0.5, 0.1, -0.9};  // world frame, pointing from the light
-  Eigen::Vector4f diffuse{0.8f, 0.8f, 0.8f, 1.0f};
-  Eigen::Vector4f specular{0.2f, 0.2f, 0.2f, 1.0f};
+/// Light attenuation 1 / (constant + linear d + quadratic d^2) (SDF <attenuation>).
+struct Attenuation {
+  double constant = 1.0, linear = 0.0, quadratic = 0.0;
 };
+
+/// The sun (or any directional light) of the world. Point and spot lights are drawn as
+/// directional ones whose colours are dimmed by their attenuation at their height (see
+/// litColours).
+struct DirectionalLight {
+  std::string name;                            // the SDF light's name ("sun" for model://sun)
+  Eigen::Vector3d direction{-0.5, 0.1, -0.9};  // world frame, pointing from the light
+  Eigen::Vector4f diffuse{0.8f, 0.8f, 0.8f, 1.0f};   // what is drawn
+  Eigen::Vector4f specular{0.2f, 0.2f, 0.2f, 1.0f};  // what is drawn
+  /// As the world (or set_light_properties) gives them.
+  Eigen::Vector4f given_diffuse{0.8f, 0.8f, 0.8f, 1.0f};
+  Eigen::Vector4f given_specular{0.2f, 0.2f, 0.2f, 1.0f};
+  Attenuation attenuation;
+  /// Point and spot lights: height above the ground where the attenuation is evaluated;
+  /// < 0 for a directional light (not attenuated, as in Gazebo).
+  double attenuation_height = -1.0;
+};
+
+/// The attenuation factor of a light as drawn: min(1, 1 / (c + l h + q h^2)) at its height h,
+/// 1 for directional lights.
+inline double attenuationFactor(const DirectionalLight& l) {
+  if (l.attenuation_height < 0.0) return 1.0;
+  const double h = l.attenuation_height;
+  const Attenuation& a = l.attenuation;
+  const double d = a.constant + a.linear * h + a.quadratic * h * h;
+  return d > 1e-9 ? (d < 1.0 ? 1.0 : 1.0 / d) : 1.0;
+}
+
+/// Sets the drawn colours from the given ones and the attenuation.
+inline void litColours(DirectionalLight* l) {
+  const float k = static_cast<float>(attenuationFactor(*l));
+  l->diffuse = l->given_diffuse;
+  l->specular = l->given_specular;
+  l->diffuse.head<3>() *= k;
+  l->specular.head<3>() *= k;
+}
 
 struct Scene {
   std::vector<SceneBody> bodies;

@@ -21,8 +21,8 @@
 namespace tianracer_sim {
 
 /// Brings `to` to the state of `from`: a full copy when the bodies or items differ in number
-/// (robots added or removed), else only the body poses (no allocation once warm). Items and
-/// lights are set up once per robot or world load and are not changed afterwards.
+/// (robots added or removed), else only the body poses and the lights (set_light_properties;
+/// no allocation once warm). Items are set up once per robot or world load.
 inline void snapshotScene(const Scene& from, Scene* to) {
   if (to->bodies.size() != from.bodies.size() || to->items.size() != from.items.size() ||
       to->lights.size() != from.lights.size()) {
@@ -30,6 +30,11 @@ inline void snapshotScene(const Scene& from, Scene* to) {
     return;
   }
   for (std::size_t i = 0; i < from.bodies.size(); ++i) to->bodies[i].X_WB = from.bodies[i].X_WB;
+  for (std::size_t i = 0; i < from.lights.size(); ++i) {
+    to->lights[i].direction = from.lights[i].direction;
+    to->lights[i].diffuse = from.lights[i].diffuse;
+    to->lights[i].specular = from.lights[i].specular;
+  }
 }
 
 /// One background thread running jobs of type Job one at a time, in submission order, with at

@@ -73,6 +73,9 @@ class Simulation {
 
   /// One physics step of dt.
   void step();
+  /// A new physics step from the next step on (PhysicsWorld::setTimeStep); controllers with a
+  /// controlPeriod keep it as nearly as the new step allows. Throws PhysicsError.
+  void setTimeStep(double dt);
 
   /// /gazebo/reset_simulation: time to 0, robots to spawn, controllers reset.
   void resetSimulation();

@@ -1,0 +1,268 @@
+// What gazebo_ros's property services read and change (gazebo_ros/src/gazebo_ros_api_plugin.cpp:
+// get/set_physics_properties, get/set_joint_properties, set_model_configuration,
+// get_link_properties, get/set_light_properties, delete_light), as state changes of the
+// Simulator without ROS. Every setter checks all of its input before it changes anything.
+#include <cmath>
+#include <sstream>
+
+#include "tianracer_sim/simulator/simulator.h"
+
+namespace tianracer_sim {
+
+namespace {
+
+std::string num(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+bool finiteNonNegative(const Eigen::Vector4f& c) {
+  return c.allFinite() && (c.array() >= 0.0f).all();
+}
+
+std::string colour(const Eigen::Vector4f& c) {
+  std::ostringstream os;
+  os << "(" << c[0] << ", " << c[1] << ", " << c[2] << ", " << c[3] << ")";
+  return os.str();
+}
+
+}  // namespace
+
+// --- physics ----------------------------------------------------------------------------------
+
+PhysicsProperties Simulator::physicsProperties() const {
+  const PhysicsWorld& w = sim_.physics();
+  PhysicsProperties p;
+  p.time_step = w.dt();
+  p.max_update_rate = max_update_rate_;
+  p.gravity = w.options().gravity;
+  p.solver = w.solverSettings();
+  p.solver_iterations = p.solver.iterations;
+  p.contact_max_correcting_vel = w.options().contact_max_correcting_vel;
+  p.auto_disable_bodies = w.options().sleep_time > 0.0;
+  return p;
+}
+
+void Simulator::setPhysicsProperties(const PhysicsProperties& p) {
+  const PhysicsProperties now = physicsProperties();
+  if (!(p.time_step > 0.0 && p.time_step <= kMaxTimeStep)) {
+    throw InputError("physics: time_step must be in (0, " + num(kMaxTimeStep) + "] s, got " +
+                     num(p.time_step));
+  }
+  if (!(p.max_update_rate >= 0.0) || !std::isfinite(p.max_update_rate)) {
+    throw InputError("physics: max_update_rate must be finite and >= 0 (0 = as fast as possible), got " +
+                     num(p.max_update_rate));
+  }
+  if (!p.gravity.allFinite() || p.gravity.cwiseAbs().maxCoeff() > kMaxGravity) {
+    throw InputError("physics: gravity (" + num(p.gravity.x()) + ", " + num(p.gravity.y()) + ", " +
+                     num(p.gravity.z()) + ") must be finite, each component within " +
+                     num(kMaxGravity) + " m/s^2");
+  }
+  if (p.solver_iterations < 1 || p.solver_iterations > kMaxSolverIterations) {
+    throw InputError("physics: sor_pgs_iters (solver iterations) must be in [1, " +
+                     std::to_string(kMaxSolverIterations) + "], got " +
+                     std::to_string(p.solver_iterations));
+  }
+  if (!(p.contact_max_correcting_vel > 0.0) || !std::isfinite(p.contact_max_correcting_vel)) {
+    throw InputError("physics: contact_max_correcting_vel must be finite and > 0, got " +
+                     num(p.contact_max_correcting_vel));
+  }
+  if (p.auto_disable_bodies != now.auto_disable_bodies) {
+    throw InputError(std::string("physics: auto_disable_bodies cannot be changed here (it is ") +
+                     (now.auto_disable_bodies ? "true" : "false") +
+                     ": each world model's <allow_auto_disable> decides)");
+  }
+  waitFrames();  // the frame in flight was drawn with the old state
+  sim_.setTimeStep(p.time_step);
+  sim_.physics().setGravity(p.gravity);
+  sim_.physics().setSolverIterations(p.solver_iterations);
+  sim_.physics().setContactMaxCorrectingVel(p.contact_max_correcting_vel);
+  max_update_rate_ = p.max_update_rate;
+}
+
+// --- joints -----------------------------------------------------------------------------------
+
+PhysicsRobot& Simulator::jointPhysics(const std::string& name, int* index) {
+  const ScopedName n = splitScopedName(name);
+  // "joint" alone: n.model holds it and n.link is empty.
+  const std::string joint = n.link.empty() ? n.model : n.link;
+  const std::string model = n.link.empty() ? "" : n.model;
+  if (joint.empty()) throw InputError("joint '" + name + "': no joint name given");
+  bool model_found = model.empty();
+  for (const Model& m : models_) {
+    if (m.name.empty() || (!model.empty() && m.name != model)) continue;
+    PhysicsRobot* p = const_cast<PhysicsRobot*>(physicsOf(static_cast<ModelId>(&m - models_.data())));
+    model_found = true;
+    if (!p) continue;  // a static model: its joints do not move
+    const int i = p->jointIndex(joint);
+    if (i >= 0) {
+      *index = i;
+      return *p;
+    }
+  }
+  if (!model_found) throw InputError("joint '" + name + "': no model named '" + model + "'");
+  throw InputError("joint '" + name + "' not found: no " +
+                   (model.empty() ? std::string("model") : "model '" + model + "'") +
+                   " has a movable joint of that name (fixed joints are merged into their parent)");
+}
+
+JointProperties Simulator::jointProperties(const std::string& name) const {
+  int i = -1;
+  const PhysicsRobot& p = const_cast<Simulator*>(this)->jointPhysics(name, &i);
+  JointProperties j;
+  j.model = p.name();
+  j.info = p.joints()[i];
+  j.position = p.jointPosition(i);
+  j.rate = p.jointVelocity(i);
+  return j;
+}
+
+void Simulator::setJointProperties(const std::string& name, const JointPropertiesChange& c) {
+  int i = -1;
+  PhysicsRobot& p = jointPhysics(name, &i);
+  const JointInfo& j = p.joints()[i];
+  const std::string what = "joint '" + name + "'";
+  auto check = [&](const std::optional<double>& v, const char* field, bool non_negative) {
+    if (v && (!std::isfinite(*v) || (non_negative && *v < 0.0))) {
+      throw InputError(what + ": " + field + " must be finite" + (non_negative ? " and >= 0" : "") +
+                       ", got " + num(*v));
+    }
+  };
+  check(c.damping, "damping", true);
+  check(c.friction, "friction", true);
+  check(c.lower, "loStop", false);
+  check(c.upper, "hiStop", false);
+  check(c.velocity, "vel", false);
+  check(c.fmax, "fmax", true);
+  if (c.velocity.has_value() != c.fmax.has_value()) {
+    throw InputError(what + ": vel and fmax go together (a velocity target needs its force cap)");
+  }
+  if (c.lower || c.upper) {
+    if (j.type == JointType::kContinuous) {
+      throw InputError(what + " is continuous: it has no position limits (loStop, hiStop)");
+    }
+    const double lo = c.lower.value_or(j.has_position_limits ? j.lower : -1e16);
+    const double hi = c.upper.value_or(j.has_position_limits ? j.upper : 1e16);
+    if (!(lo <= hi)) {
+      throw InputError(what + ": loStop " + num(lo) + " is above hiStop " + num(hi));
+    }
+  }
+  if (c.damping) p.setJointDamping(i, *c.damping);
+  if (c.friction) p.setJointFriction(i, *c.friction);
+  if (c.lower || c.upper) {
+    p.setJointLimits(i, c.lower.value_or(j.has_position_limits ? j.lower : -1e16),
+                     c.upper.value_or(j.has_position_limits ? j.upper : 1e16));
+  }
+  if (c.velocity) p.setJointVelocityTarget(i, *c.velocity, *c.fmax);
+}
+
+void Simulator::setModelConfiguration(const std::string& model,
+                                      const std::vector<std::string>& joints,
+                                      const std::vector<double>& positions) {
+  const ModelId id = findModel(model);
+  if (id == kNoModel) throw InputError("set_model_configuration: no model named '" + model + "'");
+  PhysicsRobot* p = const_cast<PhysicsRobot*>(physicsOf(id));
+  if (!p) throw InputError("set_model_configuration: model '" + model + "' is static: its joints do not move");
+  if (joints.size() != positions.size()) {
+    throw InputError("set_model_configuration: model '" + model + "': " +
+                     std::to_string(joints.size()) + " joint names but " +
+                     std::to_string(positions.size()) + " positions");
+  }
+  std::vector<int> index(joints.size());
+  for (std::size_t k = 0; k < joints.size(); ++k) {
+    index[k] = p->jointIndex(joints[k]);
+    if (index[k] < 0) {
+      throw InputError("set_model_configuration: model '" + model + "' has no movable joint '" +
+                       joints[k] + "'");
+    }
+    if (!std::isfinite(positions[k])) {
+      throw InputError("set_model_configuration: model '" + model + "' joint '" + joints[k] +
+                       "': position " + num(positions[k]) + " is not finite");
+    }
+  }
+  for (std::size_t k = 0; k < joints.size(); ++k) p->setJointState(index[k], positions[k], 0.0);
+  scene_step_ = ~0ull;  // links moved between steps
+}
+
+// --- links ------------------------------------------------------------------------------------
+
+LinkProperties Simulator::linkProperties(const std::string& name) const {
+  const ScopedName n = splitScopedName(name);
+  if (n.model.empty() || n.link.empty()) {
+    throw InputError("link '" + name + "': use gazebo's scoped name \"model::link\"");
+  }
+  const ModelId id = findModel(n.model);
+  if (id == kNoModel) throw InputError("link '" + name + "': no model named '" + n.model + "'");
+  LinkProperties lp;
+  if (const SimRobot* r = robot(id)) {
+    const PhysicsRobot& p = sim_.physics().robot(r->id);
+    for (const TreeBody& b : p.tree().bodies) {
+      if (b.link == n.link) {
+        lp.mass = b.mass.mass;  // body frame B = the link's frame; lumped children included
+        lp.com = b.mass.com;
+        lp.inertia = b.mass.inertia;
+        return lp;
+      }
+      for (const std::string& merged : b.merged_links) {
+        if (merged == n.link) {
+          throw InputError("link '" + name + "' is joined to '" + b.link +
+                           "' by fixed joints and lumped into it (as Gazebo's URDF import does): ask for '" +
+                           n.model + "::" + b.link + "'");
+        }
+      }
+    }
+    throw InputError("link '" + name + "': model '" + n.model + "' has no link '" + n.link + "'");
+  }
+  for (const ModelDescription& m : world_->models) {
+    if (m.name != n.model) continue;
+    for (const LinkDescription& l : m.links) {
+      if (l.name != n.link) continue;
+      lp.mass = l.inertial.mass;
+      lp.com = l.inertial.X_LI.translation();
+      lp.inertia = l.inertial.inertia;
+      return lp;
+    }
+  }
+  throw InputError("link '" + name + "': model '" + n.model + "' has no link '" + n.link + "'");
+}
+
+// --- lights -----------------------------------------------------------------------------------
+
+void Simulator::setLight(const std::string& name, const LightChange& c) {
+  DirectionalLight* light = nullptr;
+  std::string known;
+  for (DirectionalLight& l : scene_.lights) {
+    if (l.name == name) light = &l;
+    known += (known.empty() ? "" : ", ") + l.name;
+  }
+  if (!light) throw InputError("light '" + name + "' not found (lights: " + (known.empty() ? "none" : known) + ")");
+  const std::string what = "light '" + name + "'";
+  if (!finiteNonNegative(c.diffuse)) throw InputError(what + ": diffuse " + colour(c.diffuse) + " must be finite and >= 0");
+  if (!finiteNonNegative(c.specular)) throw InputError(what + ": specular " + colour(c.specular) + " must be finite and >= 0");
+  const Attenuation& a = c.attenuation;
+  for (double v : {a.constant, a.linear, a.quadratic}) {
+    if (!(v >= 0.0) || !std::isfinite(v)) {
+      throw InputError(what + ": attenuation (" + num(a.constant) + ", " + num(a.linear) + ", " +
+                       num(a.quadratic) + ") must be finite and >= 0");
+    }
+  }
+  if (!c.direction.allFinite()) throw InputError(what + ": direction is not finite");
+  light->given_diffuse = c.diffuse;
+  light->given_specular = c.specular;
+  light->attenuation = a;
+  if (c.direction.norm() > 0.0) light->direction = c.direction.normalized();
+  litColours(light);
+}
+
+void Simulator::deleteLight(const std::string& name) {
+  for (auto it = scene_.lights.begin(); it != scene_.lights.end(); ++it) {
+    if (it->name == name) {
+      scene_.lights.erase(it);
+      return;
+    }
+  }
+  throw InputError("light '" + name + "' not found");
+}
+
+}  // namespace tianracer_sim
