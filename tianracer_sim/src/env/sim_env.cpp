@@ -308,8 +308,8 @@ Observation SimEnv::resolve(const std::string& what) const {
     o.outputs = bits;
     o.shape = {static_cast<std::size_t>(cfg.height), static_cast<std::size_t>(cfg.width),
                static_cast<std::size_t>(c.channels())};
-    o.dtype = c.bytesPerPixel() == 2 ? 'H' : 'B';
-    o.itemsize = c.bytesPerPixel() == 2 ? 2 : 1;
+    o.dtype = bytesPerChannel(cfg.format) == 2 ? 'H' : 'B';
+    o.itemsize = bytesPerChannel(cfg.format);
   };
   if (const auto* lidar = dynamic_cast<const SimLidar*>(sensor)) {
     if (!output.empty() && output != "scan") throw noOutput("scan");
@@ -334,8 +334,8 @@ Observation SimEnv::resolve(const std::string& what) const {
       o.shape = {static_cast<std::size_t>(d.config().camera.height),
                  static_cast<std::size_t>(d.config().camera.width),
                  static_cast<std::size_t>(d.channels())};
-      o.dtype = d.bytesPerPixel() == 2 ? 'H' : 'B';
-      o.itemsize = d.bytesPerPixel() == 2 ? 2 : 1;
+      o.dtype = bytesPerChannel(d.config().camera.format) == 2 ? 'H' : 'B';
+      o.itemsize = bytesPerChannel(d.config().camera.format);
     } else if (output.empty() || output == "depth") {
       const CameraConfig& c = depth->camera().config().camera;
       o.kind = Observation::Kind::kDepth;

@@ -139,6 +139,12 @@ RaySensorConfig ConfigReader::read() {
       }
       continue;
     }
+    // gazebo_ros_range and gazebo_ros_block_laser read the same <ray>; their own parsers
+    // (ray_plugins.h) read their parameters.
+    if (p.filename.find("gazebo_ros_range") != std::string::npos ||
+        p.filename.find("gazebo_ros_block_laser") != std::string::npos) {
+      continue;
+    }
     if (!laser) {
       if (warn_)
         warn_(what_ + ": plugin '" + p.filename + "' is not supported on a ray sensor, ignored");
@@ -326,9 +332,9 @@ RaySensor::RaySensor(RaySensorConfig config) : config_(std::move(config)), rng_(
   ranges_.reserve(config_.samples);
 }
 
-void scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,
-              const RaySensorConfig& config, std::mt19937_64& rng, RayScanBuffers* buffers,
-              std::vector<float>* ranges) {
+void castRayGrid(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,
+                 const RaySensorConfig& config, RayScanBuffers* buffers,
+                 std::vector<float>* ranges) {
   RayScanBuffers& b = *buffers;
   caster.update(scene);
   const int samples = std::max(0, config.samples);
@@ -362,11 +368,26 @@ void scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_
   const float t_min = static_cast<float>(config.range_min);
   const float t_max = static_cast<float>(config.range_max * (1.0 + 1e-6) + 1e-6);
   caster.castRays(X_WS.translation(), b.dirs_W, t_min, t_max, ranges->data());
+}
+
+void scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,
+              const RaySensorConfig& config, std::mt19937_64& rng, RayScanBuffers* buffers,
+              std::vector<float>* ranges) {
+  castRayGrid(caster, scene, X_WS, config, buffers, ranges);
+  const int n = static_cast<int>(ranges->size());
   if (config.velodyne) {
     applyCloudRangeModel(config, rng, ranges->data(), n);
   } else {
     applyRangeModel(config, rng, ranges->data(), n);
   }
+}
+
+void shapeRanges(const RaySensorConfig& config, RayCaster& caster, const Scene& scene,
+                 const Eigen::Isometry3d& X_WS, RayScanBuffers* buffers,
+                 std::vector<float>* ranges) {
+  castRayGrid(caster, scene, X_WS, config, buffers, ranges);
+  const float max = static_cast<float>(config.range_max);
+  for (float& r : *ranges) r = std::min(r, max);  // +inf (no hit) too
 }
 
 std::vector<float> scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,

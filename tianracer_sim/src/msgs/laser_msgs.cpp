@@ -78,4 +78,31 @@ void toVelodyneCloud(const RaySensorConfig& config, const std::vector<float>& ra
   msg->is_dense = true;
 }
 
+void toRange(const RangeConfig& config, const RangeReading& reading, const ros::Time& stamp,
+             sensor_msgs::Range* msg) {
+  msg->header.stamp = stamp;
+  msg->header.frame_id = config.frame_name;
+  msg->radiation_type = static_cast<std::uint8_t>(reading.radiation);
+  msg->field_of_view = reading.field_of_view;
+  msg->min_range = reading.min_range;
+  msg->max_range = reading.max_range;
+  msg->range = reading.range;
+}
+
+void toPointCloud(const BlockLaserConfig& config, const BlockCloud& cloud, const ros::Time& stamp,
+                  sensor_msgs::PointCloud* msg) {
+  msg->header.stamp = stamp;
+  msg->header.frame_id = config.frame_name;
+  const std::size_t n = cloud.intensity.size();
+  msg->points.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    msg->points[i].x = cloud.xyz[3 * i];
+    msg->points[i].y = cloud.xyz[3 * i + 1];
+    msg->points[i].z = cloud.xyz[3 * i + 2];
+  }
+  msg->channels.resize(1);
+  msg->channels[0].name.clear();
+  msg->channels[0].values.assign(cloud.intensity.begin(), cloud.intensity.end());
+}
+
 }  // namespace tianracer_sim

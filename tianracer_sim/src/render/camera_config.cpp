@@ -37,18 +37,43 @@ const char* imageEncoding(ImageFormat format) {
     case ImageFormat::kB8G8R8: return "bgr8";
     case ImageFormat::kL8: return "mono8";
     case ImageFormat::kL16: return "mono16";
+    case ImageFormat::kR16G16B16: return "rgb16";
+    case ImageFormat::kBayerRGGB8: return "bayer_rggb8";
+    case ImageFormat::kBayerBGGR8: return "bayer_bggr8";
+    case ImageFormat::kBayerGBRG8: return "bayer_gbrg8";
+    case ImageFormat::kBayerGRBG8: return "bayer_grbg8";
   }
   return "rgb8";
 }
 
-int bytesPerPixel(ImageFormat format) {
+int channelCount(ImageFormat format) {
   switch (format) {
     case ImageFormat::kR8G8B8:
-    case ImageFormat::kB8G8R8: return 3;
-    case ImageFormat::kL8: return 1;
-    case ImageFormat::kL16: return 2;
+    case ImageFormat::kB8G8R8:
+    case ImageFormat::kR16G16B16: return 3;
+    default: return 1;
   }
-  return 3;
+}
+
+int bytesPerChannel(ImageFormat format) {
+  return format == ImageFormat::kL16 || format == ImageFormat::kR16G16B16 ? 2 : 1;
+}
+
+int bytesPerPixel(ImageFormat format) { return channelCount(format) * bytesPerChannel(format); }
+
+int bayerChannel(ImageFormat format, int row, int col) {
+  // The 2x2 tile, row by row, as the encoding's name spells it.
+  static const char* const kTiles[] = {"RGGB", "BGGR", "GBRG", "GRBG"};
+  int tile = -1;
+  switch (format) {
+    case ImageFormat::kBayerRGGB8: tile = 0; break;
+    case ImageFormat::kBayerBGGR8: tile = 1; break;
+    case ImageFormat::kBayerGBRG8: tile = 2; break;
+    case ImageFormat::kBayerGRBG8: tile = 3; break;
+    default: return -1;
+  }
+  const char c = kTiles[tile][(row & 1) * 2 + (col & 1)];
+  return c == 'R' ? 0 : c == 'G' ? 1 : 2;
 }
 
 Eigen::Isometry3d CameraConfig::X_LO() const { return X_LS * opticalFromLinkRotation(); }
@@ -152,14 +177,28 @@ class Parser {
         }
         if (c->noise_stddev < 0.0) fail("<noise><stddev> " + child_text + " must be >= 0");
       } else if (n == "distortion") {
-        bool any = false;
+        LensDistortion& d = c->distortion;
         for (const XMLElement* g = child->FirstChildElement(); g; g = g->NextSiblingElement()) {
           const std::string g_name = g->Name(), g_text = textOf(g);
-          if (g_name == "center") continue;
-          if (number("<distortion><" + g_name + ">", g_text) != 0.0) any = true;
+          const std::string what = "<distortion><" + g_name + ">";
+          if (g_name == "k1") d.k1 = number(what, g_text);
+          else if (g_name == "k2") d.k2 = number(what, g_text);
+          else if (g_name == "k3") d.k3 = number(what, g_text);
+          else if (g_name == "p1") d.p1 = number(what, g_text);
+          else if (g_name == "p2") d.p2 = number(what, g_text);
+          else if (g_name == "center") {
+            std::istringstream in(g_text);
+            std::string a, b, extra;
+            in >> a >> b;
+            if (a.empty() || b.empty() || (in >> extra)) {
+              fail(what + " '" + g_text + "' is not two numbers");
+            }
+            d.center_x = number(what, a);
+            d.center_y = number(what, b);
+          } else {
+            warn("unknown element <camera><distortion><" + g_name + "> ignored");
+          }
         }
-        if (any) warn("<camera><distortion> is not applied to the images (like gazebo_ros's camera_info, "
-                      "images are undistorted)");
       } else if (n == "save" || n == "depth_camera" || n == "lens" || n == "pose" ||
                  n == "visualize" || n == "triggered" || n == "trigger_topic") {
         warn("<camera><" + n + "> is not supported; ignored");
@@ -182,20 +221,33 @@ class Parser {
     if (!(c->near_clip < c->far_clip)) {
       fail("<clip><near> " + str(c->near_clip) + " must be less than <clip><far> " + str(c->far_clip));
     }
-    // Gazebo's names (and its *_INT* aliases); the float and Bayer formats are Gazebo's too,
-    // but not simulated here.
+    // Gazebo's names (and its *_INT* aliases), as gazebo_ros_camera_utils.cpp Init maps them;
+    // the float formats are Gazebo's too, but not simulated here.
     const std::string& f = c->format_name;
-    if (f == "R8G8B8" || f == "RGB_INT8") c->format = ImageFormat::kR8G8B8;
-    else if (f == "B8G8R8" || f == "BGR_INT8") c->format = ImageFormat::kB8G8R8;
-    else if (f == "L8" || f == "L_INT8") c->format = ImageFormat::kL8;
-    else if (f == "L16" || f == "L_INT16") c->format = ImageFormat::kL16;
-    else if (f == "R_FLOAT16" || f == "R_FLOAT32" || f == "BAYER_RGGB8" || f == "BAYER_BGGR8" ||
-             f == "BAYER_GBRG8" || f == "BAYER_GRBG8") {
-      fail("<image><format> '" + f + "' is a Gazebo format that is not simulated (supported: "
-           "R8G8B8, B8G8R8, L8, L16); the camera is left out");
-    } else {
-      fail("<image><format> '" + f + "' is not a Gazebo image format (supported: R8G8B8, "
-           "B8G8R8, L8, L16)");
+    static const std::pair<const char*, ImageFormat> kFormats[] = {
+        {"R8G8B8", ImageFormat::kR8G8B8},          {"RGB_INT8", ImageFormat::kR8G8B8},
+        {"B8G8R8", ImageFormat::kB8G8R8},          {"BGR_INT8", ImageFormat::kB8G8R8},
+        {"L8", ImageFormat::kL8},                  {"L_INT8", ImageFormat::kL8},
+        {"L16", ImageFormat::kL16},                {"L_INT16", ImageFormat::kL16},
+        {"R16G16B16", ImageFormat::kR16G16B16},    {"RGB_INT16", ImageFormat::kR16G16B16},
+        {"BAYER_RGGB8", ImageFormat::kBayerRGGB8}, {"BAYER_BGGR8", ImageFormat::kBayerBGGR8},
+        {"BAYER_GBRG8", ImageFormat::kBayerGBRG8}, {"BAYER_GRBG8", ImageFormat::kBayerGRBG8}};
+    static const char* kSupported = "R8G8B8, B8G8R8, L8, L16, R16G16B16, BAYER_RGGB8, "
+                                    "BAYER_BGGR8, BAYER_GBRG8, BAYER_GRBG8";
+    bool known = false;
+    for (const auto& [name, format] : kFormats) {
+      if (f == name) {
+        c->format = format;
+        known = true;
+      }
+    }
+    if (!known) {
+      if (f == "R_FLOAT16" || f == "R_FLOAT32") {
+        fail("<image><format> '" + f + "' is a Gazebo format that is not simulated (supported: " +
+             kSupported + "); the camera is left out");
+      }
+      fail("<image><format> '" + f + "' is not a Gazebo image format (supported: " + kSupported +
+           ")");
     }
     c->noise_seed = nameHash(sensor_.name);
     c->frame_name = sensor_.link;
@@ -215,6 +267,7 @@ class Parser {
   void parseCameraPlugin(const PluginSpec& p, CameraConfig* c, std::set<std::string>* used) {
     c->has_plugin = true;
     c->plugin_filename = p.filename;
+    c->triggered = endsWith(p.filename, "libgazebo_ros_triggered_camera.so");
     auto get = [&](const std::string& key, std::string* out) {
       const auto it = p.params.find(key);
       if (it == p.params.end()) return false;
@@ -226,10 +279,16 @@ class Parser {
       std::string text;
       if (get(key, &text)) *out = number("plugin <" + key + ">", text);
     };
+    // An empty <robotNamespace/> is the root here. gazebo_ros's GetRobotNamespace
+    // (gazebo_ros_utils.h) makes it the model's name; tianracer.gazebo's default
+    // sensor_namespace "" relies on the root (the seed's /rrbot/camera1/...), and none of
+    // gazebo_ros_pkgs' registered tests depends on it (docs/model_and_sensors.md).
     get("robotNamespace", &c->robot_namespace);
     get("cameraName", &c->camera_name);
     get("imageTopicName", &c->image_topic);
     get("cameraInfoTopicName", &c->camera_info_topic);
+    get("triggerTopicName", &c->trigger_topic);
+    if (c->triggered && c->trigger_topic.empty()) fail("plugin <triggerTopicName> is empty");
     std::string frame;
     if (get("frameName", &frame) && !frame.empty()) c->frame_name = frame;
     num("updateRate", &c->plugin_update_rate);
@@ -242,6 +301,24 @@ class Parser {
                           std::make_pair("distortionT2", &c->t2), std::make_pair("distortion_t2", &c->t2)}) {
       num(k.first, k.second);
     }
+    std::string flag;
+    auto boolean = [&](const std::string& key, bool* out) {
+      if (!get(key, &flag)) return;
+      if (flag == "true" || flag == "1") *out = true;
+      else if (flag == "false" || flag == "0") *out = false;
+      else fail("plugin <" + key + "> '" + flag + "' is not a boolean (true, false, 1, 0)");
+    };
+    boolean("autoDistortion", &c->auto_distortion);
+    boolean("borderCrop", &c->border_crop);
+    if (c->auto_distortion) {
+      // gazebo_ros_camera_utils Init: D from the sensor's <distortion>.
+      c->k1 = c->distortion.k1;
+      c->k2 = c->distortion.k2;
+      c->k3 = c->distortion.k3;
+      c->t1 = c->distortion.p1;
+      c->t2 = c->distortion.p2;
+    }
+    c->distortion.crop = c->border_crop && c->distortion.k1 < 0.0;
     num("Cx", &c->cx_override);
     num("Cy", &c->cy_override);
     num("focalLength", &c->focal_length_override);
@@ -250,9 +327,14 @@ class Parser {
     std::string ignored;
     get("alwaysOn", &ignored);
     if (c->plugin_update_rate < 0.0) fail("plugin <updateRate> must be >= 0");
-    if (c->k1 != 0 || c->k2 != 0 || c->k3 != 0 || c->t1 != 0 || c->t2 != 0) {
-      warn("non-zero distortion is reported in camera_info only; images are not distorted "
-           "(as gazebo_ros)");
+    const LensDistortion& d = c->distortion;
+    if (c->k1 != d.k1 || c->k2 != d.k2 || c->k3 != d.k3 || c->t1 != d.p1 || c->t2 != d.p2) {
+      warn("camera_info D [" + formatShort(c->k1) + " " + formatShort(c->k2) + " " +
+           formatShort(c->t1) + " " + formatShort(c->t2) + " " + formatShort(c->k3) +
+           "] differs from the <distortion> applied to the images (k1 k2 p1 p2 k3 = " +
+           formatShort(d.k1) + " " + formatShort(d.k2) + " " + formatShort(d.p1) + " " +
+           formatShort(d.p2) + " " + formatShort(d.k3) + "): as gazebo_ros, D is the plugin's "
+           "distortionK1.. unless <autoDistortion> is true");
     }
     if (c->focal_length_override > 0.0 &&
         std::fabs(c->focal_length_override - c->focalLength()) > 1e-6 * c->focalLength()) {
@@ -277,7 +359,8 @@ class Parser {
   XmlReader xml_;
 };
 
-const std::vector<std::string> kCameraPlugins = {"libgazebo_ros_camera.so"};
+const std::vector<std::string> kCameraPlugins = {"libgazebo_ros_camera.so",
+                                                  "libgazebo_ros_triggered_camera.so"};
 const std::vector<std::string> kDepthPlugins = {"libgazebo_ros_openni_kinect.so",
                                                 "libgazebo_ros_depth_camera.so"};
 
@@ -301,6 +384,11 @@ DepthCameraConfig parseDepthCameraConfig(const SensorSpec& sensor, const Warning
   d.camera.image_topic = "ir/image_raw";  // openni_kinect's own defaults
   d.camera.camera_info_topic = "ir/camera_info";
   parser.parseCamera(&d.camera);
+  if (d.camera.distortion.enabled()) {
+    parser.warn("<camera><distortion> is not applied to a depth camera's images (only to "
+                "camera and multicamera sensors); camera_info reports the plugin's D");
+    d.camera.distortion = LensDistortion();
+  }
   if (const PluginSpec* p = parser.findPlugin(kDepthPlugins)) {
     std::set<std::string> used;
     parser.parseCameraPlugin(*p, &d.camera, &used);

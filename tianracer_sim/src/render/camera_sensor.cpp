@@ -36,12 +36,34 @@ void toBgr(const std::vector<uint8_t>& rgb, std::vector<uint8_t>* bgr) {
   }
 }
 
+// rgb16: each 8-bit channel v as the 16-bit v * 257 = (v << 8) | v, little-endian.
+void toRgb16(const std::vector<uint8_t>& rgb, std::vector<uint8_t>* out) {
+  const std::size_t n = rgb.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    (*out)[2 * i] = rgb[i];
+    (*out)[2 * i + 1] = rgb[i];
+  }
+}
+
+// Bayer: at each pixel the one channel the pattern names there.
+void toBayer(ImageFormat format, const std::vector<uint8_t>& rgb, int width,
+             std::vector<uint8_t>* out) {
+  const std::size_t n = out->size();
+  const int even[2] = {bayerChannel(format, 0, 0), bayerChannel(format, 0, 1)};
+  const int odd[2] = {bayerChannel(format, 1, 0), bayerChannel(format, 1, 1)};
+  for (std::size_t i = 0; i < n; ++i) {
+    const int row = static_cast<int>(i / width), col = static_cast<int>(i % width);
+    const int* channel = (row & 1) ? odd : even;
+    (*out)[i] = rgb[3 * i + channel[col & 1]];
+  }
+}
+
 // Turns the rendered rgb8 `rgb` into `out` in `format` and applies the noise. rgb8 renders
 // straight into `out` (rgb == out). Mono8 takes its noise after the conversion (one sample a
 // pixel on the grey value); the other formats take it on the colour, one sample a pixel
 // added to every channel, before the byte order or scale changes.
-void finishImage(ImageFormat format, std::vector<uint8_t>* rgb, std::vector<uint8_t>* out,
-                 ImageNoise* noise, std::size_t pixels) {
+void finishImage(ImageFormat format, int width, std::vector<uint8_t>* rgb,
+                 std::vector<uint8_t>* out, ImageNoise* noise, std::size_t pixels) {
   switch (format) {
     case ImageFormat::kR8G8B8:
       noise->apply(out->data(), pixels, 3);
@@ -58,6 +80,17 @@ void finishImage(ImageFormat format, std::vector<uint8_t>* rgb, std::vector<uint
       noise->apply(rgb->data(), pixels, 3);
       toMono16(*rgb, out);
       break;
+    case ImageFormat::kR16G16B16:
+      noise->apply(rgb->data(), pixels, 3);
+      toRgb16(*rgb, out);
+      break;
+    case ImageFormat::kBayerRGGB8:
+    case ImageFormat::kBayerBGGR8:
+    case ImageFormat::kBayerGBRG8:
+    case ImageFormat::kBayerGRBG8:
+      noise->apply(rgb->data(), pixels, 3);
+      toBayer(format, *rgb, width, out);
+      break;
   }
 }
 
@@ -73,15 +106,25 @@ CameraSensor::CameraSensor(CameraConfig config, Renderer& renderer)
   const std::size_t pixels = static_cast<std::size_t>(config_.width) * config_.height;
   image_.resize(pixels * bytesPerPixel());
   if (config_.format != ImageFormat::kR8G8B8) rgb_scratch_.resize(pixels * 3);
+  if (config_.distortion.enabled()) {
+    distortion_ = DistortionMap(config_.distortion, intrinsics_);
+    undistorted_.resize(pixels * 3);
+  }
 }
 
 void CameraSensor::render(const Scene& scene, const Eigen::Isometry3d& X_WL) {
   const Eigen::Isometry3d X_WC = X_WL * config_.X_LS;
   const std::size_t pixels = static_cast<std::size_t>(config_.width) * config_.height;
   const bool direct = config_.format == ImageFormat::kR8G8B8;
-  renderer_->renderView(scene, X_WC, intrinsics_, direct ? image_.data() : rgb_scratch_.data(),
-                        nullptr);
-  finishImage(config_.format, &rgb_scratch_, &image_, &noise_, pixels);
+  uint8_t* rgb = direct ? image_.data() : rgb_scratch_.data();
+  if (distortion_.empty()) {
+    renderer_->renderView(scene, X_WC, intrinsics_, rgb, nullptr);
+  } else {
+    // The lens distorts the rendered image before the noise (per output pixel) is added.
+    renderer_->renderView(scene, X_WC, intrinsics_, undistorted_.data(), nullptr);
+    distortion_.apply(undistorted_.data(), rgb, 3);
+  }
+  finishImage(config_.format, config_.width, &rgb_scratch_, &image_, &noise_, pixels);
   ++renders_;
 }
 
@@ -119,7 +162,7 @@ void DepthCameraSensor::render(const Scene& scene, const Eigen::Isometry3d& X_WL
   uint8_t* rgb = want_rgb ? (direct ? image_.data() : rgb_scratch_.data()) : nullptr;
   renderer_->renderView(scene, X_WC, intrinsics_, rgb, want_depth ? depth_.data() : nullptr);
   ++renders_;
-  if (want_rgb) finishImage(c.format, &rgb_scratch_, &image_, &noise_, pixels);
+  if (want_rgb) finishImage(c.format, c.width, &rgb_scratch_, &image_, &noise_, pixels);
   if (!want_depth) return;
 
   const float lo = static_cast<float>(config_.point_cloud_cutoff);
@@ -148,6 +191,8 @@ void DepthCameraSensor::writeCloud(uint8_t* out) const {
     case ImageFormat::kB8G8R8: ro = 2, go = 1, bo = 0; break;
     case ImageFormat::kL8: break;
     case ImageFormat::kL16: ro = go = bo = 1; break;
+    case ImageFormat::kR16G16B16: ro = 1, go = 3, bo = 5; break;  // the high bytes
+    default: break;  // Bayer: the pixel's one value, as grey
   }
   for (int v = 0; v < c.height; ++v) {
     const float ry = ray_y_[v];

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "tianracer_sim/common/text.h"
+#include "tianracer_sim/lidar/ray_plugins.h"
 #include "tianracer_sim/lidar/ray_sensor.h"
 #include "tianracer_sim/render/camera_sensor.h"
 #include "tianracer_sim/sensors/bumper.h"
@@ -28,8 +29,9 @@ std::vector<SensorTopic> lidarTopics(const SensorSpec& sensor, const std::string
 
 // libgazebo_ros_camera: <robotNamespace>/<cameraName>/{image, camera_info} at updateRate (0 =
 // the sensor rate). Without a plugin Gazebo renders but publishes nothing.
-std::vector<SensorTopic> cameraTopics(const SensorSpec& sensor, const std::string&, const WarningSink& warn) {
-  const CameraConfig c = parseCameraConfig(sensor, warn);
+std::vector<SensorTopic> cameraTopics(const SensorSpec& sensor, const std::string& model_name,
+                                      const WarningSink& warn) {
+  CameraConfig c = parseCameraConfig(sensor, warn);
   if (!c.has_plugin) return {};
   const std::string ns = resolveTopic(c.robot_namespace, c.camera_name);
   return {{resolveTopic(ns, c.image_topic), "sensor_msgs/Image", c.publishRate()},
@@ -38,8 +40,9 @@ std::vector<SensorTopic> cameraTopics(const SensorSpec& sensor, const std::strin
 
 // libgazebo_ros_openni_kinect / libgazebo_ros_depth_camera: images and cloud at the sensor
 // rate, both camera_infos at the plugin's updateRate.
-std::vector<SensorTopic> depthCameraTopics(const SensorSpec& sensor, const std::string&, const WarningSink& warn) {
-  const DepthCameraConfig d = parseDepthCameraConfig(sensor, warn);
+std::vector<SensorTopic> depthCameraTopics(const SensorSpec& sensor, const std::string& model_name,
+                                           const WarningSink& warn) {
+  DepthCameraConfig d = parseDepthCameraConfig(sensor, warn);
   const CameraConfig& c = d.camera;
   if (!c.has_plugin) return {};
   const std::string ns = resolveTopic(c.robot_namespace, c.camera_name);
@@ -66,6 +69,16 @@ std::vector<SensorTopic> p3dTopics(const SensorSpec& sensor, const std::string& 
   return publishedTopics(parseP3dConfig(sensor, model_name, warn));
 }
 
+std::vector<SensorTopic> rangeTopics(const SensorSpec& sensor, const std::string&,
+                                     const WarningSink& warn) {
+  return publishedTopics(parseRangeConfig(sensor, warn));
+}
+
+std::vector<SensorTopic> blockLaserTopics(const SensorSpec& sensor, const std::string&,
+                                          const WarningSink& warn) {
+  return publishedTopics(parseBlockLaserConfig(sensor, warn));
+}
+
 std::vector<SensorTopic> bumperTopics(const SensorSpec& sensor, const std::string& model_name,
                                      const WarningSink& warn) {
   return publishedTopics(parseBumperConfig(sensor, model_name, warn));
@@ -80,7 +93,10 @@ const std::vector<SensorKind>& sensorKinds() {
        {"libgazebo_ros_laser.so", "libgazebo_ros_gpu_laser.so", "libgazebo_ros_velodyne_laser.so",
         "libgazebo_ros_velodyne_gpu_laser.so"},
        &lidarTopics},
-      {"camera", {"camera"}, {"libgazebo_ros_camera.so"}, &cameraTopics},
+      {"range", {"ray", "gpu_ray"}, {"libgazebo_ros_range.so"}, &rangeTopics},
+      {"block_laser", {"ray", "gpu_ray"}, {"libgazebo_ros_block_laser.so"}, &blockLaserTopics},
+      {"camera", {"camera"}, {"libgazebo_ros_camera.so", "libgazebo_ros_triggered_camera.so"},
+       &cameraTopics},
       {"multicamera", {"multicamera"}, {"libgazebo_ros_multicamera.so"}, &multiCameraTopics},
       {"depth_camera", {"depth"},
        {"libgazebo_ros_openni_kinect.so", "libgazebo_ros_depth_camera.so"}, &depthCameraTopics},

@@ -26,6 +26,22 @@ std::unique_ptr<SimSensor> makeLidar(const SimSensorSetup& setup) {
   return std::make_unique<SimLidar>(setup, std::move(config));
 }
 
+std::unique_ptr<SimSensor> makeRange(const SimSensorSetup& setup) {
+  RangeConfig config = parseRangeConfig(*setup.spec, setup.warn);
+  config.seed = setup.seed + 501 + static_cast<std::uint64_t>(setup.index);
+  config.frame_name = tc::resolveFrame(setup.tf_prefix, config.frame_name);
+  if (config.topic_name.empty()) return nullptr;  // gazebo_ros_range: no topic, nothing published
+  return std::make_unique<SimRange>(setup, std::move(config));
+}
+
+std::unique_ptr<SimSensor> makeBlockLaser(const SimSensorSetup& setup) {
+  BlockLaserConfig config = parseBlockLaserConfig(*setup.spec, setup.warn);
+  config.seed = setup.seed + 601 + static_cast<std::uint64_t>(setup.index);
+  config.frame_name = tc::resolveFrame(setup.tf_prefix, config.frame_name);
+  if (config.topic_name.empty()) return nullptr;
+  return std::make_unique<SimBlockLaser>(setup, std::move(config));
+}
+
 std::unique_ptr<SimSensor> makeCamera(const SimSensorSetup& setup) {
   setup.check_link(setup.spec->link);
   // Parse first: a bad sensor is reported even when there is no renderer.
@@ -123,6 +139,7 @@ std::unique_ptr<SimSensor> makeSimSensor(const SensorKind& kind, const SimSensor
       {"lidar", &makeLidar},   {"camera", &makeCamera}, {"multicamera", &makeMultiCamera},
       {"depth_camera", &makeDepthCamera}, {"imu", &makeImu}, {"imu_plugin", &makeImuPlugin},
       {"p3d", &makeP3d},       {"bumper", &makeBumper},
+      {"range", &makeRange},   {"block_laser", &makeBlockLaser},
   };
   const auto it = factories.find(kind.id);
   if (it == factories.end())
@@ -151,6 +168,46 @@ void SimLidar::sample(SensorOutputs, SensorWorld& world) {
   ranges_ = &sensor_.scan(world.caster(), scene, world.linkPose(link()));
 }
 
+// --- range and block laser ------------------------------------------------------------------------
+
+SimRange::SimRange(const SimSensorSetup& setup, RangeConfig config)
+    : SimSensor("range", config.ray.name, linkOf(setup, config.ray.link), setup.model_name),
+      config_(std::move(config)), rng_(config_.seed) {
+  setup.check_link(config_.ray.link);
+  schedule_.period = periodOf(config_.publishRate());
+  stat().name = config_.ray.name;
+  stat().target = config_.publishRate();
+}
+
+SensorOutputs SimRange::update(double t, SensorWorld&) { return schedule_.due(t) ? kRange : 0; }
+
+void SimRange::sample(SensorOutputs, SensorWorld& world) {
+  const Scene& scene = world.scene();
+  shapeRanges(config_.ray, world.caster(), scene, world.linkPose(link()) * config_.ray.X_LS,
+              &buffers_, &ranges_);
+  reading_ = rangeReading(config_, ranges_, rng_);
+}
+
+SimBlockLaser::SimBlockLaser(const SimSensorSetup& setup, BlockLaserConfig config)
+    : SimSensor("block_laser", config.ray.name, linkOf(setup, config.ray.link), setup.model_name),
+      config_(std::move(config)), rng_(config_.seed) {
+  setup.check_link(config_.ray.link);
+  schedule_.period = periodOf(config_.ray.update_rate);
+  stat().name = config_.ray.name;
+  stat().target = config_.ray.update_rate;
+}
+
+SensorOutputs SimBlockLaser::update(double t, SensorWorld&) {
+  return schedule_.due(t) ? kCloud : 0;
+}
+
+void SimBlockLaser::sample(SensorOutputs, SensorWorld& world) {
+  const Scene& scene = world.scene();
+  shapeRanges(config_.ray, world.caster(), scene, world.linkPose(link()) * config_.ray.X_LS,
+              &buffers_, &ranges_);
+  blockLaserCloud(config_, ranges_, rng_, &cloud_);
+}
+
 // --- camera ---------------------------------------------------------------------------------------
 
 SimCamera::SimCamera(const SimSensorSetup& setup, const CameraConfig& config, Renderer& renderer)
@@ -162,6 +219,14 @@ SimCamera::SimCamera(const SimSensorSetup& setup, const CameraConfig& config, Re
 }
 
 SensorOutputs SimCamera::update(double t, SensorWorld&) {
+  if (sensor_.config().triggered) {
+    // Gazebo enables a triggered camera for one frame per trigger (gazebo_ros_triggered_camera
+    // PreRender / OnNewFrame), subscribers or not.
+    int pending = triggers_.load();
+    while (pending > 0 && !triggers_.compare_exchange_weak(pending, pending - 1)) {
+    }
+    return pending > 0 ? kImage | kInfo : 0;
+  }
   return schedule_.due(t) ? kImage | kInfo : 0;
 }
 

@@ -125,8 +125,9 @@ TEST(RenderCameraConfig, DistortionOrderIsPlumbBob) {
   std::vector<std::string> warnings;
   const CameraInfo info = makeCameraInfo(parseCameraConfig(spec, [&](const std::string& w) { warnings.push_back(w); }));
   EXPECT_EQ(info.D, (std::array<double, 5>{0.1, 0.2, 0.4, 0.5, 0.3}));  // k1 k2 t1 t2 k3
-  ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_NE(warnings[0].find("not distorted"), std::string::npos) << warnings[0];
+  ASSERT_EQ(warnings.size(), 1u);  // D is not what the (absent) <distortion> does to images
+  EXPECT_NE(warnings[0].find("differs from the <distortion> applied to the images"),
+            std::string::npos) << warnings[0];
 }
 
 TEST(RenderCameraConfig, SeedRealSense) {
@@ -212,8 +213,8 @@ TEST(RenderCameraConfig, ValidationErrors) {
   expectError(edited(seed, "<near>0.02", "<near>300"), {"<clip><near> 300", "<clip><far> 300"});
   expectError(edited(seed, "<near>0.02", "<near>400"), {"<clip><near> 400"});
   expectError(edited(seed, "<near>0.02", "<near>0"), {"<clip><near> 0", "> 0"});
-  expectError(edited(seed, "<format>R8G8B8", "<format>BAYER_RGGB8"),
-              {"camera1", "<image><format> 'BAYER_RGGB8'", "Gazebo format that is not simulated", "left out"});
+  expectError(edited(seed, "<format>R8G8B8", "<format>R_FLOAT16"),
+              {"camera1", "<image><format> 'R_FLOAT16'", "Gazebo format that is not simulated", "left out"});
   expectError(edited(seed, "<format>R8G8B8", "<format>R_FLOAT32"), {"'R_FLOAT32'", "not simulated"});
   expectError(edited(seed, "<format>R8G8B8", "<format>RGBA8"), {"'RGBA8' is not a Gazebo image format"});
   expectError(edited(seed, "<type>gaussian", "<type>poisson"), {"'poisson'"});
@@ -230,7 +231,10 @@ TEST(RenderCameraConfig, ValidationErrors) {
       {"L8", ImageFormat::kL8},         {"L_INT8", ImageFormat::kL8},
       {"L16", ImageFormat::kL16},       {"L_INT16", ImageFormat::kL16},
       {"B8G8R8", ImageFormat::kB8G8R8}, {"BGR_INT8", ImageFormat::kB8G8R8},
-      {"RGB_INT8", ImageFormat::kR8G8B8}};
+      {"RGB_INT8", ImageFormat::kR8G8B8}, {"R16G16B16", ImageFormat::kR16G16B16},
+      {"RGB_INT16", ImageFormat::kR16G16B16}, {"BAYER_RGGB8", ImageFormat::kBayerRGGB8},
+      {"BAYER_BGGR8", ImageFormat::kBayerBGGR8}, {"BAYER_GBRG8", ImageFormat::kBayerGBRG8},
+      {"BAYER_GRBG8", ImageFormat::kBayerGRBG8}};
   for (const auto& f : formats) {
     EXPECT_EQ(parseCameraConfig(edited(seed, "<format>R8G8B8", "<format>" + f.first)).format, f.second)
         << f.first;

@@ -216,10 +216,10 @@ TEST(SensorsMultiCamera, OtherBadInput) {
   err = errorOf(edited("0 -0.07 0 0 0 0", "0 -0.07 0 0 nan"));
   EXPECT_NE(err.find("camera 'right': <pose> '0 -0.07 0 0 nan'"), std::string::npos) << err;
   // A camera's own error names the camera and the value.
-  err = errorOf(edited("<format>B8G8R8", "<format>BAYER_RGGB8"));
+  err = errorOf(edited("<format>B8G8R8", "<format>R_FLOAT32"));
   EXPECT_NE(err.find("robot 'car_a'"), std::string::npos) << err;
   EXPECT_NE(err.find("'stereo_camera/right'"), std::string::npos) << err;
-  EXPECT_NE(err.find("'BAYER_RGGB8'"), std::string::npos) << err;
+  EXPECT_NE(err.find("'R_FLOAT32'"), std::string::npos) << err;
   SensorSpec spec = stereo();
   spec.plugins[0].params["cameraSuffixes"] = "/a,/b,/c";
   err = errorOf(spec);

@@ -31,6 +31,48 @@ std::string depthSensor(const std::string& plugin_file, const std::string& param
          "<updateRate>10</updateRate>" + params + "</plugin></sensor>";
 }
 
+TEST(SensorsRegistry, GazeboPluginsOfTheUpstreamSuite) {
+  const std::string grid =
+      "<ray><scan><horizontal><samples>5</samples><min_angle>-0.25</min_angle>"
+      "<max_angle>0.25</max_angle></horizontal><vertical><samples>5</samples>"
+      "<min_angle>-0.25</min_angle><max_angle>0.25</max_angle></vertical></scan>"
+      "<range><min>0.01</min><max>0.75</max></range></ray>";
+  const SensorSpec range = sensorFrom("<sensor type='ray' name='s'><update_rate>5</update_rate>" +
+                                      grid + "<plugin name='p' filename='libgazebo_ros_range.so'>"
+                                      "<topicName>sonar</topicName></plugin></sensor>");
+  ASSERT_NE(findSensorKind(range), nullptr);
+  EXPECT_EQ(findSensorKind(range)->id, "range");
+  std::vector<SensorTopic> t = sensorTopics(range, "r");
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_EQ(t[0].topic, "/sonar");
+  EXPECT_EQ(t[0].msg_type, "sensor_msgs/Range");
+  const SensorSpec block = sensorFrom("<sensor type='ray' name='b'><update_rate>5</update_rate>" +
+                                      grid + "<plugin name='p' filename='libgazebo_ros_block_laser.so'>"
+                                      "<topicName>cloud</topicName></plugin></sensor>");
+  ASSERT_NE(findSensorKind(block), nullptr);
+  EXPECT_EQ(findSensorKind(block)->id, "block_laser");
+  t = sensorTopics(block, "r");
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_EQ(t[0].topic, "/cloud");
+  EXPECT_EQ(t[0].msg_type, "sensor_msgs/PointCloud");
+  const SensorSpec trig = sensorFrom(std::string("<sensor type='camera' name='c'>") + kCameraBody +
+                                     "<plugin name='p' filename='libgazebo_ros_triggered_camera.so'>"
+                                     "<cameraName>camera1</cameraName></plugin></sensor>");
+  ASSERT_NE(findSensorKind(trig), nullptr);
+  EXPECT_EQ(findSensorKind(trig)->id, "camera");
+  t = sensorTopics(trig, "r");
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(t[0].topic, "/camera1/image_raw");
+  // An empty <robotNamespace/> is the root (gazebo_ros: the model's name; see camera_config.cpp).
+  const SensorSpec empty_ns = sensorFrom(std::string("<sensor type='camera' name='c'>") +
+                                         kCameraBody + "<plugin name='p' filename='libgazebo_ros_camera.so'>"
+                                         "<robotNamespace></robotNamespace><cameraName>cam</cameraName>"
+                                         "</plugin></sensor>");
+  t = sensorTopics(empty_ns, "pioneer");
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(t[0].topic, "/cam/image_raw");
+}
+
 TEST(SensorsRegistry, KindsByTypeAndPlugin) {
   const std::string ray_body =
       "<ray><scan><horizontal><samples>10</samples><min_angle>-1</min_angle>"

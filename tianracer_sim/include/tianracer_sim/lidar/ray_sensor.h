@@ -129,6 +129,18 @@ struct RayScanBuffers {
 void scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,
               const RaySensorConfig& config, std::mt19937_64& rng, RayScanBuffers* buffers,
               std::vector<float>* ranges);
+/// The rays of scanRays() cast, without any range model: distances from the sensor origin to
+/// the first surface in [range_min, range_max], +inf for none. `ranges` is resized.
+void castRayGrid(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,
+                 const RaySensorConfig& config, RayScanBuffers* buffers,
+                 std::vector<float>* ranges);
+/// What gazebo_ros's ray plugins (range, block laser) read: Gazebo's LaserShape()->GetRange(i)
+/// (gazebo/physics/MultiRayShape.cc), the ray grid cast over [range_min, range_max] with
+/// range_max for a ray that hits nothing; no noise (<ray><noise> is applied by Gazebo's
+/// RaySensor to its LaserScan, not to the shape's ranges).
+void shapeRanges(const RaySensorConfig& config, RayCaster& caster, const Scene& scene,
+                 const Eigen::Isometry3d& X_WS, RayScanBuffers* buffers,
+                 std::vector<float>* ranges);
 /// As above with buffers of its own (allocates; for tests and tools).
 std::vector<float> scanRays(RayCaster& caster, const Scene& scene, const Eigen::Isometry3d& X_WS,
                             const RaySensorConfig& config, std::mt19937_64& rng);

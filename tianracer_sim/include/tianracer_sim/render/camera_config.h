@@ -14,6 +14,7 @@
 #include "tianracer_sim/common/warning.h"
 #include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/render/camera_intrinsics.h"
+#include "tianracer_sim/render/lens_distortion.h"
 
 namespace tianracer_sim {
 
@@ -23,16 +24,29 @@ namespace tianracer_sim {
 using CameraError = InputError;
 
 /// <image><format>: R8G8B8 (alias RGB_INT8) -> rgb8, B8G8R8 (BGR_INT8) -> bgr8, L8 (L_INT8) ->
-/// mono8, L16 (L_INT16) -> mono16. Mono images are the Rec. 601 luma of the rendered colour,
+/// mono8, L16 (L_INT16) -> mono16, R16G16B16 (RGB_INT16) -> rgb16, BAYER_RGGB8 / BGGR8 / GBRG8 /
+/// GRBG8 -> bayer_rggb8 / ... (gazebo_ros_camera_utils.cpp Init, the encoding and step it
+/// sets). Mono images are the Rec. 601 luma of the rendered colour,
 /// Y = 0.299 R + 0.587 G + 0.114 B (what cv_bridge/OpenCV use for rgb8 -> mono8): mono8 =
 /// round(Y) of the 8-bit channels, mono16 = round(Y * 65535 / 255) (full range, 255 -> 65535,
-/// little-endian).
-enum class ImageFormat { kR8G8B8, kB8G8R8, kL8, kL16 };
+/// little-endian). rgb16 is each rendered 8-bit channel times 257 (full range, little-endian:
+/// 8 bits of precision in 16). A Bayer image keeps, at each pixel, the one channel its
+/// pattern names there (the pattern's first row starts at the top-left pixel).
+enum class ImageFormat {
+  kR8G8B8, kB8G8R8, kL8, kL16, kR16G16B16,
+  kBayerRGGB8, kBayerBGGR8, kBayerGBRG8, kBayerGRBG8
+};
 
-/// sensor_msgs/image_encodings name of a format ("rgb8", "bgr8", "mono8", "mono16").
+/// sensor_msgs/image_encodings name of a format ("rgb8", "bgr8", "mono8", "mono16", "rgb16",
+/// "bayer_rggb8", ...).
 const char* imageEncoding(ImageFormat format);
-/// Bytes per pixel of a format (3, 3, 1, 2).
+/// Bytes per pixel of a format (3, 3, 1, 2, 6, 1).
 int bytesPerPixel(ImageFormat format);
+/// Channels per pixel (3 for colour, 1 for mono and Bayer) and bytes per channel (1 or 2).
+int channelCount(ImageFormat format);
+int bytesPerChannel(ImageFormat format);
+/// Channel index (0 R, 1 G, 2 B) that a Bayer format keeps at pixel (row, col); -1 otherwise.
+int bayerChannel(ImageFormat format, int row, int col);
 
 /// The optical frame published for `frame_name` (by TF, rotated rpy(-pi/2, 0, -pi/2) from
 /// it) and written in every image, cloud and camera_info header: "<frame_name>_optical_frame",
@@ -65,6 +79,11 @@ struct CameraConfig {
   // libgazebo_ros_camera (and the shared part of openni_kinect)
   bool has_plugin = false;  // without one, Gazebo renders but publishes nothing
   std::string plugin_filename;
+  /// libgazebo_ros_triggered_camera: one image (and camera_info) per std_msgs/Empty on
+  /// <robotNamespace>/<cameraName>/<triggerTopicName>, none without
+  /// (gazebo_ros_triggered_camera.cpp); the sensor rate does not apply.
+  bool triggered = false;
+  std::string trigger_topic = "image_trigger";  // triggerTopicName
   std::string robot_namespace;
   std::string camera_name;           // topics live under <robotNamespace>/<cameraName>/
   std::string image_topic = "image_raw";
@@ -72,7 +91,14 @@ struct CameraConfig {
   std::string frame_name;            // default: the sensor's link (Gazebo: "/world")
   double plugin_update_rate = 0.0;   // updateRate; 0 = the sensor rate
   double hack_baseline = 0.0;        // P[3] = -f * hackBaseline
-  double k1 = 0, k2 = 0, k3 = 0, t1 = 0, t2 = 0;  // reported in D only, images are not distorted
+  /// D = [k1 k2 t1 t2 k3]: the plugin's distortionK1.. (gazebo_ros_camera_utils), or with
+  /// <autoDistortion> true the <distortion> element's k1 k2 p1 p2 k3.
+  double k1 = 0, k2 = 0, k3 = 0, t1 = 0, t2 = 0;
+  bool auto_distortion = false;  // plugin <autoDistortion>
+  bool border_crop = true;       // plugin <borderCrop>: the crop of barrel distortion
+  /// <camera><distortion>, applied to the rendered images (lens_distortion.h); its crop is
+  /// k1 < 0 and borderCrop.
+  LensDistortion distortion;
   double cx_override = 0.0, cy_override = 0.0, focal_length_override = 0.0;  // Cx, Cy, focalLength
 
   /// The rate images are published at: updateRate, or the sensor rate when it is 0.

@@ -13,6 +13,7 @@
 
 #include "tianracer_sim/render/camera_config.h"
 #include "tianracer_sim/render/image_noise.h"
+#include "tianracer_sim/render/lens_distortion.h"
 #include "tianracer_sim/render/renderer.h"
 
 namespace tianracer_sim {
@@ -39,7 +40,7 @@ class CameraSensor {
   const CameraInfo& info() const { return info_; }
   /// W*H*bytesPerPixel() bytes, rows top to bottom, in the configured format (encoding()).
   const std::vector<uint8_t>& image() const { return image_; }
-  int channels() const { return bytesPerPixel() == 3 ? 3 : 1; }
+  int channels() const { return channelCount(config_.format); }
   int bytesPerPixel() const { return tianracer_sim::bytesPerPixel(config_.format); }
   const char* encoding() const { return imageEncoding(config_.format); }
   uint64_t renderCount() const { return renders_; }
@@ -50,6 +51,8 @@ class CameraSensor {
   CameraInfo info_;
   CameraIntrinsics intrinsics_;
   ImageNoise noise_;
+  DistortionMap distortion_;          // empty without <distortion>
+  std::vector<uint8_t> undistorted_;  // the rendered image, before the lens
   std::vector<uint8_t> image_;
   std::vector<uint8_t> rgb_scratch_;  // formats other than R8G8B8
   uint64_t renders_ = 0;
@@ -74,7 +77,7 @@ class DepthCameraSensor {
   const CameraInfo& info() const { return info_; }  // both camera_infos carry this
   /// The colour image in the configured format, as CameraSensor::image().
   const std::vector<uint8_t>& image() const { return image_; }
-  int channels() const { return bytesPerPixel() == 3 ? 3 : 1; }
+  int channels() const { return channelCount(config_.camera.format); }
   int bytesPerPixel() const { return tianracer_sim::bytesPerPixel(config_.camera.format); }
   const char* encoding() const { return imageEncoding(config_.camera.format); }
   /// W*H metres along the optical axis, NaN outside (cutoff, cutoffMax).

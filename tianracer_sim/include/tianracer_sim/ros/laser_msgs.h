@@ -7,8 +7,11 @@
 
 #include <ros/time.h>
 #include <sensor_msgs/LaserScan.h>
+#include <sensor_msgs/PointCloud.h>
 #include <sensor_msgs/PointCloud2.h>
+#include <sensor_msgs/Range.h>
 
+#include "tianracer_sim/lidar/ray_plugins.h"
 #include "tianracer_sim/lidar/ray_sensor.h"
 
 namespace tianracer_sim {
@@ -32,6 +35,15 @@ void toLaserScan(const RaySensorConfig& config, const std::vector<float>& ranges
 void toVelodyneCloud(const RaySensorConfig& config, const std::vector<float>& ranges,
                      const std::vector<Eigen::Vector3d>& directions, const ros::Time& stamp,
                      sensor_msgs::PointCloud2* msg);
+
+/// gazebo_ros_range's message: frame_id = frameName, the reading's fields.
+void toRange(const RangeConfig& config, const RangeReading& reading, const ros::Time& stamp,
+             sensor_msgs::Range* msg);
+
+/// gazebo_ros_block_laser's message: frame_id = frameName, points row by row, one channel
+/// (named "", as upstream) of intensities. Reuses the message's buffers.
+void toPointCloud(const BlockLaserConfig& config, const BlockCloud& cloud, const ros::Time& stamp,
+                  sensor_msgs::PointCloud* msg);
 
 }  // namespace tianracer_sim
 

@@ -4,6 +4,7 @@
 #ifndef TIANRACER_SIM_SIMULATOR_SIM_SENSORS_H
 #define TIANRACER_SIM_SIMULATOR_SIM_SENSORS_H
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "tianracer_sim/common/warning.h"
+#include "tianracer_sim/lidar/ray_plugins.h"
 #include "tianracer_sim/lidar/ray_sensor.h"
 #include "tianracer_sim/render/camera_sensor.h"
 #include "tianracer_sim/render/multicamera_config.h"
@@ -66,6 +68,48 @@ class SimLidar : public SimSensor {
   std::vector<float> empty_;
 };
 
+/// ray with gazebo_ros_range: the nearest of the grid's rays (sensor_msgs/Range).
+class SimRange : public SimSensor {
+ public:
+  static constexpr SensorOutputs kRange = 1;
+  SimRange(const SimSensorSetup& setup, RangeConfig config);
+  const RangeConfig& config() const { return config_; }
+  const RangeReading& reading() const { return reading_; }
+
+  SensorOutputs update(double t, SensorWorld& world) override;
+  void sample(SensorOutputs outputs, SensorWorld& world) override;
+  void restart(double t) override { schedule_.restart(t); }
+
+ private:
+  RangeConfig config_;
+  std::mt19937_64 rng_;
+  Schedule schedule_;
+  RayScanBuffers buffers_;
+  std::vector<float> ranges_;
+  RangeReading reading_;
+};
+
+/// ray with gazebo_ros_block_laser: a point cloud over the grid (sensor_msgs/PointCloud).
+class SimBlockLaser : public SimSensor {
+ public:
+  static constexpr SensorOutputs kCloud = 1;
+  SimBlockLaser(const SimSensorSetup& setup, BlockLaserConfig config);
+  const BlockLaserConfig& config() const { return config_; }
+  const BlockCloud& cloud() const { return cloud_; }
+
+  SensorOutputs update(double t, SensorWorld& world) override;
+  void sample(SensorOutputs outputs, SensorWorld& world) override;
+  void restart(double t) override { schedule_.restart(t); }
+
+ private:
+  BlockLaserConfig config_;
+  std::mt19937_64 rng_;
+  Schedule schedule_;
+  RayScanBuffers buffers_;
+  std::vector<float> ranges_;
+  BlockCloud cloud_;
+};
+
 /// camera with gazebo_ros_camera: an image (rendered) and camera_info, at the plugin's rate.
 class SimCamera : public SimSensor {
  public:
@@ -79,10 +123,14 @@ class SimCamera : public SimSensor {
   SensorOutputs rendered() const override { return kImage; }
   SensorOutputs counted() const override { return kImage; }
   void restart(double t) override { schedule_.restart(t); }
+  /// libgazebo_ros_triggered_camera: one more frame to render (any thread). Frames go out one
+  /// a step while triggers are pending; without, none.
+  void trigger() { ++triggers_; }
 
  private:
   CameraSensor sensor_;
   Schedule schedule_;
+  std::atomic<int> triggers_{0};
 };
 
 /// depth (gazebo_ros_openni_kinect, gazebo_ros_depth_camera): image, depth and cloud from one

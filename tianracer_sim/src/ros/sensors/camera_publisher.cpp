@@ -5,6 +5,7 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/PointCloud2.h>
+#include <std_msgs/Empty.h>
 
 #include <tianracer_control/frames.h>
 
@@ -59,6 +60,15 @@ class CameraPublisher : public SensorListener {
     image_ = cam_nh.advertise<sensor_msgs::Image>(camera.image_topic, 2);
     info_ = cam_nh.advertise<sensor_msgs::CameraInfo>(camera.camera_info_topic, 2);
     sensor.stat().name = image_.getTopic();
+    if (camera.triggered) {
+      // Upstream's queue holds 1 but is drained every millisecond by a thread of its own; ours
+      // is drained between steps, so it keeps a few triggers rather than drop one.
+      SimCamera* target = &sensor;
+      trigger_ = cam_nh.subscribe<std_msgs::Empty>(
+          camera.trigger_topic, 10, [target](const std_msgs::Empty::ConstPtr&) { target->trigger(); });
+      ROS_INFO("camera '%s' is triggered: one image per message on %s", camera.name.c_str(),
+               trigger_.getTopic().c_str());
+    }
     ROS_INFO("camera '%s' on link %s: %dx%d, hfov %.4g, %g Hz on %s (frame %s)",
              camera.name.c_str(), camera.link.c_str(), camera.width, camera.height,
              camera.horizontal_fov, camera.publishRate(), image_.getTopic().c_str(),
@@ -85,6 +95,7 @@ class CameraPublisher : public SensorListener {
 
  private:
   ros::Publisher image_, info_;
+  ros::Subscriber trigger_;
   BorrowedImage image_msg_;  // the sensor's buffer, serialised by publish() without a copy
   sensor_msgs::CameraInfo info_msg_;
 };
