@@ -19,6 +19,7 @@ std::unique_ptr<SensorListener> makeDepthCameraPublisher(SimSensor& sensor,
 std::unique_ptr<SensorListener> makeImuPublisher(SimSensor& sensor, const PublisherSetup& setup);
 std::unique_ptr<SensorListener> makeP3dPublisher(SimSensor& sensor, const PublisherSetup& setup);
 std::unique_ptr<SensorListener> makeBumperPublisher(SimSensor& sensor, const PublisherSetup& setup);
+std::unique_ptr<SensorListener> makeDrivePublisher(SimSensor& sensor, const PublisherSetup& setup);
 
 struct CameraConfig;
 /// The camera's optical frame (z forward, x right, y down), which its images are stamped

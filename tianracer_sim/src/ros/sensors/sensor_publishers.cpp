@@ -17,6 +17,7 @@ std::unique_ptr<SensorListener> makeSensorPublisher(SimSensor& sensor, const Pub
       {"imu_plugin", &makeImuPublisher},
       {"p3d", &makeP3dPublisher},
       {"bumper", &makeBumperPublisher},
+      {"drive", &makeDrivePublisher},
   };
   const auto it = factories.find(sensor.kind());
   if (it == factories.end())
