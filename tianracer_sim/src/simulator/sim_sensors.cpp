@@ -434,6 +434,8 @@ void SimDrive::sample(SensorOutputs outputs, SensorWorld& world) {
 }
 
 void SimDrive::restart(double t) {
+  // reset_simulation cleared the motors: they hold the wheels again until the first update.
+  started_ = false;
   restart_ = true;
   restart_t_ = t;
 }

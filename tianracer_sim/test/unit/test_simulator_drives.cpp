@@ -134,6 +134,12 @@ TEST(Drives, DiffDriveEncoderOdometryFollowsTheWheels) {
   EXPECT_NEAR(o.linear.x(), -0.4, 0.02);  // signed (upstream: its magnitude)
   EXPECT_NEAR(o.angular.z(), 0.3, 0.02);
   EXPECT_EQ(o.position.z(), 0.0);
+  // reset_simulation: the odometry starts again from 0, the wheels are held.
+  sim.resetSimulation();
+  drive->setCommand(0.0, 0.0, 0.0);
+  sim.step(100);
+  EXPECT_NEAR(drive->odometry().position.norm(), 0.0, 1e-3);
+  EXPECT_NEAR((sim.modelState(id).X_WE.translation() - start).norm(), 0.0, 2e-3);
 }
 
 TEST(Drives, SkidSteerMovesAtTheCommandedSpeedAndTurnsAsFrictionAllows) {
@@ -190,6 +196,53 @@ TEST(Drives, PlanarMoveSetsAWorldModelsVelocity) {
   sim.step(500);
   EXPECT_NEAR(drive->odometry().linear.y(), 0.3, 0.01);
   EXPECT_NEAR(drive->odometry().linear.x(), 0.0, 0.01);
+}
+
+// A world model with wheels on revolute joints and a frictionless caster ball: the diff drive
+// drives a world model's joints as a robot's.
+const char kWheeledModel[] =
+    "<model name='cart'><pose>0 0 0.06 0 0 0</pose>"
+    "<link name='chassis'><inertial><mass>2</mass><inertia><ixx>0.01</ixx><iyy>0.02</iyy>"
+    "<izz>0.025</izz></inertia></inertial>"
+    "<collision name='box'><pose>0 0 0.03 0 0 0</pose><geometry><box><size>0.3 0.2 0.04</size>"
+    "</box></geometry></collision>"
+    "<collision name='caster'><pose>0.12 0 -0.038 0 0 0</pose><geometry><sphere><radius>0.02"
+    "</radius></sphere></geometry><surface><friction><ode><mu>0</mu><mu2>0</mu2></ode></friction>"
+    "</surface></collision>"
+    "<collision name='caster2'><pose>-0.12 0 -0.038 0 0 0</pose><geometry><sphere><radius>0.02"
+    "</radius></sphere></geometry><surface><friction><ode><mu>0</mu><mu2>0</mu2></ode></friction>"
+    "</surface></collision></link>"
+    "<link name='left'><pose>0 0.12 0 0 0 0</pose><inertial><mass>0.2</mass><inertia>"
+    "<ixx>0.00013</ixx><iyy>0.00025</iyy><izz>0.00013</izz></inertia></inertial>"
+    "<collision name='c'><pose>0 0 0 1.5707963 0 0</pose><geometry><cylinder><radius>0.06</radius>"
+    "<length>0.02</length></cylinder></geometry><surface><friction><ode><mu>1</mu><mu2>1</mu2>"
+    "</ode></friction></surface></collision></link>"
+    "<link name='right'><pose>0 -0.12 0 0 0 0</pose><inertial><mass>0.2</mass><inertia>"
+    "<ixx>0.00013</ixx><iyy>0.00025</iyy><izz>0.00013</izz></inertia></inertial>"
+    "<collision name='c'><pose>0 0 0 1.5707963 0 0</pose><geometry><cylinder><radius>0.06</radius>"
+    "<length>0.02</length></cylinder></geometry><surface><friction><ode><mu>1</mu><mu2>1</mu2>"
+    "</ode></friction></surface></collision></link>"
+    "<joint name='left_joint' type='revolute'><parent>chassis</parent><child>left</child>"
+    "<axis><xyz>0 1 0</xyz><limit><lower>-1e16</lower><upper>1e16</upper></limit></axis></joint>"
+    "<joint name='right_joint' type='revolute'><parent>chassis</parent><child>right</child>"
+    "<axis><xyz>0 1 0</xyz><limit><lower>-1e16</lower><upper>1e16</upper></limit></axis></joint>"
+    "<plugin name='drive' filename='libgazebo_ros_diff_drive.so'><robotNamespace>cart</robotNamespace>"
+    "<wheelSeparation>0.24</wheelSeparation><wheelDiameter>0.12</wheelDiameter>"
+    "<updateRate>100</updateRate><publishTf>true</publishTf></plugin></model>";
+
+TEST(Drives, DiffDriveDrivesAWorldModelsJoints) {
+  Simulator sim(groundWorld(kWheeledModel), {});
+  const ModelId id = sim.findModel("cart");
+  ASSERT_NE(id, kNoModel);
+  SimDrive* drive = driveOf(sim, id, "drive");
+  ASSERT_NE(drive, nullptr) << ::testing::PrintToString(sim.leftOut(id));
+  EXPECT_EQ(drive->config().commandTopic(), "/cart/cmd_vel");
+  sim.step(300);
+  drive->setCommand(0.5, 0.0, 0.5);
+  const Motion m = measure(sim, id, 1.0, 2.0);
+  EXPECT_NEAR(m.v, 0.5, 0.015);
+  EXPECT_NEAR(m.w, 0.5, 0.015);
+  EXPECT_NEAR(drive->odometry().linear.x(), 0.5, 0.015);
 }
 
 TEST(Drives, PlanarMoveCommandsExpireAfterCmdTimeout) {
