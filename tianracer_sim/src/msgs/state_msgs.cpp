@@ -89,4 +89,46 @@ void toOdometry(const P3dReading& r, const ros::Time& stamp, const std::string& 
   }
 }
 
+void toOdometry(const DriveOdometry& o, const ros::Time& stamp, const std::string& frame,
+                const std::string& child_frame, nav_msgs::Odometry* msg) {
+  msg->header.stamp = stamp;
+  msg->header.frame_id = frame;
+  msg->child_frame_id = child_frame;
+  msg->pose.pose.position.x = o.position.x();
+  msg->pose.pose.position.y = o.position.y();
+  msg->pose.pose.position.z = o.position.z();
+  msg->pose.pose.orientation.x = o.orientation.x();
+  msg->pose.pose.orientation.y = o.orientation.y();
+  msg->pose.pose.orientation.z = o.orientation.z();
+  msg->pose.pose.orientation.w = o.orientation.w();
+  msg->twist.twist.linear.x = o.linear.x();
+  msg->twist.twist.linear.y = o.linear.y();
+  msg->twist.twist.linear.z = o.linear.z();
+  msg->twist.twist.angular.x = o.angular.x();
+  msg->twist.twist.angular.y = o.angular.y();
+  msg->twist.twist.angular.z = o.angular.z();
+  for (std::size_t i = 0; i < 36; ++i) {
+    msg->pose.covariance[i] = o.pose_covariance[i];
+    msg->twist.covariance[i] = o.twist_covariance[i];
+  }
+}
+
+geometry_msgs::TransformStamped toTransform(const Eigen::Isometry3d& X, const ros::Time& stamp,
+                                            const std::string& frame,
+                                            const std::string& child_frame) {
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = stamp;
+  t.header.frame_id = frame;
+  t.child_frame_id = child_frame;
+  t.transform.translation.x = X.translation().x();
+  t.transform.translation.y = X.translation().y();
+  t.transform.translation.z = X.translation().z();
+  const Eigen::Quaterniond q(X.rotation());
+  t.transform.rotation.x = q.x();
+  t.transform.rotation.y = q.y();
+  t.transform.rotation.z = q.z();
+  t.transform.rotation.w = q.w();
+  return t;
+}
+
 }  // namespace tianracer_sim

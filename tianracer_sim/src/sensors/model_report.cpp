@@ -25,6 +25,20 @@ std::vector<std::string> typeDifferences(const SensorSpec& s) {
   return out;
 }
 
+// Differences of a model plugin the registry simulates, by what it is set to (docs/model_and_sensors.md).
+std::vector<std::string> pluginDifferences(const SensorSpec& s) {
+  std::vector<std::string> out;
+  if (s.plugins.size() != 1) return out;
+  const PluginSpec& p = s.plugins.front();
+  const auto param = [&](const char* key) {
+    const auto it = p.params.find(key);
+    return it == p.params.end() ? std::string() : trimText(it->second);
+  };
+  if (baseName(p.filename) == "libgazebo_ros_diff_drive.so" && param("odometrySource") == "encoder")
+    out.push_back("encoder odometry's linear.x is signed (upstream publishes its magnitude)");
+  return out;
+}
+
 // Fills status, topics and notes of a sensor or plugin the registry may simulate.
 void simulate(const RobotModel& model, const SensorSpec& s, const std::string& robot_name,
               const LeftOut& left_out, ReportRow* row) {
@@ -51,12 +65,14 @@ void simulate(const RobotModel& model, const SensorSpec& s, const std::string& r
     return;
   }
   std::vector<std::string> warnings = typeDifferences(s);
+  for (const std::string& d : pluginDifferences(s)) warnings.push_back(d);
   try {
     const std::vector<SensorTopic> topics = kind->topics(s, robot_name, [&](const std::string& w) {
       if (std::find(warnings.begin(), warnings.end(), w) == warnings.end()) warnings.push_back(w);
     });
     for (const SensorTopic& t : topics) {
-      row->topics.push_back(t.topic + " " + t.msg_type + " @ " + fmt(t.rate) + " Hz");
+      const bool in = t.msg_type.find("(subscribed)") != std::string::npos;  // a command topic
+      row->topics.push_back(t.topic + " " + t.msg_type + (in ? "" : " @ " + fmt(t.rate) + " Hz"));
     }
     if (topics.empty()) row->topics.push_back("(no gazebo_ros plugin: nothing published)");
   } catch (const std::exception& e) {
@@ -103,7 +119,8 @@ std::vector<ReportRow> modelReport(const RobotModel& model, const std::string& r
       simulate(model, as_sensor, robot_name, left_out, &row);
     } else {
       row.status = ReportRow::Status::kLeftOut;
-      row.notes.push_back("plugin '" + row.type + "' is not simulated");
+      const std::string why = leftOutPluginReason(row.type);
+      row.notes.push_back(why.empty() ? "plugin '" + row.type + "' is not simulated" : why);
     }
     rows.push_back(std::move(row));
   }
@@ -153,6 +170,17 @@ std::string formatModelReport(const std::string& robot_name, const std::vector<R
     for (const std::string& n : r.notes) out << indent << label << n << "\n";
   }
   return out.str();
+}
+
+std::string leftOutPluginReason(const std::string& filename) {
+  const std::string f = baseName(filename);
+  if (f == "libgazebo_ros_force.so")
+    return "libgazebo_ros_force (a geometry_msgs/Wrench topic pushing a link) is not simulated: "
+           "/gazebo/apply_body_wrench applies the same force and torque to a link";
+  if (f == "libgazebo_ros_template.so")
+    return "libgazebo_ros_template is gazebo_plugins' empty example (its update does nothing): "
+           "there is nothing to simulate";
+  return "";
 }
 
 const char kDisabledBySensorList[] = "disabled by ~disable_sensors";

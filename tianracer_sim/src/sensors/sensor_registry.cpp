@@ -10,6 +10,7 @@
 #include "tianracer_sim/lidar/ray_sensor.h"
 #include "tianracer_sim/render/camera_sensor.h"
 #include "tianracer_sim/sensors/bumper.h"
+#include "tianracer_sim/sensors/drives.h"
 #include "tianracer_sim/sensors/imu_sensor.h"
 #include "tianracer_sim/sensors/multicamera_topics.h"
 #include "tianracer_sim/sensors/p3d.h"
@@ -84,6 +85,11 @@ std::vector<SensorTopic> bumperTopics(const SensorSpec& sensor, const std::strin
   return publishedTopics(parseBumperConfig(sensor, model_name, warn));
 }
 
+std::vector<SensorTopic> driveTopics(const SensorSpec& sensor, const std::string& model_name,
+                                     const WarningSink& warn) {
+  return publishedTopics(parseDriveConfig(sensor, model_name, warn));
+}
+
 }  // namespace
 
 const std::vector<SensorKind>& sensorKinds() {
@@ -104,6 +110,10 @@ const std::vector<SensorKind>& sensorKinds() {
       {"imu_plugin", {}, {"libgazebo_ros_imu.so"}, &imuPluginTopics},
       {"p3d", {}, {"libgazebo_ros_p3d.so"}, &p3dTopics},
       {"bumper", {"contact"}, {"libgazebo_ros_bumper.so"}, &bumperTopics},
+      {"drive", {},
+       {"libgazebo_ros_diff_drive.so", "libgazebo_ros_skid_steer_drive.so",
+        "libgazebo_ros_planar_move.so"},
+       &driveTopics},
   };
   return kinds;
 }

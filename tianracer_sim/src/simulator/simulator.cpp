@@ -179,6 +179,10 @@ const PhysicsRobot* Simulator::physicsOf(ModelId id) const {
   return free >= 0 ? &sim_.physics().freeBody(free) : nullptr;
 }
 
+PhysicsRobot* Simulator::physicsOf(ModelId id) {
+  return const_cast<PhysicsRobot*>(static_cast<const Simulator*>(this)->physicsOf(id));
+}
+
 // --- sensors --------------------------------------------------------------------------------------
 
 void Simulator::setUpSensors(ModelId id, const RobotSpawn& spawn) {
@@ -230,9 +234,10 @@ void Simulator::setUpWorldModelSensors(ModelId id) {
     for (const PluginSpec& plugin : d.plugins) {
       const SensorSpec spec = modelPluginSensor(plugin);
       if (!findSensorKind(spec)) {
+        const std::string why = leftOutPluginReason(plugin.filename);
         say(options_.log.warn, plugin.source + ":" + std::to_string(plugin.line) + ": model '" +
                                    name + "': plugin '" + plugin.name + "' (" + plugin.filename +
-                                   ") is not simulated; ignored");
+                                   ") is not simulated; ignored" + (why.empty() ? "" : ": " + why));
         continue;
       }
       setUpSensor(id, spec, "", options_.attach_world_sensor);
@@ -272,6 +277,7 @@ void Simulator::setUpSensor(ModelId id, const SensorSpec& spec, const std::strin
   setup.dt = sim_.physics().options().dt;
   setup.warn = options_.log.warn;
   setup.renderer = [this]() { return ensureRenderer(); };
+  setup.world = this;
   // A bad sensor is reported and left out; the model and the other sensors run on.
   try {
     std::unique_ptr<SimSensor> sensor = makeSimSensor(*kind, setup);
@@ -280,8 +286,9 @@ void Simulator::setUpSensor(ModelId id, const SensorSpec& spec, const std::strin
     sensors_.push_back(std::move(sensor));
     ++sensors_of_kind_[kind->id];
   } catch (const std::exception& e) {
-    say(options_.log.error, owner + ": " + what + " '" + spec.name + "' on link '" + spec.link +
-                                "' left out: " + e.what());
+    say(options_.log.error, owner + ": " + what + " '" + spec.name + "'" +
+                                (spec.link.empty() ? "" : " on link '" + spec.link + "'") +
+                                " left out: " + e.what());
     m.left_out[spec.name] = e.what();
   }
 }
@@ -546,6 +553,50 @@ void Simulator::linkContacts(const LinkRef& link, std::vector<LinkContact>* out)
     b.impulse = c.impulse;
     out->push_back(std::move(b));
   }
+}
+
+// --- SensorWorld: drives ----------------------------------------------------------------------------
+
+int Simulator::jointIndex(ModelId id, const std::string& joint, std::string* parent_link,
+                          std::string* child_link) const {
+  const PhysicsRobot* p = model(id) ? physicsOf(id) : nullptr;
+  const int i = p ? p->jointIndex(joint) : -1;
+  if (i < 0) return -1;
+  if (parent_link) *parent_link = p->joints()[i].parent_link;
+  if (child_link) *child_link = p->joints()[i].child_link;
+  return i;
+}
+
+double Simulator::jointPosition(ModelId id, int joint) const {
+  return physicsOf(id)->jointPosition(joint);
+}
+
+double Simulator::jointVelocity(ModelId id, int joint) const {
+  return physicsOf(id)->jointVelocity(joint);
+}
+
+void Simulator::setJointVelocity(ModelId id, int joint, double omega, double max_effort) {
+  physicsOf(id)->setJointVelocityTarget(joint, omega, max_effort);
+}
+
+LinkState Simulator::modelFrameState(ModelId id) const {
+  const EntityState e = modelState(id);
+  LinkState s;
+  s.X_WL = e.X_WE;
+  s.v_W = e.V_WE.linear;
+  s.w_W = e.V_WE.angular;
+  return s;
+}
+
+bool Simulator::setModelVelocity(ModelId id, const Eigen::Vector3d& linear_W,
+                                 const Eigen::Vector3d& angular_W) {
+  PhysicsRobot* p = physicsOf(id);
+  if (!p) return false;
+  Twist twist;
+  twist.linear = linear_W;
+  twist.angular = angular_W;
+  p->setBaseTwist(twist);
+  return true;
 }
 
 }  // namespace tianracer_sim

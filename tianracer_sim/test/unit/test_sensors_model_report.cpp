@@ -30,7 +30,7 @@ const ReportRow& rowOf(const std::vector<ReportRow>& rows, const std::string& na
 TEST(SensorsModelReport, GoldenTable) {
   const RobotModel model = reportModel();
   const std::string table = formatModelReport("report", modelReport(model, "report"));
-  const std::string golden = R"(robot 'report': 10 plugins and sensors: 3 simulated, 2 with differences, 5 left out
+  const std::string golden = R"(robot 'report': 11 plugins and sensors: 4 simulated, 2 with differences, 5 left out
   KIND    NAME                TYPE                          LINK          STATUS
   plugin  gazebo_ros_control  libgazebo_ros_control.so      -             simulated
           runs the controllers of the YAML under /report
@@ -40,8 +40,11 @@ TEST(SensorsModelReport, GoldenTable) {
           /report/imu sensor_msgs/Imu @ 100 Hz
   plugin  imu_nowhere         libgazebo_ros_imu.so          no_such_link  left out
           why: link 'no_such_link' is not a link of the model
-  plugin  planar_move         libgazebo_ros_planar_move.so  -             left out
-          why: plugin 'libgazebo_ros_planar_move.so' is not simulated
+  plugin  planar_move         libgazebo_ros_planar_move.so  -             simulated
+          /odom nav_msgs/Odometry @ 20 Hz
+          /cmd_vel geometry_msgs/Twist (subscribed)
+  plugin  pusher              libgazebo_ros_force.so        base_link     left out
+          why: libgazebo_ros_force (a geometry_msgs/Wrench topic pushing a link) is not simulated: /gazebo/apply_body_wrench applies the same force and torque to a link
   sensor  front               camera                        base_link     simulated, with differences
           /front/image_raw sensor_msgs/Image @ 15 Hz
           /front/camera_info sensor_msgs/CameraInfo @ 15 Hz

@@ -6,11 +6,13 @@
 
 #include <Eigen/Geometry>
 #include <geometry_msgs/Pose.h>
+#include <geometry_msgs/TransformStamped.h>
 #include <geometry_msgs/Twist.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/time.h>
 
 #include "tianracer_sim/physics/world.h"
+#include "tianracer_sim/sensors/drives.h"
 #include "tianracer_sim/sensors/p3d.h"
 
 namespace tianracer_sim {
@@ -30,6 +32,14 @@ nav_msgs::Odometry toGroundTruth(const Eigen::Isometry3d& X_WB, const Twist& twi
 /// and twist covariance diagonals.
 void toOdometry(const P3dReading& reading, const ros::Time& stamp, const std::string& frame,
                 const std::string& child_frame, nav_msgs::Odometry* msg);
+
+/// The odometry of a drive plugin (sensors/drives.h) as it fills nav_msgs/Odometry.
+void toOdometry(const DriveOdometry& odometry, const ros::Time& stamp, const std::string& frame,
+                const std::string& child_frame, nav_msgs::Odometry* msg);
+/// X (child_frame in frame) as a TF message.
+geometry_msgs::TransformStamped toTransform(const Eigen::Isometry3d& X, const ros::Time& stamp,
+                                            const std::string& frame,
+                                            const std::string& child_frame);
 
 /// A pose message -> isometry. Returns false (and leaves X untouched) when any value is not
 /// finite or the quaternion's norm is 0; the quaternion is normalised otherwise.

@@ -42,6 +42,10 @@ std::vector<ReportRow> modelReport(const RobotModel& model, const std::string& r
 ///             topic / difference / reason lines under their row
 std::string formatModelReport(const std::string& robot_name, const std::vector<ReportRow>& rows);
 
+/// Why a gazebo_plugins model plugin we know of is left out (libgazebo_ros_force,
+/// libgazebo_ros_template), for the table and the world's log; "" for others.
+std::string leftOutPluginReason(const std::string& filename);
+
 /// Why a sensor the user switched off with ~disable_sensors is left out.
 extern const char kDisabledBySensorList[];
 

@@ -70,6 +70,24 @@ class SensorWorld {
   /// Renders the frame on the frame worker from a snapshot of this step's scene
   /// (request.sensor->render()), then hands it to the sensor's listener there.
   virtual void requestFrame(const FrameRequest& request) = 0;
+
+  // What model plugins that drive a model (sensors/drives.h) read and command.
+  /// The model's movable joint `joint`: its index for the calls below, and the links it joins
+  /// (parent, child; may be null); -1 when the model has no movable joint of that name (a
+  /// static model has none).
+  virtual int jointIndex(ModelId model, const std::string& joint, std::string* parent_link,
+                         std::string* child_link) const = 0;
+  virtual double jointPosition(ModelId model, int joint) const = 0;
+  virtual double jointVelocity(ModelId model, int joint) const = 0;
+  /// A velocity motor on the joint: its rate driven to omega with at most max_effort (N m or
+  /// N), as Gazebo's Joint::SetParam("vel") with "fmax"; it holds until replaced.
+  virtual void setJointVelocity(ModelId model, int joint, double omega, double max_effort) = 0;
+  /// The model frame's pose and world-frame velocities (a static model: its pose, at rest).
+  virtual LinkState modelFrameState(ModelId model) const = 0;
+  /// Gazebo's Model::SetLinearVel / SetAngularVel (world frame, the model frame's origin).
+  /// False for a model that does not move (static).
+  virtual bool setModelVelocity(ModelId model, const Eigen::Vector3d& linear_W,
+                                const Eigen::Vector3d& angular_W) = 0;
 };
 
 /// The consumer of a sensor's outputs.

@@ -270,6 +270,14 @@ class Simulator : public SensorWorld {
   bool linkState(const LinkRef& link, LinkState* state) const override;
   void linkContacts(const LinkRef& link, std::vector<LinkContact>* out) override;
   void requestFrame(const FrameRequest& request) override { due_frames_.push_back(request); }
+  int jointIndex(ModelId model, const std::string& joint, std::string* parent_link,
+                 std::string* child_link) const override;
+  double jointPosition(ModelId model, int joint) const override;
+  double jointVelocity(ModelId model, int joint) const override;
+  void setJointVelocity(ModelId model, int joint, double omega, double max_effort) override;
+  LinkState modelFrameState(ModelId model) const override;
+  bool setModelVelocity(ModelId model, const Eigen::Vector3d& linear_W,
+                        const Eigen::Vector3d& angular_W) override;
 
   // --- the parts, for the bridges -------------------------------------------------------------
   Simulation& simulation() { return sim_; }
@@ -297,6 +305,7 @@ class Simulator : public SensorWorld {
   SimRobot& robotOrThrow(ModelId id);
   /// The physics of a model (a robot, or a world model's free body); nullptr for static ones.
   const PhysicsRobot* physicsOf(ModelId id) const;
+  PhysicsRobot* physicsOf(ModelId id);
   void setUpSensors(ModelId id, const RobotSpawn& spawn);
   /// The sensors of world model `id`'s links, attached through options_.attach_world_sensor.
   void setUpWorldModelSensors(ModelId id);

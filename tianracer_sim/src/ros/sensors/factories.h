@@ -22,6 +22,7 @@ std::unique_ptr<SensorListener> makeBumperPublisher(SimSensor& sensor, const Pub
 std::unique_ptr<SensorListener> makeRangePublisher(SimSensor& sensor, const PublisherSetup& setup);
 std::unique_ptr<SensorListener> makeBlockLaserPublisher(SimSensor& sensor,
                                                         const PublisherSetup& setup);
+std::unique_ptr<SensorListener> makeDrivePublisher(SimSensor& sensor, const PublisherSetup& setup);
 
 struct CameraConfig;
 /// The camera's optical frame (z forward, x right, y down), which its images are stamped

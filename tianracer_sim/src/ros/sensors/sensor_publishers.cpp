@@ -19,6 +19,7 @@ std::unique_ptr<SensorListener> makeSensorPublisher(SimSensor& sensor, const Pub
       {"bumper", &makeBumperPublisher},
       {"range", &makeRangePublisher},
       {"block_laser", &makeBlockLaserPublisher},
+      {"drive", &makeDrivePublisher},
   };
   const auto it = factories.find(sensor.kind());
   if (it == factories.end())
