@@ -107,16 +107,20 @@ class StepTest(unittest.TestCase):
     def test_4_step_and_wait_with_feedback(self):
         before = self.step(1).sim_time.to_sec()
         feedback = []
-        self.action.send_goal(StepAndWaitGoal(steps=50), feedback_cb=feedback.append)
+        # Feedback goes out while the steps run (the waiting thread reports when it wakes), on
+        # a topic of its own: 50 steps took 8 ms and could finish, and their result arrive,
+        # before any feedback did. 1000 steps run long enough for it.
+        steps = 1000
+        self.action.send_goal(StepAndWaitGoal(steps=steps), feedback_cb=feedback.append)
         self.assertTrue(self.action.wait_for_result(rospy.Duration(WAIT)))
         result = self.action.get_result()
         self.assertEqual(self.action.get_state(), GoalStatus.SUCCEEDED)
         self.assertTrue(result.success)
-        self.assertEqual(result.steps_done, 50)
-        self.assertAlmostEqual(result.sim_time.to_sec(), before + 0.05, places=9)
+        self.assertEqual(result.steps_done, steps)
+        self.assertAlmostEqual(result.sim_time.to_sec(), before + steps * 0.001, places=9)
         self.assertTrue(self.truth.wait_for(result.sim_time.to_sec()))
         self.assertTrue(feedback)
-        self.assertTrue(all(0 < f.steps_done <= 50 for f in feedback))
+        self.assertTrue(all(0 < f.steps_done <= steps for f in feedback))
         self.quiet(result.sim_time.to_sec())
 
     def test_5_cancel_stops_the_steps(self):
