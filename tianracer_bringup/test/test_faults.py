@@ -26,6 +26,7 @@ import time
 import unittest
 
 import numpy as np
+import rosgraph
 import rosnode
 import rospy
 import rostest
@@ -60,6 +61,12 @@ def finite_odometry(msg):
     return all(math.isfinite(x) for x in (p.x, p.y, p.z, q.x, q.y, q.z, q.w, v.linear.x,
                                           v.linear.y, v.linear.z, v.angular.x, v.angular.y,
                                           v.angular.z))
+
+
+def published_by(node):
+    """The topics `node` publishes, as the master has them."""
+    pubs, _, _ = rosgraph.Master('/test_faults').getSystemState()
+    return {topic for topic, nodes in pubs if node in nodes}
 
 
 class Recorder(object):
@@ -312,6 +319,8 @@ class Faults(unittest.TestCase):
         self.cmd.set(1.0)
         sim_sleep(1.0)
         self.assertIn('/cmd_vel_node', rosnode.get_node_names())
+        commands = published_by('/cmd_vel_node')  # the wheel and steering command topics
+        self.assertTrue(commands)
         rosnode.kill_nodes(['/cmd_vel_node'])
         wait_for(lambda: '/cmd_vel_node' not in rosnode.get_node_names(),
                  'the cmd_vel node gone')
@@ -322,8 +331,13 @@ class Faults(unittest.TestCase):
         try:
             # Its registration comes first; it drives once /cmd_vel reaches it and its wheel
             # and steering commands reach the sim (issue 29: it was killed at load 10 before).
-            wait_for(lambda: node_connected('/cmd_vel_node'),
-                     'the restarted cmd_vel node connected to /cmd_vel and the sim')
+            # It advertises its command topics only once it has read the model: connected
+            # with fewer topics than before, a stop sent then reached nobody (failed under
+            # load: the car went on at 1.0 m/s on the killed node's last command).
+            wait_for(lambda: published_by('/cmd_vel_node') >= commands and
+                     node_connected('/cmd_vel_node'),
+                     'the restarted cmd_vel node publishing %s, connected to /cmd_vel and '
+                     'the sim' % sorted(commands))
             self.cmd.set(0.0)
             v = self.truth_at(rospy.get_time() + 1.5).twist.twist.linear.x
             self.assertLess(abs(v), 0.05, 'the restarted node did not stop the car')
