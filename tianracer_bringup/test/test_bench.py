@@ -66,6 +66,33 @@ class BenchHarnessTest(unittest.TestCase):
         self.assertIn("Change against %s" % COMMITTED, out)
         self.assertRegex(out, r"physics only: ours sim s/wall s +\d+\.\d\d -> \d+\.\d\d +[+-]\d+\.\d %")
 
+    def test_profile_writes_the_per_step_table_between_the_markers(self):
+        doc = os.path.join(self.tmp, "performance.md")
+        with open(doc, "w") as f:
+            f.write("# Performance\n\nbefore\n\n<!-- step profile: begin (tianracer_bringup/bench/"
+                    "run_benchmarks --profile FILE) -->\nold table\n<!-- step profile: end -->\n\nafter\n")
+        untouched = os.path.join(self.tmp, "not_written.md")
+        rc, out = self.harness("--duration", "0.5", "--scenarios", "physics,lidar", "--profile", doc,
+                               "--output", untouched)
+        self.assertEqual(rc, 0, out)
+        self.assertFalse(os.path.exists(untouched), "a profiled run leaves the results file alone")
+        text = open(doc).read()
+        self.assertTrue(text.startswith("# Performance\n\nbefore\n"), text)
+        self.assertTrue(text.rstrip().endswith("after"), text)
+        self.assertNotIn("old table", text)
+        rows = {}
+        for line in text.splitlines():
+            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            if line.startswith("|") and len(cells) == 3:
+                rows[cells[0]] = cells[1:]
+        self.assertIn("physics: Bullet stepSimulation", rows, text)
+        for cell in rows["physics: Bullet stepSimulation"]:
+            self.assertRegex(cell, r"^\d+\.\d\d \(1\)$")  # once per step, in both scenarios
+        self.assertEqual(rows["sensor lidar: sample (cast, measure)"][0], "", text)  # no lidar in "physics"
+        self.assertRegex(rows["sensor lidar: sample (cast, measure)"][1], r"^\d+\.\d\d \(0\.0[34]\d*\)$")
+        self.assertRegex(rows["step outside Bullet"][0], r"^\*\*\d+\.\d\d\*\*$")
+        self.assertRegex(rows["node CPU (all threads, /proc) per step"][0], r"^\d+\.\d$")
+
     def test_compare_two_files_without_running(self):
         rc, out = self.harness("--compare", COMMITTED, COMMITTED, timeout=60)
         self.assertEqual(rc, 0, out)

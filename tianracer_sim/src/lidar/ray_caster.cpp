@@ -541,7 +541,14 @@ void RayCaster::build(const Scene& scene) {
   m.built = true;
 }
 
+void RayCaster::setProfile(StepProfile* profile) {
+  profile_ = profile;
+  update_row_ = profileRow(profile, "sensors: sample / ray-casting scene: moved bodies committed");
+  cast_row_ = profileRow(profile, "sensors: sample / ray-casting: rays cast");
+}
+
 void RayCaster::update(const Scene& scene) {
+  StepProfile::Scope timed(profile_, update_row_);
   Impl& m = *impl_;
   bool rebuild = !m.built || m.n_bodies != scene.bodies.size() || m.n_items != scene.items.size();
   for (std::size_t i = 0; !rebuild && i < m.static_poses.size(); ++i) {
@@ -570,6 +577,7 @@ void RayCaster::update(const Scene& scene) {
 void RayCaster::castRays(const Eigen::Vector3d& origin_W,
                          const std::vector<Eigen::Vector3f>& directions, float t_min,
                          float t_max, float* distances) {
+  StepProfile::Scope timed(profile_, cast_row_);
   Impl& m = *impl_;
   assert(t_min >= 0.0f && t_min <= t_max);
   const int n = static_cast<int>(directions.size());

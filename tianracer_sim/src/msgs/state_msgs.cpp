@@ -28,20 +28,39 @@ geometry_msgs::Twist toTwistMsg(const Twist& twist) {
   return t;
 }
 
-nav_msgs::Odometry toGroundTruth(const Eigen::Isometry3d& X_WB, const Twist& twist_W,
-                                 const ros::Time& stamp, const std::string& frame,
-                                 const std::string& child_frame) {
-  nav_msgs::Odometry odom;
-  odom.header.stamp = stamp;
-  odom.header.frame_id = frame;
-  odom.child_frame_id = child_frame;
-  odom.pose.pose = toPose(X_WB);
+namespace {
+
+/// Header, pose and twist of an odometry message (the covariances are the caller's).
+void fillOdometry(const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
+                  const Eigen::Vector3d& linear, const Eigen::Vector3d& angular,
+                  const ros::Time& stamp, const std::string& frame,
+                  const std::string& child_frame, nav_msgs::Odometry* msg) {
+  msg->header.stamp = stamp;
+  msg->header.frame_id = frame;
+  msg->child_frame_id = child_frame;
+  msg->pose.pose.position.x = position.x();
+  msg->pose.pose.position.y = position.y();
+  msg->pose.pose.position.z = position.z();
+  msg->pose.pose.orientation.x = orientation.x();
+  msg->pose.pose.orientation.y = orientation.y();
+  msg->pose.pose.orientation.z = orientation.z();
+  msg->pose.pose.orientation.w = orientation.w();
+  msg->twist.twist.linear.x = linear.x();
+  msg->twist.twist.linear.y = linear.y();
+  msg->twist.twist.linear.z = linear.z();
+  msg->twist.twist.angular.x = angular.x();
+  msg->twist.twist.angular.y = angular.y();
+  msg->twist.twist.angular.z = angular.z();
+}
+
+}  // namespace
+
+void toGroundTruth(const Eigen::Isometry3d& X_WB, const Twist& twist_W, const ros::Time& stamp,
+                   const std::string& frame, const std::string& child_frame,
+                   nav_msgs::Odometry* msg) {
   const Eigen::Matrix3d R_BW = X_WB.linear().transpose();
-  Twist body;
-  body.linear = R_BW * twist_W.linear;
-  body.angular = R_BW * twist_W.angular;
-  odom.twist.twist = toTwistMsg(body);
-  return odom;
+  fillOdometry(X_WB.translation(), Eigen::Quaterniond(X_WB.linear()), R_BW * twist_W.linear,
+               R_BW * twist_W.angular, stamp, frame, child_frame, msg);
 }
 
 bool fromPose(const geometry_msgs::Pose& pose, Eigen::Isometry3d* X) {
@@ -67,22 +86,7 @@ bool fromTwistMsg(const geometry_msgs::Twist& msg, Twist* twist) {
 
 void toOdometry(const P3dReading& r, const ros::Time& stamp, const std::string& frame,
                 const std::string& child_frame, nav_msgs::Odometry* msg) {
-  msg->header.stamp = stamp;
-  msg->header.frame_id = frame;
-  msg->child_frame_id = child_frame;
-  msg->pose.pose.position.x = r.position.x();
-  msg->pose.pose.position.y = r.position.y();
-  msg->pose.pose.position.z = r.position.z();
-  msg->pose.pose.orientation.x = r.orientation.x();
-  msg->pose.pose.orientation.y = r.orientation.y();
-  msg->pose.pose.orientation.z = r.orientation.z();
-  msg->pose.pose.orientation.w = r.orientation.w();
-  msg->twist.twist.linear.x = r.linear.x();
-  msg->twist.twist.linear.y = r.linear.y();
-  msg->twist.twist.linear.z = r.linear.z();
-  msg->twist.twist.angular.x = r.angular.x();
-  msg->twist.twist.angular.y = r.angular.y();
-  msg->twist.twist.angular.z = r.angular.z();
+  fillOdometry(r.position, r.orientation, r.linear, r.angular, stamp, frame, child_frame, msg);
   for (int i = 0; i < 6; ++i) {
     msg->pose.covariance[7 * i] = r.variance;
     msg->twist.covariance[7 * i] = r.variance;
@@ -91,22 +95,7 @@ void toOdometry(const P3dReading& r, const ros::Time& stamp, const std::string& 
 
 void toOdometry(const DriveOdometry& o, const ros::Time& stamp, const std::string& frame,
                 const std::string& child_frame, nav_msgs::Odometry* msg) {
-  msg->header.stamp = stamp;
-  msg->header.frame_id = frame;
-  msg->child_frame_id = child_frame;
-  msg->pose.pose.position.x = o.position.x();
-  msg->pose.pose.position.y = o.position.y();
-  msg->pose.pose.position.z = o.position.z();
-  msg->pose.pose.orientation.x = o.orientation.x();
-  msg->pose.pose.orientation.y = o.orientation.y();
-  msg->pose.pose.orientation.z = o.orientation.z();
-  msg->pose.pose.orientation.w = o.orientation.w();
-  msg->twist.twist.linear.x = o.linear.x();
-  msg->twist.twist.linear.y = o.linear.y();
-  msg->twist.twist.linear.z = o.linear.z();
-  msg->twist.twist.angular.x = o.angular.x();
-  msg->twist.twist.angular.y = o.angular.y();
-  msg->twist.twist.angular.z = o.angular.z();
+  fillOdometry(o.position, o.orientation, o.linear, o.angular, stamp, frame, child_frame, msg);
   for (std::size_t i = 0; i < 36; ++i) {
     msg->pose.covariance[i] = o.pose_covariance[i];
     msg->twist.covariance[i] = o.twist_covariance[i];

@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -413,6 +414,12 @@ void Renderer::prepare(const Scene& scene) {
   m.uploadIfDirty();
 }
 
+void Renderer::setProfile(StepProfile* profile) {
+  profile_ = profile;
+  draw_row_ = profileRow(profile, "frame worker: renders / GL draw to glFinish");
+  readback_row_ = profileRow(profile, "frame worker: renders / glReadPixels");
+}
+
 void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
                           const CameraIntrinsics& K, uint8_t* rgb, float* depth) {
   if (K.width <= 0 || K.height <= 0 || K.width > 16384 || K.height > 16384) {
@@ -424,6 +431,8 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
   }
   Impl& m = *impl_;
   auto lock = m.context->lock();
+  const StepProfile::Clock::time_point draw_start =
+      profile_ ? StepProfile::Clock::now() : StepProfile::Clock::time_point();
   prepare(scene);
   Impl::Target& t = m.target(K.width, K.height);
 
@@ -634,6 +643,12 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
          grey->material.specular.head<3>(), grey->shininess);
   }
 
+  std::optional<StepProfile::Scope> readback;
+  if (profile_) {
+    glFinish();
+    profile_->add(draw_row_, StepProfile::Clock::now() - draw_start);
+    readback.emplace(profile_, readback_row_);
+  }
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   if (rgb != nullptr) {
     glReadBuffer(GL_COLOR_ATTACHMENT0);

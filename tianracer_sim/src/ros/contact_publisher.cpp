@@ -11,7 +11,11 @@ void ContactPublisher::addRobot(ros::NodeHandle& nh, RobotId id, const std::stri
   Robot r;
   r.id = id;
   r.name = name;
-  r.pub = nh.advertise<tianracer_sim::Contact>(ns + "/contacts", 100);
+  r.subscribers = std::make_shared<int>(0);
+  std::shared_ptr<int> count = r.subscribers;
+  r.pub = nh.advertise<tianracer_sim::Contact>(
+      ns + "/contacts", 100, [count](const ros::SingleSubscriberPublisher&) { ++*count; },
+      [count](const ros::SingleSubscriberPublisher&) { --*count; });
   robots_.push_back(std::move(r));
 }
 
@@ -25,7 +29,7 @@ void ContactPublisher::publish(const PhysicsWorld& world, double t) {
   for (const ContactTracker::Due& d : tracker_.due()) {
     const auto r = std::find_if(robots_.begin(), robots_.end(),
                                 [&](const Robot& x) { return x.id == d.robot; });
-    if (r == robots_.end() || r->pub.getNumSubscribers() == 0) continue;
+    if (r == robots_.end() || *r->subscribers == 0) continue;
     const RobotContact& c = d.contact;
     tianracer_sim::Contact msg;
     msg.stamp = ros::Time(t);

@@ -1,6 +1,7 @@
 #include "tianracer_sim/ros/robot_bridge.h"
 
 #include <algorithm>
+#include <optional>
 
 #include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Odometry.h>
@@ -13,6 +14,10 @@
 namespace tianracer_sim {
 
 namespace tc = tianracer_control;
+
+namespace {
+const std::string kWorldFrame = "world";
+}  // namespace
 
 RobotBridge::RobotBridge(Simulator& sim, ModelId id, Options options, ros::NodeHandle root,
                          tf2_ros::StaticTransformBroadcaster& static_tf)
@@ -36,6 +41,14 @@ RobotBridge::RobotBridge(Simulator& sim, ModelId id, Options options, ros::NodeH
     static_tf.sendTransform(tf);
   }
 
+  if (StepProfile* p = sim_.profile()) {
+    rows_.joint_states = p->row("ros: joint_states");
+    rows_.joint_states_convert = p->row("ros: joint_states / convert");
+    rows_.joint_states_send = p->row("ros: joint_states / serialise and send");
+    rows_.ground_truth = p->row("ros: ground truth odom");
+    rows_.ground_truth_convert = p->row("ros: ground truth odom / convert");
+    rows_.ground_truth_send = p->row("ros: ground truth odom / serialise and send");
+  }
   joint_states_ = makeJointStates();
   ros::NodeHandle robot_nh(root, options_.ns);
   commands_ = std::make_shared<tc::ControllerCommandSubscribers>(robot_nh, robot.controllers);
@@ -127,21 +140,32 @@ std::vector<RobotBridge::JointStateStream> RobotBridge::makeJointStates() {
 }
 
 void RobotBridge::publish(double t) {
+  StepProfile* const profile = sim_.profile();
   const ros::Time stamp(t);
   const PhysicsRobot& pr = sim_.simulation().physics().robot(sim_.robot(id_)->id);
-  for (JointStateStream& s : joint_states_) {
-    if (!s.schedule.due(t) || s.pub.getNumSubscribers() == 0) continue;
-    s.msg.header.stamp = stamp;
-    for (size_t k = 0; k < s.joints.size(); ++k) {
-      s.msg.position[k] = pr.jointPosition(s.joints[k]);
-      s.msg.velocity[k] = pr.jointVelocity(s.joints[k]);
-      s.msg.effort[k] = pr.jointEffort(s.joints[k]);
+  {
+    StepProfile::Scope timed(profile, rows_.joint_states);
+    for (JointStateStream& s : joint_states_) {
+      if (!s.schedule.due(t) || s.pub.getNumSubscribers() == 0) continue;
+      {
+        StepProfile::Scope part(profile, rows_.joint_states_convert);
+        s.msg.header.stamp = stamp;
+        for (size_t k = 0; k < s.joints.size(); ++k) {
+          s.msg.position[k] = pr.jointPosition(s.joints[k]);
+          s.msg.velocity[k] = pr.jointVelocity(s.joints[k]);
+          s.msg.effort[k] = pr.jointEffort(s.joints[k]);
+        }
+      }
+      StepProfile::Scope part(profile, rows_.joint_states_send);
+      s.pub.publish(s.msg);
     }
-    s.pub.publish(s.msg);
   }
+  StepProfile::Scope timed(profile, rows_.ground_truth);
   if (ground_truth_schedule_.due(t) && ground_truth_.getNumSubscribers() > 0) {
-    ground_truth_.publish(
-        toGroundTruth(pr.basePose(), pr.baseTwist(), stamp, "world", base_frame_));
+    std::optional<StepProfile::Scope> part(std::in_place, profile, rows_.ground_truth_convert);
+    toGroundTruth(pr.basePose(), pr.baseTwist(), stamp, kWorldFrame, base_frame_, &ground_truth_msg_);
+    part.emplace(profile, rows_.ground_truth_send);
+    ground_truth_.publish(ground_truth_msg_);
   }
 }
 

@@ -1,6 +1,7 @@
 #include "tianracer_sim/ros/sim_node.h"
 
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include <diagnostic_msgs/DiagnosticArray.h>
@@ -22,6 +23,7 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   nh_.setCallbackQueue(&queue_);
   pnh_.setCallbackQueue(&queue_);
   root_.setCallbackQueue(&queue_);
+  setUpProfile();
 
   // The world: a shipped name or a .world path. Its <physics> gives the step and gravity.
   std::string world_arg;
@@ -63,6 +65,7 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   options.log.frame_error = [](const std::string& m) { ROS_ERROR_STREAM_THROTTLE(10.0, m); };
   // Sensors on the world's models (and spawn_sdf_model's) publish as a robot's do.
   options.attach_world_sensor = [this](SimSensor& sensor) { attachWorldSensor(sensor); };
+  options.profile = profile_.get();
   sim_ = std::make_unique<Simulator>(std::move(world), std::move(options));
   sim_->setPaused(paused);
   {
@@ -78,7 +81,12 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   // Not gazebo_ros's: gazebo_ros's gzserver stand-in turns it off (~diagnostics false).
   bool diagnostics = true;
   pnh_.param("diagnostics", diagnostics, true);
-  if (diagnostics) diagnostics_pub_ = root_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10);
+  if (diagnostics) {
+    // Its contact counts need the contacts tracked while someone reads /diagnostics.
+    diagnostics_pub_ = root_.advertise<diagnostic_msgs::DiagnosticArray>(
+        "/diagnostics", 10, [this](const ros::SingleSubscriberPublisher&) { ++diagnostics_readers_; },
+        [this](const ros::SingleSubscriberPublisher&) { --diagnostics_readers_; });
+  }
   contacts_ = std::make_unique<ContactPublisher>(sim_->contacts());
 
   bool several = false;
@@ -137,6 +145,11 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
 }
 
 SimNode::~SimNode() {
+  if (profile_) {
+    // On stdout: after Ctrl-C roscpp has shut rosconsole down before the node goes.
+    std::printf("step profile (~profile):\n%s", profile_->table().c_str());
+    std::fflush(stdout);
+  }
   step_.reset();    // answers the calls still waiting
   robots_.clear();  // command subscribers point into the controllers
   sim_.reset();     // the frame in flight goes out while the node still exists
@@ -152,6 +165,7 @@ void SimNode::updateCommandTopics() {
 }
 
 void SimNode::publishClock() {
+  StepProfile::Scope timed(profile_.get(), rows_.clock);
   rosgraph_msgs::Clock clock;
   clock.clock = ros::Time(sim_->time());
   clock_pub_.publish(clock);
@@ -182,10 +196,21 @@ void SimNode::publishDue(bool clock) {
 }
 
 void SimNode::stepOnce() {
-  for (const auto& robot : robots_) robot->applyCommands();
-  gazebo_->beforeStep();
+  StepProfile* const profile = profile_.get();
+  StepProfile::Scope timed(profile, rows_.step);
+  if (profile) profile->countStep();
+  {
+    StepProfile::Scope part(profile, rows_.commands);
+    for (const auto& robot : robots_) robot->applyCommands();
+    gazebo_->beforeStep();
+  }
+  // Contacts are tracked only while someone reads them (Simulator::setContactTracking).
+  sim_->setContactTracking(contacts_->subscribed() || diagnostics_readers_ > 0);
   const StepWaits waits = sim_->advance();
-  contacts_->publish(sim_->simulation().physics(), sim_->time());
+  {
+    StepProfile::Scope part(profile, rows_.contact_msgs);
+    contacts_->publish(sim_->simulation().physics(), sim_->time());
+  }
   const double t = sim_->time();
   // With tick topics /clock keeps to the tick grid (Lockstep::clockOnTicksOnly()).
   const bool grid = lockstep_ && lockstep_->clockOnTicksOnly();
@@ -196,11 +221,18 @@ void SimNode::stepOnce() {
     // that nodes on sim-time timers (the cmd_vel node) tick with its answer in hand.
     if (waits.replies) lockstep_->markReplies();
     publishDue(false);
-    if (waits.replies) lockstep_->awaitReplies(t);
+    if (waits.replies) {
+      StepProfile::Scope part(profile, rows_.lockstep);
+      lockstep_->awaitReplies(t);
+    }
     if (waits.ticks) lockstep_->markTicks();
     if (waits.ticks || !grid) publishClock();
-    if (waits.ticks) lockstep_->awaitTicks(t);
+    if (waits.ticks) {
+      StepProfile::Scope part(profile, rows_.lockstep);
+      lockstep_->awaitTicks(t);
+    }
   }
+  StepProfile::Scope part(profile, rows_.gazebo_states);
   gazebo_->afterStep();
 }
 
@@ -218,7 +250,10 @@ void SimNode::run() {
   double sim0 = sim_->time();
   bool paused_clock = false;  // the paused time went out on /clock
   while (ros::ok()) {
-    queue_.callAvailable(ros::WallDuration(0.0));
+    {
+      StepProfile::Scope timed(profile_.get(), rows_.callbacks);
+      queue_.callAvailable(ros::WallDuration(0.0));
+    }
     if (step_ && step_->serve()) {  // ~step and ~step_and_wait calls (they pause the simulation)
       publishStatus();
       continue;
@@ -244,7 +279,10 @@ void SimNode::run() {
       pacing_reset_ = false;
     }
     stepOnce();
-    if ((sim_->stepCount() & 255) == 0) publishStatus();
+    if ((sim_->stepCount() & 255) == 0) {
+      StepProfile::Scope timed(profile_.get(), rows_.status);
+      publishStatus();
+    }
     // set_physics_properties may have changed the pace (max_update_rate or the step).
     if (const double rtf = sim_->maxUpdateRate() * sim_->dt(); rtf != real_time_factor_) {
       real_time_factor_ = rtf;

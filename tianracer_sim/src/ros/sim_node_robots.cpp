@@ -129,6 +129,7 @@ void SimNode::addRobot(RobotModel model, const std::string& name, const Eigen::I
   publisher.tf_prefix = bridge.tf_prefix;
   publisher.root = root_;
   publisher.static_tf = &staticTf();
+  publisher.profile = profile_.get();
   publisher.claim_topic = [this, topics](const std::string& topic, const std::string& owner) {
     claimTopic(topic, owner);
     topics->push_back(topic);
@@ -195,6 +196,7 @@ void SimNode::attachWorldSensor(SimSensor& sensor) {
   publisher.static_tf = &staticTf();
   publisher.world_model = true;
   const std::string model = sensor.modelName();
+  publisher.profile = profile_.get();
   publisher.claim_topic = [this, model](const std::string& topic, const std::string& owner) {
     claimTopic(topic, owner);
     world_model_topics_[model].push_back(topic);

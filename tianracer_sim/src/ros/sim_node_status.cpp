@@ -1,10 +1,12 @@
 // The sim node's status: every status period (wall time) one line on the log and a
 // /diagnostics array with the real-time factor, contacts per robot and each sensor's rate in sim
-// and in wall time (the /diagnostics row of docs/model_and_sensors.md's topic table).
+// and in wall time (the /diagnostics row of docs/model_and_sensors.md's topic table). With
+// ~profile, the step profile and its ~profile service (docs/performance.md).
 #include <iomanip>
 #include <sstream>
 
 #include <diagnostic_msgs/DiagnosticArray.h>
+#include <std_srvs/Trigger.h>
 
 #include "tianracer_sim/ros/sim_node.h"
 
@@ -85,6 +87,42 @@ void SimNode::publishStatus() {
   if (diagnostics_pub_) diagnostics_pub_.publish(array);
   status_wall_ = now;
   status_sim_ = sim_->time();
+}
+
+void SimNode::setUpProfile() {
+  bool profile = false;
+  pnh_.param("profile", profile, false);
+  if (!profile) return;
+  profile_ = std::make_unique<StepProfile>();
+  StepProfile& p = *profile_;
+  // The rows in the order the loop runs them; the Simulator, the robots' bridges and the
+  // sensors add theirs as they are set up (row() keeps the first registration's place).
+  rows_.step = p.row(StepProfile::kStep);
+  rows_.callbacks = p.row(std::string(StepProfile::kBetweenSteps) + "callbacks (commands, services)");
+  rows_.status = p.row(std::string(StepProfile::kBetweenSteps) + "status and /diagnostics");
+  rows_.commands = p.row("ros: commands in (controllers' topics, efforts, wrenches)");
+  p.row(StepProfile::kControllers);
+  p.row(StepProfile::kBullet);
+  p.row("contacts: scan of the step's manifolds");
+  rows_.contact_msgs = p.row("ros: contact messages");
+  rows_.clock = p.row("ros: /clock");
+  p.row("ros: joint_states");
+  p.row("ros: joint_states / convert");
+  p.row("ros: joint_states / serialise and send");
+  p.row("ros: ground truth odom");
+  p.row("ros: ground truth odom / convert");
+  p.row("ros: ground truth odom / serialise and send");
+  rows_.lockstep = p.row("lockstep: waiting for replies and ticks");
+  rows_.gazebo_states = p.row("ros: /gazebo/model_states and link_states");
+  profile_service_ = pnh_.advertiseService<std_srvs::Trigger::Request, std_srvs::Trigger::Response>(
+      "profile", [this](std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+        sim_->waitFrames();  // the frame worker's rows are complete
+        res.success = true;
+        res.message = profile_->table();
+        return true;
+      });
+  ROS_INFO("~profile: each part of the step is timed; rosservice call %s gives the table",
+           profile_service_.getService().c_str());
 }
 
 }  // namespace tianracer_sim

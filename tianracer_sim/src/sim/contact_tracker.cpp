@@ -90,6 +90,7 @@ std::uint64_t ContactTracker::count(RobotId id) const {
 
 void ContactTracker::reset() {
   for (Robot& r : robots_) r.active.clear();
+  due_.clear();
 }
 
 }  // namespace tianracer_sim

@@ -262,13 +262,23 @@ void Simulation::write(SimRobot& robot) {
 
 void Simulation::step() {
   const std::uint64_t n = physics_.stepCount();
-  for (auto& robot : robots_) {
-    if (n % static_cast<std::uint64_t>(robot->control_every) != 0) continue;
-    read(*robot);
-    robot->controllers.update(robot->control_every * physics_.dt());
-    write(*robot);
+  {
+    StepProfile::Scope timed(profile_, controllers_row_);
+    for (auto& robot : robots_) {
+      if (n % static_cast<std::uint64_t>(robot->control_every) != 0) continue;
+      read(*robot);
+      robot->controllers.update(robot->control_every * physics_.dt());
+      write(*robot);
+    }
   }
+  StepProfile::Scope timed(profile_, bullet_row_);
   physics_.step();
+}
+
+void Simulation::setProfile(StepProfile* profile) {
+  profile_ = profile;
+  controllers_row_ = profileRow(profile, StepProfile::kControllers);
+  bullet_row_ = profileRow(profile, StepProfile::kBullet);
 }
 
 void Simulation::restartControllers(SimRobot& robot) {

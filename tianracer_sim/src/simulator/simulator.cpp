@@ -31,6 +31,13 @@ Simulator::Simulator(WorldDescription world, SimulatorOptions options)
       world_(std::make_unique<WorldDescription>(std::move(world))),
       sim_(physicsFor(*world_, options_.max_step_size), options_.log.warn),
       contacts_(staticShapeOwners(*world_)) {
+  step_row_ = profileRow(options_.profile, StepProfile::kStep);
+  sim_.setProfile(options_.profile);
+  contacts_row_ = profileRow(options_.profile, "contacts: scan of the step's manifolds");
+  scene_row_ = profileRow(options_.profile, "sensors: sample / scene: bodies to this step's poses");
+  caster_.setProfile(options_.profile);
+  frame_wait_row_ = profileRow(options_.profile, "frames: waiting for the worker's last frame");
+  frames_row_ = profileRow(options_.profile, "frames: scene snapshot, hand-off to the worker");
   int shapes = 0;
   for (const ModelDescription& m : world_->models) {
     Model entry;
@@ -282,6 +289,15 @@ void Simulator::setUpSensor(ModelId id, const SensorSpec& spec, const std::strin
   try {
     std::unique_ptr<SimSensor> sensor = makeSimSensor(*kind, setup);
     if (!sensor) return;
+    if (StepProfile* p = options_.profile) {
+      SimSensor::ProfileRows rows;
+      rows.update = p->row("sensor " + kind->id + ": update");
+      rows.sample = p->row("sensor " + kind->id + ": sample (cast, measure)");
+      rows.publish = p->row("sensor " + kind->id + ": publish");
+      rows.render = p->row("frame worker: " + kind->id + " render");
+      rows.frame_publish = p->row("frame worker: " + kind->id + " publish");
+      sensor->setProfileRows(rows);
+    }
     if (attach) attach(*sensor);
     sensors_.push_back(std::move(sensor));
     ++sensors_of_kind_[kind->id];
@@ -305,6 +321,7 @@ Renderer* Simulator::ensureRenderer() {
   if (renderer_failed_) return nullptr;
   try {
     renderer_ = std::make_unique<Renderer>(options_.log.warn);
+    renderer_->setProfile(options_.profile);
     say(options_.log.info, "cameras render offscreen with " + renderer_->glInfo());
     return renderer_.get();
   } catch (const std::exception& e) {
@@ -319,7 +336,10 @@ Renderer* Simulator::ensureRenderer() {
 
 StepWaits Simulator::advance() {
   sim_.step();
-  contacts_.update(sim_.physics(), sim_.time());
+  if (track_contacts_) {
+    StepProfile::Scope timed(options_.profile, contacts_row_);
+    contacts_.update(sim_.physics(), sim_.time());
+  }
   const double t = sim_.time();
   StepWaits waits;
   waits.replies = lockstep_replies_ && reply_schedule_.due(t);
@@ -329,8 +349,14 @@ StepWaits Simulator::advance() {
 
 void Simulator::sense() {
   const double t = sim_.time();
+  StepProfile* const profile = options_.profile;
   for (const auto& s : sensors_) {
-    const SensorOutputs due = s->update(t, *this);
+    const SimSensor::ProfileRows& rows = s->profileRows();
+    SensorOutputs due;
+    {
+      StepProfile::Scope timed(profile, rows.update);
+      due = s->update(t, *this);
+    }
     if (!due) continue;
     SensorListener* listener = s->listener();
     const SensorOutputs want = listener ? listener->wanted(*s, due) & due : due;
@@ -346,15 +372,24 @@ void Simulator::sense() {
       }
     }
     if (!want) continue;
-    s->sample(want, *this);
+    {
+      StepProfile::Scope timed(profile, rows.sample);
+      s->sample(want, *this);
+    }
     const SensorOutputs now = want & ~s->rendered();
-    if (now && listener) listener->onOutputs(*s, now, t);
+    if (now && listener) {
+      StepProfile::Scope timed(profile, rows.publish);
+      listener->onOutputs(*s, now, t);
+    }
   }
   submitFrames();
 }
 
 void Simulator::step(int n) {
+  StepProfile* const profile = options_.profile;
   for (int k = 0; k < n; ++k) {
+    StepProfile::Scope timed(profile, step_row_);
+    if (profile) profile->countStep();
     advance();
     sense();
   }
@@ -364,13 +399,29 @@ void Simulator::submitFrames() {
   // What is due and wanted was decided at the step; the frames are rendered (and handed to the
   // listeners) on the frame worker from a snapshot of this step's scene (frame_worker.h).
   if (due_frames_.empty()) return;
+  StepProfile* const profile = options_.profile;
+  if (frame_worker_) {
+    // At most one frame in flight (frame_worker.h): the step waits here while the worker still
+    // renders the last one (the profile's row shows how long).
+    StepProfile::Scope timed(profile, frame_wait_row_);
+    frame_worker_->wait();
+  }
+  StepProfile::Scope timed(profile, frames_row_);
   updateScene();
   if (!frame_worker_) {
     frame_worker_ = std::make_unique<FrameWorker<FrameJob>>([this](FrameJob& job) {
       try {
+        StepProfile* const profile = options_.profile;
         for (const FrameRequest& f : job.frames) {
-          f.sensor->render(render_scene_, f);
-          if (SensorListener* l = f.sensor->listener()) l->onOutputs(*f.sensor, f.outputs, job.t);
+          const SimSensor::ProfileRows& rows = f.sensor->profileRows();
+          {
+            StepProfile::Scope timed(profile, rows.render);
+            f.sensor->render(render_scene_, f);
+          }
+          if (SensorListener* l = f.sensor->listener()) {
+            StepProfile::Scope timed(profile, rows.frame_publish);
+            l->onOutputs(*f.sensor, f.outputs, job.t);
+          }
         }
       } catch (const std::exception& e) {
         say(options_.log.frame_error, std::string("camera frame not published: ") + e.what());
@@ -480,6 +531,11 @@ void Simulator::switchControllers(ModelId id, const std::vector<std::string>& st
   sim_.switchControllers(robotOrThrow(id), start, stop, strictness);
 }
 
+void Simulator::setContactTracking(bool on) {
+  if (track_contacts_ && !on) contacts_.reset();
+  track_contacts_ = on;
+}
+
 std::uint64_t Simulator::contactCount(ModelId id) const {
   const SimRobot* r = robot(id);
   return r ? contacts_.count(r->id) : 0;
@@ -497,6 +553,7 @@ void Simulator::updateScene() {
 }
 
 const Scene& Simulator::scene() {
+  StepProfile::Scope timed(options_.profile, scene_row_);
   updateScene();
   return scene_;
 }

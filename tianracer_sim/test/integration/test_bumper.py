@@ -3,8 +3,9 @@
 walled_room's box_front (its face at x = 1.8 m), publishes gazebo_msgs/ContactsState on
 /tianracer/bumper: empty before the car reaches the box, then states naming the box, with
 contact points at the box's face, normals pushing the car back and a force that stops it.
-Everything in sim time. A bumper whose frameName is no link, and a contact sensor without the
-plugin, are left out with a message."""
+The robot's own /tianracer/contacts (tianracer_sim/Contact), subscribed, reports the box too:
+contacts are tracked while someone reads them. Everything in sim time. A bumper whose frameName
+is no link, and a contact sensor without the plugin, are left out with a message."""
 import os
 import unittest
 
@@ -12,6 +13,7 @@ import rospy
 import rostest
 from gazebo_msgs.msg import ContactsState
 from std_msgs.msg import Float64
+from tianracer_sim.msg import Contact
 from tianracer_sim.sim_time import Stream, published_rate
 
 from sim_node_binary import startup_output
@@ -25,6 +27,7 @@ class BumperTest(unittest.TestCase):
     def test_a_car_into_box(self):
         rospy.init_node('test_bumper')
         bumper = Stream('/tianracer/bumper', ContactsState)
+        contacts = Stream('/tianracer/contacts', Contact, stamp=lambda m: m.stamp.to_sec())
         pubs = [rospy.Publisher(t, Float64, queue_size=1, latch=True) for t in COMMANDS]
         for p in pubs:
             p.publish(Float64(1.0 / WHEEL_RADIUS))
@@ -59,6 +62,12 @@ class BumperTest(unittest.TestCase):
                   if st.collision2_name.startswith('box_front')]
         self.assertTrue(forces)
         self.assertLess(sum(forces) / len(forces), 0.0)
+        # The robot's contacts topic names the box within the bumper's 0.5 s of contact.
+        _, t_contact, c = contacts.first(lambda t, m: m.other_model == 'box_front',
+                                         'a /tianracer/contacts message about box_front')
+        self.assertLess(t_contact, t_hit + 0.5)
+        self.assertGreater(t_contact, t_hit - 0.1)
+        self.assertAlmostEqual(c.position.x, 1.8, delta=0.05)
         published = dict(rospy.get_published_topics())
         self.assertIn('/tianracer/bumper', published)
         self.assertNotIn('/tianracer/bad_bumper', published)

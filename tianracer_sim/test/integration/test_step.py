@@ -10,6 +10,7 @@ import unittest
 
 import actionlib
 import rospy
+import rosservice
 import rostest
 from actionlib_msgs.msg import GoalStatus
 from nav_msgs.msg import Odometry
@@ -72,6 +73,8 @@ class StepTest(unittest.TestCase):
         self.assertLessEqual(self.truth.latest(), t + 1e-9)
 
     def test_1_step_from_the_paused_start(self):
+        # Not started with ~profile: no step profile, no ~profile service (test_profile.py).
+        self.assertNotIn('/tianracer_sim/profile', rosservice.get_service_list())
         r = self.step(25)
         self.assertTrue(r.success, r.status_message)
         self.assertEqual(r.step_count, 25)

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "sim_test_support.h"
+#include "tianracer_sim/physics/contacts.h"
 #include "tianracer_sim/simulator/sim_sensors.h"
 #include "tianracer_sim/simulator/simulator.h"
 
@@ -186,6 +187,90 @@ TEST(Simulator, ComputesNothingThatNobodyWants) {
   const auto* camera = dynamic_cast<const SimCamera*>(sim.findSensor(id, "camera1"));
   ASSERT_NE(camera, nullptr);
   EXPECT_EQ(camera->camera().renderCount(), 0u);
+}
+
+/// The row's figure; an empty name when there is no such row.
+StepProfile::Figure profileFigure(const StepProfile& p, const std::string& name) {
+  for (const auto& f : p.figures()) {
+    if (f.name == name) return f;
+  }
+  return StepProfile::Figure();
+}
+
+TEST(Simulator, ProfilesEachPartOfTheStepWhenAskedAndTheRunStaysTheSame) {
+  StepProfile profile;
+  SimulatorOptions options;
+  options.profile = &profile;
+  Simulator sim(groundWorld(), options);
+  const ModelId id = sim.addRobot(car(test::loadTianracer()));
+  Simulator plain(groundWorld(), {});
+  const ModelId plain_id = plain.addRobot(car(test::loadTianracer()));
+  for (const auto& [s, m] : {std::make_pair(&sim, id), std::make_pair(&plain, plain_id)}) {
+    ASSERT_TRUE(s->setCommand(m, "left_rear_wheel_velocity_controller", 20.0));
+    ASSERT_TRUE(s->setCommand(m, "left_steering_hinge_position_controller", 0.2));
+  }
+  sim.step(300);
+  plain.step(300);
+  sim.waitFrames();
+  plain.waitFrames();
+  // Timing changes nothing of the run.
+  EXPECT_EQ(sim.modelState(id).X_WE.matrix(), plain.modelState(plain_id).X_WE.matrix());
+
+  EXPECT_EQ(profile.steps(), 300u);
+  for (const char* row : {StepProfile::kStep, StepProfile::kBullet, StepProfile::kControllers,
+                          "contacts: scan of the step's manifolds"}) {
+    const StepProfile::Figure f = profileFigure(profile, row);
+    EXPECT_EQ(f.name, row);
+    EXPECT_EQ(f.calls, 300u) << row;
+    EXPECT_GT(f.seconds, 0.0) << row;
+  }
+  // Each sensor's cast or frame is counted where it happens.
+  const auto* lidar = sim.findSensor(id, "hokuyo_sensor");
+  ASSERT_NE(lidar, nullptr);
+  EXPECT_EQ(profileFigure(profile, "sensor lidar: sample (cast, measure)").calls,
+            lidar->stat().renders);
+  EXPECT_EQ(profileFigure(profile, "sensor lidar: update").calls, 300u);
+  const auto* camera = dynamic_cast<const SimCamera*>(sim.findSensor(id, "camera1"));
+  const auto* depth = dynamic_cast<const SimDepthCamera*>(sim.findSensor(id, "real_sense"));
+  ASSERT_NE(camera, nullptr);
+  ASSERT_NE(depth, nullptr);
+  EXPECT_EQ(profileFigure(profile, "frame worker: camera render").calls,
+            camera->camera().renderCount());
+  EXPECT_EQ(profileFigure(profile, "frame worker: renders / glReadPixels").calls,
+            camera->camera().renderCount() + depth->camera().renderCount());
+  EXPECT_GT(profileFigure(profile, "frame worker: renders / GL draw to glFinish").seconds, 0.0);
+  EXPECT_NE(profile.table().find("step outside Bullet"), std::string::npos);
+}
+
+TEST(Simulator, TracksContactsOnlyWhileAskedAndCountsOneInProgressAsNewWhenResumed) {
+  Simulator sim(groundWorld(), {});
+  const ModelId id = sim.addRobot(car(test::loadTianracer()));
+  EXPECT_TRUE(sim.contactTracking());  // on by default (the Python environment counts them)
+  sim.setContactTracking(false);
+  const double omega = 1.0 / test::kWheelRadius;  // 1 m/s into the wall (its face at 1.9 m)
+  ASSERT_TRUE(sim.setCommand(id, "left_rear_wheel_velocity_controller", omega));
+  ASSERT_TRUE(sim.setCommand(id, "right_rear_wheel_velocity_controller", omega));
+  sim.step(3000);
+  // The car is against the wall (its wheels still turning), and nothing was counted.
+  const auto* robot = sim.robot(id);
+  ASSERT_NE(robot, nullptr);
+  std::vector<RobotContact> now;
+  robotContacts(sim.simulation().physics(), robot->id, &now);
+  ASSERT_FALSE(now.empty()) << "the car should touch the wall at x = "
+                            << sim.modelState(id).X_WE.translation().x();
+  EXPECT_EQ(sim.contactCount(id), 0u);
+  EXPECT_TRUE(sim.contacts().due().empty());
+  // Tracked again: the contact in progress is new, counted and due at once.
+  sim.setContactTracking(true);
+  sim.step(1);
+  EXPECT_GE(sim.contactCount(id), 1u);
+  EXPECT_FALSE(sim.contacts().due().empty());
+  // Off again: the due list goes, the count stays.
+  const std::uint64_t counted = sim.contactCount(id);
+  sim.setContactTracking(false);
+  EXPECT_TRUE(sim.contacts().due().empty());
+  sim.step(10);
+  EXPECT_EQ(sim.contactCount(id), counted);
 }
 
 TEST(Simulator, DisabledSensorsAreLeftOutWithTheReason) {

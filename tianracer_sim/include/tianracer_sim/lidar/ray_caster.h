@@ -28,6 +28,7 @@
 #include <Eigen/Geometry>
 
 #include "tianracer_sim/common/diagnostic.h"
+#include "tianracer_sim/common/step_profile.h"
 #include "tianracer_sim/scene/scene.h"
 
 namespace tianracer_sim {
@@ -81,10 +82,16 @@ class RayCaster {
   std::size_t analyticCount() const;
   std::size_t movingBodyCount() const;
 
+  /// Times update()'s commits of moved bodies (and rebuilds) and castRays() into `profile`
+  /// (common/step_profile.h), as parts of the sensors' sampling rows; null: not timed.
+  void setProfile(StepProfile* profile);
+
  private:
   struct Impl;
   RayCasterOptions options_;
   std::unique_ptr<Impl> impl_;
+  StepProfile* profile_ = nullptr;
+  int update_row_ = -1, cast_row_ = -1;
 };
 
 }  // namespace tianracer_sim

@@ -11,6 +11,7 @@
 
 #include <Eigen/Geometry>
 
+#include "tianracer_sim/common/step_profile.h"
 #include "tianracer_sim/common/warning.h"
 #include "tianracer_sim/render/camera_intrinsics.h"
 #include "tianracer_sim/scene/scene.h"
@@ -50,10 +51,17 @@ class Renderer {
   /// "OpenGL 4.5 (Compatibility Profile) Mesa 22.3.6, llvmpipe (LLVM 15.0.6, 256 bits)".
   std::string glInfo() const;
 
+  /// Times each frame's drawing (up to glFinish: llvmpipe rasterises on the flush) and its
+  /// read-back (glReadPixels) into `profile` (common/step_profile.h); null: not timed, and
+  /// no glFinish (glReadPixels waits for the drawing anyway).
+  void setProfile(StepProfile* profile);
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   uint64_t frames_ = 0;
+  StepProfile* profile_ = nullptr;
+  int draw_row_ = -1, readback_row_ = -1;
 };
 
 }  // namespace tianracer_sim

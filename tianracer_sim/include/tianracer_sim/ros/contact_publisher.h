@@ -1,8 +1,10 @@
 // Robots' contacts (sim/contact_tracker.h) on /<robot namespace>/contacts (tianracer_sim/Contact):
-// the tracker decides which are due, this publishes them where someone subscribes.
+// the tracker decides which are due, this publishes them where someone subscribes, and says
+// whether anyone does (the node tracks contacts only then: Simulator::setContactTracking).
 #ifndef TIANRACER_SIM_ROS_CONTACT_PUBLISHER_H
 #define TIANRACER_SIM_ROS_CONTACT_PUBLISHER_H
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,12 +23,21 @@ class ContactPublisher {
   void removeRobot(RobotId id);
   /// After the tracker's update: publishes its due contacts.
   void publish(const PhysicsWorld& world, double t);
+  /// Whether any robot's contacts topic has a subscriber (kept by the publishers' connect and
+  /// disconnect callbacks, which run on the node's queue between steps: no cost per step).
+  bool subscribed() const {
+    for (const Robot& r : robots_) {
+      if (*r.subscribers > 0) return true;
+    }
+    return false;
+  }
 
  private:
   struct Robot {
     RobotId id;
     std::string name;
     ros::Publisher pub;
+    std::shared_ptr<int> subscribers;  // shared with the publisher's callbacks
   };
 
   const ContactTracker& tracker_;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
 #include <tf2_ros/static_transform_broadcaster.h>
@@ -80,8 +81,14 @@ class RobotBridge {
   std::shared_ptr<tianracer_control::ControllerCommandSubscribers> commands_;
   std::vector<JointStateStream> joint_states_;
   ros::Publisher ground_truth_;
+  nav_msgs::Odometry ground_truth_msg_;  // filled in place at each publication
   Schedule ground_truth_schedule_;
   std::vector<std::string> topics_;
+  // The step profile's rows (sim_.profile(); -1 when not profiling).
+  struct {
+    int joint_states = -1, joint_states_convert = -1, joint_states_send = -1;
+    int ground_truth = -1, ground_truth_convert = -1, ground_truth_send = -1;
+  } rows_;
   // Last: its services go first (they call into the members above).
   std::unique_ptr<ControllerManagerBridge> controller_manager_;
 };

@@ -40,6 +40,9 @@
 // as robot_state_publisher and gazebo_ros plugins do) prefixes every frame published for
 // the robot: sensor frames, optical frames, ground truth's child frame and the odom frame.
 //   status_period    wall seconds between status lines and /diagnostics (default 5; 0 = off)
+//   profile          time each part of the step (default false): the service ~profile
+//                    (std_srvs/Trigger) answers the table (docs/performance.md), which also
+//                    is printed on stdout at exit
 // Robots spawned at run time (/gazebo/spawn_urdf_model) read controllers, control_namespace,
 // odom_frame, disable_sensors and model_dir from ~<model name>/, as robots listed in ~robots;
 // without ~<name>/controllers or ~<name>/control_namespace they start no controller (as in
@@ -115,12 +118,21 @@ class SimNode : private ModelSpawner {
   /// so that what connects while it is paused gets them too.
   void publishInitial();
   void publishStatus();  // sim_node_status.cpp
+  /// ~profile: the StepProfile, its rows in the step's order, the ~profile service
+  /// (sim_node_status.cpp). Before the Simulator, which adds its rows.
+  void setUpProfile();
 
   /// After reset_simulation (GazeboInterface): the node's schedules restart, /clock goes back.
   void afterReset();
 
   ros::NodeHandle nh_, pnh_;
   ros::CallbackQueue queue_;  // commands and services run between steps, in this thread
+  std::unique_ptr<StepProfile> profile_;  // ~profile; null when not profiling
+  struct {
+    int step = -1, callbacks = -1, status = -1, commands = -1, contact_msgs = -1, clock = -1;
+    int gazebo_states = -1, lockstep = -1;
+  } rows_;
+  ros::ServiceServer profile_service_;
   ros::NodeHandle root_;      // "/" on queue_
   WorldLoadOptions world_options_;
   std::unique_ptr<Simulator> sim_;
@@ -133,6 +145,7 @@ class SimNode : private ModelSpawner {
   std::map<std::string, std::vector<std::string>> world_model_topics_;  // by world model name
   std::unique_ptr<ContactPublisher> contacts_;        // robots' contacts on their topics
   ros::Publisher clock_pub_, diagnostics_pub_;
+  int diagnostics_readers_ = 0;  // /diagnostics subscribers (its connect callbacks)
   Schedule clock_schedule_;
   double ground_truth_rate_ = 50.0;
   double real_time_factor_ = 1.0;

@@ -24,9 +24,10 @@ geometry_msgs::Twist toTwistMsg(const Twist& twist);
 /// The sim's ground truth: pose of `child_frame` in `frame`, twist in the child frame
 /// (nav_msgs/Odometry's convention), zero covariance. (libgazebo_ros_p3d's twist is in the
 /// world frame: toOdometry() below.)
-nav_msgs::Odometry toGroundTruth(const Eigen::Isometry3d& X_WB, const Twist& twist_W,
-                                 const ros::Time& stamp, const std::string& frame,
-                                 const std::string& child_frame);
+/// Filled in place: a message kept between calls allocates nothing.
+void toGroundTruth(const Eigen::Isometry3d& X_WB, const Twist& twist_W, const ros::Time& stamp,
+                   const std::string& frame, const std::string& child_frame,
+                   nav_msgs::Odometry* msg);
 
 /// libgazebo_ros_p3d's odometry: the reading as it is (see sensors/p3d.h), gn^2 on the pose
 /// and twist covariance diagonals.

@@ -49,9 +49,11 @@ class ContactTracker {
   /// ground's own).
   void otherOf(const PhysicsWorld& world, const RobotContact& c, std::string* model,
                std::string* link) const;
-  /// Contacts begun since the start (a pair touching again after kSameContactGap counts again).
+  /// Contacts begun since the start while contacts were tracked (a pair touching again after
+  /// kSameContactGap counts again).
   std::uint64_t count(RobotId id) const;
-  /// Forget contacts in progress (time jumped back on a reset).
+  /// Forget contacts in progress and the due ones (time jumped back on a reset, or tracking
+  /// stopped: a contact still there when it resumes is a new one).
   void reset();
 
  private:

@@ -15,6 +15,7 @@
 #include <tianracer_control/joint_controllers.h>
 #include <tianracer_control/joint_handle.h>
 
+#include "tianracer_sim/common/step_profile.h"
 #include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/physics/world.h"
 
@@ -90,6 +91,9 @@ class Simulation {
   PhysicsWorld& physics() { return physics_; }
   const PhysicsWorld& physics() const { return physics_; }
   std::vector<std::unique_ptr<SimRobot>>& robots() { return robots_; }
+  /// step() times its controllers and its physics step into `profile` (null: not timed; it
+  /// must outlive the simulation).
+  void setProfile(StepProfile* profile);
   SimRobot* findRobot(const std::string& name);
   /// A robot or a free body of the world (a dynamic model) by name; null when none.
   const PhysicsRobot* findModel(const std::string& name) const;
@@ -104,6 +108,8 @@ class Simulation {
   PhysicsWorld physics_;
   WarningSink warn_;
   std::vector<std::unique_ptr<SimRobot>> robots_;
+  StepProfile* profile_ = nullptr;
+  int controllers_row_ = -1, bullet_row_ = -1;
 };
 
 /// Builds the hardware interface of a robot: one JointHandle per transmission, its interface

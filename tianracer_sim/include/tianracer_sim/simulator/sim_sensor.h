@@ -138,12 +138,21 @@ class SimSensor {
   SensorStat& stat() { return stat_; }
   const SensorStat& stat() const { return stat_; }
 
+  /// Its rows in the step profile (common/step_profile.h), by its kind; -1 when not profiled.
+  struct ProfileRows {
+    int update = -1, sample = -1, publish = -1;  // the stepping thread
+    int render = -1, frame_publish = -1;         // the frame worker
+  };
+  const ProfileRows& profileRows() const { return profile_rows_; }
+  void setProfileRows(const ProfileRows& rows) { profile_rows_ = rows; }
+
  private:
   std::string kind_, name_;
   LinkRef link_;
   std::string model_name_;
   std::unique_ptr<SensorListener> listener_;
   SensorStat stat_;
+  ProfileRows profile_rows_;
 };
 
 }  // namespace tianracer_sim

@@ -30,6 +30,7 @@
 
 #include <tianracer_control/joint_controllers.h>
 
+#include "tianracer_sim/common/step_profile.h"
 #include "tianracer_sim/common/warning.h"
 #include "tianracer_sim/lidar/ray_caster.h"
 #include "tianracer_sim/model/robot_model.h"
@@ -66,6 +67,10 @@ struct SimulatorOptions {
   /// addWorldModel's) before it first runs, as RobotSpawn::attach is for a robot's. A throw
   /// leaves the sensor out, with the message as the reason.
   std::function<void(SimSensor&)> attach_world_sensor;
+  /// Where each step's time goes (common/step_profile.h): the physics, the contact scan, each
+  /// sensor's update, sample and publication, the frame worker's renders. Null: not timed.
+  /// Owned by the caller; it outlives the Simulator.
+  StepProfile* profile = nullptr;
 };
 
 /// A robot to add (start-up and spawn_urdf_model alike).
@@ -262,6 +267,14 @@ class Simulator : public SensorWorld {
   void waitFrames();
   /// Contacts begun so far by robot `id` (a pair touching again after a gap counts again).
   std::uint64_t contactCount(ModelId id) const;
+  /// Whether each step's contacts are tracked (counted for contactCount(), queued in
+  /// contacts().due()); on by default. The ROS node turns it on only while something reads
+  /// them, as Gazebo's ContactManager::NewContact (physics/ContactManager.cc) makes contacts
+  /// only while ~/physics/contacts has subscribers or a contact sensor wants them. Turned
+  /// off, the contacts in progress are forgotten: one still there when it resumes is new.
+  /// (A bumper reads its link's contacts itself, linkContacts(): it needs no tracking.)
+  void setContactTracking(bool on);
+  bool contactTracking() const { return track_contacts_; }
 
   // --- SensorWorld: what sensors read, addressed by model id and link name ---------------------
   const Scene& scene() override;
@@ -285,6 +298,8 @@ class Simulator : public SensorWorld {
   const WorldDescription& world() const { return *world_; }
   const ContactTracker& contacts() const { return contacts_; }
   const SimulatorOptions& options() const { return options_; }
+  /// SimulatorOptions::profile (null when not profiling).
+  StepProfile* profile() const { return options_.profile; }
 
  private:
   /// One model: a robot (robot != nullptr) or a world model. Kept as an empty slot once
@@ -335,6 +350,10 @@ class Simulator : public SensorWorld {
   bool lockstep_replies_ = false, lockstep_ticks_ = false;
   bool paused_ = false;
   double max_update_rate_ = 0.0;
+
+  bool track_contacts_ = true;
+  // options_.profile's rows
+  int contacts_row_ = -1, frame_wait_row_ = -1, frames_row_ = -1, step_row_ = -1, scene_row_ = -1;
 
   std::vector<FrameRequest> due_frames_;  // filled each step, handed to the worker
   Scene render_scene_;                    // the worker's snapshot of scene_

@@ -1,4 +1,6 @@
 // ray / gpu_ray sensors with gazebo_ros_laser: the SimLidar's scans -> sensor_msgs/LaserScan.
+#include <optional>
+
 #include <sensor_msgs/LaserScan.h>
 #include <sensor_msgs/PointCloud2.h>
 
@@ -26,6 +28,9 @@ class LidarPublisher : public SensorListener {
              config.min_angle, config.max_angle, config.update_rate, topic.c_str(),
              config.frame_name.c_str());
     sensor.stat().name = topic;
+    profile_ = setup.profile;
+    convert_row_ = profileRow(profile_, "sensor " + sensor.kind() + ": publish / convert");
+    send_row_ = profileRow(profile_, "sensor " + sensor.kind() + ": publish / serialise and send");
   }
 
   SensorOutputs wanted(const SimSensor&, SensorOutputs due) override {
@@ -35,11 +40,14 @@ class LidarPublisher : public SensorListener {
   void onOutputs(const SimSensor& s, SensorOutputs, double t) override {
     const auto& sensor = static_cast<const SimLidar&>(s);
     const RaySensorConfig& config = sensor.config();
+    std::optional<StepProfile::Scope> part(std::in_place, profile_, convert_row_);
     if (config.velodyne) {
       toVelodyneCloud(config, sensor.ranges(), sensor.directions(), ros::Time(t), &cloud_);
+      part.emplace(profile_, send_row_);
       pub_.publish(cloud_);
     } else {
       toLaserScan(config, sensor.ranges(), ros::Time(t), &msg_);
+      part.emplace(profile_, send_row_);
       pub_.publish(msg_);
     }
   }
@@ -48,6 +56,8 @@ class LidarPublisher : public SensorListener {
   ros::Publisher pub_;
   sensor_msgs::LaserScan msg_;
   sensor_msgs::PointCloud2 cloud_;
+  StepProfile* profile_ = nullptr;
+  int convert_row_ = -1, send_row_ = -1;
 };
 
 }  // namespace

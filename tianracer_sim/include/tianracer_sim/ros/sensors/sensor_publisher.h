@@ -13,6 +13,7 @@
 #include <ros/ros.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
+#include "tianracer_sim/common/step_profile.h"
 #include "tianracer_sim/simulator/sim_sensor.h"
 
 namespace tianracer_sim {
@@ -31,6 +32,9 @@ struct PublisherSetup {
   std::string owner() const { return (world_model ? "model '" : "robot '") + robot_name + "'"; }
   /// Throws when another sensor already publishes `topic`.
   std::function<void(const std::string& topic, const std::string& owner)> claim_topic;
+  /// The step profile (null: not profiling): publishers may time the parts of their
+  /// publication in rows "sensor <kind>: publish / ..." (common/step_profile.h).
+  StepProfile* profile = nullptr;
 };
 
 /// Makes the publisher of `sensor` by its kind (it also names sensor.stat() after its topic).
