@@ -107,6 +107,47 @@ class BenchHarnessTest(unittest.TestCase):
         self.assertFalse(os.path.exists(os.path.join(self.tmp, "never.md")))
         self.assertNotIn("|", out)  # no table, not even a half one
 
+    def test_boxes_and_3d_lidar_rows(self):
+        # The 50 free boxes (a world scenario) and the 16 x 1800 3D lidar (a model scenario): both
+        # sides give figures, and the car has moved boxes on both sides by the end (a scenario
+        # whose car never reaches them would measure nothing). --compare against the committed
+        # table, which has neither row, still works.
+        out_md = os.path.join(self.tmp, "new_rows.md")
+        rc, out = self.harness("--duration", "1.5", "--scenarios", "boxes,lidar3d", "--first-scan-runs", "0",
+                               "--no-install", "--output", out_md, "--compare", COMMITTED, timeout=400)
+        self.assertEqual(rc, 0, out)
+        with open(out_md) as f:
+            text = f.read()
+        header, rows = None, {}
+        for line in text.splitlines():
+            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            if not line.startswith("|"):
+                continue
+            if cells[0] == "scenario":
+                header = cells
+            elif header and not set(cells[0]) <= set("-: "):
+                rows[cells[0]] = dict(zip(header, cells))
+        for title in ("50 free boxes in the car's path, physics only",
+                      "physics + lidar + 3D lidar (16 x 1800 rays, 10 Hz)"):
+            self.assertIn(title, rows, text)
+            for col in ("ours sim s/wall s", "PyBullet sim s/wall s"):
+                self.assertRegex(rows[title][col], r"^\d+\.\d\d$", "%s has no figure in: %s" % (col, rows[title]))
+            self.assertRegex(rows[title]["ratio"], r"^\d+\.\d\d×$", rows[title])
+        import re
+        m = re.search(r"50 free boxes in the car's path, physics only: free models that moved more than 1 cm by "
+                      r"the end of the run: ours (\d+) of 50, PyBullet (\d+) of 50\.", text)
+        self.assertIsNotNone(m, "no line of moved boxes in:\n" + text)
+        self.assertGreater(int(m.group(1)), 0, "the car moved no box in our simulator:\n" + text)
+        self.assertGreater(int(m.group(2)), 0, "the car moved no box in PyBullet:\n" + text)
+        # Ours published the 3D lidar's clouds (the rate the client counts is not asserted) and
+        # PyBullet cast it at 10 Hz.
+        m = re.search(r"physics \+ lidar \+ 3D lidar [^\n]*, messages received [^\n]*/velodyne_points (\d+\.\d)/s", text)
+        self.assertIsNotNone(m, "ours published no /velodyne_points:\n" + text)
+        self.assertGreater(float(m.group(1)), 0.0, text)
+        self.assertRegex(text, r"physics \+ lidar \+ 3D lidar .*, PyBullet: lidar \d+ calls .*, lidar3d 1[56] calls")
+        self.assertIn("Change against %s" % COMMITTED, out)
+        self.assertIn("50 free boxes in the car's path, physics only: not in %s" % COMMITTED, out)
+
 
 if __name__ == "__main__":
     unittest.main()
