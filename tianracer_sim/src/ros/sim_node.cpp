@@ -36,6 +36,7 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   world_options_.find_package = [](const std::string& pkg) { return ros::package::getPath(pkg); };
   WorldDescription world = loadWorldFile(
       resolveWorld(world_arg, ros::package::getPath("tianracer_sim") + "/worlds"), world_options_);
+  startupMark("world file and its meshes");
 
   SimulatorOptions options;
   options.max_step_size = getDouble(pnh_, "max_step_size", physicsOptionsFor(world).dt);
@@ -67,6 +68,7 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   options.attach_world_sensor = [this](SimSensor& sensor) { attachWorldSensor(sensor); };
   options.profile = profile_.get();
   sim_ = std::make_unique<Simulator>(std::move(world), std::move(options));
+  startupMark("simulator (the world's physics, scene, sensors)");
   sim_->setPaused(paused);
   {
     // The pace as Gazebo holds it (set_physics_properties' max_update_rate changes it).
@@ -139,6 +141,8 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   pnh_.param("step_services", step_services, true);
   if (step_services) step_ = std::make_unique<StepBridge>(pnh_, *sim_, &queue_, step_hooks);
 
+  startupMark("Gazebo interface, lockstep, services");
+  logStartup();
   ROS_INFO("tianracer_sim: step %.4f s, real_time_factor %g%s, %s", sim_->dt(), real_time_factor_,
            real_time_factor_ == 0.0 ? " (as fast as possible)" : "",
            sim_->paused() ? "paused" : "running");
@@ -244,6 +248,7 @@ void SimNode::run() {
     publishDue();
     initial_published_ = true;
   }
+  bool first_step = true;  // its time is logged
   status_wall_ = ros::WallTime::now();
   status_sim_ = sim_->time();
   ros::WallTime wall0 = ros::WallTime::now();
@@ -278,7 +283,15 @@ void SimNode::run() {
       sim0 = sim_->time();
       pacing_reset_ = false;
     }
-    stepOnce();
+    if (first_step) {
+      const auto t0 = std::chrono::steady_clock::now();
+      stepOnce();
+      ROS_INFO("first step: %.1f ms",
+               std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      first_step = false;
+    } else {
+      stepOnce();
+    }
     if ((sim_->stepCount() & 255) == 0) {
       StepProfile::Scope timed(profile_.get(), rows_.status);
       publishStatus();

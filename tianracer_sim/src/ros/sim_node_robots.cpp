@@ -67,7 +67,9 @@ void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name
   if (name.empty()) name = model.urdf->getName();
   bool auto_z = true;
   const Eigen::Isometry3d X_WB = getSpawnPose(rp, &auto_z);
+  startupMark("robot '" + name + "': URDF and meshes");
   addRobot(std::move(model), name, X_WB, auto_z, rp, false);
+  startupMark("robot '" + name + "': physics, controllers, sensors (GL context), topics");
 }
 
 void SimNode::addRobot(RobotModel model, const std::string& name, const Eigen::Isometry3d& X_WB,

@@ -125,4 +125,26 @@ void SimNode::setUpProfile() {
            profile_service_.getService().c_str());
 }
 
+void SimNode::startupMark(const std::string& what) {
+  if (startup_logged_) return;
+  const auto now = std::chrono::steady_clock::now();
+  startup_.emplace_back(what, std::chrono::duration<double, std::milli>(now - startup_last_).count());
+  startup_last_ = now;
+}
+
+void SimNode::logStartup() {
+  std::ostringstream line;
+  line << std::fixed << std::setprecision(1) << "start-up: ";
+  double all = 0.0;
+  for (std::size_t i = 0; i < startup_.size(); ++i) {
+    line << (i ? ", " : "") << startup_[i].first << " " << startup_[i].second << " ms";
+    all += startup_[i].second;
+  }
+  line << "; " << all << " ms in all (the node's constructor; xacro, the master and "
+       << "robot_state_publisher are other processes)";
+  ROS_INFO_STREAM(line.str());
+  startup_.clear();
+  startup_logged_ = true;
+}
+
 }  // namespace tianracer_sim

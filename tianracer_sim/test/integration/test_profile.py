@@ -5,8 +5,9 @@ The ~profile service (std_srvs/Trigger) answers a table: one row per part (Bulle
 controllers, the contact scan, each publication with its conversion and its serialisation,
 each sensor's cast, the frame worker's renders and read-backs) with microseconds per step and
 calls per step; the Bullet and controller rows run once per step, the lidar's cast 40 times per
-sim second; contacts, read by nobody here, are not tracked. At exit the node prints the table. (Without ~profile the node offers no such
-service: test_sim_basics checks the node's services.)
+sim second; contacts, read by nobody here, are not tracked. At exit the node prints the table.
+The start-up line gives each part of the node's start with its time, and the first step's.
+(Without ~profile the node offers no such service: test_step checks.)
 """
 import re
 import signal
@@ -111,6 +112,15 @@ class Profile(unittest.TestCase):
         self.assertEqual(code, 0, 'exit code %d after SIGINT:\n%s' % (code, out))
         self.assertIn('step profile (~profile):', out)
         self.assertIn('physics: Bullet stepSimulation', out)
+        # The start-up line (logged whether profiling or not): each part with its time.
+        m = re.search(r"start-up: world file and its meshes ([0-9.]+) ms, simulator .* ([0-9.]+) ms, "
+                      r"robot 'tianracer': URDF and meshes ([0-9.]+) ms, robot 'tianracer': physics, "
+                      r"controllers, sensors \(GL context\), topics ([0-9.]+) ms, Gazebo interface, "
+                      r"lockstep, services ([0-9.]+) ms; ([0-9.]+) ms in all", out)
+        self.assertIsNotNone(m, out)
+        parts = [float(x) for x in m.groups()]
+        self.assertAlmostEqual(sum(parts[:-1]), parts[-1], delta=0.5)
+        self.assertRegex(out, r'first step: [0-9.]+ ms')
 
 
 if __name__ == '__main__':

@@ -52,6 +52,7 @@
 #ifndef TIANRACER_SIM_ROS_SIM_NODE_H
 #define TIANRACER_SIM_ROS_SIM_NODE_H
 
+#include <chrono>
 #include <map>
 #include <memory>
 #include <string>
@@ -121,6 +122,10 @@ class SimNode : private ModelSpawner {
   /// ~profile: the StepProfile, its rows in the step's order, the ~profile service
   /// (sim_node_status.cpp). Before the Simulator, which adds its rows.
   void setUpProfile();
+  /// Start-up: the wall time since the last mark goes to `what` (until the start-up line is
+  /// logged; spawns later are not start-up). sim_node_status.cpp.
+  void startupMark(const std::string& what);
+  void logStartup();
 
   /// After reset_simulation (GazeboInterface): the node's schedules restart, /clock goes back.
   void afterReset();
@@ -133,6 +138,9 @@ class SimNode : private ModelSpawner {
     int gazebo_states = -1, lockstep = -1;
   } rows_;
   ros::ServiceServer profile_service_;
+  std::chrono::steady_clock::time_point startup_last_ = std::chrono::steady_clock::now();
+  std::vector<std::pair<std::string, double>> startup_;  // (what, ms); cleared once logged
+  bool startup_logged_ = false;
   ros::NodeHandle root_;      // "/" on queue_
   WorldLoadOptions world_options_;
   std::unique_ptr<Simulator> sim_;
