@@ -43,16 +43,6 @@ void* countingAlignedAlloc(size_t size, int alignment) {
 }
 void countingAlignedFree(void* p) { std::free(p); }
 
-WorldDescription wallWorld() {
-  return loadWorldString(
-      "<sdf version='1.6'><world name='w'><include><uri>model://ground_plane</uri></include>"
-      "<model name='wall'><static>true</static><pose>2 0 0.5 0 0 0</pose><link name='link'>"
-      "<collision name='c'><geometry><box><size>0.2 4 1</size></box></geometry></collision>"
-      "<visual name='v'><geometry><box><size>0.2 4 1</size></box></geometry></visual>"
-      "</link></model></world></sdf>",
-      "test.world", ".");
-}
-
 /// Everything due is wanted (a subscriber on every topic).
 class EveryOutput : public SensorListener {
  public:
@@ -95,7 +85,7 @@ class Allocations : public ::testing::Test {
 };
 
 TEST_F(Allocations, NonePerStepForTheCarAgainstAWallWithItsContactsTracked) {
-  Simulator sim(wallWorld(), {});
+  Simulator sim(test::groundWithWall(), {});
   const ModelId id = addCar(sim, {"ray", "camera", "depth"}, 1.0);
   ASSERT_TRUE(sim.contactTracking());
   const double per_step = allocationsPerStep(sim, 2500, 1000);
@@ -114,7 +104,7 @@ TEST_F(Allocations, NonePerStepForTheCarPushingAFreeBox) {
 }
 
 TEST_F(Allocations, NoneOfOursPerLidarCastOnlyEmbreesSceneCommit) {
-  Simulator sim(wallWorld(), {});
+  Simulator sim(test::groundWithWall(), {});
   const ModelId id = addCar(sim, {"camera", "depth"}, 0.3);
   const SimSensor* lidar = sim.findSensor(id, "hokuyo_sensor");
   ASSERT_NE(lidar, nullptr);

@@ -14,16 +14,6 @@
 namespace tianracer_sim {
 namespace {
 
-WorldDescription groundWorld() {
-  return loadWorldString(
-      "<sdf version='1.6'><world name='w'><include><uri>model://ground_plane</uri></include>"
-      "<model name='wall'><static>true</static><pose>2 0 0.5 0 0 0</pose><link name='link'>"
-      "<collision name='c'><geometry><box><size>0.2 4 1</size></box></geometry></collision>"
-      "<visual name='v'><geometry><box><size>0.2 4 1</size></box></geometry></visual>"
-      "</link></model></world></sdf>",
-      "test.world", ".");
-}
-
 RobotModel loadXacro(const std::string& file) {
   test::loadTianracer();  // puts the description on ROS_PACKAGE_PATH for $(find)
   LoadOptions options;
@@ -51,7 +41,7 @@ class NobodyListens : public SensorListener {
 };
 
 TEST(Simulator, AWorldAloneStepsAndARobotArrivesLater) {
-  Simulator sim(groundWorld(), {});
+  Simulator sim(test::groundWithWall(), {});
   EXPECT_TRUE(sim.robotIds().empty());
   sim.step(100);
   EXPECT_NEAR(sim.time(), 100 * sim.dt(), 1e-12);
@@ -63,7 +53,7 @@ TEST(Simulator, AWorldAloneStepsAndARobotArrivesLater) {
 }
 
 TEST(Simulator, DrivesThroughControllerCommandsAndReportsJointStates) {
-  Simulator sim(groundWorld(), {});
+  Simulator sim(test::groundWithWall(), {});
   const ModelId id = sim.addRobot(car(test::loadTianracer()));
   const double omega = 0.5 / test::kWheelRadius;  // 0.5 m/s
   ASSERT_TRUE(sim.setCommand(id, "left_rear_wheel_velocity_controller", omega));
@@ -88,7 +78,7 @@ TEST(Simulator, DrivesThroughControllerCommandsAndReportsJointStates) {
 
 TEST(Simulator, LoadsStartsStopsAndUnloadsControllersByName) {
   namespace tc = tianracer_control;
-  Simulator sim(groundWorld(), {});
+  Simulator sim(test::groundWithWall(), {});
   RobotSpawn spawn = car(test::loadTianracer());
   spawn.controllers.clear();  // as after spawn_model: a spawner brings them
   const ModelId id = sim.addRobot(std::move(spawn));
@@ -121,7 +111,7 @@ TEST(Simulator, LoadsStartsStopsAndUnloadsControllersByName) {
 TEST(Simulator, ReadsEverySensorAsPlainData) {
   SimulatorOptions options;
   options.seed = 7;
-  Simulator sim(groundWorld(), options);
+  Simulator sim(test::groundWithWall(), options);
   const ModelId id = sim.addRobot(car(loadXacro(TEST_DATA_DIR "/urdf/tianracer_imu.xacro")));
   sim.step(200);
   sim.waitFrames();
@@ -167,7 +157,7 @@ TEST(Simulator, ReadsEverySensorAsPlainData) {
 }
 
 TEST(Simulator, ComputesNothingThatNobodyWants) {
-  Simulator sim(groundWorld(), {});
+  Simulator sim(test::groundWithWall(), {});
   RobotSpawn spawn = car(test::loadTianracer());
   std::vector<NobodyListens*> listeners;
   spawn.attach = [&](SimSensor& sensor) {
@@ -201,9 +191,9 @@ TEST(Simulator, ProfilesEachPartOfTheStepWhenAskedAndTheRunStaysTheSame) {
   StepProfile profile;
   SimulatorOptions options;
   options.profile = &profile;
-  Simulator sim(groundWorld(), options);
+  Simulator sim(test::groundWithWall(), options);
   const ModelId id = sim.addRobot(car(test::loadTianracer()));
-  Simulator plain(groundWorld(), {});
+  Simulator plain(test::groundWithWall(), {});
   const ModelId plain_id = plain.addRobot(car(test::loadTianracer()));
   for (const auto& [s, m] : {std::make_pair(&sim, id), std::make_pair(&plain, plain_id)}) {
     ASSERT_TRUE(s->setCommand(m, "left_rear_wheel_velocity_controller", 20.0));
@@ -243,7 +233,7 @@ TEST(Simulator, ProfilesEachPartOfTheStepWhenAskedAndTheRunStaysTheSame) {
 }
 
 TEST(Simulator, TracksContactsOnlyWhileAskedAndCountsOneInProgressAsNewWhenResumed) {
-  Simulator sim(groundWorld(), {});
+  Simulator sim(test::groundWithWall(), {});
   const ModelId id = sim.addRobot(car(test::loadTianracer()));
   EXPECT_TRUE(sim.contactTracking());  // on by default (the Python environment counts them)
   sim.setContactTracking(false);
@@ -274,7 +264,7 @@ TEST(Simulator, TracksContactsOnlyWhileAskedAndCountsOneInProgressAsNewWhenResum
 }
 
 TEST(Simulator, DisabledSensorsAreLeftOutWithTheReason) {
-  Simulator sim(groundWorld(), {});
+  Simulator sim(test::groundWithWall(), {});
   RobotSpawn spawn = car(test::loadTianracer());
   spawn.disabled_sensors = {"camera", "depth"};
   const ModelId id = sim.addRobot(std::move(spawn));
@@ -285,7 +275,7 @@ TEST(Simulator, DisabledSensorsAreLeftOutWithTheReason) {
 }
 
 TEST(Simulator, ResetBringsTimeAndTheRobotBack) {
-  Simulator sim(groundWorld(), {});
+  Simulator sim(test::groundWithWall(), {});
   const ModelId id = sim.addRobot(car(test::loadTianracer()));
   const Eigen::Vector3d spawn = sim.modelState(id).X_WE.translation();
   sim.setCommand(id, "left_rear_wheel_velocity_controller", 20.0);
@@ -303,7 +293,7 @@ TEST(Simulator, ResetBringsTimeAndTheRobotBack) {
 }
 
 TEST(Simulator, RemovingARobotTakesItsSensorsAndNameAway) {
-  Simulator sim(groundWorld(), {});
+  Simulator sim(test::groundWithWall(), {});
   const ModelId id = sim.addRobot(car(test::loadTianracer()));
   sim.step(50);
   sim.removeModel("tianracer");
@@ -317,7 +307,7 @@ TEST(Simulator, RemovingARobotTakesItsSensorsAndNameAway) {
 }
 
 TEST(Simulator, LinkDataOfWorldModelsToo) {
-  Simulator sim(groundWorld(), {});
+  Simulator sim(test::groundWithWall(), {});
   const ModelId wall = sim.findModel("wall");
   ASSERT_NE(wall, kNoModel);
   EXPECT_NEAR(sim.linkPose({wall, "link"}).translation().x(), 2.0, 1e-12);
@@ -330,7 +320,7 @@ TEST(Simulator, LinkDataOfWorldModelsToo) {
 }
 
 TEST(Simulator, LockstepDecidesWhichStepsWait) {
-  Simulator sim(groundWorld(), {});
+  Simulator sim(test::groundWithWall(), {});
   sim.setLockstep(true, 0.02, false, 0.02);
   int replies = 0, ticks = 0;
   for (int k = 0; k < 100; ++k) {
@@ -345,7 +335,7 @@ TEST(Simulator, LockstepDecidesWhichStepsWait) {
 TEST(Simulator, RejectsAStepOutOfRange) {
   SimulatorOptions options;
   options.max_step_size = 0.5;
-  EXPECT_THROW(Simulator(groundWorld(), options), std::invalid_argument);
+  EXPECT_THROW(Simulator(test::groundWithWall(), options), std::invalid_argument);
 }
 
 }  // namespace
