@@ -42,12 +42,12 @@ RobotBridge::RobotBridge(Simulator& sim, ModelId id, Options options, ros::NodeH
   }
 
   if (StepProfile* p = sim_.profile()) {
-    rows_.joint_states = p->row("ros: joint_states");
-    rows_.joint_states_convert = p->row("ros: joint_states / convert");
-    rows_.joint_states_send = p->row("ros: joint_states / serialise and send");
-    rows_.ground_truth = p->row("ros: ground truth odom");
-    rows_.ground_truth_convert = p->row("ros: ground truth odom / convert");
-    rows_.ground_truth_send = p->row("ros: ground truth odom / serialise and send");
+    rows_.joint_states = p->row(kProfileRows[0]);
+    rows_.joint_states_convert = p->row(kProfileRows[1]);
+    rows_.joint_states_send = p->row(kProfileRows[2]);
+    rows_.ground_truth = p->row(kProfileRows[3]);
+    rows_.ground_truth_convert = p->row(kProfileRows[4]);
+    rows_.ground_truth_send = p->row(kProfileRows[5]);
   }
   joint_states_ = makeJointStates();
   ros::NodeHandle robot_nh(root, options_.ns);

@@ -103,15 +103,10 @@ void SimNode::setUpProfile() {
   rows_.commands = p.row("ros: commands in (controllers' topics, efforts, wrenches)");
   p.row(StepProfile::kControllers);
   p.row(StepProfile::kBullet);
-  p.row("contacts: scan of the step's manifolds");
+  p.row(StepProfile::kContactScan);
   rows_.contact_msgs = p.row("ros: contact messages");
   rows_.clock = p.row("ros: /clock");
-  p.row("ros: joint_states");
-  p.row("ros: joint_states / convert");
-  p.row("ros: joint_states / serialise and send");
-  p.row("ros: ground truth odom");
-  p.row("ros: ground truth odom / convert");
-  p.row("ros: ground truth odom / serialise and send");
+  for (const char* name : RobotBridge::kProfileRows) p.row(name);
   rows_.lockstep = p.row("lockstep: waiting for replies and ticks");
   rows_.gazebo_states = p.row("ros: /gazebo/model_states and link_states");
   profile_service_ = pnh_.advertiseService<std_srvs::Trigger::Request, std_srvs::Trigger::Response>(

@@ -33,7 +33,7 @@ Simulator::Simulator(WorldDescription world, SimulatorOptions options)
       contacts_(staticShapeOwners(*world_)) {
   step_row_ = profileRow(options_.profile, StepProfile::kStep);
   sim_.setProfile(options_.profile);
-  contacts_row_ = profileRow(options_.profile, "contacts: scan of the step's manifolds");
+  contacts_row_ = profileRow(options_.profile, StepProfile::kContactScan);
   scene_row_ = profileRow(options_.profile, "sensors: sample / scene: bodies to this step's poses");
   caster_.setProfile(options_.profile);
   frame_wait_row_ = profileRow(options_.profile, "frames: waiting for the worker's last frame");

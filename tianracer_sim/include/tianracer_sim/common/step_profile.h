@@ -32,6 +32,7 @@ class StepProfile {
   static constexpr const char* kStep = "step (all of it)";
   static constexpr const char* kBullet = "physics: Bullet stepSimulation";
   static constexpr const char* kControllers = "physics: controllers";
+  static constexpr const char* kContactScan = "contacts: scan of the step's manifolds";
   /// Rows whose names start so run on the stepping thread between two steps (callbacks,
   /// status): the step's cost outside Bullet counts them with the kStep row.
   static constexpr const char* kBetweenSteps = "between steps: ";

@@ -26,6 +26,13 @@ namespace tianracer_sim {
 
 class RobotBridge {
  public:
+  /// Its step-profile rows, in the order it fills them (the node registers them up front so
+  /// that the table follows the loop).
+  static constexpr const char* kProfileRows[] = {
+      "ros: joint_states", "ros: joint_states / convert",
+      "ros: joint_states / serialise and send", "ros: ground truth odom",
+      "ros: ground truth odom / convert", "ros: ground truth odom / serialise and send"};
+
   struct Options {
     std::string ns;           // ros_control namespace, e.g. "/tianracer"
     std::string tf_prefix;    // "" for a robot alone; e.g. "tianracer_02"
