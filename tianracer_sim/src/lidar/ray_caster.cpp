@@ -229,6 +229,23 @@ inline float embreeComponent(double x) {
   return std::abs(x) < 1e-12 ? 0.0f : static_cast<float>(x);
 }
 
+/// One ray from o along d over [t_min, t_max], with no hit yet (single rays and streams).
+void setUpRay(RTCRayHit* rh, const Eigen::Vector3f& o, const Eigen::Vector3f& d, float t_min,
+              float t_max, int id) {
+  rh->ray.org_x = o.x(), rh->ray.org_y = o.y(), rh->ray.org_z = o.z();
+  rh->ray.dir_x = embreeComponent(d.x());
+  rh->ray.dir_y = embreeComponent(d.y());
+  rh->ray.dir_z = embreeComponent(d.z());
+  rh->ray.tnear = t_min;
+  rh->ray.tfar = t_max;
+  rh->ray.time = 0.0f;
+  rh->ray.mask = 0xFFFFFFFFu;
+  rh->ray.id = id;
+  rh->ray.flags = 0;
+  rh->hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
 /// Triangles of one sub-scene, in its frame.
 struct TriangleSoup {
   std::vector<float> vertices;  // xyz
@@ -597,18 +614,7 @@ void RayCaster::castRays(const Eigen::Vector3d& origin_W,
     case RayQueryMode::kSingle: {
       for (int i = 0; i < n; ++i) {
         RTCRayHit rh;
-        rh.ray.org_x = o.x(), rh.ray.org_y = o.y(), rh.ray.org_z = o.z();
-        rh.ray.dir_x = embreeComponent(directions[i].x());
-        rh.ray.dir_y = embreeComponent(directions[i].y());
-        rh.ray.dir_z = embreeComponent(directions[i].z());
-        rh.ray.tnear = t_min;
-        rh.ray.tfar = t_max;
-        rh.ray.time = 0.0f;
-        rh.ray.mask = 0xFFFFFFFFu;
-        rh.ray.id = i;
-        rh.ray.flags = 0;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        setUpRay(&rh, o, directions[i], t_min, t_max, i);
         rtcIntersect1(m.top, &context, &rh);
         distances[i] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? inf : rh.ray.tfar;
       }
@@ -645,21 +651,7 @@ void RayCaster::castRays(const Eigen::Vector3d& origin_W,
     case RayQueryMode::kStream: {
       context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
       m.stream.resize(n);
-      for (int i = 0; i < n; ++i) {
-        RTCRayHit& rh = m.stream[i];
-        rh.ray.org_x = o.x(), rh.ray.org_y = o.y(), rh.ray.org_z = o.z();
-        rh.ray.dir_x = embreeComponent(directions[i].x());
-        rh.ray.dir_y = embreeComponent(directions[i].y());
-        rh.ray.dir_z = embreeComponent(directions[i].z());
-        rh.ray.tnear = t_min;
-        rh.ray.tfar = t_max;
-        rh.ray.time = 0.0f;
-        rh.ray.mask = 0xFFFFFFFFu;
-        rh.ray.id = i;
-        rh.ray.flags = 0;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-      }
+      for (int i = 0; i < n; ++i) setUpRay(&m.stream[i], o, directions[i], t_min, t_max, i);
       rtcIntersect1M(m.top, &context, m.stream.data(), n, sizeof(RTCRayHit));
       for (int i = 0; i < n; ++i)
         distances[i] = m.stream[i].hit.geomID == RTC_INVALID_GEOMETRY_ID ? inf

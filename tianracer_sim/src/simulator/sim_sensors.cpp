@@ -42,10 +42,9 @@ std::unique_ptr<SimSensor> makeBlockLaser(const SimSensorSetup& setup) {
   return std::make_unique<SimBlockLaser>(setup, std::move(config));
 }
 
-std::unique_ptr<SimSensor> makeCamera(const SimSensorSetup& setup) {
-  setup.check_link(setup.spec->link);
-  // Parse first: a bad sensor is reported even when there is no renderer.
-  CameraConfig camera = parseCameraConfig(*setup.spec, setup.warn);
+// The renderer for a camera or depth camera with its gazebo_ros plugin, its frame and noise
+// seed resolved; null when it is left out (without the plugin: said; without a renderer).
+Renderer* cameraRenderer(const SimSensorSetup& setup, CameraConfig& camera, uint32_t seed_offset) {
   if (!camera.has_plugin) {
     setup.warn("robot '" + setup.model_name + "': camera '" + setup.spec->name +
                "' has no gazebo_ros plugin: nothing to publish, left out");
@@ -54,23 +53,25 @@ std::unique_ptr<SimSensor> makeCamera(const SimSensorSetup& setup) {
   Renderer* renderer = setup.renderer();
   if (!renderer) return nullptr;
   camera.frame_name = tc::resolveFrame(setup.tf_prefix, camera.frame_name);
-  if (!camera.noise_seed) camera.noise_seed = static_cast<uint32_t>(setup.seed + 101 + setup.index);
+  if (!camera.noise_seed)
+    camera.noise_seed = static_cast<uint32_t>(setup.seed + seed_offset + setup.index);
+  return renderer;
+}
+
+std::unique_ptr<SimSensor> makeCamera(const SimSensorSetup& setup) {
+  setup.check_link(setup.spec->link);
+  // Parse first: a bad sensor is reported even when there is no renderer.
+  CameraConfig camera = parseCameraConfig(*setup.spec, setup.warn);
+  Renderer* renderer = cameraRenderer(setup, camera, 101);
+  if (!renderer) return nullptr;
   return std::make_unique<SimCamera>(setup, camera, *renderer);
 }
 
 std::unique_ptr<SimSensor> makeDepthCamera(const SimSensorSetup& setup) {
   setup.check_link(setup.spec->link);
   DepthCameraConfig depth = parseDepthCameraConfig(*setup.spec, setup.warn);
-  CameraConfig& camera = depth.camera;
-  if (!camera.has_plugin) {
-    setup.warn("robot '" + setup.model_name + "': camera '" + setup.spec->name +
-               "' has no gazebo_ros plugin: nothing to publish, left out");
-    return nullptr;
-  }
-  Renderer* renderer = setup.renderer();
+  Renderer* renderer = cameraRenderer(setup, depth.camera, 201);
   if (!renderer) return nullptr;
-  camera.frame_name = tc::resolveFrame(setup.tf_prefix, camera.frame_name);
-  if (!camera.noise_seed) camera.noise_seed = static_cast<uint32_t>(setup.seed + 201 + setup.index);
   return std::make_unique<SimDepthCamera>(setup, depth, *renderer);
 }
 
