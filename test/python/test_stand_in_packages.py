@@ -5,6 +5,7 @@ import os
 import shutil
 import stat
 import subprocess
+import sys
 import tempfile
 import unittest
 
@@ -223,6 +224,26 @@ class XacroStandInTest(unittest.TestCase):
         proc = self.run_ok(['roslaunch', '--dump-params', path])
         self.assertIn('<robotNamespace>/car7</robotNamespace>', proc.stdout)
         self.assertIn('<robotNamespace>/car8</robotNamespace>', proc.stdout)
+
+    def test_python_distutils_and_the_same_urdf(self):
+        # The stand-in runs xacro with Python's own distutils (not setuptools' shim), which cuts
+        # its start-up; the URDF is the PyPI xacro's byte for byte.
+        if sys.version_info >= (3, 12):
+            self.skipTest('Python 3.12 has no distutils of its own')
+        env = dict(os.environ)
+        env.pop('SETUPTOOLS_USE_DISTUTILS', None)
+        path = os.path.join(tempfile.mkdtemp(), 'env.xacro')
+        with open(path, 'w') as f:
+            f.write('<robot name="r"><link name="$(env SETUPTOOLS_USE_DISTUTILS)"/></robot>')
+        proc = subprocess.run([os.path.join(REPO, 'xacro', 'xacro'), path], env=env,
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                              universal_newlines=True, timeout=60)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertIn('<link name="stdlib"/>', proc.stdout)
+        ours = self.run_ok([os.path.join(REPO, 'xacro', 'xacro'), XACRO_FILE]).stdout
+        pypi = self.run_ok([sys.executable, '-c', 'import sys, xacro; sys.argv[0] = "xacro"; '
+                            'sys.exit(xacro.main())', XACRO_FILE]).stdout
+        self.assertEqual(ours, pypi)
 
     def test_errors_keep_xacros_exit_code(self):
         for exe in ('xacro', 'xacro.py'):
