@@ -37,6 +37,18 @@ class BenchHarnessTest(unittest.TestCase):
                            timeout=timeout)
         return p.returncode, p.stdout + p.stderr
 
+    def test_the_header_names_each_scenarios_own_world_and_model(self):
+        import importlib.machinery
+        import importlib.util
+        loader = importlib.machinery.SourceFileLoader("run_benchmarks", HARNESS)
+        harness = importlib.util.module_from_spec(importlib.util.spec_from_loader(loader.name, loader))
+        loader.exec_module(harness)
+        self.assertEqual(harness.own_content(["physics", "lidar", "full"]), "")
+        text = harness.own_content(["physics", "lane_track", "boxes", "lidar3d"])
+        self.assertEqual(text, " unless named (lane_track: world lane_track; "
+                               "boxes: world bench/worlds/free_boxes.world; "
+                               "lidar3d: model bench/models/tianracer_lidar3d.xacro)")
+
     def test_the_shim_is_not_the_pybullet_interpreter(self):
         p = subprocess.run(["python3", "-c", "import numpy"], env=self.env, capture_output=True)
         self.assertNotEqual(p.returncode, 0, "the shim python3 should not import numpy")
