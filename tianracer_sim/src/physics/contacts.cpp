@@ -19,19 +19,19 @@ bool isPlane(const btCollisionObject* o) {
          o->getCollisionShape()->getShapeType() == STATIC_PLANE_PROXYTYPE;
 }
 
-}  // namespace
-
-void robotContacts(PhysicsWorld& world, RobotId id, std::vector<RobotContact>* out,
-                   double max_distance) {
-  out->clear();
+// Appends the contacts of the collision objects for which owns(o) holds. User indices
+// (world.h): a robot's id, -1 for statics (user index 2: the static shape's index, -1 for the
+// world's ground) and -2 - i for free body i; user index 2 of a body's object: the body.
+template <class Owns>
+void contactsOf(PhysicsWorld& world, const Owns& owns, std::vector<RobotContact>* out,
+                double max_distance) {
   btDispatcher* d = world.bulletWorld()->getDispatcher();
   for (int m = 0; m < d->getNumManifolds(); ++m) {
     const btPersistentManifold* pm = d->getManifoldByIndexInternal(m);
     const btCollisionObject* o0 = pm->getBody0();
     const btCollisionObject* o1 = pm->getBody1();
-    // User indices (world.h): robot id, -1 for statics and the ground, -2 - i for free bodies.
-    const bool own0 = o0->getUserIndex() == id;
-    const bool own1 = o1->getUserIndex() == id;
+    const bool own0 = owns(o0);
+    const bool own1 = owns(o1);
     if (own0 == own1) continue;  // not ours, or a self-contact
     const btCollisionObject* own = own0 ? o0 : o1;
     const btCollisionObject* other = own0 ? o1 : o0;
@@ -47,7 +47,7 @@ void robotContacts(PhysicsWorld& world, RobotId id, std::vector<RobotContact>* o
     if (deepest < 0) continue;
     const btManifoldPoint& cp = pm->getContactPoint(deepest);
     RobotContact c;
-    c.body = own->getUserIndex2();
+    c.body = own->getUserIndex() == -1 ? -1 : own->getUserIndex2();
     const int other_index = other->getUserIndex();
     if (other_index >= 0) {
       c.other_robot = other_index;
@@ -68,6 +68,32 @@ void robotContacts(PhysicsWorld& world, RobotId id, std::vector<RobotContact>* o
     c.impulse = impulse;
     out->push_back(c);
   }
+}
+
+}  // namespace
+
+void robotContacts(PhysicsWorld& world, RobotId id, std::vector<RobotContact>* out,
+                   double max_distance) {
+  out->clear();
+  contactsOf(world, [id](const btCollisionObject* o) { return o->getUserIndex() == id; }, out,
+             max_distance);
+}
+
+void freeBodyContacts(PhysicsWorld& world, int index, std::vector<RobotContact>* out,
+                      double max_distance) {
+  out->clear();
+  const int id = -2 - index;
+  contactsOf(world, [id](const btCollisionObject* o) { return o->getUserIndex() == id; }, out,
+             max_distance);
+}
+
+void staticShapeContacts(PhysicsWorld& world, int index, std::vector<RobotContact>* out,
+                         double max_distance) {
+  contactsOf(world,
+             [index](const btCollisionObject* o) {
+               return o->getUserIndex() == -1 && o->getUserIndex2() == index;
+             },
+             out, max_distance);
 }
 
 }  // namespace tianracer_sim

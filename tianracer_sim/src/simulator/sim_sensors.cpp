@@ -334,7 +334,10 @@ SensorOutputs SimImu::update(double t, SensorWorld& world) {
   return schedule_.due(t) ? kReading : 0;
 }
 
-void SimImu::sample(SensorOutputs, SensorWorld&) { reading_ = &sensor_.read(); }
+void SimImu::sample(SensorOutputs, SensorWorld& world) {
+  sensor_.setGravity(world.gravity());
+  reading_ = &sensor_.read();
+}
 
 void SimImu::restart(double t) {
   schedule_.restart(t);
@@ -391,7 +394,7 @@ void SimP3d::restart(double t) {
 
 SimBumper::SimBumper(const SimSensorSetup& setup, BumperConfig config)
     : SimSensor("bumper", config.name, linkOf(setup, config.link), setup.model_name),
-      config_(std::move(config)), dt_(setup.dt) {
+      config_(std::move(config)) {
   setup.check_link(config_.link);
   const bool world = config_.frame_name == "world" || config_.frame_name == "map";
   if (!world) {
@@ -417,7 +420,8 @@ void SimBumper::sample(SensorOutputs, SensorWorld& world) {
   const Eigen::Isometry3d X_WF = frame_link_.empty()
                                      ? Eigen::Isometry3d::Identity()
                                      : world.linkPose(LinkRef{link().model, frame_link_});
-  bumperStates(contacts_, X_WF, dt_, &states_);
+  // The impulses come from the step just taken, with the step size now in force.
+  bumperStates(contacts_, X_WF, world.dt(), &states_);
 }
 
 // --- drives ---------------------------------------------------------------------------------------

@@ -590,17 +590,10 @@ bool Simulator::linkState(const LinkRef& link, LinkState* state) const {
 
 void Simulator::linkContacts(const LinkRef& link, std::vector<LinkContact>* out) {
   out->clear();
-  const SimRobot* r = robot(link.model);
-  if (!r) return;  // contacts of world models' links: not tracked yet
   PhysicsWorld& world = sim_.physics();
-  const PhysicsRobot& pr = world.robot(r->id);
-  const auto it = pr.tree().links.find(link.link);
-  if (it == pr.tree().links.end()) return;
-  robotContacts(world, r->id, &contact_scratch_);
-  for (const RobotContact& c : contact_scratch_) {
-    if (c.body != it->second.first) continue;
+  const auto add = [&](const RobotContact& c, const std::string& own) {
     LinkContact b;
-    b.own = pr.name() + "::" + pr.tree().bodies.at(c.body).link;
+    b.own = own;
     std::string other_link;
     contacts_.otherOf(world, c, &b.other, &other_link);
     if (!other_link.empty()) b.other += "::" + other_link;
@@ -609,6 +602,30 @@ void Simulator::linkContacts(const LinkRef& link, std::vector<LinkContact>* out)
     b.depth = c.depth;
     b.impulse = c.impulse;
     out->push_back(std::move(b));
+  };
+  const PhysicsRobot* pr = physicsOf(link.model);
+  if (!pr) {
+    // A static world model (or one fixed to the world): its link's collisions are static
+    // shapes, touched by what rests on or hits them.
+    const std::string& name = model(link.model)->name;
+    contact_scratch_.clear();
+    const auto& owners = contacts_.staticOwners();
+    for (int i = 0; i < static_cast<int>(owners.size()); ++i) {
+      if (owners[i].first == name && owners[i].second == link.link)
+        staticShapeContacts(world, i, &contact_scratch_);
+    }
+    for (const RobotContact& c : contact_scratch_) add(c, name + "::" + link.link);
+    return;
+  }
+  const auto it = pr->tree().links.find(link.link);
+  if (it == pr->tree().links.end()) return;
+  if (const SimRobot* r = robot(link.model)) {
+    robotContacts(world, r->id, &contact_scratch_);
+  } else {
+    freeBodyContacts(world, world.freeBodyIndex(model(link.model)->name), &contact_scratch_);
+  }
+  for (const RobotContact& c : contact_scratch_) {
+    if (c.body == it->second.first) add(c, pr->name() + "::" + pr->tree().bodies.at(c.body).link);
   }
 }
 

@@ -82,6 +82,79 @@ TEST(SimulatorProperties, PhysicsStepAndGravityChangeTheSimulation) {
             << boxZ(sim) << " m after 0.2 s more with it\n";
 }
 
+/// Wants every output of the sensors it listens to.
+class WantsAll : public SensorListener {
+ public:
+  SensorOutputs wanted(const SimSensor&, SensorOutputs due) override { return due; }
+  void onOutputs(const SimSensor&, SensorOutputs, double) override {}
+};
+
+/// A contact sensor with gazebo_ros_bumper on link 'link' of a world model.
+std::string bumperSensor(const std::string& name) {
+  return "<sensor name='" + name + "' type='contact'><update_rate>100</update_rate><contact>"
+         "<collision>c</collision></contact><plugin name='b' filename='libgazebo_ros_bumper.so'>"
+         "<bumperTopicName>" + name + "</bumperTopicName><frameName>world</frameName></plugin>"
+         "</sensor>";
+}
+
+TEST(SimulatorProperties, BumpersAndAnImuFollowANewStepAndGravity) {
+  // A 1 kg box at rest on a static pad, each with a bumper on its collision, and an IMU on the
+  // box: the pad holds the box with m g, and the IMU feels -g. After set_physics_properties
+  // doubles the step and changes gravity, they read the new values (a bumper's force is
+  // impulse / the step now in force; Gazebo's ImuSensor reads the gravity at each update).
+  SimulatorOptions options;
+  options.attach_world_sensor = [](SimSensor& s) { s.setListener(std::make_unique<WantsAll>()); };
+  Simulator sim(
+      loadWorldString(
+          "<sdf version='1.6'><world name='w'><include><uri>model://ground_plane</uri></include>"
+          "<model name='pad'><static>true</static><pose>0 0 0.05 0 0 0</pose><link name='link'>"
+          "<collision name='c'><geometry><box><size>1 1 0.1</size></box></geometry></collision>" +
+              bumperSensor("pad_bumper") +
+              "</link></model>"
+              "<model name='box'><pose>0 0 0.2 0 0 0</pose><link name='link'><inertial>"
+              "<mass>1</mass><inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia>"
+              "</inertial><collision name='c'><geometry><box><size>0.2 0.2 0.2</size></box>"
+              "</geometry></collision>" +
+              bumperSensor("box_bumper") +
+              "<sensor name='imu' type='imu'><update_rate>100</update_rate>"
+              "<plugin name='i' filename='libgazebo_ros_imu_sensor.so'><topicName>imu</topicName>"
+              "<bodyName>link</bodyName><frameName>link</frameName><updateRateHZ>100</updateRateHZ>"
+              "<gaussianNoise>0</gaussianNoise></plugin></sensor>"
+              "</link></model></world></sdf>",
+          "bumper_imu.world", "."),
+      options);
+  const ModelId box = sim.findModel("box");
+  const auto* box_bumper = dynamic_cast<const SimBumper*>(sim.findSensor(box, "box_bumper"));
+  const auto* pad_bumper =
+      dynamic_cast<const SimBumper*>(sim.findSensor(sim.findModel("pad"), "pad_bumper"));
+  const auto* imu = dynamic_cast<const SimImu*>(sim.findSensor(box, "imu"));
+  ASSERT_NE(box_bumper, nullptr);
+  ASSERT_NE(pad_bumper, nullptr);
+  ASSERT_NE(imu, nullptr);
+  const auto held = [](const SimBumper* bumper) {
+    Eigen::Vector3d f = Eigen::Vector3d::Zero();
+    for (const BumperState& s : bumper->states()) f += s.total_force;
+    return f.norm();
+  };
+  sim.step(1000);
+  EXPECT_NEAR(held(box_bumper), 9.8, 0.3);
+  EXPECT_NEAR(held(pad_bumper), 9.8, 0.3);
+  ASSERT_EQ(pad_bumper->states().size(), 1u);
+  EXPECT_EQ(pad_bumper->states()[0].collision1, "pad::link");  // model::link (docs)
+  EXPECT_EQ(pad_bumper->states()[0].collision2, "box::link");
+  EXPECT_NEAR(imu->reading().linear_acceleration.z(), 9.8, 0.3);
+
+  PhysicsProperties p = sim.physicsProperties();
+  p.time_step = 0.002;
+  p.max_update_rate = 500.0;
+  p.gravity = Eigen::Vector3d(0.0, 0.0, -5.0);
+  sim.setPhysicsProperties(p);
+  sim.step(500);
+  EXPECT_NEAR(held(box_bumper), 5.0, 0.2);
+  EXPECT_NEAR(held(pad_bumper), 5.0, 0.2);
+  EXPECT_NEAR(imu->reading().linear_acceleration.z(), 5.0, 0.2);
+}
+
 TEST(SimulatorProperties, BadPhysicsIsRefusedAndChangesNothing) {
   Simulator sim(propertiesWorld(), {});
   const PhysicsProperties before = sim.physicsProperties();

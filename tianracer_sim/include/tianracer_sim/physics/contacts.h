@@ -33,6 +33,16 @@ struct RobotContact {
 void robotContacts(PhysicsWorld& world, RobotId id, std::vector<RobotContact>* out,
                    double max_distance = 1e-3);
 
+/// The same for free body `index` (a world model that moves, PhysicsWorld::freeBody): `body`
+/// is its body, other_* the object it touches.
+void freeBodyContacts(PhysicsWorld& world, int index, std::vector<RobotContact>* out,
+                      double max_distance = 1e-3);
+
+/// The same for static shape `index` (PhysicsWorld::addStaticShape order), appended to `out`
+/// (not cleared): `body` is -1, other_* what rests on or hits it. Statics touch no statics.
+void staticShapeContacts(PhysicsWorld& world, int index, std::vector<RobotContact>* out,
+                         double max_distance = 1e-3);
+
 }  // namespace tianracer_sim
 
 #endif  // TIANRACER_SIM_PHYSICS_CONTACTS_H

@@ -97,6 +97,9 @@ class ImuSensor {
  public:
   /// Validates (throws SensorError). gravity_W: the world's gravity (m/s^2).
   ImuSensor(ImuConfig config, const Eigen::Vector3d& gravity_W);
+  /// The world's gravity from now on (gazebo-classic ImuSensor::UpdateImpl reads the physics
+  /// engine's gravity at each update).
+  void setGravity(const Eigen::Vector3d& gravity_W) { gravity_W_ = gravity_W; }
 
   const ImuConfig& config() const { return config_; }
   /// Forget the motion history (after a reset or a teleport). Noise generator and biases stay.

@@ -49,6 +49,10 @@ class ContactTracker {
   /// ground's own).
   void otherOf(const PhysicsWorld& world, const RobotContact& c, std::string* model,
                std::string* link) const;
+  /// (model, link) of each static shape, by its index.
+  const std::vector<std::pair<std::string, std::string>>& staticOwners() const {
+    return static_owners_;
+  }
   /// Contacts begun since the start while contacts were tracked (a pair touching again after
   /// kSameContactGap counts again).
   std::uint64_t count(RobotId id) const;

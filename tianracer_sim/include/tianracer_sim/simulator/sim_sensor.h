@@ -56,6 +56,10 @@ struct FrameRequest {
 class SensorWorld {
  public:
   virtual ~SensorWorld() = default;
+  /// The physics step and the gravity now in force (s, m/s^2): set_physics_properties may
+  /// change them between steps.
+  virtual double dt() const = 0;
+  virtual Eigen::Vector3d gravity() const = 0;
   /// The scene at this step (bodies brought to the physics poses on first use).
   virtual const Scene& scene() = 0;
   virtual RayCaster& caster() = 0;

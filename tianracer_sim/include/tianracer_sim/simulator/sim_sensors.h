@@ -247,7 +247,6 @@ class SimBumper : public SimSensor {
 
  private:
   BumperConfig config_;
-  double dt_;
   std::string frame_link_, frame_id_;
   Schedule schedule_;
   std::vector<LinkContact> contacts_;

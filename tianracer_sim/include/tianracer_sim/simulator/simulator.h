@@ -190,7 +190,8 @@ class Simulator : public SensorWorld {
   /// n times advance() then sense().
   void step(int n = 1);
   double time() const { return sim_.time(); }
-  double dt() const { return sim_.dt(); }
+  double dt() const override { return sim_.dt(); }
+  Eigen::Vector3d gravity() const override { return sim_.physics().options().gravity; }
   std::uint64_t stepCount() const { return sim_.stepCount(); }
   /// gazebo's reset_simulation: time to 0, models to their spawn poses, controllers, sensors'
   /// schedules and histories and lockstep restarted.
