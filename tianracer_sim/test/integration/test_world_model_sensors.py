@@ -3,7 +3,7 @@
 
 world_model_sensors.world has no robot: a static post at the origin with a lidar, a camera and
 a depth camera looking at a red box whose near face is 2.5 m ahead, and a box falling from 2 m
-with a downward beam and a ground truth plugin. Each publishes on its plugin's topic under its
+with a downward beam, a bumper and a ground truth plugin. Each publishes on its plugin's topic under its
 robotNamespace (none: "/") with its frameName (a camera's optical frame, as a robot's), and
 sees the world. A model spawned through
 /gazebo/spawn_sdf_model brings its lidar; delete_model takes it away, and the same model can be
@@ -16,6 +16,7 @@ import unittest
 import rospy
 import rostest
 from tianracer_sim.sim_time import Stream, clock_stamp, wait_for as wait_until
+from gazebo_msgs.msg import ContactsState
 from gazebo_msgs.srv import DeleteModel, SpawnModel
 from geometry_msgs.msg import Pose
 from nav_msgs.msg import Odometry
@@ -49,6 +50,7 @@ class WorldModelSensorsTest(unittest.TestCase):
         depth = Stream('/post_depth/depth/image_raw', Image, keep=1)
         beam = Stream('/faller/beam', LaserScan, keep=1)
         truth = Stream('/faller/odom', Odometry, keep=1)
+        bumper = Stream('/faller/bumper', ContactsState, keep=1)
         static_frames = {}
 
         def on_static(msg):
@@ -104,6 +106,13 @@ class WorldModelSensorsTest(unittest.TestCase):
         msg = wait_for(lambda: truth.latest(), '/faller/odom')
         self.assertEqual((msg.header.frame_id, msg.child_frame_id), ('world', 'body'))
         self.assertAlmostEqual(msg.pose.pose.position.z, 0.1, delta=0.02)
+        # Its bumper: the ground holds the 1 kg box up with m g.
+        msg = wait_for(lambda: bumper.latest() if bumper.latest() is not None and
+                       bumper.latest().header.stamp.to_sec() >= t else None,
+                       'a bumper message after the fall')
+        self.assertEqual(msg.header.frame_id, 'world')
+        self.assertEqual([s.collision2_name for s in msg.states], ['ground_plane'], msg)
+        self.assertAlmostEqual(msg.states[0].total_wrench.force.z, 9.8, delta=0.3)
 
         # A spawned model's lidar: 1 m from the box's side; gone with the model, back with it.
         rospy.wait_for_service('/gazebo/spawn_sdf_model', timeout=WALL_TIMEOUT)

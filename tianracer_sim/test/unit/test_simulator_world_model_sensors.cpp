@@ -39,7 +39,7 @@ TEST(WorldModelSensors, AStaticModelsLidarAndCamerasSeeAnotherModel) {
   Simulator sim(loadWorldFile(kWorld), options);
   EXPECT_EQ(attached, (std::vector<std::string>{"sensor_post/post_lidar", "sensor_post/post_camera",
                                                 "sensor_post/post_depth", "faller/faller_beam",
-                                                "faller/faller_truth"}));
+                                                "faller/faller_bumper", "faller/faller_truth"}));
   // The model plugin nobody simulates is reported with its place.
   int reported = 0;
   for (const std::string& w : warnings) {
