@@ -7,6 +7,7 @@
 #include <fstream>
 #include <mutex>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
@@ -228,6 +229,36 @@ void collectMeshes(RobotModel& model, const LoadOptions& options, XmlReader& war
 }
 
 }  // namespace
+
+namespace {
+
+// The topmost link reached from `link` through fixed joints, and the pose of `link` in it.
+std::pair<std::string, Eigen::Isometry3d> fixedRoot(const urdf::ModelInterface& model,
+                                                    std::string link) {
+  Eigen::Isometry3d X_RL = Eigen::Isometry3d::Identity();
+  for (urdf::LinkConstSharedPtr l = model.getLink(link); l && l->parent_joint &&
+                                                        l->parent_joint->type == urdf::Joint::FIXED;
+       l = model.getLink(link)) {
+    const urdf::Pose& p = l->parent_joint->parent_to_joint_origin_transform;
+    const Eigen::Isometry3d X_PC =
+        Eigen::Translation3d(p.position.x, p.position.y, p.position.z) *
+        Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z);
+    X_RL = X_PC * X_RL;
+    link = l->parent_joint->parent_link_name;
+  }
+  return {link, X_RL};
+}
+
+}  // namespace
+
+std::optional<Eigen::Isometry3d> fixedPose(const urdf::ModelInterface& model,
+                                           const std::string& from, const std::string& to) {
+  if (!model.getLink(from) || !model.getLink(to)) return std::nullopt;
+  const auto [root_from, X_RF] = fixedRoot(model, from);
+  const auto [root_to, X_RT] = fixedRoot(model, to);
+  if (root_from != root_to) return std::nullopt;
+  return X_RF.inverse() * X_RT;
+}
 
 RobotModel loadRobotModel(const std::string& urdf_xml, const std::string& source,
                           const LoadOptions& options) {

@@ -6,6 +6,8 @@
 
 #include "tianracer_sim/common/text.h"
 #include "tianracer_sim/model/sensor_topics.h"
+#include "tianracer_sim/render/camera_intrinsics.h"
+#include "tianracer_sim/sensors/optical_frame.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
 
 namespace tianracer_sim {
@@ -13,14 +15,25 @@ namespace {
 
 std::string fmt(double v) { return formatShort(v); }
 
-// Differences every instance of a type has, whatever its parameters (docs/simulator.md, Known
-// differences and limits).
-std::vector<std::string> typeDifferences(const SensorSpec& s) {
+// Differences of a sensor type (docs/simulator.md, Known differences and limits); a camera's
+// by its frame (sensors/optical_frame.h).
+std::vector<std::string> typeDifferences(const RobotModel& model, const SensorSpec& s) {
   std::vector<std::string> out;
   if (s.type == "gpu_ray") out.push_back("ray-cast on the CPU (Embree), exactly as type ray");
   if (s.type == "camera" || s.type == "depth" || s.type == "multicamera") {
-    out.push_back("images are stamped in <frameName>_optical_frame (z forward), not the plain "
-                  "frame");
+    std::string frame = s.link;  // the plugin's default
+    if (s.plugins.size() == 1) {
+      const auto it = s.plugins.front().params.find("frameName");
+      if (it != s.plugins.front().params.end() && !trimText(it->second).empty())
+        frame = trimText(it->second);
+    }
+    const bool own = s.type != "multicamera" && model.urdf &&
+                     usesOwnOpticalFrame(*model.urdf, s.link,
+                                         s.X_LS * opticalFromLinkRotation(), frame);
+    if (!own) {
+      out.push_back("images are stamped in <frameName>_optical_frame (z forward), not the plain "
+                    "frame");
+    }
   }
   return out;
 }
@@ -64,7 +77,7 @@ void simulate(const RobotModel& model, const SensorSpec& s, const std::string& r
     row->notes.push_back("sensor type '" + s.type + "' is not simulated");
     return;
   }
-  std::vector<std::string> warnings = typeDifferences(s);
+  std::vector<std::string> warnings = typeDifferences(model, s);
   for (const std::string& d : pluginDifferences(s)) warnings.push_back(d);
   try {
     const std::vector<SensorTopic> topics = kind->topics(s, robot_name, [&](const std::string& w) {

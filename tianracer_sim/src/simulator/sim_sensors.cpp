@@ -5,6 +5,8 @@
 
 #include <tianracer_control/frames.h>
 
+#include "tianracer_sim/sensors/optical_frame.h"
+
 namespace tianracer_sim {
 
 namespace tc = tianracer_control;
@@ -42,6 +44,13 @@ std::unique_ptr<SimSensor> makeBlockLaser(const SimSensorSetup& setup) {
   return std::make_unique<SimBlockLaser>(setup, std::move(config));
 }
 
+// Before the tf_prefix: the URDF's link names are the robot's own.
+void useOwnOpticalFrame(const SimSensorSetup& setup, CameraConfig& camera) {
+  if (setup.urdf)
+    camera.frame_is_optical =
+        usesOwnOpticalFrame(*setup.urdf, camera.link, camera.X_LO(), camera.frame_name);
+}
+
 // The renderer for a camera or depth camera with its gazebo_ros plugin, its frame and noise
 // seed resolved; null when it is left out (without the plugin: said; without a renderer).
 Renderer* cameraRenderer(const SimSensorSetup& setup, CameraConfig& camera, uint32_t seed_offset) {
@@ -52,6 +61,7 @@ Renderer* cameraRenderer(const SimSensorSetup& setup, CameraConfig& camera, uint
   }
   Renderer* renderer = setup.renderer();
   if (!renderer) return nullptr;
+  useOwnOpticalFrame(setup, camera);
   camera.frame_name = tc::resolveFrame(setup.tf_prefix, camera.frame_name);
   if (!camera.noise_seed)
     camera.noise_seed = static_cast<uint32_t>(setup.seed + seed_offset + setup.index);
@@ -95,6 +105,7 @@ std::unique_ptr<SimSensor> makeMultiCamera(const SimSensorSetup& setup) {
   for (CameraConfig& c : config.cameras) {
     c.noise_seed ^= static_cast<uint32_t>(setup.seed);
     if (c.noise_seed == 0) c.noise_seed = 1;
+    useOwnOpticalFrame(setup, c);
     c.frame_name = tc::resolveFrame(setup.tf_prefix, c.frame_name);
   }
   return std::make_unique<SimMultiCamera>(setup, std::move(config), *renderer);

@@ -281,7 +281,7 @@ void Simulator::setUpSensor(ModelId id, const SensorSpec& spec, const std::strin
   setup.seed = options_.seed;
   setup.index = sensors_of_kind_[kind->id];
   setup.gravity = sim_.physics().options().gravity;
-  setup.dt = sim_.physics().options().dt;
+  if (m.robot) setup.urdf = m.robot->model.urdf.get();
   setup.warn = options_.log.warn;
   setup.renderer = [this]() { return ensureRenderer(); };
   setup.world = this;

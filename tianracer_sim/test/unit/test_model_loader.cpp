@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -222,6 +223,42 @@ TEST(ModelLoader, XacroArgsArePassed) {
 }
 
 // ---- Bad input: each error names the file, the element and the value. ----
+
+// A camera's links as robots' URDFs write them (TurtleBot3's camera_rgb_frame and
+// camera_rgb_optical_frame): fixed joints up to base_link, a revolute arm beside them.
+const char* kCameraLinks = R"(<robot name="r">
+  <link name="base_link"/>
+  <link name="camera_frame"/>
+  <link name="camera_optical_frame"/>
+  <link name="arm"/>
+  <joint name="camera_joint" type="fixed"><parent link="base_link"/><child link="camera_frame"/>
+    <origin xyz="0.1 0 0.2" rpy="0 0 0.5"/></joint>
+  <joint name="optical_joint" type="fixed"><parent link="camera_frame"/>
+    <child link="camera_optical_frame"/><origin xyz="0 0 0" rpy="-1.57 0 -1.57"/></joint>
+  <joint name="arm_joint" type="revolute"><parent link="base_link"/><child link="arm"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>)";
+
+TEST(ModelLoader, FixedPoseFollowsFixedJointsOnly) {
+  const RobotModel m = loadRobotModel(kCameraLinks, "camera_links", {});
+  const std::optional<Eigen::Isometry3d> X_CO = fixedPose(*m.urdf, "camera_frame", "camera_optical_frame");
+  ASSERT_TRUE(X_CO);
+  const Eigen::Matrix3d R = (Eigen::AngleAxisd(-1.57, Eigen::Vector3d::UnitZ()) *
+                             Eigen::AngleAxisd(-1.57, Eigen::Vector3d::UnitX())).toRotationMatrix();
+  EXPECT_TRUE(X_CO->linear().isApprox(R, 1e-12));
+  EXPECT_TRUE(X_CO->translation().isZero(1e-12));
+  // Up the tree and down again: base_link -> camera_frame -> camera_optical_frame.
+  const std::optional<Eigen::Isometry3d> X_BO = fixedPose(*m.urdf, "base_link", "camera_optical_frame");
+  ASSERT_TRUE(X_BO);
+  EXPECT_TRUE(X_BO->translation().isApprox(Eigen::Vector3d(0.1, 0.0, 0.2), 1e-12));
+  const std::optional<Eigen::Isometry3d> X_OB = fixedPose(*m.urdf, "camera_optical_frame", "base_link");
+  ASSERT_TRUE(X_OB);
+  EXPECT_TRUE((*X_OB * *X_BO).isApprox(Eigen::Isometry3d::Identity(), 1e-12));
+  EXPECT_TRUE(fixedPose(*m.urdf, "arm", "arm")->isApprox(Eigen::Isometry3d::Identity()));
+  // A joint that moves, or a name that is no link: none.
+  EXPECT_FALSE(fixedPose(*m.urdf, "camera_frame", "arm"));
+  EXPECT_FALSE(fixedPose(*m.urdf, "camera_frame", "nowhere"));
+}
 
 TEST(ModelLoaderBadInput, EmptyInput) {
   Loader l;

@@ -154,6 +154,11 @@ SensorSpec parseSensorElement(const tinyxml2::XMLElement* sensor, const std::str
 /// "<source>:<line>: ..." for a plugin without filename.
 PluginSpec parsePluginElement(const tinyxml2::XMLElement* plugin, const std::string& source);
 
+/// The pose of link `to` in link `from` when only fixed joints lie between them (up and down
+/// the tree); nullopt when a joint that moves lies between them or either is no link.
+std::optional<Eigen::Isometry3d> fixedPose(const urdf::ModelInterface& model,
+                                           const std::string& from, const std::string& to);
+
 /// Parses only the extension tags (gazebo, transmission) of a URDF string; used by the fuzzer.
 RobotExtensions parseExtensions(const std::string& urdf_xml, const std::string& source,
                                 const WarningSink& warn);

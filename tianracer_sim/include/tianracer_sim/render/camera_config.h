@@ -111,7 +111,12 @@ struct CameraConfig {
   /// Gazebo renders its images centred at ((W-1)/2, (H-1)/2), one pixel off its own K; we
   /// render where K says.
   CameraIntrinsics intrinsics() const;
-  std::string opticalFrame() const { return opticalFrameId(frame_name); }
+  /// frameName already is an optical frame at the camera (usesOwnOpticalFrame(),
+  /// sensors/optical_frame.h): images are stamped in it and no frame is added.
+  bool frame_is_optical = false;
+  std::string opticalFrame() const {
+    return frame_is_optical ? frame_name : opticalFrameId(frame_name);
+  }
   /// Pose of the optical frame in the link frame: X_LS * rpy(-pi/2, 0, -pi/2).
   Eigen::Isometry3d X_LO() const;
 };

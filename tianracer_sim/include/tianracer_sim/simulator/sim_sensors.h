@@ -21,6 +21,10 @@
 #include "tianracer_sim/sensors/drives.h"
 #include "tianracer_sim/sensors/imu_sensor.h"
 #include "tianracer_sim/sensors/p3d.h"
+
+namespace urdf {
+class ModelInterface;
+}
 #include "tianracer_sim/sensors/sensor_registry.h"
 #include "tianracer_sim/simulator/sim_sensor.h"
 
@@ -35,7 +39,9 @@ struct SimSensorSetup {
   std::uint64_t seed = 0;     // the simulation's seed
   int index = 0;              // sensors of this kind set up before this one
   Eigen::Vector3d gravity{0.0, 0.0, -9.8};  // the world's, m/s^2
-  double dt = 0.001;          // the physics step, s
+  /// A robot's URDF (world models: null): a camera whose frameName is an optical link of it
+  /// stamps its images there (sensors/optical_frame.h).
+  const urdf::ModelInterface* urdf = nullptr;
   WarningSink warn;
   /// Throws for a link the model does not have.
   std::function<void(const std::string& link)> check_link;

@@ -47,7 +47,7 @@ ros::NodeHandle prepareCamera(const PublisherSetup& setup, const SimSensor& sens
   ros::NodeHandle cam_nh(setup.root, resolveTopic(camera.robot_namespace, camera.camera_name));
   setup.claim_topic(cam_nh.getNamespace(),
                     setup.owner() + " camera '" + sensor.name() + "'");
-  sendOpticalFrame(setup, sensor.link().link, camera);
+  if (!camera.frame_is_optical) sendOpticalFrame(setup, sensor.link().link, camera);
   return cam_nh;
 }
 

@@ -27,7 +27,8 @@ class MultiCameraPublisher : public SensorListener {
       setup.claim_topic(nh.getNamespace(), owner + " camera '" + c.name + "'");
       // One optical frame per frame name: cameras sharing a frameName are stamped with the
       // first one's frame, as Gazebo stamps them; P[3] carries the right camera's offset.
-      if (frames_sent.insert(c.opticalFrame()).second) sendOpticalFrame(setup, sensor.link().link, c);
+      if (!c.frame_is_optical && frames_sent.insert(c.opticalFrame()).second)
+        sendOpticalFrame(setup, sensor.link().link, c);
       Camera& cam = cameras_[i];
       cam.image = nh.advertise<sensor_msgs::Image>(c.image_topic, 2);
       cam.info = nh.advertise<sensor_msgs::CameraInfo>(c.camera_info_topic, 2);
