@@ -27,32 +27,15 @@ const ReportRow& rowOf(const std::vector<ReportRow>& rows, const std::string& na
   throw std::runtime_error("no row " + name);
 }
 
-// A camera on camera_frame with an optical link beside it (as TurtleBot3's URDF) and a link
-// turned another way; one camera names the optical link, one its own link, one the other.
-std::string camerasUrdf() {
-  std::string cameras;
-  for (const char* frame : {"camera_optical_frame", "camera_frame", "camera_turned"}) {
-    cameras += std::string("<gazebo reference='camera_frame'><sensor type='camera' name='cam_") +
-               frame + "'><camera><horizontal_fov>1</horizontal_fov></camera>"
-               "<plugin name='p' filename='libgazebo_ros_camera.so'><cameraName>" + frame +
-               "</cameraName><frameName>" + frame + "</frameName></plugin></sensor></gazebo>";
-  }
-  return R"(<robot name="r"><link name="base_link"/><link name="camera_frame"/>
-    <link name="camera_optical_frame"/><link name="camera_turned"/>
-    <joint name="c" type="fixed"><parent link="base_link"/><child link="camera_frame"/>
-      <origin xyz="0.1 0 0.2"/></joint>
-    <joint name="o" type="fixed"><parent link="camera_frame"/><child link="camera_optical_frame"/>
-      <origin rpy="-1.57 0 -1.57"/></joint>
-    <joint name="t" type="fixed"><parent link="camera_frame"/><child link="camera_turned"/>
-      <origin rpy="0 0 -1.57"/></joint>)" +
-         cameras + "</robot>";
-}
-
 TEST(SensorsModelReport, ACameraInItsOwnOpticalFrameHasNoFrameDifference) {
-  const RobotModel model = loadRobotModel(camerasUrdf(), "cameras", LoadOptions());
-  const std::vector<ReportRow> rows = modelReport(model, "r");
-  EXPECT_EQ(rowOf(rows, "cam_camera_optical_frame").status, ReportRow::Status::kSimulated);
-  for (const char* name : {"cam_camera_frame", "cam_camera_turned"}) {
+  // test/data/urdf/camera_frames.urdf: frameName the URDF's optical link, the plain link, a
+  // link turned another way.
+  const RobotModel model =
+      loadRobotModelFile(std::string(TEST_DATA_DIR) + "/urdf/camera_frames.urdf", LoadOptions());
+  const std::vector<ReportRow> rows = modelReport(model, "camera_frames");
+  EXPECT_EQ(rowOf(rows, "optical").status, ReportRow::Status::kSimulated);
+  EXPECT_EQ(rowOf(rows, "depth").status, ReportRow::Status::kSimulated);
+  for (const char* name : {"plain", "turned"}) {
     const ReportRow& row = rowOf(rows, name);
     EXPECT_EQ(row.status, ReportRow::Status::kDifferences) << name;
     ASSERT_EQ(row.notes.size(), 1u) << name;
