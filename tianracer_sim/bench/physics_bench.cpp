@@ -11,11 +11,19 @@
 // hull per mesh (what world models got before): cost per step, build time and how the car
 // rides (tilt, speed).
 //
-// Usage: physics_bench [tianracer_description dir] [steps per scenario]
+// Each row ends with a fingerprint of the final state (FNV-1a over the bits of every car's and
+// box's base pose and twist and joint positions and velocities): equal fingerprints across
+// builds mean a setting changed nothing in the trajectory, to the last bit.
+//
+// Usage: physics_bench [tianracer_description dir] [steps per scenario] [scenario filter]
+//   filter: only the scenario of that name, else those whose name contains it ("car": the
+//   car scenarios without boxes), and no track table.
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <new>
 #include <string>
@@ -98,6 +106,30 @@ RigidTree boxTree(double side, double mass) {
 
 struct Result {
   double wall_us = 0.0, cpu_us = 0.0, allocs_per_step = 0.0;
+  std::uint64_t state = 0;  // fingerprint of the final state
+};
+
+/// FNV-1a over the bits of the doubles fed to it.
+struct Fingerprint {
+  std::uint64_t h = 1469598103934665603ull;
+  void add(double v) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    for (int i = 0; i < 8; ++i) {
+      h ^= (bits >> (8 * i)) & 0xffu;
+      h *= 1099511628211ull;
+    }
+  }
+  void add(const PhysicsRobot& r) {
+    const Eigen::Isometry3d X = r.basePose();
+    for (int i = 0; i < 12; ++i) add(X.matrix().data()[i]);
+    const Twist t = r.baseTwist();
+    for (int i = 0; i < 3; ++i) add(t.linear[i]), add(t.angular[i]);
+    for (std::size_t j = 0; j < r.joints().size(); ++j) {
+      add(r.jointPosition(static_cast<int>(j)));
+      add(r.jointVelocity(static_cast<int>(j)));
+    }
+  }
 };
 
 /// The car's controllers as in run(): hinges to `steer` by a PD on their efforts, rear wheels
@@ -185,6 +217,10 @@ Result run(const RobotModel& model, const Scenario& sc, int steps) {
   r.cpu_us = 1e6 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC / steps;
   r.wall_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - w0).count() / steps;
   r.allocs_per_step = static_cast<double>(g_allocations - a0) / steps;
+  Fingerprint f;
+  for (const PhysicsRobot* c : cars) f.add(*c);
+  for (int i = 0; i < world.freeBodyCount(); ++i) f.add(world.freeBody(i));
+  r.state = f.h;
   return r;
 }
 
@@ -332,6 +368,11 @@ int main(int argc, char** argv) {
   btAlignedAllocSetCustomAligned(countingAlignedAlloc, countingAlignedFree);
   const std::string desc = argc > 1 ? argv[1] : TIANRACER_DESCRIPTION_DIR;
   const int steps = argc > 2 ? std::atoi(argv[2]) : 20000;
+  const std::string filter = argc > 3 ? argv[3] : "";
+  if (steps < 1) {
+    std::fprintf(stderr, "physics_bench: steps per scenario must be >= 1, got '%s'\n", argv[2]);
+    return 1;
+  }
   const std::string root = desc.substr(0, desc.find_last_of('/') == std::string::npos ? 0 : desc.find_last_of('/'));
   const char* old = std::getenv("ROS_PACKAGE_PATH");
   setenv("ROS_PACKAGE_PATH", ((root.empty() ? "." : root) + (old ? ":" + std::string(old) : "")).c_str(), 1);
@@ -359,12 +400,26 @@ int main(int argc, char** argv) {
   };
   std::printf("tianracer physics step (dt 1 ms, %d solver sweeps unless noted), %d steps per row\n",
               def, steps);
-  std::printf("%-28s %10s %10s %12s %14s\n", "scenario", "wall us", "cpu us", "RTF (cpu)", "allocs/step");
+  std::printf("%-28s %10s %10s %12s %14s %16s\n", "scenario", "wall us", "cpu us", "RTF (cpu)",
+              "allocs/step", "state");
+  bool exact = false;  // a filter that names one scenario selects only that one
+  for (const Scenario& sc : scenarios) exact = exact || filter == sc.name;
+  int ran = 0;
   for (const Scenario& sc : scenarios) {
+    const bool selected = filter.empty() || (exact ? filter == sc.name
+                                             : filter == "car" ? sc.boxes == 0
+                                                               : std::string(sc.name).find(filter) != std::string::npos);
+    if (!selected) continue;
+    ++ran;
     const Result r = run(model, sc, steps);
-    std::printf("%-28s %10.1f %10.1f %12.1f %14.3f\n", sc.name, r.wall_us, r.cpu_us,
-                1000.0 / r.cpu_us, r.allocs_per_step);
+    std::printf("%-28s %10.1f %10.1f %12.1f %14.3f %16.16llx\n", sc.name, r.wall_us, r.cpu_us,
+                1000.0 / r.cpu_us, r.allocs_per_step, static_cast<unsigned long long>(r.state));
   }
+  if (ran == 0) {
+    std::fprintf(stderr, "physics_bench: no scenario matches the filter '%s'\n", filter.c_str());
+    return 1;
+  }
+  if (!filter.empty()) return 0;
 
   const int track_steps = std::min(steps, 10000);
   std::printf("\ntianracer circling at 1 m/s (steering 0.2 rad) on issue 24's movable track (two "
