@@ -49,6 +49,10 @@ PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
   // cost about 7 % of a step on the racetrack and kept moving their broadphase proxies from
   // the fixed to the dynamic tree and back.
   world->setForceUpdateAllAabbs(false);
+  // Islands stay split (Bullet's default): with setSplitIslands(false) Bullet 3.24's
+  // MultiBodyInplaceSolverIslandCallback::processIsland hands the solver 0 multibody
+  // constraints, so every joint motor is dropped and the car does not move (issue 27's
+  // settings table in docs/performance.md).
   // Not m_deterministicOverlappingPairs: it sorts a fresh copy of the pair array every step
   // (one allocation per step). Pair order already follows the order of insertions, which is
   // the same for the same sequence of calls.
