@@ -138,6 +138,16 @@ double XmlReader::number(const XMLElement* e, const std::string& what) const {
   return v[0];
 }
 
+double XmlReader::anyNumber(const XMLElement* e, const std::string& what) const {
+  const std::string t = text(e);
+  std::istringstream in(t);
+  std::string tok, extra;
+  in >> tok >> extra;
+  const auto v = parseNumber(tok);
+  if (!v || !extra.empty()) fail(e, lead(what, e) + " '" + t + "' is not a number");
+  return *v;
+}
+
 double XmlReader::positive(const XMLElement* e, const std::string& what) const {
   const double v = number(e, what);
   if (!(v > 0.0)) fail(e, lead(what, e) + " must be > 0 (got " + text(e) + ")");

@@ -354,8 +354,9 @@ InertialDescription Parser::parseInertial(const XMLElement* e, const std::string
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
     if (tag == "mass") {
-      // Checked where it matters, for a link that moves (sim/world_physics.h).
-      in.mass = number(c, what + " <inertial>");
+      // Mass and inertia are checked where they matter, for a link that moves
+      // (sim/world_physics.h): a static model's may be anything, nan included.
+      in.mass = anyNumber(c, what + " <inertial>");
     } else if (tag == "pose") {
       in.X_LI = pose(c, what + " <inertial>");
     } else if (tag == "inertia") {
@@ -363,12 +364,12 @@ InertialDescription Parser::parseInertial(const XMLElement* e, const std::string
       const std::string iwhat = what + " <inertia>";
       for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
         const std::string key = k->Name();
-        if (key == "ixx") I(0, 0) = number(k, iwhat);
-        else if (key == "iyy") I(1, 1) = number(k, iwhat);
-        else if (key == "izz") I(2, 2) = number(k, iwhat);
-        else if (key == "ixy") I(0, 1) = I(1, 0) = number(k, iwhat);
-        else if (key == "ixz") I(0, 2) = I(2, 0) = number(k, iwhat);
-        else if (key == "iyz") I(1, 2) = I(2, 1) = number(k, iwhat);
+        if (key == "ixx") I(0, 0) = anyNumber(k, iwhat);
+        else if (key == "iyy") I(1, 1) = anyNumber(k, iwhat);
+        else if (key == "izz") I(2, 2) = anyNumber(k, iwhat);
+        else if (key == "ixy") I(0, 1) = I(1, 0) = anyNumber(k, iwhat);
+        else if (key == "ixz") I(0, 2) = I(2, 0) = anyNumber(k, iwhat);
+        else if (key == "iyz") I(1, 2) = I(2, 1) = anyNumber(k, iwhat);
         else unsupported(k);
       }
       in.inertia = I;

@@ -107,6 +107,14 @@ TEST_F(XmlReaderTest, NumbersNameFileLineElementAndValue) {
             "room.world:5: <physics>: <big> '1e999' is not finite");
   EXPECT_EQ(error([&] { reader_.number(el("two"), "<physics>"); }),
             "room.world:8: <physics>: <two> '1 2' is not a number");
+  // anyNumber: nan and inf are numbers (checked where they are used), words and lists are not.
+  EXPECT_TRUE(std::isnan(reader_.anyNumber(el("nan"), "<physics>")));
+  EXPECT_TRUE(std::isinf(reader_.anyNumber(el("big"), "<physics>")));
+  EXPECT_EQ(reader_.anyNumber(el("step"), "<physics>"), 0.001);
+  EXPECT_EQ(error([&] { reader_.anyNumber(el("bad"), "<physics>"); }),
+            "room.world:3: <physics>: <bad> 'fast' is not a number");
+  EXPECT_EQ(error([&] { reader_.anyNumber(el("two"), "<physics>"); }),
+            "room.world:8: <physics>: <two> '1 2' is not a number");
   EXPECT_EQ(reader_.nonNegative(el("zero"), "w"), 0.0);
   EXPECT_EQ(error([&] { reader_.nonNegative(el("neg"), "w"); }),
             "room.world:6: w: <neg> must be >= 0 (got -1)");

@@ -547,6 +547,11 @@ TEST(WorldModels, BadMassOrInertiaOfAMovingLinkIsReportedAndTheModelHeldStatic) 
       {"<inertial><mass>1</mass><inertia><ixx>0</ixx><iyy>0</iyy><izz>0</izz></inertia>"
        "</inertial>",
        "is not positive definite"},
+      // sdformat reads "nan" as a number: it gets here, and is refused here.
+      {"<inertial><mass>1</mass><inertia><ixx>nan</ixx><iyy>1</iyy><izz>1</izz></inertia>"
+       "</inertial>",
+       "inertia (ixx iyy izz ixy ixz iyz) = (nan 1 1 0 0 0) is not positive definite"},
+      {"<inertial><mass>nan</mass></inertial>", "<mass> must be > 0 (got nan)"},
   };
   for (const Case& c : cases) {
     ModelWorld w("<model name='m'><pose>0 0 1 0 0 0</pose>\n<link name='l'>\n" + c.inertial +
@@ -577,9 +582,14 @@ TEST(WorldModels, BadMassOrInertiaOfAMovingLinkIsReportedAndTheModelHeldStatic) 
     EXPECT_TRUE(w.model("m").basePose().matrix().allFinite());
   }
   // A static model, and a link welded to the world, may carry any mass: they never move.
+  // Gazebo's saved worlds write nan in a static link's inertia (TurtleBot3's autorace world).
   for (const std::string& m :
        {std::string("<model name='m'><static>true</static><link name='l'><inertial><mass>0</mass>"
                     "</inertial></link></model>"),
+        std::string("<model name='m'><static>1</static><link name='l'><inertial><inertia>"
+                    "<ixx>nan</ixx><ixy>0</ixy><ixz>0</ixz><iyy>nan</iyy><iyz>0</iyz><izz>nan"
+                    "</izz></inertia><mass>0</mass></inertial>" + boxCollision(0.2, 0.2, 0.2) +
+                    "</link></model>"),
         std::string("<model name='m'><link name='base'><inertial><mass>0</mass></inertial></link>"
                     "<link name='arm'><pose>0 0 1 0 0 0</pose>" + boxInertial(1, 0.1, 0.1, 0.5) +
                     boxCollision(0.1, 0.1, 0.5) + "</link>"

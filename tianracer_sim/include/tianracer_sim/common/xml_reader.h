@@ -76,6 +76,9 @@ class XmlReader {
   /// Finite numbers separated by blanks.
   std::vector<double> numbers(const tinyxml2::XMLElement* e, const std::string& what) const;
   double number(const tinyxml2::XMLElement* e, const std::string& what) const;
+  /// One number, nan and inf included, for values checked where they are used (sdformat reads
+  /// "nan" as a double; Gazebo's saved worlds write it in static links' inertia).
+  double anyNumber(const tinyxml2::XMLElement* e, const std::string& what) const;
   double positive(const tinyxml2::XMLElement* e, const std::string& what) const;
   double nonNegative(const tinyxml2::XMLElement* e, const std::string& what) const;
   int integer(const tinyxml2::XMLElement* e, const std::string& what) const;
