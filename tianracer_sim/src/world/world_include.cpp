@@ -98,15 +98,24 @@ void Parser::applyState(const XMLElement* e, WorldDescription& world,
         const std::string name = text(k);
         auto it = std::find_if(world.models.begin(), world.models.end(),
                                [&](const ModelDescription& m) { return m.name == name; });
-        if (it == world.models.end())
-          fail(k, "<state> <deletions> names model '" + name + "', which the world does not have");
+        if (it == world.models.end()) {
+          leftOut(k, "<state> <deletions> names model '" + name +
+                         "', which the world does not have",
+                  "nothing is deleted");
+          continue;
+        }
         world.models.erase(it);
         names.erase(name);
       }
     } else if (tag == "model") {
       const std::string name = c->Attribute("name") ? trimText(c->Attribute("name")) : "";
       ModelDescription* m = findModel(name);
-      if (!m) fail(c, "<state> names model '" + name + "', which the world does not have");
+      if (!m) {
+        // Gazebo logs "Unable to find model[...]" and applies the rest (World::SetState).
+        leftOut(c, "<state> names model '" + name + "', which the world does not have",
+                "its state is ignored");
+        continue;
+      }
       const std::string what = "<state> of model '" + name + "'";
       if (const XMLElement* p = c->FirstChildElement("pose")) m->X_WM = pose(p, what);
       for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
@@ -119,8 +128,12 @@ void Parser::applyState(const XMLElement* e, WorldDescription& world,
           const std::string lname = k->Attribute("name") ? trimText(k->Attribute("name")) : "";
           auto l = std::find_if(m->links.begin(), m->links.end(),
                                 [&](const LinkDescription& d) { return d.name == lname; });
-          if (l == m->links.end())
-            fail(k, what + " names link '" + lname + "', which the model does not have");
+          if (l == m->links.end()) {
+            // Gazebo: Model::SetState's "Unable to find link[...]".
+            leftOut(k, what + " names link '" + lname + "', which the model does not have",
+                    "its state is ignored");
+            continue;
+          }
           // A link's state pose is its world pose.
           if (const XMLElement* p = k->FirstChildElement("pose"))
             l->X_ML = m->X_WM.inverse() * pose(p, what + " link '" + lname + "'");
