@@ -20,6 +20,31 @@ std::string lead(const std::string& what, const XMLElement* e) {
 
 }  // namespace
 
+tinyxml2::XMLError parseXmlDocument(const std::string& text, tinyxml2::XMLDocument* doc) {
+  // Skip blanks and comments; a declaration found there, not first, is blanked.
+  std::size_t p = 0;
+  bool after_comment = false;
+  for (;;) {
+    p = text.find_first_not_of(" \t\r\n", p);
+    if (p == std::string::npos || text.compare(p, 4, "<!--") != 0) break;
+    const std::size_t end = text.find("-->", p + 4);
+    if (end == std::string::npos) break;
+    p = end + 3;
+    after_comment = true;
+  }
+  if (after_comment && p != std::string::npos && text.compare(p, 5, "<?xml") == 0) {
+    const std::size_t end = text.find("?>", p);
+    if (end != std::string::npos) {
+      std::string copy = text;
+      for (std::size_t i = p; i < end + 2; ++i) {
+        if (copy[i] != '\n') copy[i] = ' ';
+      }
+      return doc->Parse(copy.data(), copy.size());
+    }
+  }
+  return doc->Parse(text.data(), text.size());
+}
+
 std::optional<double> parseNumber(const std::string& text) {
   std::string t = trimText(text);
   if (!t.empty() && t[0] == '+') t.erase(0, 1);

@@ -7,6 +7,7 @@
 
 #include <tinyxml2.h>
 
+#include "tianracer_sim/common/xml_reader.h"
 #include "tianracer_sim/ros/state_msgs.h"
 
 namespace tianracer_sim {
@@ -536,7 +537,7 @@ bool GazeboInterface::spawn(const std::string& service, gazebo_msgs::SpawnModel:
   if (req.model_xml.find_first_not_of(" \t\r\n") == std::string::npos)
     return fail("model_xml is empty");
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(req.model_xml.data(), req.model_xml.size()) != tinyxml2::XML_SUCCESS) {
+  if (parseXmlDocument(req.model_xml, &doc) != tinyxml2::XML_SUCCESS) {
     return fail("model_xml:" + std::to_string(doc.ErrorLineNum()) + ": malformed XML: " +
                 doc.ErrorName());
   }

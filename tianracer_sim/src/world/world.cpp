@@ -35,7 +35,7 @@ namespace world_internal {
 
 WorldDescription Parser::parse(const std::string& xml) {
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
+  if (parseXmlDocument(xml, &doc) != tinyxml2::XML_SUCCESS) {
     // tinyxml2's ErrorStr() is "Error=<name> ErrorID=<n> (0x..) Line number=<l>[: <detail>]".
     std::string detail = doc.ErrorStr() ? doc.ErrorStr() : "";
     const auto colon = detail.find(": ", detail.find("Line number="));

@@ -55,7 +55,7 @@ double sdfVersion(const char* v) {
 
 ModelDescription Parser::parseModelFile(const std::string& xml) {
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS)
+  if (parseXmlDocument(xml, &doc) != tinyxml2::XML_SUCCESS)
     throw WorldError(source_ + ":" + std::to_string(doc.ErrorLineNum()) + ": malformed XML: " +
                      doc.ErrorName());
   const XMLElement* root = doc.RootElement();

@@ -94,6 +94,27 @@ TEST_F(XmlReaderTest, TextAndAttributesAreTrimmed) {
   EXPECT_EQ(lineOf(nullptr), 0);
 }
 
+TEST(ParseXmlDocument, TakesADeclarationAfterCommentsAsGazeboDoes) {
+  // Gazebo's own worlds/cafe.world: a comment, then the declaration (TinyXML takes it,
+  // tinyxml2 does not). Line numbers stay those of the file.
+  tinyxml2::XMLDocument doc;
+  ASSERT_EQ(parseXmlDocument("<!-- Usage notes -->\n<?xml version=\"1.0\" ?>\n<sdf version=\"1.5\">"
+                             "<world name='w'/></sdf>\n",
+                             &doc),
+            tinyxml2::XML_SUCCESS);
+  ASSERT_NE(doc.RootElement(), nullptr);
+  EXPECT_STREQ(doc.RootElement()->Name(), "sdf");
+  EXPECT_EQ(doc.RootElement()->GetLineNum(), 3);
+  tinyxml2::XMLDocument first;
+  EXPECT_EQ(parseXmlDocument("<?xml version=\"1.0\"?><sdf/>", &first), tinyxml2::XML_SUCCESS);
+  // Anything else malformed stays malformed: a declaration after an element, a broken tag.
+  tinyxml2::XMLDocument late, broken;
+  EXPECT_NE(parseXmlDocument("<sdf/><?xml version=\"1.0\"?>", &late), tinyxml2::XML_SUCCESS);
+  EXPECT_NE(parseXmlDocument("<!-- c -->\n<?xml version=\"1.0\"?>\n<sdf>", &broken),
+            tinyxml2::XML_SUCCESS);
+  EXPECT_EQ(broken.ErrorLineNum(), 3);
+}
+
 TEST_F(XmlReaderTest, NumbersNameFileLineElementAndValue) {
   load("<physics>\n<step>0.001</step>\n<bad>fast</bad>\n<nan>nan</nan>\n<big>1e999</big>\n"
        "<neg>-1</neg>\n<zero>0</zero>\n<two>1 2</two>\n<int>7</int>\n<frac>7.5</frac>\n"

@@ -37,6 +37,11 @@ std::string attributeText(const tinyxml2::XMLElement* e, const char* name);
 /// `e`'s line in its document (0 when unknown).
 inline int lineOf(const tinyxml2::XMLElement* e) { return e ? e->GetLineNum() : 0; }
 
+/// tinyxml2's XMLDocument::Parse, also taking an XML declaration that follows comments, as
+/// TinyXML (sdformat 9, Gazebo 11's parser) does: Gazebo's own worlds/cafe.world starts with
+/// a comment. tinyxml2 refuses a declaration anywhere but first; it is blanked, lines kept.
+tinyxml2::XMLError parseXmlDocument(const std::string& text, tinyxml2::XMLDocument* doc);
+
 /// Reads values out of the elements of one document named `source`: a bad value raises
 /// InputError "<source>:<line>: <what>: <tag> '<text>' is not ...".
 class XmlReader {
