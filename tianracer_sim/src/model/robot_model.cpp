@@ -228,10 +228,6 @@ void collectMeshes(RobotModel& model, const LoadOptions& options, XmlReader& war
   }
 }
 
-}  // namespace
-
-namespace {
-
 // The topmost link reached from `link` through fixed joints, and the pose of `link` in it.
 std::pair<std::string, Eigen::Isometry3d> fixedRoot(const urdf::ModelInterface& model,
                                                     std::string link) {
