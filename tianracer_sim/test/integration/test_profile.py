@@ -105,6 +105,20 @@ class Profile(unittest.TestCase):
         self.assertLess(outside, table['step (all of it)'][0] + 1e-3 +
                         sum(v[0] for k, v in table.items() if k.startswith('between steps')))
 
+    def test_1b_profile_table_prints_it_plainly(self):
+        # The same table as the service's message, as lines, not one escaped YAML string.
+        out = subprocess.run(['rosrun', 'tianracer_sim', 'profile_table'], capture_output=True,
+                             text=True, timeout=60)
+        self.assertEqual(out.returncode, 0, out.stderr)
+        table = rows(out.stdout)
+        self.assertIn('physics: Bullet stepSimulation', table, out.stdout)
+        self.assertRegex(out.stdout, r'(?m)^\d+ steps$')
+        # A node that does not profile: the reason, exit 1.
+        bad = subprocess.run(['rosrun', 'tianracer_sim', 'profile_table', '/no_such_node'],
+                             capture_output=True, text=True, timeout=60)
+        self.assertEqual(bad.returncode, 1)
+        self.assertIn('no service /no_such_node/profile', bad.stderr)
+
     def test_2_the_table_is_logged_at_exit(self):
         self.proc.send_signal(signal.SIGINT)
         code = self.proc.wait(timeout=20)
