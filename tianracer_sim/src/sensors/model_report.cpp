@@ -85,7 +85,9 @@ void simulate(const RobotModel& model, const SensorSpec& s, const std::string& r
     });
     for (const SensorTopic& t : topics) {
       const bool in = t.msg_type.find("(subscribed)") != std::string::npos;  // a command topic
-      row->topics.push_back(t.topic + " " + t.msg_type + (in ? "" : " @ " + fmt(t.rate) + " Hz"));
+      // Rate 0 is Gazebo's "as often as it can": every step here.
+      const std::string rate = t.rate > 0.0 ? " @ " + fmt(t.rate) + " Hz" : " every step";
+      row->topics.push_back(t.topic + " " + t.msg_type + (in ? "" : rate));
     }
     if (topics.empty()) row->topics.push_back("(no gazebo_ros plugin: nothing published)");
   } catch (const std::exception& e) {

@@ -34,6 +34,8 @@ TEST(SensorsModelReport, ACameraInItsOwnOpticalFrameHasNoFrameDifference) {
       loadRobotModelFile(std::string(TEST_DATA_DIR) + "/urdf/camera_frames.urdf", LoadOptions());
   const std::vector<ReportRow> rows = modelReport(model, "camera_frames");
   EXPECT_EQ(rowOf(rows, "optical").status, ReportRow::Status::kSimulated);
+  // No <update_rate>: Gazebo's 0, as often as it can, which is every step here.
+  EXPECT_EQ(rowOf(rows, "optical").topics.at(0), "/optical/image_raw sensor_msgs/Image every step");
   EXPECT_EQ(rowOf(rows, "depth").status, ReportRow::Status::kSimulated);
   for (const char* name : {"plain", "turned"}) {
     const ReportRow& row = rowOf(rows, name);
