@@ -111,6 +111,11 @@ std::unique_ptr<PhysicsWorld::Impl::StaticBody> PhysicsWorld::Impl::makeStatic(
   body->object->setWorldTransform(toBt(s.X_WS));
   body->object->setCollisionFlags(btCollisionObject::CF_STATIC_OBJECT |
                                   btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+  // Bullet still finds its contacts (bumpers read them) but builds no constraint for them.
+  if (s.surface.collide_without_contact) {
+    body->object->setCollisionFlags(body->object->getCollisionFlags() |
+                                    btCollisionObject::CF_NO_CONTACT_RESPONSE);
+  }
   // Static shapes stay isotropic (mu1 and mu2 still combine by min per contact): the factors
   // would multiply with the robot's, and Gazebo's ground (100 / 50) would halve a wheel's mu2.
   body->object->setFriction(s.surface.mu1);

@@ -116,6 +116,7 @@ SurfaceParams surfaceOf(const CollisionDescription& c) {
   if (c.contact.kd) s.kd = *c.contact.kd;
   s.max_vel = c.contact.max_vel;
   if (c.contact.min_depth) s.min_depth = *c.contact.min_depth;
+  s.collide_without_contact = c.contact.collide_without_contact;
   return s;
 }
 
@@ -183,6 +184,10 @@ RigidTree worldModelTree(const WorldDescription& world, const ModelDescription& 
         if (c.shape.type == ShapeType::kPlane) {
           warnAt(c.line, "collision '" + c.name + "' is a plane, which cannot move: left out of the physics");
           continue;
+        }
+        if (c.contact.collide_without_contact) {
+          warnAt(c.line, "collision '" + c.name + "': <collide_without_contact> is simulated on "
+                         "static models only; on a link that moves it collides");
         }
         CollisionGeometry geom;
         geom.link = l.name;

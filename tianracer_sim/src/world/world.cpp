@@ -552,6 +552,10 @@ Friction Parser::parseSurface(const XMLElement* e, const std::string& what,
       continue;
     }
     for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
+      if (ctag == "contact" && std::string(k->Name()) == "collide_without_contact") {
+        contact->collide_without_contact = boolean(k, what + " contact");
+        continue;
+      }
       if (std::string(k->Name()) != "ode") {
         unsupported(k);
         continue;

@@ -155,6 +155,51 @@ TEST(SimulatorProperties, BumpersAndAnImuFollowANewStepAndGravity) {
   EXPECT_NEAR(imu->reading().linear_acceleration.z(), 5.0, 0.2);
 }
 
+TEST(SimulatorProperties, ACollisionWithoutContactIsTouchedButPushesNothing) {
+  // Gazebo's mud.world: a static mud pit with <collide_without_contact> and a contact sensor.
+  // A crate dropped through it falls on to the ground; the pit's bumper sees it pass.
+  SimulatorOptions options;
+  options.attach_world_sensor = [](SimSensor& s) { s.setListener(std::make_unique<WantsAll>()); };
+  std::vector<std::string> warnings;
+  options.log.warn = [&](const std::string& w) { warnings.push_back(w); };
+  Simulator sim(
+      loadWorldString(
+          "<sdf version='1.6'><world name='w'><include><uri>model://ground_plane</uri></include>"
+          "<model name='mud'><static>true</static><pose>0 0 0.5 0 0 0</pose><link name='link'>"
+          "<collision name='c'><geometry><box><size>1 1 0.2</size></box></geometry><surface>"
+          "<contact><collide_without_contact>true</collide_without_contact></contact></surface>"
+          "</collision>" +
+              bumperSensor("mud_bumper") +
+              "</link></model>"
+              "<model name='crate'><pose>0 0 1 0 0 0</pose><link name='link'><inertial>"
+              "<mass>1</mass><inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia>"
+              "</inertial><collision name='c'><geometry><box><size>0.2 0.2 0.2</size></box>"
+              "</geometry></collision></link></model>"
+              // On a link that moves it is not simulated: said, and it collides.
+              "<model name='floater'><pose>3 0 0.1 0 0 0</pose><link name='link'><inertial>"
+              "<mass>1</mass><inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia>"
+              "</inertial><collision name='c'><geometry><box><size>0.2 0.2 0.2</size></box>"
+              "</geometry><surface><contact><collide_without_contact>1</collide_without_contact>"
+              "</contact></surface></collision></link></model></world></sdf>",
+          "mud.world", "."),
+      options);
+  ASSERT_EQ(warnings.size(), 1u) << ::testing::PrintToString(warnings);
+  EXPECT_NE(warnings[0].find("model 'floater': collision 'c': <collide_without_contact> is "
+                             "simulated on static models only; on a link that moves it collides"),
+            std::string::npos)
+      << warnings[0];
+  const auto* mud = dynamic_cast<const SimBumper*>(sim.findSensor(sim.findModel("mud"), "mud_bumper"));
+  ASSERT_NE(mud, nullptr);
+  bool seen = false;
+  for (int i = 0; i < 200; ++i) {
+    sim.step(10);
+    for (const BumperState& s : mud->states()) seen = seen || s.collision2 == "crate::link";
+  }
+  EXPECT_TRUE(seen) << "the pit's bumper never saw the crate pass";
+  EXPECT_NEAR(sim.modelState(sim.findModel("crate")).X_WE.translation().z(), 0.1, 2e-3);
+  EXPECT_TRUE(mud->states().empty());  // the crate is through, on the ground
+}
+
 TEST(SimulatorProperties, BadPhysicsIsRefusedAndChangesNothing) {
   Simulator sim(propertiesWorld(), {});
   const PhysicsProperties before = sim.physicsProperties();

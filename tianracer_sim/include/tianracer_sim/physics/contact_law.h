@@ -22,6 +22,9 @@ struct SurfaceParams {
   /// one: the world's cap only (Gazebo).
   std::optional<double> max_vel;
   double min_depth = 0.0;
+  /// Found by the narrowphase (contact sensors see it) but never solved: it pushes nothing
+  /// (Gazebo's <collide_without_contact>). Static shapes only.
+  bool collide_without_contact = false;
 };
 
 /// SDF's default kp (1e12) and above count as a rigid contact.

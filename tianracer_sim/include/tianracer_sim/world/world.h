@@ -54,6 +54,9 @@ struct Friction {
 /// defaults, as for a robot link without these tags).
 struct ContactDescription {
   std::optional<double> kp, kd, max_vel, min_depth;
+  /// <contact><collide_without_contact>: touched (contact sensors see it) but pushes nothing,
+  /// as a mud pit or a trigger zone (Gazebo's mud.world). Static shapes only (world_physics).
+  bool collide_without_contact = false;
 };
 
 /// <inertial>: mass, inertia about the centre of mass, and the CoM frame in the link frame.
