@@ -6,7 +6,8 @@
 set -euo pipefail
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 
-bash "$REPO/scripts/setup.sh"
+# --release: a new workspace is built without debug info (same code, a third less compile time)
+bash "$REPO/scripts/setup.sh" --release
 
 export PATH="/usr/bin:$PATH"
 set +u  # ROS's setup scripts read unset variables

@@ -1,7 +1,11 @@
 #!/usr/bin/env bash
 # Installs what tianracer sim needs on Debian 12 (apt + pip), then builds the catkin workspace.
-#   scripts/setup.sh            install missing dependencies, build
+#   scripts/setup.sh            install missing dependencies, build (RelWithDebInfo: -O2 -g)
 #   scripts/setup.sh --no-build install only
+#   scripts/setup.sh --release  build without debug info (-O2, the same machine code), a
+#                               third less compile time; what ./run.sh uses on a new workspace.
+#                               A workspace already built keeps its build type, so nothing is
+#                               compiled again (docs/performance.md, First build).
 # Idempotent: installed packages are skipped; sudo is used when not root.
 # Build output: <repo>/.build/{build,devel} (hidden and git-ignored).
 set -euo pipefail
@@ -10,7 +14,14 @@ REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 WS="$REPO/.build"
 LOG_DIR="$WS/logs"
 BUILD=1
-[[ "${1:-}" == "--no-build" ]] && BUILD=0
+RELEASE=0
+for arg in "$@"; do
+  case "$arg" in
+    --no-build) BUILD=0 ;;
+    --release) RELEASE=1 ;;
+    *) printf 'usage: %s [--no-build] [--release]\n' "$0" >&2; exit 2 ;;
+  esac
+done
 
 # Debian packages. The first block is shared/TOOLCHAIN.md's checked recipe; the rest are the
 # libraries and tools the packages use (tinyxml2, yaml, gtest, msgs, rendering, tests).
@@ -99,10 +110,24 @@ mkdir -p "$LOG_DIR"
 stand_ins="$("$REPO/scripts/stand_in_packages.sh" "$REPO")" \
   || fail "step 'build': scripts/stand_in_packages.sh failed"
 while read -r line; do say "stand-ins: $line"; done <<<"$stand_ins"
-say "build: catkin_make in $WS (log: $LOG_DIR/build.log)"
+# The build type: RelWithDebInfo (-O2 -g) for the tests and debugging. --release drops the
+# debug info (a third of the compile time) but keeps -O2, so the machine code and every result
+# are the same (Release's own default, -O3, would not be); it applies to a new workspace only:
+# one already built keeps its type rather than compiling everything again.
+build_type=RelWithDebInfo
+if ((RELEASE)); then
+  if [[ -f "$WS/build/CMakeCache.txt" ]]; then
+    cached="$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$WS/build/CMakeCache.txt")"
+    build_type="${cached:-RelWithDebInfo}"  # none: the packages' own default
+  else
+    build_type=Release
+  fi
+fi
+say "build: catkin_make ($build_type) in $WS (log: $LOG_DIR/build.log)"
 start=$(date +%s)
 if ! catkin_make -C "$WS" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 \
-      -DCMAKE_BUILD_TYPE=RelWithDebInfo -j"$(nproc)" >"$LOG_DIR/build.log" 2>&1; then
+      -DCMAKE_BUILD_TYPE="$build_type" -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" \
+      -DCMAKE_C_FLAGS_RELEASE="-O2 -DNDEBUG" -j"$(nproc)" >"$LOG_DIR/build.log" 2>&1; then
   # Name the failing package and step: a CMake error follows the package's add_subdirectory
   # line; a compile error shows as 'make[N]: *** [<package>/CMakeFiles/...'.
   pkg="$(grep -oE 'make\[[0-9]+\]: \*\*\* \[[^/]+' "$LOG_DIR/build.log" | head -1 | sed 's/.*\[//' || true)"

@@ -15,6 +15,8 @@
 #include <map>
 #include <string>
 
+#include <urdf_model/model.h>
+
 #include "tianracer_sim/mesh/mesh_loader.h"
 #include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/render/camera_sensor.h"

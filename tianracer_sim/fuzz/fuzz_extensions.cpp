@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <string>
 
+#include <urdf_model/model.h>
+
 #include "tianracer_sim/model/robot_model.h"
 
 namespace {

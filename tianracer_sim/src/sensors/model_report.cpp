@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include <urdf_model/model.h>
+
 #include "tianracer_sim/common/text.h"
 #include "tianracer_sim/model/sensor_topics.h"
 #include "tianracer_sim/render/camera_intrinsics.h"

@@ -5,6 +5,8 @@
 #include <functional>
 #include <sstream>
 
+#include <urdf_model/model.h>
+
 #include "tianracer_sim/common/text.h"
 #include "tianracer_sim/lidar/ray_plugins.h"
 #include "tianracer_sim/lidar/ray_sensor.h"

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <urdf_model/model.h>
+
 #include "tianracer_sim/physics/rigid_tree.h"
 
 namespace tianracer_sim {

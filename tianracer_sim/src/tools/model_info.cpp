@@ -6,6 +6,7 @@
 #include <string>
 
 #include <ros/package.h>
+#include <urdf_model/model.h>
 
 #include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/sensors/model_report.h"

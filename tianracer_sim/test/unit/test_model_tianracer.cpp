@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <urdf_model/model.h>
+
 #include "tianracer_sim/model/robot_model.h"
 
 namespace tianracer_sim {

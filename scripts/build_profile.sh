@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# The first build, measured (docs/performance.md, First build): a clean catkin_make into a
+# scratch workspace, as scripts/setup.sh runs it, with ccache off and every compile and link
+# timed (CPU user+sys per object through CMAKE_CXX_COMPILER_LAUNCHER). Prints the wall and
+# CPU time of the build and its heaviest translation units.
+#   scripts/build_profile.sh [--release] [--top N] [DIR]   DIR: default /tmp/tianracer_build_profile
+# --release builds as ./run.sh does on a new workspace (scripts/setup.sh --release); any
+# other argument starting with -D goes to CMake (e.g. -DTIANRACER_PCH=OFF).
+set -euo pipefail
+REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+TYPE=RelWithDebInfo; TOP=25; DIR=/tmp/tianracer_build_profile; EXTRA=()
+while (($#)); do
+  case "$1" in
+    --release) TYPE=Release ;;
+    --top) TOP="$2"; shift ;;
+    -D*) EXTRA+=("$1") ;;
+    -*) echo "usage: $0 [--release] [--top N] [-DVAR=VALUE...] [DIR]" >&2; exit 2 ;;
+    *) DIR="$1" ;;
+  esac
+  shift
+done
+command -v /usr/bin/time >/dev/null || { echo "ERROR [build_profile] needs /usr/bin/time (apt-get install time)" >&2; exit 1; }
+[[ "$DIR" == "$REPO/.build" ]] && { echo "ERROR [build_profile] $DIR is the repo's own workspace: give a scratch folder" >&2; exit 1; }
+
+rm -rf "$DIR"; mkdir -p "$DIR"
+LOG="$DIR/objects.log"
+WRAP="$DIR/timed_compiler"
+# One line per object: CPU user, CPU sys, peak RSS (kB), compile|link, output file.
+cat >"$WRAP" <<WRAPPER
+#!/usr/bin/env bash
+out=""; prev=""
+for a in "\$@"; do [[ "\$prev" == "-o" ]] && out="\$a"; prev="\$a"; done
+kind=link; [[ " \$* " == *" -c "* ]] && kind=compile
+exec /usr/bin/time -a -o "$LOG" -f "%U %S %M \$kind \$out" "\$@"
+WRAPPER
+chmod +x "$WRAP"
+
+export PATH="/usr/bin:$PATH" CCACHE_DISABLE=1
+unset CC CXX  # a fresh machine has no ccache wrapper
+echo "==> [build_profile] clean catkin_make -j$(nproc) ($TYPE) in $DIR; load before: $(cut -d' ' -f1-3 /proc/loadavg)"
+/usr/bin/time -o "$DIR/total.txt" -f "%e %U %S" \
+  catkin_make -C "$DIR" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+  -DCMAKE_BUILD_TYPE="$TYPE" -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" -DCMAKE_C_FLAGS_RELEASE="-O2 -DNDEBUG" \
+  -DCMAKE_CXX_COMPILER_LAUNCHER="$WRAP" -DCMAKE_CXX_LINKER_LAUNCHER="$WRAP" "${EXTRA[@]}" \
+  -j"$(nproc)" >"$DIR/build.log" 2>&1 || { tail -30 "$DIR/build.log" >&2; exit 1; }
+read -r wall user sys <"$DIR/total.txt"
+echo "==> [build_profile] wall ${wall} s, CPU ${user} s user + ${sys} s sys; load after: $(cut -d' ' -f1-3 /proc/loadavg)"
+awk '{t = $1 + $2; if ($5 ~ /cmake_pch/) {p += t; np++} else if ($4 == "compile") {c += t; nc++} else {l += t; nl++}}
+     END {printf "==> [build_profile] %d translation units %.0f s CPU, %d precompiled headers %.0f s, %d links %.0f s\n", nc, c, np, p, nl, l}' "$LOG"
+echo "CPU s (user+sys)  peak MB  object"
+awk '$4 == "compile" {o = $5; sub(/.*CMakeFiles\//, "", o); printf "%8.2f %9d  %s\n", $1 + $2, $3 / 1024, o}' "$LOG" \
+  | sort -rn | awk -v n="$TOP" 'NR <= n'  # (head would end sort with SIGPIPE under pipefail)
