@@ -14,13 +14,9 @@ import rospy
 import rostest
 from sensor_msgs.msg import CameraInfo, Image
 from tf2_msgs.msg import TFMessage
-from tianracer_sim.sim_time import Stream, wait_for as wait_until
+from tianracer_sim.sim_time import Stream, wait_for
 
-WALL_TIMEOUT = 120.0
-
-
-def wait_for(cond, what):
-    return wait_until(cond, what, WALL_TIMEOUT)
+SPAWN_TIMEOUT = 120.0  # s of wall time for the spawned robot's first frames, under load
 
 
 class CameraFramesTest(unittest.TestCase):
@@ -41,7 +37,7 @@ class CameraFramesTest(unittest.TestCase):
         images = {topic: Stream(topic, Image, keep=1) for topic in expected}
         info = Stream('/optical/camera_info', CameraInfo, keep=1)
         for topic, frame in expected.items():
-            msg = wait_for(lambda: images[topic].latest(), topic)
+            msg = wait_for(lambda: images[topic].latest(), topic, SPAWN_TIMEOUT)
             self.assertEqual(msg.header.frame_id, frame, topic)
         self.assertEqual(wait_for(lambda: info.latest(), '/optical/camera_info').header.frame_id,
                          'camera_optical_frame')
