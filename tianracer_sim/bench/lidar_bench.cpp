@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "tianracer_sim/lidar/ray_caster.h"
-#include "tianracer_sim/lidar/ray_sensor.h"
+#include "tianracer_sim/sensors/ray/ray_sensor.h"
 #include "tianracer_sim/world/world.h"
 
 #ifndef TIANRACER_SIM_DIR

@@ -9,7 +9,7 @@
 #include "tianracer_sim/common/text.h"
 #include "tianracer_sim/model/sensor_topics.h"
 #include "tianracer_sim/render/camera_intrinsics.h"
-#include "tianracer_sim/sensors/optical_frame.h"
+#include "tianracer_sim/sensors/camera/optical_frame.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
 
 namespace tianracer_sim {
@@ -18,7 +18,7 @@ namespace {
 std::string fmt(double v) { return formatShort(v); }
 
 // Differences of a sensor type (docs/simulator.md, Known differences and limits); a camera's
-// by its frame (sensors/optical_frame.h).
+// by its frame (sensors/camera/optical_frame.h).
 std::vector<std::string> typeDifferences(const RobotModel& model, const SensorSpec& s) {
   std::vector<std::string> out;
   if (s.type == "gpu_ray") out.push_back("ray-cast on the CPU (Embree), exactly as type ray");

@@ -8,14 +8,14 @@
 #include <urdf_model/model.h>
 
 #include "tianracer_sim/common/text.h"
-#include "tianracer_sim/lidar/ray_plugins.h"
-#include "tianracer_sim/lidar/ray_sensor.h"
-#include "tianracer_sim/render/camera_sensor.h"
-#include "tianracer_sim/sensors/bumper.h"
-#include "tianracer_sim/sensors/drives.h"
-#include "tianracer_sim/sensors/imu_sensor.h"
-#include "tianracer_sim/sensors/multicamera_topics.h"
-#include "tianracer_sim/sensors/p3d.h"
+#include "tianracer_sim/sensors/ray/ray_plugins.h"
+#include "tianracer_sim/sensors/ray/ray_sensor.h"
+#include "tianracer_sim/sensors/camera/camera_sensor.h"
+#include "tianracer_sim/sensors/bumper/bumper.h"
+#include "tianracer_sim/sensors/drives/drives.h"
+#include "tianracer_sim/sensors/imu/imu_sensor.h"
+#include "tianracer_sim/sensors/camera/multicamera_topics.h"
+#include "tianracer_sim/sensors/p3d/p3d.h"
 
 namespace tianracer_sim {
 namespace {

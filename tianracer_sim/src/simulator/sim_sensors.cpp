@@ -5,7 +5,7 @@
 
 #include <tianracer_control/frames.h>
 
-#include "tianracer_sim/sensors/optical_frame.h"
+#include "tianracer_sim/sensors/camera/optical_frame.h"
 
 namespace tianracer_sim {
 

@@ -6,8 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "tianracer_sim/lidar/ray_sensor.h"
-#include "tianracer_sim/sensors/bumper.h"
+#include "tianracer_sim/sensors/ray/ray_sensor.h"
+#include "tianracer_sim/sensors/bumper/bumper.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
 
 namespace tianracer_sim {

@@ -1,4 +1,4 @@
-// The drive plugins' core (sensors/drives.h) without physics: parameters and defaults as
+// The drive plugins' core (sensors/drives/drives.h) without physics: parameters and defaults as
 // gazebo_plugins reads them, bad values, wheel speeds from a twist, the acceleration ramp, the
 // encoder and world odometry, the update schedules and planar_move's odometry.
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "tianracer_sim/sensors/drives.h"
+#include "tianracer_sim/sensors/drives/drives.h"
 #include "tianracer_sim/sensors/model_report.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
 

@@ -7,7 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "tianracer_sim/sensors/imu_sensor.h"
+#include "tianracer_sim/sensors/imu/imu_sensor.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
 
 namespace tianracer_sim {

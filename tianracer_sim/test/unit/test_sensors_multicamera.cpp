@@ -12,8 +12,8 @@
 
 #include <tinyxml2.h>
 
-#include "tianracer_sim/render/camera_sensor.h"
-#include "tianracer_sim/render/multicamera_config.h"
+#include "tianracer_sim/sensors/camera/camera_sensor.h"
+#include "tianracer_sim/sensors/camera/multicamera_config.h"
 #include "tianracer_sim/scene/materials.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
 

@@ -75,7 +75,7 @@ class SensorWorld {
   /// (request.sensor->render()), then hands it to the sensor's listener there.
   virtual void requestFrame(const FrameRequest& request) = 0;
 
-  // What model plugins that drive a model (sensors/drives.h) read and command.
+  // What model plugins that drive a model (sensors/drives/drives.h) read and command.
   /// The model's movable joint `joint`: its index for the calls below, and the links it joins
   /// (parent, child; may be null); -1 when the model has no movable joint of that name (a
   /// static model has none).

@@ -12,15 +12,15 @@
 #include <vector>
 
 #include "tianracer_sim/common/warning.h"
-#include "tianracer_sim/lidar/ray_plugins.h"
-#include "tianracer_sim/lidar/ray_sensor.h"
-#include "tianracer_sim/render/camera_sensor.h"
-#include "tianracer_sim/render/multicamera_config.h"
+#include "tianracer_sim/sensors/ray/ray_plugins.h"
+#include "tianracer_sim/sensors/ray/ray_sensor.h"
+#include "tianracer_sim/sensors/camera/camera_sensor.h"
+#include "tianracer_sim/sensors/camera/multicamera_config.h"
 #include "tianracer_sim/render/renderer.h"
-#include "tianracer_sim/sensors/bumper.h"
-#include "tianracer_sim/sensors/drives.h"
-#include "tianracer_sim/sensors/imu_sensor.h"
-#include "tianracer_sim/sensors/p3d.h"
+#include "tianracer_sim/sensors/bumper/bumper.h"
+#include "tianracer_sim/sensors/drives/drives.h"
+#include "tianracer_sim/sensors/imu/imu_sensor.h"
+#include "tianracer_sim/sensors/p3d/p3d.h"
 
 namespace urdf {
 class ModelInterface;
@@ -40,7 +40,7 @@ struct SimSensorSetup {
   int index = 0;              // sensors of this kind set up before this one
   Eigen::Vector3d gravity{0.0, 0.0, -9.8};  // the world's, m/s^2
   /// A robot's URDF (world models: null): a camera whose frameName is an optical link of it
-  /// stamps its images there (sensors/optical_frame.h).
+  /// stamps its images there (sensors/camera/optical_frame.h).
   const urdf::ModelInterface* urdf = nullptr;
   WarningSink warn;
   /// Throws for a link the model does not have.
@@ -260,7 +260,7 @@ class SimBumper : public SimSensor {
 };
 
 /// libgazebo_ros_diff_drive, libgazebo_ros_skid_steer_drive and libgazebo_ros_planar_move
-/// (sensors/drives.h): at every step (update()) the command is applied to the wheel joints or
+/// (sensors/drives/drives.h): at every step (update()) the command is applied to the wheel joints or
 /// the model; odometry, wheel TF and joint states are its outputs at the plugin's rate.
 class SimDrive : public SimSensor {
  public:

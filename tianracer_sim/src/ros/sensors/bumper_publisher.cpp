@@ -1,5 +1,5 @@
 // libgazebo_ros_bumper on a contact sensor: the link's contacts as gazebo_msgs/ContactsState
-// (see sensors/bumper.h), published at the sensor's rate, empty when nothing touches.
+// (see sensors/bumper/bumper.h), published at the sensor's rate, empty when nothing touches.
 #include <gazebo_msgs/ContactsState.h>
 
 #include "factories.h"

@@ -1,5 +1,5 @@
 // libgazebo_ros_diff_drive, libgazebo_ros_skid_steer_drive, libgazebo_ros_planar_move: the
-// cmd_vel subscriber, the odometry, its TF, the wheels' TF and joint states (sensors/drives.h).
+// cmd_vel subscriber, the odometry, its TF, the wheels' TF and joint states (sensors/drives/drives.h).
 #include <cmath>
 #include <memory>
 

@@ -1,4 +1,4 @@
-// libgazebo_ros_p3d: a link's ground truth as nav_msgs/Odometry (see sensors/p3d.h).
+// libgazebo_ros_p3d: a link's ground truth as nav_msgs/Odometry (see sensors/p3d/p3d.h).
 #include <nav_msgs/Odometry.h>
 
 #include "factories.h"
