@@ -13,7 +13,10 @@
 #include <tianracer_assets/paths.h>
 #include <tianracer_control/controller_yaml.h>
 
-#include "tianracer_sim/simulator/sim_sensors.h"
+#include "tianracer_sim/sensors/camera/sim_camera.h"
+#include "tianracer_sim/sensors/imu/sim_imu.h"
+#include "tianracer_sim/sensors/p3d/sim_p3d.h"
+#include "tianracer_sim/sensors/ray/sim_ray.h"
 
 namespace tianracer_sim {
 

@@ -8,14 +8,12 @@
 #include <urdf_model/model.h>
 
 #include "tianracer_sim/common/text.h"
-#include "tianracer_sim/sensors/ray/ray_plugins.h"
-#include "tianracer_sim/sensors/ray/ray_sensor.h"
-#include "tianracer_sim/sensors/camera/camera_sensor.h"
-#include "tianracer_sim/sensors/bumper/bumper.h"
-#include "tianracer_sim/sensors/drives/drives.h"
-#include "tianracer_sim/sensors/imu/imu_sensor.h"
-#include "tianracer_sim/sensors/camera/multicamera_topics.h"
-#include "tianracer_sim/sensors/p3d/p3d.h"
+#include "tianracer_sim/sensors/bumper/sim_bumper.h"
+#include "tianracer_sim/sensors/camera/sim_camera.h"
+#include "tianracer_sim/sensors/drives/sim_drive.h"
+#include "tianracer_sim/sensors/imu/sim_imu.h"
+#include "tianracer_sim/sensors/p3d/sim_p3d.h"
+#include "tianracer_sim/sensors/ray/sim_ray.h"
 
 namespace tianracer_sim {
 namespace {
@@ -26,96 +24,16 @@ bool contains(const std::vector<std::string>& list, const std::string& s) {
   return std::find(list.begin(), list.end(), s) != list.end();
 }
 
-std::vector<SensorTopic> lidarTopics(const SensorSpec& sensor, const std::string&, const WarningSink& warn) {
-  return publishedTopics(parseRaySensorConfig(sensor, warn));
-}
-
-// libgazebo_ros_camera: <robotNamespace>/<cameraName>/{image, camera_info} at updateRate (0 =
-// the sensor rate). Without a plugin Gazebo renders but publishes nothing.
-std::vector<SensorTopic> cameraTopics(const SensorSpec& sensor, const std::string& model_name,
-                                      const WarningSink& warn) {
-  CameraConfig c = parseCameraConfig(sensor, warn);
-  if (!c.has_plugin) return {};
-  const std::string ns = resolveTopic(c.robot_namespace, c.camera_name);
-  return {{resolveTopic(ns, c.image_topic), "sensor_msgs/Image", c.publishRate()},
-          {resolveTopic(ns, c.camera_info_topic), "sensor_msgs/CameraInfo", c.publishRate()}};
-}
-
-// libgazebo_ros_openni_kinect / libgazebo_ros_depth_camera: images and cloud at the sensor
-// rate, both camera_infos at the plugin's updateRate.
-std::vector<SensorTopic> depthCameraTopics(const SensorSpec& sensor, const std::string& model_name,
-                                           const WarningSink& warn) {
-  DepthCameraConfig d = parseDepthCameraConfig(sensor, warn);
-  const CameraConfig& c = d.camera;
-  if (!c.has_plugin) return {};
-  const std::string ns = resolveTopic(c.robot_namespace, c.camera_name);
-  return {{resolveTopic(ns, c.image_topic), "sensor_msgs/Image", c.update_rate},
-          {resolveTopic(ns, d.depth_image_topic), "sensor_msgs/Image", c.update_rate},
-          {resolveTopic(ns, d.point_cloud_topic), "sensor_msgs/PointCloud2", c.update_rate},
-          {resolveTopic(ns, c.camera_info_topic), "sensor_msgs/CameraInfo", c.publishRate()},
-          {resolveTopic(ns, d.depth_camera_info_topic), "sensor_msgs/CameraInfo",
-           c.publishRate()}};
-}
-
-std::vector<SensorTopic> imuTopics(const SensorSpec& sensor, const std::string& model_name,
-                                   const WarningSink& warn) {
-  return publishedTopics(parseImuSensorConfig(sensor, model_name, warn));
-}
-
-std::vector<SensorTopic> imuPluginTopics(const SensorSpec& sensor, const std::string& model_name,
-                                         const WarningSink& warn) {
-  return publishedTopics(parseImuPluginConfig(sensor, model_name, warn));
-}
-
-std::vector<SensorTopic> p3dTopics(const SensorSpec& sensor, const std::string& model_name,
-                                   const WarningSink& warn) {
-  return publishedTopics(parseP3dConfig(sensor, model_name, warn));
-}
-
-std::vector<SensorTopic> rangeTopics(const SensorSpec& sensor, const std::string&,
-                                     const WarningSink& warn) {
-  return publishedTopics(parseRangeConfig(sensor, warn));
-}
-
-std::vector<SensorTopic> blockLaserTopics(const SensorSpec& sensor, const std::string&,
-                                          const WarningSink& warn) {
-  return publishedTopics(parseBlockLaserConfig(sensor, warn));
-}
-
-std::vector<SensorTopic> bumperTopics(const SensorSpec& sensor, const std::string& model_name,
-                                     const WarningSink& warn) {
-  return publishedTopics(parseBumperConfig(sensor, model_name, warn));
-}
-
-std::vector<SensorTopic> driveTopics(const SensorSpec& sensor, const std::string& model_name,
-                                     const WarningSink& warn) {
-  return publishedTopics(parseDriveConfig(sensor, model_name, warn));
-}
-
 }  // namespace
 
 const std::vector<SensorKind>& sensorKinds() {
-  // To add a sensor type: one line here, its publisher in ros/sensors/sensor_publishers.cpp.
+  // To add a sensor kind: its folder sensors/<kind>/ and one line here (the order is the order in
+  // which findSensorKind tries them), its publisher in ros/sensors/sensor_publishers.cpp.
   static const std::vector<SensorKind> kinds = {
-      {"lidar", {"ray", "gpu_ray"},
-       {"libgazebo_ros_laser.so", "libgazebo_ros_gpu_laser.so", "libgazebo_ros_velodyne_laser.so",
-        "libgazebo_ros_velodyne_gpu_laser.so"},
-       &lidarTopics},
-      {"range", {"ray", "gpu_ray"}, {"libgazebo_ros_range.so"}, &rangeTopics},
-      {"block_laser", {"ray", "gpu_ray"}, {"libgazebo_ros_block_laser.so"}, &blockLaserTopics},
-      {"camera", {"camera"}, {"libgazebo_ros_camera.so", "libgazebo_ros_triggered_camera.so"},
-       &cameraTopics},
-      {"multicamera", {"multicamera"}, {"libgazebo_ros_multicamera.so"}, &multiCameraTopics},
-      {"depth_camera", {"depth"},
-       {"libgazebo_ros_openni_kinect.so", "libgazebo_ros_depth_camera.so"}, &depthCameraTopics},
-      {"imu", {"imu"}, {"libgazebo_ros_imu_sensor.so"}, &imuTopics},
-      {"imu_plugin", {}, {"libgazebo_ros_imu.so"}, &imuPluginTopics},
-      {"p3d", {}, {"libgazebo_ros_p3d.so"}, &p3dTopics},
-      {"bumper", {"contact"}, {"libgazebo_ros_bumper.so"}, &bumperTopics},
-      {"drive", {},
-       {"libgazebo_ros_diff_drive.so", "libgazebo_ros_skid_steer_drive.so",
-        "libgazebo_ros_planar_move.so"},
-       &driveTopics},
+      lidarKind(),  rangeKind(),       blockLaserKind(),   // sensors/ray/
+      cameraKind(), multiCameraKind(), depthCameraKind(),  // sensors/camera/
+      imuKind(),    imuPluginKind(),                       // sensors/imu/
+      p3dKind(),    bumperKind(),      driveKind(),        // sensors/p3d/, bumper/, drives/
   };
   return kinds;
 }

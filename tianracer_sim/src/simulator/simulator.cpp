@@ -4,7 +4,6 @@
 #include <stdexcept>
 
 #include "tianracer_sim/sensors/sensor_registry.h"
-#include "tianracer_sim/simulator/sim_sensors.h"
 
 namespace tianracer_sim {
 
@@ -287,7 +286,7 @@ void Simulator::setUpSensor(ModelId id, const SensorSpec& spec, const std::strin
   setup.world = this;
   // A bad sensor is reported and left out; the model and the other sensors run on.
   try {
-    std::unique_ptr<SimSensor> sensor = makeSimSensor(*kind, setup);
+    std::unique_ptr<SimSensor> sensor = kind->make(setup);
     if (!sensor) return;
     if (StepProfile* p = options_.profile) {
       SimSensor::ProfileRows rows;

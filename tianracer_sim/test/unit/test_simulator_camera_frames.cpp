@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "tianracer_sim/simulator/sim_sensors.h"
+#include "tianracer_sim/sensors/camera/sim_camera.h"
 #include "tianracer_sim/simulator/simulator.h"
 #include "tianracer_sim/world/world.h"
 

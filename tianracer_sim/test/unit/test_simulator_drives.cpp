@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "tianracer_sim/simulator/sim_sensors.h"
+#include "tianracer_sim/sensors/drives/sim_drive.h"
 #include "tianracer_sim/simulator/simulator.h"
 
 namespace tianracer_sim {

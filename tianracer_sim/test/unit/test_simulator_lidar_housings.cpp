@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "tianracer_sim/simulator/sim_sensors.h"
+#include "tianracer_sim/sensors/ray/sim_ray.h"
 #include "tianracer_sim/simulator/simulator.h"
 
 namespace tianracer_sim {

@@ -10,7 +10,9 @@
 #include <limits>
 #include <string>
 
-#include "tianracer_sim/simulator/sim_sensors.h"
+#include "tianracer_sim/sensors/bumper/sim_bumper.h"
+#include "tianracer_sim/sensors/camera/sim_camera.h"
+#include "tianracer_sim/sensors/imu/sim_imu.h"
 #include "tianracer_sim/simulator/simulator.h"
 #include "tianracer_sim/world/world.h"
 

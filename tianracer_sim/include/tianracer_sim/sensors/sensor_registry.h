@@ -1,10 +1,12 @@
 // The sensor types the simulator knows, registered once each by Gazebo sensor type and
-// gazebo_ros plugin filename. ROS-free: the node pairs each kind with its ROS publisher
-// (ros/sensors/sensor_publishers.cpp), model_info asks the same table which topics a model's
-// sensors publish, so the two cannot disagree.
+// gazebo_ros plugin filename. Each kind lives in its folder sensors/<kind>/ (its settings, its
+// core, its SimSensor) and is listed here by one line. ROS-free: the node pairs each kind with its
+// ROS publisher (ros/sensors/sensor_publishers.cpp), model_info asks the same table which topics
+// a model's sensors publish, so the two cannot disagree.
 #ifndef TIANRACER_SIM_SENSORS_SENSOR_REGISTRY_H
 #define TIANRACER_SIM_SENSORS_SENSOR_REGISTRY_H
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,6 +14,9 @@
 #include "tianracer_sim/model/sensor_topics.h"
 
 namespace tianracer_sim {
+
+class SimSensor;
+struct SimSensorSetup;
 
 /// One sensor type.
 /// A model plugin that publishes like a sensor (libgazebo_ros_imu, libgazebo_ros_p3d) is a
@@ -26,6 +31,10 @@ struct SensorKind {
   /// robot's name (Gazebo's default namespace of some plugins).
   std::vector<SensorTopic> (*topics)(const SensorSpec& sensor, const std::string& model_name,
                                      const WarningSink& warn);
+  /// Sets the sensor up in the simulation (sensors/sim_sensor.h); nullptr when it has nothing
+  /// to produce (e.g. a camera without a gazebo_ros plugin, as in Gazebo: the reason goes to
+  /// setup.warn). Throws std::exception naming the sensor on bad input.
+  std::unique_ptr<SimSensor> (*make)(const SimSensorSetup& setup);
 };
 
 /// Every registered kind, in registration order.

@@ -41,10 +41,10 @@
 #include "tianracer_sim/sim/entity_state.h"
 #include "tianracer_sim/sim/frame_worker.h"
 #include "tianracer_sim/sim/robot_scene.h"
-#include "tianracer_sim/sim/schedule.h"
+#include "tianracer_sim/common/schedule.h"
 #include "tianracer_sim/sim/simulation.h"
 #include "tianracer_sim/sim/world_physics.h"
-#include "tianracer_sim/simulator/sim_sensor.h"
+#include "tianracer_sim/sensors/sim_sensor.h"
 #include "tianracer_sim/world/world.h"
 
 namespace tianracer_sim {

@@ -6,7 +6,12 @@
 #include <memory>
 
 #include "tianracer_sim/ros/sensors/sensor_publisher.h"
-#include "tianracer_sim/simulator/sim_sensors.h"
+#include "tianracer_sim/sensors/bumper/sim_bumper.h"
+#include "tianracer_sim/sensors/camera/sim_camera.h"
+#include "tianracer_sim/sensors/drives/sim_drive.h"
+#include "tianracer_sim/sensors/imu/sim_imu.h"
+#include "tianracer_sim/sensors/p3d/sim_p3d.h"
+#include "tianracer_sim/sensors/ray/sim_ray.h"
 
 namespace tianracer_sim {
 

@@ -1,5 +1,5 @@
 // The node side of the sensor seam: one publisher per simulated sensor, attached to the
-// Simulator's SimSensor (simulator/sim_sensor.h) as its SensorListener. It says which due
+// Simulator's SimSensor (sensors/sim_sensor.h) as its SensorListener. It says which due
 // outputs someone subscribes to and converts the outputs it is handed into messages; the
 // sensor's core, schedules and counts are the Simulator's. The factories are listed in one
 // table, src/ros/sensors/sensor_publishers.cpp, by SensorKind id.
@@ -14,7 +14,7 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 
 #include "tianracer_sim/common/step_profile.h"
-#include "tianracer_sim/simulator/sim_sensor.h"
+#include "tianracer_sim/sensors/sim_sensor.h"
 
 namespace tianracer_sim {
 

@@ -1,7 +1,7 @@
 // The gazebo_plugins model plugins that move a mobile robot from geometry_msgs/Twist and report
 // its odometry, as gazebo_plugins (noetic-devel) does them. ROS-free: the parameters, the drive
 // maths and the odometry; the simulator reads the joints and the model's motion and applies the
-// commands (simulator/sim_sensors.h), the node subscribes and publishes (ros/sensors/).
+// commands (sim_drive.h), the node subscribes and publishes (ros/sensors/).
 //
 //  - libgazebo_ros_diff_drive (gazebo_plugins/src/gazebo_ros_diff_drive.cpp): two wheel
 //    joints driven by velocity motors capped at <wheelTorque>, rim speeds

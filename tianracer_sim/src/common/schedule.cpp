@@ -1,4 +1,4 @@
-#include "tianracer_sim/sim/schedule.h"
+#include "tianracer_sim/common/schedule.h"
 
 namespace tianracer_sim {
 

@@ -1,4 +1,5 @@
 // The simulator's side of a sensor: one SimSensor per simulated sensor, owned by the Simulator,
+// made by its kind (sensors/<kind>/sim_<kind>.h) from a SimSensorSetup,
 // holding its ROS-free core (ray sensor, camera, IMU, ...), its schedules, its latest output and
 // its counts. What consumes the output (the ROS node's publisher of the sensor, a Python
 // environment) is a SensorListener: it says which due outputs it wants, so that nothing is
@@ -11,22 +12,31 @@
 //                                   frame worker from a snapshot of this step's scene)
 //   listener.onOutputs(...)         at the step for measured outputs, on the frame worker's
 //                                   thread for rendered ones
-#ifndef TIANRACER_SIM_SIMULATOR_SIM_SENSOR_H
-#define TIANRACER_SIM_SIMULATOR_SIM_SENSOR_H
+#ifndef TIANRACER_SIM_SENSORS_SIM_SENSOR_H
+#define TIANRACER_SIM_SENSORS_SIM_SENSOR_H
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
 
+#include "tianracer_sim/common/warning.h"
 #include "tianracer_sim/lidar/ray_caster.h"
+#include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/scene/scene.h"
 #include "tianracer_sim/sensors/link_data.h"
-#include "tianracer_sim/sim/schedule.h"
+#include "tianracer_sim/common/schedule.h"
+
+namespace urdf {
+class ModelInterface;
+}
 
 namespace tianracer_sim {
+
+class Renderer;
 
 /// A model of the simulation (a robot or a world model), by an id that is never reused.
 using ModelId = int;
@@ -159,6 +169,33 @@ class SimSensor {
   ProfileRows profile_rows_;
 };
 
+/// The period of a rate for a Schedule: 1/rate, 0 (every step) for a rate of 0.
+inline double periodOf(double rate) { return rate > 0.0 ? 1.0 / rate : 0.0; }
+
+/// Everything a sensor kind needs to set a sensor up.
+struct SimSensorSetup {
+  const SensorSpec* spec = nullptr;
+  ModelId model = kNoModel;
+  std::string model_name;     // also Gazebo's default namespace of some plugins
+  std::string tf_prefix;      // "" or e.g. "tianracer_02": prefixes the frames of its outputs
+  std::uint64_t seed = 0;     // the simulation's seed
+  int index = 0;              // sensors of this kind set up before this one
+  Eigen::Vector3d gravity{0.0, 0.0, -9.8};  // the world's, m/s^2
+  /// A robot's URDF (world models: null): a camera whose frameName is an optical link of it
+  /// stamps its images there (sensors/camera/optical_frame.h).
+  const urdf::ModelInterface* urdf = nullptr;
+  WarningSink warn;
+  /// Throws for a link the model does not have.
+  std::function<void(const std::string& link)> check_link;
+  /// The shared offscreen renderer; nullptr when there is none (reported once).
+  std::function<Renderer*()> renderer;
+  /// The simulation (model plugins that drive look their joints up in it); may be null.
+  SensorWorld* world = nullptr;
+
+  /// The link `name` of the sensor's model.
+  LinkRef linkRef(const std::string& name) const { return LinkRef{model, name}; }
+};
+
 }  // namespace tianracer_sim
 
-#endif  // TIANRACER_SIM_SIMULATOR_SIM_SENSOR_H
+#endif  // TIANRACER_SIM_SENSORS_SIM_SENSOR_H

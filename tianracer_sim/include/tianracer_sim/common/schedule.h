@@ -1,7 +1,7 @@
 // Things done on a sim-time schedule (sensor samples, joint_states, /clock, lockstep waits),
 // and the per-sensor counts the status line reports. ROS-free.
-#ifndef TIANRACER_SIM_SIM_SCHEDULE_H
-#define TIANRACER_SIM_SIM_SCHEDULE_H
+#ifndef TIANRACER_SIM_COMMON_SCHEDULE_H
+#define TIANRACER_SIM_COMMON_SCHEDULE_H
 
 #include <cstdint>
 #include <string>
@@ -28,4 +28,4 @@ struct SensorStat {
 
 }  // namespace tianracer_sim
 
-#endif  // TIANRACER_SIM_SIM_SCHEDULE_H
+#endif  // TIANRACER_SIM_COMMON_SCHEDULE_H

@@ -1,0 +1,38 @@
+// The IMU in the simulation: the imu sensor (libgazebo_ros_imu_sensor) and the libgazebo_ros_imu
+// model plugin, around one core (imu_sensor.h).
+#ifndef TIANRACER_SIM_SENSORS_IMU_SIM_IMU_H
+#define TIANRACER_SIM_SENSORS_IMU_SIM_IMU_H
+
+#include "tianracer_sim/sensors/imu/imu_sensor.h"
+#include "tianracer_sim/sensors/sensor_registry.h"
+#include "tianracer_sim/sensors/sim_sensor.h"
+
+namespace tianracer_sim {
+
+/// The kinds of this folder, each registered by one line in sensors/sensor_registry.cpp.
+const SensorKind& imuKind();
+const SensorKind& imuPluginKind();
+
+/// imu sensor (libgazebo_ros_imu_sensor) and the libgazebo_ros_imu model plugin.
+class SimImu : public SimSensor {
+ public:
+  static constexpr SensorOutputs kReading = 1;
+  SimImu(const SimSensorSetup& setup, ImuConfig config);
+  const ImuConfig& config() const { return sensor_.config(); }
+  const ImuReading& reading() const { return *reading_; }
+
+  SensorOutputs update(double t, SensorWorld& world) override;
+  void sample(SensorOutputs outputs, SensorWorld& world) override;
+  void skip() override { sensor_.skip(); }
+  void restart(double t) override;
+
+ private:
+  ImuSensor sensor_;
+  Schedule schedule_;
+  ImuReading none_;
+  const ImuReading* reading_ = &none_;
+};
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_SENSORS_IMU_SIM_IMU_H

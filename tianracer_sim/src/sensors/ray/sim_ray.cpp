@@ -1,0 +1,126 @@
+#include "tianracer_sim/sensors/ray/sim_ray.h"
+
+#include <tianracer_control/frames.h>
+
+namespace tianracer_sim {
+
+namespace tc = tianracer_control;
+
+namespace {
+
+std::vector<SensorTopic> lidarTopics(const SensorSpec& sensor, const std::string&, const WarningSink& warn) {
+  return publishedTopics(parseRaySensorConfig(sensor, warn));
+}
+
+std::vector<SensorTopic> rangeTopics(const SensorSpec& sensor, const std::string&,
+                                     const WarningSink& warn) {
+  return publishedTopics(parseRangeConfig(sensor, warn));
+}
+
+std::vector<SensorTopic> blockLaserTopics(const SensorSpec& sensor, const std::string&,
+                                          const WarningSink& warn) {
+  return publishedTopics(parseBlockLaserConfig(sensor, warn));
+}
+
+std::unique_ptr<SimSensor> makeLidar(const SimSensorSetup& setup) {
+  RaySensorConfig config = parseRaySensorConfig(*setup.spec, setup.warn);
+  config.seed = setup.seed + static_cast<std::uint64_t>(setup.index);
+  config.frame_name = tc::resolveFrame(setup.tf_prefix, config.frame_name);
+  return std::make_unique<SimLidar>(setup, std::move(config));
+}
+
+std::unique_ptr<SimSensor> makeRange(const SimSensorSetup& setup) {
+  RangeConfig config = parseRangeConfig(*setup.spec, setup.warn);
+  config.seed = setup.seed + 501 + static_cast<std::uint64_t>(setup.index);
+  config.frame_name = tc::resolveFrame(setup.tf_prefix, config.frame_name);
+  if (config.topic_name.empty()) return nullptr;  // gazebo_ros_range: no topic, nothing published
+  return std::make_unique<SimRange>(setup, std::move(config));
+}
+
+std::unique_ptr<SimSensor> makeBlockLaser(const SimSensorSetup& setup) {
+  BlockLaserConfig config = parseBlockLaserConfig(*setup.spec, setup.warn);
+  config.seed = setup.seed + 601 + static_cast<std::uint64_t>(setup.index);
+  config.frame_name = tc::resolveFrame(setup.tf_prefix, config.frame_name);
+  if (config.topic_name.empty()) return nullptr;
+  return std::make_unique<SimBlockLaser>(setup, std::move(config));
+}
+
+}  // namespace
+
+const SensorKind& lidarKind() {
+  static const SensorKind kind = {"lidar", {"ray", "gpu_ray"},
+       {"libgazebo_ros_laser.so", "libgazebo_ros_gpu_laser.so", "libgazebo_ros_velodyne_laser.so",
+        "libgazebo_ros_velodyne_gpu_laser.so"},
+       &lidarTopics, &makeLidar};
+  return kind;
+}
+
+const SensorKind& rangeKind() {
+  static const SensorKind kind = {"range", {"ray", "gpu_ray"}, {"libgazebo_ros_range.so"}, &rangeTopics, &makeRange};
+  return kind;
+}
+
+const SensorKind& blockLaserKind() {
+  static const SensorKind kind = {"block_laser", {"ray", "gpu_ray"}, {"libgazebo_ros_block_laser.so"},
+                                   &blockLaserTopics, &makeBlockLaser};
+  return kind;
+}
+
+SimLidar::SimLidar(const SimSensorSetup& setup, RaySensorConfig config)
+    : SimSensor("lidar", config.name, setup.linkRef(config.link), setup.model_name),
+      sensor_(config) {
+  setup.check_link(config.link);
+  schedule_.period = periodOf(config.update_rate);
+  stat().name = config.name;
+  stat().target = config.update_rate;
+}
+
+SensorOutputs SimLidar::update(double t, SensorWorld&) {
+  // The schedule runs whether or not anyone listens, so a new subscriber gets the rate.
+  return schedule_.due(t) ? kScan : 0;
+}
+
+void SimLidar::sample(SensorOutputs, SensorWorld& world) {
+  const Scene& scene = world.scene();
+  ranges_ = &sensor_.scan(world.caster(), scene, world.linkPose(link()));
+}
+
+SimRange::SimRange(const SimSensorSetup& setup, RangeConfig config)
+    : SimSensor("range", config.ray.name, setup.linkRef(config.ray.link), setup.model_name),
+      config_(std::move(config)), rng_(config_.seed) {
+  setup.check_link(config_.ray.link);
+  schedule_.period = periodOf(config_.publishRate());
+  stat().name = config_.ray.name;
+  stat().target = config_.publishRate();
+}
+
+SensorOutputs SimRange::update(double t, SensorWorld&) { return schedule_.due(t) ? kRange : 0; }
+
+void SimRange::sample(SensorOutputs, SensorWorld& world) {
+  const Scene& scene = world.scene();
+  shapeRanges(config_.ray, world.caster(), scene, world.linkPose(link()) * config_.ray.X_LS,
+              &buffers_, &ranges_);
+  reading_ = rangeReading(config_, ranges_, rng_);
+}
+
+SimBlockLaser::SimBlockLaser(const SimSensorSetup& setup, BlockLaserConfig config)
+    : SimSensor("block_laser", config.ray.name, setup.linkRef(config.ray.link), setup.model_name),
+      config_(std::move(config)), rng_(config_.seed) {
+  setup.check_link(config_.ray.link);
+  schedule_.period = periodOf(config_.ray.update_rate);
+  stat().name = config_.ray.name;
+  stat().target = config_.ray.update_rate;
+}
+
+SensorOutputs SimBlockLaser::update(double t, SensorWorld&) {
+  return schedule_.due(t) ? kCloud : 0;
+}
+
+void SimBlockLaser::sample(SensorOutputs, SensorWorld& world) {
+  const Scene& scene = world.scene();
+  shapeRanges(config_.ray, world.caster(), scene, world.linkPose(link()) * config_.ray.X_LS,
+              &buffers_, &ranges_);
+  blockLaserCloud(config_, ranges_, rng_, &cloud_);
+}
+
+}  // namespace tianracer_sim
