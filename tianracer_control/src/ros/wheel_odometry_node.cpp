@@ -10,7 +10,7 @@
 #include <tf2_ros/transform_broadcaster.h>
 
 #include "tianracer_control/odometry.h"
-#include "tianracer_control/frames.h"
+#include "tianracer_control/naming.h"
 #include "tianracer_control/ros/geometry_params.h"
 #include "tianracer_control/ros/msg_conversion.h"
 

@@ -6,9 +6,9 @@
 #include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Odometry.h>
 
-#include <tianracer_control/frames.h>
+#include <tianracer_control/naming.h>
 
-#include "tianracer_sim/model/sensor_topics.h"
+#include "tianracer_sim/sensors/sensor_topics.h"
 #include "tianracer_sim/ros/state_msgs.h"
 
 namespace tianracer_sim {

@@ -7,7 +7,7 @@
 #include <urdf_model/model.h>
 
 #include "tianracer_sim/common/text.h"
-#include "tianracer_sim/model/sensor_topics.h"
+#include "tianracer_sim/sensors/sensor_topics.h"
 #include "tianracer_sim/render/camera_intrinsics.h"
 #include "tianracer_sim/sensors/camera/optical_frame.h"
 #include "tianracer_sim/sensors/sensor_registry.h"

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "tianracer_sim/model/robot_model.h"
-#include "tianracer_sim/model/sensor_topics.h"
+#include "tianracer_sim/sensors/sensor_topics.h"
 
 namespace tianracer_sim {
 

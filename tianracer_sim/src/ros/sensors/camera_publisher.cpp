@@ -7,7 +7,7 @@
 #include <sensor_msgs/PointCloud2.h>
 #include <std_msgs/Empty.h>
 
-#include <tianracer_control/frames.h>
+#include <tianracer_control/naming.h>
 
 #include "factories.h"
 #include "tianracer_sim/ros/borrowed_msgs.h"

@@ -2,11 +2,9 @@
 
 #include <exception>
 
-#include <tianracer_control/frames.h>
+#include <tianracer_control/naming.h>
 
 namespace tianracer_sim {
-
-namespace tc = tianracer_control;
 
 namespace {
 
@@ -49,7 +47,7 @@ SimBumper::SimBumper(const SimSensorSetup& setup, BumperConfig config)
     }
     frame_link_ = config_.frame_name;
   }
-  frame_id_ = world ? config_.frame_name : tc::resolveFrame(setup.tf_prefix, config_.frame_name);
+  frame_id_ = world ? config_.frame_name : resolveFrame(setup.tf_prefix, config_.frame_name);
   schedule_.period = periodOf(config_.update_rate);
   stat().name = config_.name;
   stat().target = config_.update_rate;

@@ -2,14 +2,12 @@
 
 #include <string>
 
-#include <tianracer_control/frames.h>
+#include <tianracer_control/naming.h>
 
 #include "tianracer_sim/sensors/camera/multicamera_topics.h"
 #include "tianracer_sim/sensors/camera/optical_frame.h"
 
 namespace tianracer_sim {
-
-namespace tc = tianracer_control;
 
 namespace {
 
@@ -58,7 +56,7 @@ Renderer* cameraRenderer(const SimSensorSetup& setup, CameraConfig& camera, uint
   Renderer* renderer = setup.renderer();
   if (!renderer) return nullptr;
   useOwnOpticalFrame(setup, camera);
-  camera.frame_name = tc::resolveFrame(setup.tf_prefix, camera.frame_name);
+  camera.frame_name = resolveFrame(setup.tf_prefix, camera.frame_name);
   if (!camera.noise_seed)
     camera.noise_seed = static_cast<uint32_t>(setup.seed + seed_offset + setup.index);
   return renderer;
@@ -102,7 +100,7 @@ std::unique_ptr<SimSensor> makeMultiCamera(const SimSensorSetup& setup) {
     c.noise_seed ^= static_cast<uint32_t>(setup.seed);
     if (c.noise_seed == 0) c.noise_seed = 1;
     useOwnOpticalFrame(setup, c);
-    c.frame_name = tc::resolveFrame(setup.tf_prefix, c.frame_name);
+    c.frame_name = resolveFrame(setup.tf_prefix, c.frame_name);
   }
   return std::make_unique<SimMultiCamera>(setup, std::move(config), *renderer);
 }

@@ -2,11 +2,9 @@
 
 #include <stdexcept>
 
-#include <tianracer_control/frames.h>
+#include <tianracer_control/naming.h>
 
 namespace tianracer_sim {
-
-namespace tc = tianracer_control;
 
 namespace {
 
@@ -49,8 +47,8 @@ SimDrive::SimDrive(const SimSensorSetup& setup, DriveConfig config)
     joints_.push_back(i);
     parent_links_.push_back(parent);
     child_links_.push_back(child);
-    wheel_tf_.push_back({tc::resolveFrame(setup.tf_prefix, parent),
-                         tc::resolveFrame(setup.tf_prefix, child), Eigen::Isometry3d::Identity()});
+    wheel_tf_.push_back({resolveFrame(setup.tf_prefix, parent),
+                         resolveFrame(setup.tf_prefix, child), Eigen::Isometry3d::Identity()});
   }
   if (c.kind == DriveKind::kPlanarMove &&
       !setup.world->setModelVelocity(setup.model, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero())) {
@@ -58,8 +56,8 @@ SimDrive::SimDrive(const SimSensorSetup& setup, DriveConfig config)
   }
   omega_.assign(joints_.size(), 0.0);
   positions_.assign(joints_.size(), 0.0);
-  odom_frame_ = tc::resolveFrame(setup.tf_prefix, c.odometry_frame);
-  base_frame_ = tc::resolveFrame(setup.tf_prefix, c.robot_base_frame);
+  odom_frame_ = resolveFrame(setup.tf_prefix, c.odometry_frame);
+  base_frame_ = resolveFrame(setup.tf_prefix, c.robot_base_frame);
   stat().name = c.name;
   stat().target = c.update_rate;
 }

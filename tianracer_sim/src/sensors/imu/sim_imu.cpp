@@ -1,10 +1,8 @@
 #include "tianracer_sim/sensors/imu/sim_imu.h"
 
-#include <tianracer_control/frames.h>
+#include <tianracer_control/naming.h>
 
 namespace tianracer_sim {
-
-namespace tc = tianracer_control;
 
 namespace {
 
@@ -50,7 +48,7 @@ SimImu::SimImu(const SimSensorSetup& setup, ImuConfig config)
     : SimSensor(config.model_plugin ? "imu_plugin" : "imu", config.name,
                 setup.linkRef(config.link), setup.model_name),
       sensor_((config.seed = setup.seed + 301 + static_cast<std::uint64_t>(setup.index),
-               config.frame_name = tc::resolveFrame(setup.tf_prefix, config.frame_name),
+               config.frame_name = resolveFrame(setup.tf_prefix, config.frame_name),
                setup.check_link(config.link), config),
               setup.gravity) {
   schedule_.period = periodOf(sensor_.config().publishRate());

@@ -1,10 +1,8 @@
 #include "tianracer_sim/sensors/p3d/sim_p3d.h"
 
-#include <tianracer_control/frames.h>
+#include <tianracer_control/naming.h>
 
 namespace tianracer_sim {
-
-namespace tc = tianracer_control;
 
 namespace {
 
@@ -32,8 +30,8 @@ SimP3d::SimP3d(const SimSensorSetup& setup, P3dConfig config)
                config)) {
   const P3dConfig& c = sensor_.config();
   // Frames as the sim's others: tf_prefix on links, world as it is.
-  frame_ = c.reference_link.empty() ? c.frame_name : tc::resolveFrame(setup.tf_prefix, c.reference_link);
-  child_ = tc::resolveFrame(setup.tf_prefix, c.link);
+  frame_ = c.reference_link.empty() ? c.frame_name : resolveFrame(setup.tf_prefix, c.reference_link);
+  child_ = resolveFrame(setup.tf_prefix, c.link);
   schedule_.period = periodOf(c.update_rate);
   stat().name = c.name;
   stat().target = c.update_rate;

@@ -1,10 +1,8 @@
 #include "tianracer_sim/sensors/ray/sim_ray.h"
 
-#include <tianracer_control/frames.h>
+#include <tianracer_control/naming.h>
 
 namespace tianracer_sim {
-
-namespace tc = tianracer_control;
 
 namespace {
 
@@ -25,14 +23,14 @@ std::vector<SensorTopic> blockLaserTopics(const SensorSpec& sensor, const std::s
 std::unique_ptr<SimSensor> makeLidar(const SimSensorSetup& setup) {
   RaySensorConfig config = parseRaySensorConfig(*setup.spec, setup.warn);
   config.seed = setup.seed + static_cast<std::uint64_t>(setup.index);
-  config.frame_name = tc::resolveFrame(setup.tf_prefix, config.frame_name);
+  config.frame_name = resolveFrame(setup.tf_prefix, config.frame_name);
   return std::make_unique<SimLidar>(setup, std::move(config));
 }
 
 std::unique_ptr<SimSensor> makeRange(const SimSensorSetup& setup) {
   RangeConfig config = parseRangeConfig(*setup.spec, setup.warn);
   config.seed = setup.seed + 501 + static_cast<std::uint64_t>(setup.index);
-  config.frame_name = tc::resolveFrame(setup.tf_prefix, config.frame_name);
+  config.frame_name = resolveFrame(setup.tf_prefix, config.frame_name);
   if (config.topic_name.empty()) return nullptr;  // gazebo_ros_range: no topic, nothing published
   return std::make_unique<SimRange>(setup, std::move(config));
 }
@@ -40,7 +38,7 @@ std::unique_ptr<SimSensor> makeRange(const SimSensorSetup& setup) {
 std::unique_ptr<SimSensor> makeBlockLaser(const SimSensorSetup& setup) {
   BlockLaserConfig config = parseBlockLaserConfig(*setup.spec, setup.warn);
   config.seed = setup.seed + 601 + static_cast<std::uint64_t>(setup.index);
-  config.frame_name = tc::resolveFrame(setup.tf_prefix, config.frame_name);
+  config.frame_name = resolveFrame(setup.tf_prefix, config.frame_name);
   if (config.topic_name.empty()) return nullptr;
   return std::make_unique<SimBlockLaser>(setup, std::move(config));
 }

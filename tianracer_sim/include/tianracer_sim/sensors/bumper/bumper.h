@@ -15,7 +15,7 @@
 #include <Eigen/Geometry>
 
 #include "tianracer_sim/model/robot_model.h"
-#include "tianracer_sim/model/sensor_topics.h"
+#include "tianracer_sim/sensors/sensor_topics.h"
 #include "tianracer_sim/sensors/link_data.h"  // LinkContact
 
 namespace tianracer_sim {

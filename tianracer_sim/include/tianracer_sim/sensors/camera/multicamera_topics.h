@@ -7,7 +7,7 @@
 
 #include "tianracer_sim/common/warning.h"
 #include "tianracer_sim/model/robot_model.h"
-#include "tianracer_sim/model/sensor_topics.h"
+#include "tianracer_sim/sensors/sensor_topics.h"
 
 namespace tianracer_sim {
 

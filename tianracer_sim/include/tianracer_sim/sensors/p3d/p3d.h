@@ -21,7 +21,7 @@
 #include <Eigen/Geometry>
 
 #include "tianracer_sim/model/robot_model.h"
-#include "tianracer_sim/model/sensor_topics.h"
+#include "tianracer_sim/sensors/sensor_topics.h"
 #include "tianracer_sim/sensors/link_data.h"  // LinkState
 
 namespace tianracer_sim {

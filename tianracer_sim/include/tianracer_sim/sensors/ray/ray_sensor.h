@@ -13,7 +13,7 @@
 #include <Eigen/Geometry>
 
 #include "tianracer_sim/model/robot_model.h"  // SensorSpec, SensorError, WarningSink
-#include "tianracer_sim/model/sensor_topics.h"
+#include "tianracer_sim/sensors/sensor_topics.h"
 
 namespace tianracer_sim {
 

@@ -1,4 +1,4 @@
-#include "tianracer_control/frames.h"
+#include "tianracer_control/naming.h"
 
 namespace tianracer_control {
 
@@ -15,6 +15,17 @@ std::string resolveFrame(const std::string& prefix, const std::string& frame) {
   const std::string p = stripSlashes(prefix);
   if (p.empty()) return frame;
   return p + "/" + frame;
+}
+
+std::string resolveTopic(const std::string& ns, const std::string& name) {
+  std::string joined = (!name.empty() && name[0] == '/') ? name : "/" + ns + "/" + name;
+  std::string out;
+  for (char c : joined) {
+    if (c == '/' && !out.empty() && out.back() == '/') continue;
+    out.push_back(c);
+  }
+  if (out.size() > 1 && out.back() == '/') out.pop_back();
+  return out;
 }
 
 }  // namespace tianracer_control
