@@ -16,6 +16,7 @@
 #include "tianracer_control/cmd_vel.h"
 #include "tianracer_control/ros/geometry_params.h"
 #include "tianracer_control/ros/msg_conversion.h"
+#include "tianracer_control/ros/node_main.h"
 
 namespace tianracer_control {
 
@@ -79,18 +80,18 @@ class CmdVelNode {
     const std::string cmd_vel_topic = pnh.param<std::string>("cmd_vel_topic", "cmd_vel");
     const std::string ackermann_topic =
         pnh.param<std::string>("ackermann_topic", "ackermann_cmd");
-    const std::string left_steer = pnh.param<std::string>(
-        "left_steering_topic",
-        commandTopic(ns, control_ns, joints.left_hinge, "left_steering_hinge_position_controller"));
-    const std::string right_steer = pnh.param<std::string>(
-        "right_steering_topic",
-        commandTopic(ns, control_ns, joints.right_hinge, "right_steering_hinge_position_controller"));
-    const std::string left_wheel = pnh.param<std::string>(
-        "left_rear_wheel_topic",
-        commandTopic(ns, control_ns, joints.left_rear_wheel, "left_rear_wheel_velocity_controller"));
-    const std::string right_wheel = pnh.param<std::string>(
-        "right_rear_wheel_topic",
-        commandTopic(ns, control_ns, joints.right_rear_wheel, "right_rear_wheel_velocity_controller"));
+    // Each wheel's command topic: ~<param>, else the one its controller gets (commandTopic).
+    auto command_topic = [&](const char* param, const std::string& joint, const char* fallback) {
+      return pnh.param<std::string>(param, commandTopic(ns, control_ns, joint, fallback));
+    };
+    const std::string left_steer = command_topic("left_steering_topic", joints.left_hinge,
+                                                 "left_steering_hinge_position_controller");
+    const std::string right_steer = command_topic("right_steering_topic", joints.right_hinge,
+                                                  "right_steering_hinge_position_controller");
+    const std::string left_wheel = command_topic("left_rear_wheel_topic", joints.left_rear_wheel,
+                                                 "left_rear_wheel_velocity_controller");
+    const std::string right_wheel = command_topic(
+        "right_rear_wheel_topic", joints.right_rear_wheel, "right_rear_wheel_velocity_controller");
 
     ROS_INFO_STREAM("angular.z is the "
                     << (options.angular_z_is_steering_angle ? "steering angle (rad)"
@@ -228,13 +229,5 @@ class CmdVelNode {
 }  // namespace tianracer_control
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "cmd_vel_node");
-  try {
-    tianracer_control::CmdVelNode node{ros::NodeHandle(), ros::NodeHandle("~")};
-    ros::spin();
-  } catch (const std::exception& e) {
-    ROS_FATAL("%s", e.what());
-    return 1;
-  }
-  return 0;
+  return tianracer_control::runNode<tianracer_control::CmdVelNode>(argc, argv, "cmd_vel_node");
 }

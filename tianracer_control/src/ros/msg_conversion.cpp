@@ -5,14 +5,12 @@
 namespace tianracer_control {
 
 namespace {
-geometry_msgs::Quaternion yawToQuaternion(double yaw) {
-  geometry_msgs::Quaternion q;
-  q.x = 0.0;
-  q.y = 0.0;
-  q.z = std::sin(0.5 * yaw);
-  q.w = std::cos(0.5 * yaw);
-  return q;
+
+/// The planar pose's rotation: yaw about z.
+Eigen::Quaterniond yawToQuaternion(double yaw) {
+  return Eigen::Quaterniond(std::cos(0.5 * yaw), 0.0, 0.0, std::sin(0.5 * yaw));
 }
+
 }  // namespace
 
 std_msgs::Float64 toFloat64Msg(double value) {
@@ -83,21 +81,49 @@ bool fromJointStateMsg(const sensor_msgs::JointState& msg, const AckermannJointN
   return true;
 }
 
+void toQuaternionMsg(const Eigen::Quaterniond& q, geometry_msgs::Quaternion* msg) {
+  msg->x = q.x();
+  msg->y = q.y();
+  msg->z = q.z();
+  msg->w = q.w();
+}
+
+void fillOdometryMsg(const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
+                     const Eigen::Vector3d& linear, const Eigen::Vector3d& angular,
+                     const ros::Time& stamp, const std::string& frame,
+                     const std::string& child_frame, nav_msgs::Odometry* msg) {
+  msg->header.stamp = stamp;
+  msg->header.frame_id = frame;
+  msg->child_frame_id = child_frame;
+  toXyzMsg(position, &msg->pose.pose.position);
+  toQuaternionMsg(orientation, &msg->pose.pose.orientation);
+  toXyzMsg(linear, &msg->twist.twist.linear);
+  toXyzMsg(angular, &msg->twist.twist.angular);
+}
+
+geometry_msgs::TransformStamped toTransformMsg(const Eigen::Vector3d& translation,
+                                               const Eigen::Quaterniond& rotation,
+                                               const ros::Time& stamp, const std::string& frame,
+                                               const std::string& child_frame) {
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = stamp;
+  t.header.frame_id = frame;
+  t.child_frame_id = child_frame;
+  toXyzMsg(translation, &t.transform.translation);
+  toQuaternionMsg(rotation, &t.transform.rotation);
+  return t;
+}
+
 nav_msgs::Odometry toOdometryMsg(const BicycleOdometry& odometry, const ros::Time& stamp,
                                  const std::string& odom_frame, const std::string& base_frame,
                                  const CovarianceDiagonal& pose_covariance,
                                  const CovarianceDiagonal& twist_covariance) {
   nav_msgs::Odometry m;
-  m.header.stamp = stamp;
-  m.header.frame_id = odom_frame;
-  m.child_frame_id = base_frame;
-  m.pose.pose.position.x = odometry.x();
-  m.pose.pose.position.y = odometry.y();
-  m.pose.pose.position.z = 0.0;
-  m.pose.pose.orientation = yawToQuaternion(odometry.yaw());
-  m.twist.twist.linear.x = odometry.linearVelocity();
-  m.twist.twist.linear.y = odometry.lateralVelocity();
-  m.twist.twist.angular.z = odometry.angularVelocity();
+  fillOdometryMsg(Eigen::Vector3d(odometry.x(), odometry.y(), 0.0),
+                  yawToQuaternion(odometry.yaw()),
+                  Eigen::Vector3d(odometry.linearVelocity(), odometry.lateralVelocity(), 0.0),
+                  Eigen::Vector3d(0.0, 0.0, odometry.angularVelocity()), stamp, odom_frame,
+                  base_frame, &m);
   for (int i = 0; i < 6; ++i) {
     m.pose.covariance[i * 6 + i] = pose_covariance[i];
     m.twist.covariance[i * 6 + i] = twist_covariance[i];
@@ -109,15 +135,8 @@ geometry_msgs::TransformStamped toTransformMsg(const BicycleOdometry& odometry,
                                                const ros::Time& stamp,
                                                const std::string& odom_frame,
                                                const std::string& base_frame) {
-  geometry_msgs::TransformStamped t;
-  t.header.stamp = stamp;
-  t.header.frame_id = odom_frame;
-  t.child_frame_id = base_frame;
-  t.transform.translation.x = odometry.x();
-  t.transform.translation.y = odometry.y();
-  t.transform.translation.z = 0.0;
-  t.transform.rotation = yawToQuaternion(odometry.yaw());
-  return t;
+  return toTransformMsg(Eigen::Vector3d(odometry.x(), odometry.y(), 0.0),
+                        yawToQuaternion(odometry.yaw()), stamp, odom_frame, base_frame);
 }
 
 }  // namespace tianracer_control

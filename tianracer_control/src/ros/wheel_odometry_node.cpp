@@ -13,6 +13,7 @@
 #include "tianracer_control/naming.h"
 #include "tianracer_control/ros/geometry_params.h"
 #include "tianracer_control/ros/msg_conversion.h"
+#include "tianracer_control/ros/node_main.h"
 
 namespace tianracer_control {
 
@@ -156,13 +157,6 @@ class WheelOdometryNode {
 }  // namespace tianracer_control
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "wheel_odometry_node");
-  try {
-    tianracer_control::WheelOdometryNode node{ros::NodeHandle(), ros::NodeHandle("~")};
-    ros::spin();
-  } catch (const std::exception& e) {
-    ROS_FATAL("%s", e.what());
-    return 1;
-  }
-  return 0;
+  return tianracer_control::runNode<tianracer_control::WheelOdometryNode>(argc, argv,
+                                                                          "wheel_odometry_node");
 }

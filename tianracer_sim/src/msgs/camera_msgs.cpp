@@ -31,13 +31,8 @@ void fillImage(const std::vector<uint8_t>& data, int width, int height, int byte
 void fillDepthImageMeta(const DepthCameraSensor& camera, const ros::Time& stamp,
                         sensor_msgs::Image* msg) {
   const CameraConfig& c = camera.config().camera;
-  msg->header.stamp = stamp;
-  msg->header.frame_id = c.opticalFrame();
-  msg->width = static_cast<uint32_t>(c.width);
-  msg->height = static_cast<uint32_t>(c.height);
-  msg->encoding = sensor_msgs::image_encodings::TYPE_32FC1;
-  msg->is_bigendian = 0;
-  msg->step = static_cast<uint32_t>(c.width * sizeof(float));
+  fillImageMeta(c.width, c.height, sizeof(float), sensor_msgs::image_encodings::TYPE_32FC1.c_str(),
+                c.opticalFrame(), stamp, msg);
 }
 
 // Every field but data.
@@ -152,34 +147,33 @@ void toPointCloud2Deferred(const DepthCameraSensor& camera, const ros::Time& sta
   msg->writer = &camera;
 }
 
+namespace {
+
+/// A conversion into an existing message, as one returning a new message.
+template <class Msg, class Source>
+Msg newMsg(void (*fill)(const Source&, const ros::Time&, Msg*), const Source& source,
+           const ros::Time& stamp) {
+  Msg msg;
+  fill(source, stamp, &msg);
+  return msg;
+}
+
+}  // namespace
+
 sensor_msgs::Image toImage(const CameraSensor& camera, const ros::Time& stamp) {
-  sensor_msgs::Image msg;
-  toImage(camera, stamp, &msg);
-  return msg;
+  return newMsg<sensor_msgs::Image>(toImage, camera, stamp);
 }
-
 sensor_msgs::Image toImage(const DepthCameraSensor& camera, const ros::Time& stamp) {
-  sensor_msgs::Image msg;
-  toImage(camera, stamp, &msg);
-  return msg;
+  return newMsg<sensor_msgs::Image>(toImage, camera, stamp);
 }
-
 sensor_msgs::Image toDepthImage(const DepthCameraSensor& camera, const ros::Time& stamp) {
-  sensor_msgs::Image msg;
-  toDepthImage(camera, stamp, &msg);
-  return msg;
+  return newMsg<sensor_msgs::Image>(toDepthImage, camera, stamp);
 }
-
 sensor_msgs::CameraInfo toCameraInfo(const CameraInfo& info, const ros::Time& stamp) {
-  sensor_msgs::CameraInfo msg;
-  toCameraInfo(info, stamp, &msg);
-  return msg;
+  return newMsg<sensor_msgs::CameraInfo>(toCameraInfo, info, stamp);
 }
-
 sensor_msgs::PointCloud2 toPointCloud2(const DepthCameraSensor& camera, const ros::Time& stamp) {
-  sensor_msgs::PointCloud2 msg;
-  toPointCloud2(camera, stamp, &msg);
-  return msg;
+  return newMsg<sensor_msgs::PointCloud2>(toPointCloud2, camera, stamp);
 }
 
 }  // namespace tianracer_sim

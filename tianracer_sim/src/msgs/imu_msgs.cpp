@@ -1,5 +1,7 @@
 #include "tianracer_sim/ros/imu_msgs.h"
 
+#include <tianracer_control/ros/msg_conversion.h>
+
 namespace tianracer_sim {
 
 void toImu(const ImuReading& r, const ros::Time& stamp, sensor_msgs::Imu* msg) {
@@ -8,12 +10,8 @@ void toImu(const ImuReading& r, const ros::Time& stamp, sensor_msgs::Imu* msg) {
   msg->orientation.y = r.orientation_xyzw[1];
   msg->orientation.z = r.orientation_xyzw[2];
   msg->orientation.w = r.orientation_xyzw[3];
-  msg->angular_velocity.x = r.angular_velocity.x();
-  msg->angular_velocity.y = r.angular_velocity.y();
-  msg->angular_velocity.z = r.angular_velocity.z();
-  msg->linear_acceleration.x = r.linear_acceleration.x();
-  msg->linear_acceleration.y = r.linear_acceleration.y();
-  msg->linear_acceleration.z = r.linear_acceleration.z();
+  tianracer_control::toXyzMsg(r.angular_velocity, &msg->angular_velocity);
+  tianracer_control::toXyzMsg(r.linear_acceleration, &msg->linear_acceleration);
   for (int i = 0; i < 9; ++i) {
     msg->orientation_covariance[i] = r.orientation_covariance[i];
     msg->angular_velocity_covariance[i] = r.angular_velocity_covariance[i];

@@ -2,65 +2,33 @@
 
 #include <cmath>
 
+#include <tianracer_control/ros/msg_conversion.h>
+
 namespace tianracer_sim {
+
+namespace tc = tianracer_control;
 
 geometry_msgs::Pose toPose(const Eigen::Isometry3d& X) {
   geometry_msgs::Pose p;
-  p.position.x = X.translation().x();
-  p.position.y = X.translation().y();
-  p.position.z = X.translation().z();
-  const Eigen::Quaterniond q(X.linear());
-  p.orientation.x = q.x();
-  p.orientation.y = q.y();
-  p.orientation.z = q.z();
-  p.orientation.w = q.w();
+  tc::toXyzMsg(X.translation(), &p.position);
+  tc::toQuaternionMsg(Eigen::Quaterniond(X.linear()), &p.orientation);
   return p;
 }
 
 geometry_msgs::Twist toTwistMsg(const Twist& twist) {
   geometry_msgs::Twist t;
-  t.linear.x = twist.linear.x();
-  t.linear.y = twist.linear.y();
-  t.linear.z = twist.linear.z();
-  t.angular.x = twist.angular.x();
-  t.angular.y = twist.angular.y();
-  t.angular.z = twist.angular.z();
+  tc::toXyzMsg(twist.linear, &t.linear);
+  tc::toXyzMsg(twist.angular, &t.angular);
   return t;
 }
-
-namespace {
-
-/// Header, pose and twist of an odometry message (the covariances are the caller's).
-void fillOdometry(const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
-                  const Eigen::Vector3d& linear, const Eigen::Vector3d& angular,
-                  const ros::Time& stamp, const std::string& frame,
-                  const std::string& child_frame, nav_msgs::Odometry* msg) {
-  msg->header.stamp = stamp;
-  msg->header.frame_id = frame;
-  msg->child_frame_id = child_frame;
-  msg->pose.pose.position.x = position.x();
-  msg->pose.pose.position.y = position.y();
-  msg->pose.pose.position.z = position.z();
-  msg->pose.pose.orientation.x = orientation.x();
-  msg->pose.pose.orientation.y = orientation.y();
-  msg->pose.pose.orientation.z = orientation.z();
-  msg->pose.pose.orientation.w = orientation.w();
-  msg->twist.twist.linear.x = linear.x();
-  msg->twist.twist.linear.y = linear.y();
-  msg->twist.twist.linear.z = linear.z();
-  msg->twist.twist.angular.x = angular.x();
-  msg->twist.twist.angular.y = angular.y();
-  msg->twist.twist.angular.z = angular.z();
-}
-
-}  // namespace
 
 void toGroundTruth(const Eigen::Isometry3d& X_WB, const Twist& twist_W, const ros::Time& stamp,
                    const std::string& frame, const std::string& child_frame,
                    nav_msgs::Odometry* msg) {
   const Eigen::Matrix3d R_BW = X_WB.linear().transpose();
-  fillOdometry(X_WB.translation(), Eigen::Quaterniond(X_WB.linear()), R_BW * twist_W.linear,
-               R_BW * twist_W.angular, stamp, frame, child_frame, msg);
+  tc::fillOdometryMsg(X_WB.translation(), Eigen::Quaterniond(X_WB.linear()),
+                      R_BW * twist_W.linear, R_BW * twist_W.angular, stamp, frame, child_frame,
+                      msg);
 }
 
 bool fromPose(const geometry_msgs::Pose& pose, Eigen::Isometry3d* X) {
@@ -86,7 +54,8 @@ bool fromTwistMsg(const geometry_msgs::Twist& msg, Twist* twist) {
 
 void toOdometry(const P3dReading& r, const ros::Time& stamp, const std::string& frame,
                 const std::string& child_frame, nav_msgs::Odometry* msg) {
-  fillOdometry(r.position, r.orientation, r.linear, r.angular, stamp, frame, child_frame, msg);
+  tc::fillOdometryMsg(r.position, r.orientation, r.linear, r.angular, stamp, frame, child_frame,
+                      msg);
   for (int i = 0; i < 6; ++i) {
     msg->pose.covariance[7 * i] = r.variance;
     msg->twist.covariance[7 * i] = r.variance;
@@ -95,7 +64,8 @@ void toOdometry(const P3dReading& r, const ros::Time& stamp, const std::string& 
 
 void toOdometry(const DriveOdometry& o, const ros::Time& stamp, const std::string& frame,
                 const std::string& child_frame, nav_msgs::Odometry* msg) {
-  fillOdometry(o.position, o.orientation, o.linear, o.angular, stamp, frame, child_frame, msg);
+  tc::fillOdometryMsg(o.position, o.orientation, o.linear, o.angular, stamp, frame, child_frame,
+                      msg);
   for (std::size_t i = 0; i < 36; ++i) {
     msg->pose.covariance[i] = o.pose_covariance[i];
     msg->twist.covariance[i] = o.twist_covariance[i];
@@ -105,19 +75,8 @@ void toOdometry(const DriveOdometry& o, const ros::Time& stamp, const std::strin
 geometry_msgs::TransformStamped toTransform(const Eigen::Isometry3d& X, const ros::Time& stamp,
                                             const std::string& frame,
                                             const std::string& child_frame) {
-  geometry_msgs::TransformStamped t;
-  t.header.stamp = stamp;
-  t.header.frame_id = frame;
-  t.child_frame_id = child_frame;
-  t.transform.translation.x = X.translation().x();
-  t.transform.translation.y = X.translation().y();
-  t.transform.translation.z = X.translation().z();
-  const Eigen::Quaterniond q(X.rotation());
-  t.transform.rotation.x = q.x();
-  t.transform.rotation.y = q.y();
-  t.transform.rotation.z = q.z();
-  t.transform.rotation.w = q.w();
-  return t;
+  return tc::toTransformMsg(X.translation(), Eigen::Quaterniond(X.rotation()), stamp, frame,
+                            child_frame);
 }
 
 }  // namespace tianracer_sim

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "tianracer_sim/Contact.h"
+#include "tianracer_sim/ros/contact_msgs.h"
 
 namespace tianracer_sim {
 
@@ -32,18 +32,8 @@ void ContactPublisher::publish(const PhysicsWorld& world, double t) {
     if (r == robots_.end() || *r->subscribers == 0) continue;
     const RobotContact& c = d.contact;
     tianracer_sim::Contact msg;
-    msg.stamp = ros::Time(t);
-    msg.robot = r->name;
-    msg.link = world.robot(r->id).tree().bodies.at(c.body).link;
+    toContact(c, ros::Time(t), r->name, world.robot(r->id).tree().bodies.at(c.body).link, &msg);
     tracker_.otherOf(world, c, &msg.other_model, &msg.other_link);
-    msg.position.x = c.position_W.x();
-    msg.position.y = c.position_W.y();
-    msg.position.z = c.position_W.z();
-    msg.normal.x = c.normal_W.x();
-    msg.normal.y = c.normal_W.y();
-    msg.normal.z = c.normal_W.z();
-    msg.depth = c.depth;
-    msg.impulse = c.impulse;
     r->pub.publish(msg);
   }
 }

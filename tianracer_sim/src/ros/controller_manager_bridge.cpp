@@ -11,10 +11,18 @@ namespace cmm = controller_manager_msgs;
 
 namespace {
 
-// controller_manager logs each error on its own line.
-void logErrorLines(const std::string& text) {
-  std::istringstream lines(text);
-  for (std::string line; std::getline(lines, line);) ROS_ERROR_STREAM(line);
+/// Runs `change` of the controllers: false when it throws ControllerError, whose text is
+/// logged as controller_manager logs errors, each on its own line.
+template <class Change>
+bool logErrors(Change&& change) {
+  try {
+    change();
+  } catch (const tc::ControllerError& e) {
+    std::istringstream lines(e.what());
+    for (std::string line; std::getline(lines, line);) ROS_ERROR_STREAM(line);
+    return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -23,17 +31,14 @@ ControllerManagerBridge::ControllerManagerBridge(ros::NodeHandle robot_nh, std::
                                                  Simulator& sim, ModelId robot,
                                                  std::function<void()> changed)
     : control_ns_(std::move(control_ns)), sim_(sim), robot_(robot), changed_(std::move(changed)) {
-  ros::NodeHandle cm(robot_nh, "controller_manager");
-  services_.push_back(cm.advertiseService("list_controllers", &ControllerManagerBridge::onList, this));
-  services_.push_back(
-      cm.advertiseService("list_controller_types", &ControllerManagerBridge::onListTypes, this));
-  services_.push_back(cm.advertiseService("load_controller", &ControllerManagerBridge::onLoad, this));
-  services_.push_back(
-      cm.advertiseService("unload_controller", &ControllerManagerBridge::onUnload, this));
-  services_.push_back(
-      cm.advertiseService("switch_controller", &ControllerManagerBridge::onSwitch, this));
-  services_.push_back(cm.advertiseService("reload_controller_libraries",
-                                          &ControllerManagerBridge::onReload, this));
+  ServiceAdvertiser<ControllerManagerBridge> serve(ros::NodeHandle(robot_nh, "controller_manager"),
+                                                   this, &services_);
+  serve("list_controllers", &ControllerManagerBridge::onList);
+  serve("list_controller_types", &ControllerManagerBridge::onListTypes);
+  serve("load_controller", &ControllerManagerBridge::onLoad);
+  serve("unload_controller", &ControllerManagerBridge::onUnload);
+  serve("switch_controller", &ControllerManagerBridge::onSwitch);
+  serve("reload_controller_libraries", &ControllerManagerBridge::onReload);
 }
 
 const tc::ControllerSet& ControllerManagerBridge::controllers() const {
@@ -86,37 +91,27 @@ bool ControllerManagerBridge::load(const std::string& name) {
               name.c_str(), controller_nh.getNamespace().c_str());
     return false;
   }
-  try {
-    sim_.loadController(robot_, tc::toControllerSpec(name, params));
-  } catch (const tc::ControllerError& e) {
-    logErrorLines(e.what());
-    return false;
-  }
+  return logErrors([&] { sim_.loadController(robot_, tc::toControllerSpec(name, params)); });
+}
+
+bool ControllerManagerBridge::answer(bool ok, uint8_t* res_ok) {
+  *res_ok = ok;
+  if (ok && changed_) changed_();
   return true;
 }
 
 bool ControllerManagerBridge::onLoad(cmm::LoadController::Request& req,
                                      cmm::LoadController::Response& res) {
-  res.ok = load(req.name);
-  if (res.ok && changed_) changed_();
-  return true;
+  return answer(load(req.name), &res.ok);
 }
 
 bool ControllerManagerBridge::unload(const std::string& name) {
-  try {
-    sim_.unloadController(robot_, name);
-  } catch (const tc::ControllerError& e) {
-    logErrorLines(e.what());
-    return false;
-  }
-  return true;
+  return logErrors([&] { sim_.unloadController(robot_, name); });
 }
 
 bool ControllerManagerBridge::onUnload(cmm::UnloadController::Request& req,
                                        cmm::UnloadController::Response& res) {
-  res.ok = unload(req.name);
-  if (res.ok && changed_) changed_();
-  return true;
+  return answer(unload(req.name), &res.ok);
 }
 
 bool ControllerManagerBridge::switchControllers(const std::vector<std::string>& start,
@@ -131,21 +126,14 @@ bool ControllerManagerBridge::switchControllers(const std::vector<std::string>& 
   const tc::Strictness s = strictness == cmm::SwitchController::Request::STRICT
                                ? tc::Strictness::kStrict
                                : tc::Strictness::kBestEffort;
-  try {
-    sim_.switchControllers(robot_, start, stop, s);
-  } catch (const tc::ControllerError& e) {
-    logErrorLines(e.what());
-    return false;
-  }
-  return true;
+  return logErrors([&] { sim_.switchControllers(robot_, start, stop, s); });
 }
 
 bool ControllerManagerBridge::onSwitch(cmm::SwitchController::Request& req,
                                        cmm::SwitchController::Response& res) {
   // start_asap and timeout: every joint is ready at once here, so nothing waits.
-  res.ok = switchControllers(req.start_controllers, req.stop_controllers, req.strictness);
-  if (res.ok && changed_) changed_();
-  return true;
+  return answer(switchControllers(req.start_controllers, req.stop_controllers, req.strictness),
+                &res.ok);
 }
 
 bool ControllerManagerBridge::onReload(cmm::ReloadControllerLibraries::Request& req,

@@ -7,6 +7,7 @@
 
 #include <tinyxml2.h>
 
+#include "gazebo_answer.h"
 #include "tianracer_sim/common/xml_reader.h"
 #include "tianracer_sim/ros/state_msgs.h"
 
@@ -82,32 +83,25 @@ GazeboInterface::GazeboInterface(ros::NodeHandle nh, Simulator& sim, const Optio
   set_model_state_sub_ =
       nh.subscribe("set_model_state", 10, &GazeboInterface::onModelStateTopic, this);
   set_link_state_sub_ = nh.subscribe("set_link_state", 10, &GazeboInterface::onLinkStateTopic, this);
-  services_.push_back(nh.advertiseService("get_model_state", &GazeboInterface::getModelState, this));
-  services_.push_back(nh.advertiseService("set_model_state", &GazeboInterface::setModelState, this));
-  services_.push_back(nh.advertiseService("get_link_state", &GazeboInterface::getLinkState, this));
-  services_.push_back(nh.advertiseService("set_link_state", &GazeboInterface::setLinkState, this));
-  services_.push_back(
-      nh.advertiseService("get_model_properties", &GazeboInterface::getModelProperties, this));
-  services_.push_back(
-      nh.advertiseService("get_world_properties", &GazeboInterface::getWorldProperties, this));
-  services_.push_back(
-      nh.advertiseService("apply_body_wrench", &GazeboInterface::applyBodyWrench, this));
-  services_.push_back(
-      nh.advertiseService("clear_body_wrenches", &GazeboInterface::clearBodyWrenches, this));
-  services_.push_back(nh.advertiseService("pause_physics", &GazeboInterface::pausePhysics, this));
-  services_.push_back(
-      nh.advertiseService("unpause_physics", &GazeboInterface::unpausePhysics, this));
-  services_.push_back(
-      nh.advertiseService("reset_simulation", &GazeboInterface::resetSimulation, this));
-  services_.push_back(nh.advertiseService("reset_world", &GazeboInterface::resetWorld, this));
+  ServiceAdvertiser<GazeboInterface> serve(nh, this, &services_);
+  serve("get_model_state", &GazeboInterface::getModelState);
+  serve("set_model_state", &GazeboInterface::setModelState);
+  serve("get_link_state", &GazeboInterface::getLinkState);
+  serve("set_link_state", &GazeboInterface::setLinkState);
+  serve("get_model_properties", &GazeboInterface::getModelProperties);
+  serve("get_world_properties", &GazeboInterface::getWorldProperties);
+  serve("apply_body_wrench", &GazeboInterface::applyBodyWrench);
+  serve("clear_body_wrenches", &GazeboInterface::clearBodyWrenches);
+  serve("pause_physics", &GazeboInterface::pausePhysics);
+  serve("unpause_physics", &GazeboInterface::unpausePhysics);
+  serve("reset_simulation", &GazeboInterface::resetSimulation);
+  serve("reset_world", &GazeboInterface::resetWorld);
   if (spawner_) {
-    services_.push_back(
-        nh.advertiseService("spawn_urdf_model", &GazeboInterface::spawnUrdfModel, this));
-    services_.push_back(
-        nh.advertiseService("spawn_sdf_model", &GazeboInterface::spawnSdfModel, this));
-    services_.push_back(nh.advertiseService("delete_model", &GazeboInterface::deleteModel, this));
+    serve("spawn_urdf_model", &GazeboInterface::spawnUrdfModel);
+    serve("spawn_sdf_model", &GazeboInterface::spawnSdfModel);
+    serve("delete_model", &GazeboInterface::deleteModel);
   }
-  advertiseProperties(nh);
+  advertiseProperties(serve, nh);
   ROS_INFO("%s and %s at %g Hz (sim time)%s", model_states_pub_.getTopic().c_str(),
            link_states_pub_.getTopic().c_str(), options_.states_rate,
            options_.states_rate > 0.0 ? "" : " (every step)");
@@ -209,6 +203,14 @@ bool GazeboInterface::frameState(const std::string& name, EntityState* frame,
   return true;
 }
 
+GazeboInterface::Target GazeboInterface::target(const std::string& name, bool allow_model,
+                                                const std::string& reference_frame) const {
+  Target t;
+  t.ok = resolve(name, allow_model, &t.entity, &t.error) &&
+         frameState(reference_frame, &t.frame, &t.error);
+  return t;
+}
+
 std::vector<std::string> GazeboInterface::modelNames() const {
   std::vector<std::string> names;
   if (world_.ground_plane) names.push_back("ground_plane");
@@ -240,57 +242,44 @@ bool GazeboInterface::getModelState(gazebo_msgs::GetModelState::Request& req,
   res.header.stamp = ros::Time(sim_.time());
   res.header.frame_id = req.relative_entity_name;
   res.success = false;
-  Entity e;
-  EntityState frame;
-  std::string error;
-  if (!resolve(req.model_name, true, &e, &error) ||
-      !frameState(req.relative_entity_name, &frame, &error)) {
-    res.status_message = "get_model_state: " + error;
+  const Target t = target(req.model_name, true, req.relative_entity_name);
+  if (!t.ok) {
+    res.status_message = "get_model_state: " + t.error;
     return true;
   }
-  if (!e.link.empty()) {
+  if (!t.entity.link.empty()) {
     res.status_message = "get_model_state: '" + req.model_name +
                          "' is a link; use get_link_state or the model's name";
     return true;
   }
-  const EntityState s = relativeTo(stateOf(e), frame);
+  const EntityState s = relativeTo(stateOf(t.entity), t.frame);
   res.pose = toPose(s.X_WE);
   res.twist = toTwistMsg(s.V_WE);
-  res.success = true;
-  res.status_message = "GetModelState: got properties";
-  return true;
+  return succeeded(res, "GetModelState: got properties");
 }
 
 bool GazeboInterface::setModelState(gazebo_msgs::SetModelState::Request& req,
                                     gazebo_msgs::SetModelState::Response& res) {
   const gazebo_msgs::ModelState& m = req.model_state;
-  res.success = false;
-  Entity e;
-  EntityState frame;
-  std::string error;
-  EntityState in_frame;
-  if (!resolve(m.model_name, true, &e, &error) || !frameState(m.reference_frame, &frame, &error)) {
-    res.status_message = "set_model_state: " + error;
-  } else if (!e.link.empty()) {
-    res.status_message = "set_model_state: '" + m.model_name + "' is a link; use set_link_state";
-  } else if (!physicsOf(e)) {
-    res.status_message = "set_model_state: model '" + m.model_name +
-                         "' is static and cannot be moved";
-  } else if (!fromPose(m.pose, &in_frame.X_WE)) {
-    res.status_message = "set_model_state: pose of '" + m.model_name +
-                         "' is not finite or has a zero quaternion; state unchanged";
-  } else if (!fromTwistMsg(m.twist, &in_frame.V_WE)) {
-    res.status_message = "set_model_state: twist of '" + m.model_name +
-                         "' is not finite; state unchanged";
-  } else if (!setBase(physicsOf(e), fromFrame(in_frame, frame), true, &error)) {
-    res.status_message = "set_model_state: " + error + " for '" + m.model_name +
-                         "'; state unchanged";
-  } else {
-    res.success = true;
-    res.status_message = "SetModelState: set model state done";
-  }
-  if (!res.success) ROS_WARN_STREAM(res.status_message);
-  return true;
+  return answer(res, {"set_model_state: "}, [&] {
+    const Target t = target(m.model_name, true, m.reference_frame);
+    if (!t.ok) throw InputError(t.error);
+    if (!t.entity.link.empty())
+      throw InputError("'" + m.model_name + "' is a link; use set_link_state");
+    if (!physicsOf(t.entity))
+      throw InputError("model '" + m.model_name + "' is static and cannot be moved");
+    EntityState in_frame;
+    if (!fromPose(m.pose, &in_frame.X_WE)) {
+      throw InputError("pose of '" + m.model_name +
+                       "' is not finite or has a zero quaternion; state unchanged");
+    }
+    if (!fromTwistMsg(m.twist, &in_frame.V_WE))
+      throw InputError("twist of '" + m.model_name + "' is not finite; state unchanged");
+    std::string error;
+    if (!setBase(physicsOf(t.entity), fromFrame(in_frame, t.frame), true, &error))
+      throw InputError(error + " for '" + m.model_name + "'; state unchanged");
+    return "SetModelState: set model state done";
+  });
 }
 
 bool GazeboInterface::getLinkState(gazebo_msgs::GetLinkState::Request& req,
@@ -298,58 +287,45 @@ bool GazeboInterface::getLinkState(gazebo_msgs::GetLinkState::Request& req,
   res.success = false;
   res.link_state.link_name = req.link_name;
   res.link_state.reference_frame = req.reference_frame;
-  Entity e;
-  EntityState frame;
-  std::string error;
-  if (!resolve(req.link_name, false, &e, &error) ||
-      !frameState(req.reference_frame, &frame, &error)) {
-    res.status_message = "get_link_state: " + error;
+  const Target t = target(req.link_name, false, req.reference_frame);
+  if (!t.ok) {
+    res.status_message = "get_link_state: " + t.error;
     return true;
   }
-  const EntityState s = relativeTo(stateOf(e), frame);
+  const EntityState s = relativeTo(stateOf(t.entity), t.frame);
   res.link_state.pose = toPose(s.X_WE);
   res.link_state.twist = toTwistMsg(s.V_WE);
-  res.success = true;
-  res.status_message = "GetLinkState: got state";
-  return true;
+  return succeeded(res, "GetLinkState: got state");
 }
 
 bool GazeboInterface::setLinkState(gazebo_msgs::SetLinkState::Request& req,
                                    gazebo_msgs::SetLinkState::Response& res) {
   const gazebo_msgs::LinkState& l = req.link_state;
-  res.success = false;
-  Entity e;
-  EntityState frame;
-  std::string error;
   bool finite = false;
   const EntityState in_frame = stateFromMsg(l.pose, l.twist, &finite);
-  if (!resolve(l.link_name, false, &e, &error) || !frameState(l.reference_frame, &frame, &error)) {
-    res.status_message = "set_link_state: " + error;
-  } else if (!physicsOf(e)) {
-    res.status_message = "set_link_state: '" + l.link_name +
-                         "' belongs to a static model and cannot be moved";
-  } else if (!finite) {
-    res.status_message = "set_link_state: pose or twist of '" + l.link_name +
-                         "' is not finite or has a zero quaternion; state unchanged";
-  } else {
+  return answer(res, {"set_link_state: "}, [&] {
+    const Target t = target(l.link_name, false, l.reference_frame);
+    if (!t.ok) throw InputError(t.error);
+    if (!physicsOf(t.entity))
+      throw InputError("'" + l.link_name + "' belongs to a static model and cannot be moved");
+    if (!finite) {
+      throw InputError("pose or twist of '" + l.link_name +
+                       "' is not finite or has a zero quaternion; state unchanged");
+    }
     // The whole robot moves rigidly so that the link gets the state (joints kept): gazebo
     // moves the one link and lets the joints pull the others after it.
-    const PhysicsRobot& pr = *physicsOf(e);
-    const EntityState L = fromFrame(in_frame, frame);
-    const Eigen::Isometry3d X_LB = pr.linkPose(e.link).inverse() * pr.basePose();
+    const PhysicsRobot& pr = *physicsOf(t.entity);
+    const EntityState L = fromFrame(in_frame, t.frame);
+    const Eigen::Isometry3d X_LB = pr.linkPose(t.entity.link).inverse() * pr.basePose();
     EntityState B;
     B.X_WE = L.X_WE * X_LB;
     B.V_WE = shiftTwist(L.V_WE, L.X_WE.translation(), B.X_WE.translation());
-    if (!setBase(physicsOf(e), B, false, &error)) {
-      res.status_message = "set_link_state: " + error + " for '" + l.link_name +
-                           "' (its model's base); state unchanged";
-    } else {
-      res.success = true;
-      res.status_message = "SetLinkState: success";
+    std::string error;
+    if (!setBase(physicsOf(t.entity), B, false, &error)) {
+      throw InputError(error + " for '" + l.link_name + "' (its model's base); state unchanged");
     }
-  }
-  if (!res.success) ROS_WARN_STREAM(res.status_message);
-  return true;
+    return "SetLinkState: success";
+  });
 }
 
 void GazeboInterface::onModelStateTopic(const gazebo_msgs::ModelState::ConstPtr& msg) {
@@ -409,9 +385,7 @@ bool GazeboInterface::getModelProperties(gazebo_msgs::GetModelProperties::Reques
     if (!e.model->links.empty()) res.canonical_body_name = e.model->links.front().name;
     res.is_static = e.free == nullptr;
   }
-  res.success = true;
-  res.status_message = "GetModelProperties: got properties";
-  return true;
+  return succeeded(res, "GetModelProperties: got properties");
 }
 
 bool GazeboInterface::getWorldProperties(gazebo_msgs::GetWorldProperties::Request&,
@@ -419,9 +393,7 @@ bool GazeboInterface::getWorldProperties(gazebo_msgs::GetWorldProperties::Reques
   res.sim_time = sim_.time();
   res.model_names = modelNames();
   res.rendering_enabled = true;
-  res.success = true;
-  res.status_message = "GetWorldProperties: got properties";
-  return true;
+  return succeeded(res, "GetWorldProperties: got properties");
 }
 
 // --- wrenches -----------------------------------------------------------------------------------
@@ -429,15 +401,12 @@ bool GazeboInterface::getWorldProperties(gazebo_msgs::GetWorldProperties::Reques
 bool GazeboInterface::applyBodyWrench(gazebo_msgs::ApplyBodyWrench::Request& req,
                                       gazebo_msgs::ApplyBodyWrench::Response& res) {
   res.success = false;
-  Entity e;
-  EntityState frame;
-  std::string error;
   const auto& w = req.wrench;
   const auto& p = req.reference_point;
-  if (!resolve(req.body_name, false, &e, &error) ||
-      !frameState(req.reference_frame, &frame, &error)) {
-    res.status_message = "apply_body_wrench: " + error;
-  } else if (!physicsOf(e)) {
+  const Target t = target(req.body_name, false, req.reference_frame);
+  if (!t.ok) {
+    res.status_message = "apply_body_wrench: " + t.error;
+  } else if (!physicsOf(t.entity)) {
     res.status_message = "apply_body_wrench: '" + req.body_name +
                          "' belongs to a static model: nothing to push";
   } else if (!finiteVec(w.force) || !finiteVec(w.torque) || !std::isfinite(p.x) ||
@@ -454,9 +423,9 @@ bool GazeboInterface::applyBodyWrench(gazebo_msgs::ApplyBodyWrench::Request& req
     const Eigen::Vector3d F = vec(w.force);
     const Eigen::Vector3d tau = vec(w.torque) + Eigen::Vector3d(p.x, p.y, p.z).cross(F);
     ScheduledWrench s;
-    s.body = e.model_name + "::" + e.link;
-    s.force_W = frame.X_WE.linear() * F;
-    s.torque_W = frame.X_WE.linear() * tau;
+    s.body = t.entity.model_name + "::" + t.entity.link;
+    s.force_W = t.frame.X_WE.linear() * F;
+    s.torque_W = t.frame.X_WE.linear() * tau;
     s.start = req.start_time.toSec();
     if (!wrenches_.add(s, sim_.time(), req.duration.toSec(), sim_.dt())) {
       res.status_message = "apply_body_wrench: duration 0: nothing applied";

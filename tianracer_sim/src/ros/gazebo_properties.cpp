@@ -11,6 +11,9 @@
 #include <dynamic_reconfigure/Config.h>
 #include <dynamic_reconfigure/ConfigDescription.h>
 
+#include <tianracer_control/ros/msg_conversion.h>
+
+#include "gazebo_answer.h"
 #include "tianracer_sim/ros/gazebo_interface.h"
 
 namespace tianracer_sim {
@@ -132,33 +135,23 @@ dynamic_reconfigure::Config physicsConfig(const PhysicsProperties& p) {
 
 }  // namespace
 
-void GazeboInterface::advertiseProperties(ros::NodeHandle& nh) {
-  services_.push_back(
-      nh.advertiseService("get_joint_properties", &GazeboInterface::getJointProperties, this));
-  services_.push_back(
-      nh.advertiseService("set_joint_properties", &GazeboInterface::setJointProperties, this));
-  services_.push_back(
-      nh.advertiseService("get_physics_properties", &GazeboInterface::getPhysicsProperties, this));
-  services_.push_back(
-      nh.advertiseService("set_physics_properties", &GazeboInterface::setPhysicsProperties, this));
-  services_.push_back(
-      nh.advertiseService("get_light_properties", &GazeboInterface::getLightProperties, this));
-  services_.push_back(
-      nh.advertiseService("set_light_properties", &GazeboInterface::setLightProperties, this));
-  services_.push_back(nh.advertiseService("delete_light", &GazeboInterface::deleteLight, this));
-  services_.push_back(
-      nh.advertiseService("get_link_properties", &GazeboInterface::getLinkProperties, this));
-  services_.push_back(
-      nh.advertiseService("set_link_properties", &GazeboInterface::setLinkProperties, this));
-  services_.push_back(nh.advertiseService("set_model_configuration",
-                                          &GazeboInterface::setModelConfiguration, this));
-  services_.push_back(
-      nh.advertiseService("apply_joint_effort", &GazeboInterface::applyJointEffort, this));
-  services_.push_back(
-      nh.advertiseService("clear_joint_forces", &GazeboInterface::clearJointForces, this));
+void GazeboInterface::advertiseProperties(ServiceAdvertiser<GazeboInterface>& serve,
+                                          ros::NodeHandle& nh) {
+  serve("get_joint_properties", &GazeboInterface::getJointProperties);
+  serve("set_joint_properties", &GazeboInterface::setJointProperties);
+  serve("get_physics_properties", &GazeboInterface::getPhysicsProperties);
+  serve("set_physics_properties", &GazeboInterface::setPhysicsProperties);
+  serve("get_light_properties", &GazeboInterface::getLightProperties);
+  serve("set_light_properties", &GazeboInterface::setLightProperties);
+  serve("delete_light", &GazeboInterface::deleteLight);
+  serve("get_link_properties", &GazeboInterface::getLinkProperties);
+  serve("set_link_properties", &GazeboInterface::setLinkProperties);
+  serve("set_model_configuration", &GazeboInterface::setModelConfiguration);
+  serve("apply_joint_effort", &GazeboInterface::applyJointEffort);
+  serve("clear_joint_forces", &GazeboInterface::clearJointForces);
   // The physics as dynamic_reconfigure parameters, as gazebo_ros's reconfigure server in the
   // node's namespace offers them: set_parameters, parameter_descriptions, parameter_updates.
-  services_.push_back(nh.advertiseService("set_parameters", &GazeboInterface::setParameters, this));
+  serve("set_parameters", &GazeboInterface::setParameters);
   reconfigure_descriptions_pub_ =
       nh.advertise<dynamic_reconfigure::ConfigDescription>("parameter_descriptions", 1, true);
   reconfigure_updates_pub_ = nh.advertise<dynamic_reconfigure::Config>("parameter_updates", 1, true);
@@ -195,8 +188,7 @@ void GazeboInterface::publishPhysicsConfig() {
 
 bool GazeboInterface::getJointProperties(gazebo_msgs::GetJointProperties::Request& req,
                                          gazebo_msgs::GetJointProperties::Response& res) {
-  res.success = false;
-  try {
+  return answer(res, {"get_joint_properties: ", "", false}, [&] {
     const JointProperties j = simulator_.jointProperties(req.joint_name);
     switch (j.info.type) {
       case JointType::kRevolute: res.type = res.REVOLUTE; break;
@@ -206,22 +198,17 @@ bool GazeboInterface::getJointProperties(gazebo_msgs::GetJointProperties::Reques
     res.damping = {j.info.damping};
     res.position = {j.position};
     res.rate = {j.rate};
-    res.success = true;
-    res.status_message = "GetJointProperties: got properties";
-  } catch (const InputError& e) {
-    res.status_message = std::string("get_joint_properties: ") + e.what();
-  }
-  return true;
+    return "GetJointProperties: got properties";
+  });
 }
 
 bool GazeboInterface::setJointProperties(gazebo_msgs::SetJointProperties::Request& req,
                                          gazebo_msgs::SetJointProperties::Response& res) {
-  res.success = false;
   const gazebo_msgs::ODEJointProperties& o = req.ode_joint_config;
   auto first = [](const std::vector<double>& v) {
     return v.empty() ? std::optional<double>() : std::optional<double>(v.front());
   };
-  try {
+  return answer(res, {"set_joint_properties: "}, [&] {
     // One-degree-of-freedom joints: the first entry of each list, as gazebo_ros's loop sets
     // axis 0 (a second entry names an axis we have not).
     for (const auto* v : {&o.damping, &o.hiStop, &o.loStop, &o.erp, &o.cfm, &o.stop_erp,
@@ -247,33 +234,21 @@ bool GazeboInterface::setJointProperties(gazebo_msgs::SetJointProperties::Reques
     c.velocity = first(o.vel);
     c.fmax = first(o.fmax);
     simulator_.setJointProperties(req.joint_name, c);
-    res.success = true;
-    res.status_message = "SetJointProperties: properties set";
-  } catch (const InputError& e) {
-    res.status_message = std::string("set_joint_properties: ") + e.what();
-    ROS_WARN_STREAM(res.status_message);
-  }
-  return true;
+    return "SetJointProperties: properties set";
+  });
 }
 
 bool GazeboInterface::setModelConfiguration(gazebo_msgs::SetModelConfiguration::Request& req,
                                             gazebo_msgs::SetModelConfiguration::Response& res) {
-  res.success = false;
-  try {
+  return answer(res, {}, [&] {
     simulator_.setModelConfiguration(req.model_name, req.joint_names, req.joint_positions);
-    res.success = true;
-    res.status_message = "SetModelConfiguration: success";
-  } catch (const InputError& e) {
-    res.status_message = e.what();
-    ROS_WARN_STREAM(res.status_message);
-  }
-  return true;
+    return "SetModelConfiguration: success";
+  });
 }
 
 bool GazeboInterface::applyJointEffort(gazebo_msgs::ApplyJointEffort::Request& req,
                                        gazebo_msgs::ApplyJointEffort::Response& res) {
-  res.success = false;
-  try {
+  return answer(res, {"apply_joint_effort: "}, [&] {
     int i = -1;
     simulator_.jointPhysics(req.joint_name, &i);  // throws for an unknown joint
     if (!std::isfinite(req.effort) || std::fabs(req.effort) > 1e6) {
@@ -287,13 +262,8 @@ bool GazeboInterface::applyJointEffort(gazebo_msgs::ApplyJointEffort::Request& r
     job.start = std::max(req.start_time.toSec(), sim_.time());  // gazebo_ros: a past start is now
     job.end = req.duration.toSec() < 0.0 ? -1.0 : job.start + std::max(req.duration.toSec(), sim_.dt());
     joint_efforts_.push_back(job);
-    res.success = true;
-    res.status_message = "ApplyJointEffort: effort set";
-  } catch (const InputError& e) {
-    res.status_message = std::string("apply_joint_effort: ") + e.what();
-    ROS_WARN_STREAM(res.status_message);
-  }
-  return true;
+    return "ApplyJointEffort: effort set";
+  });
 }
 
 bool GazeboInterface::clearJointForces(gazebo_msgs::JointRequest::Request& req,
@@ -347,34 +317,24 @@ bool GazeboInterface::getPhysicsProperties(gazebo_msgs::GetPhysicsProperties::Re
   res.time_step = p.time_step;
   res.pause = simulator_.paused();
   res.max_update_rate = p.max_update_rate;
-  res.gravity.x = p.gravity.x();
-  res.gravity.y = p.gravity.y();
-  res.gravity.z = p.gravity.z();
+  tianracer_control::toXyzMsg(p.gravity, &res.gravity);
   res.ode_config = odeConfig(p);
-  res.success = true;
-  res.status_message = "GetPhysicsProperties: got properties";
-  return true;
+  return succeeded(res, "GetPhysicsProperties: got properties");
 }
 
 bool GazeboInterface::setPhysicsProperties(gazebo_msgs::SetPhysicsProperties::Request& req,
                                            gazebo_msgs::SetPhysicsProperties::Response& res) {
-  res.success = false;
   PhysicsProperties p = simulator_.physicsProperties();
   p.time_step = req.time_step;
   p.max_update_rate = req.max_update_rate;
   p.gravity = Eigen::Vector3d(req.gravity.x, req.gravity.y, req.gravity.z);
   const std::string refused = applyOde(req.ode_config, &p);
-  try {
+  return answer(res, {"set_physics_properties: ", "; nothing changed"}, [&] {
     if (!refused.empty()) throw InputError("physics: " + refused);
     simulator_.setPhysicsProperties(p);
-    res.success = true;
-    res.status_message = "physics engine updated";
     publishPhysicsConfig();
-  } catch (const InputError& e) {
-    res.status_message = std::string("set_physics_properties: ") + e.what() + "; nothing changed";
-    ROS_WARN_STREAM(res.status_message);
-  }
-  return true;
+    return "physics engine updated";
+  });
 }
 
 bool GazeboInterface::setParameters(dynamic_reconfigure::Reconfigure::Request& req,
@@ -429,9 +389,7 @@ bool GazeboInterface::getLightProperties(gazebo_msgs::GetLightProperties::Reques
     res.attenuation_constant = l.attenuation.constant;
     res.attenuation_linear = l.attenuation.linear;
     res.attenuation_quadratic = l.attenuation.quadratic;
-    res.success = true;
-    res.status_message = "GetLightProperties: got properties";
-    return true;
+    return succeeded(res, "GetLightProperties: got properties");
   }
   res.status_message = "getLightProperties: Requested light " + req.light_name + " not found!";
   return true;
@@ -439,21 +397,15 @@ bool GazeboInterface::getLightProperties(gazebo_msgs::GetLightProperties::Reques
 
 bool GazeboInterface::setLightProperties(gazebo_msgs::SetLightProperties::Request& req,
                                          gazebo_msgs::SetLightProperties::Response& res) {
-  res.success = false;
   LightChange c;
   c.diffuse = fromColor(req.diffuse);
   c.specular = fromColor(req.specular);
   c.attenuation = {req.attenuation_constant, req.attenuation_linear, req.attenuation_quadratic};
   c.direction = Eigen::Vector3d(req.direction.x, req.direction.y, req.direction.z);
-  try {
+  return answer(res, {"set_light_properties: "}, [&] {
     simulator_.setLight(req.light_name, c);
-    res.success = true;
-    res.status_message = "SetLightProperties: properties set";
-  } catch (const InputError& e) {
-    res.status_message = std::string("set_light_properties: ") + e.what();
-    ROS_WARN_STREAM(res.status_message);
-  }
-  return true;
+    return "SetLightProperties: properties set";
+  });
 }
 
 bool GazeboInterface::deleteLight(gazebo_msgs::DeleteLight::Request& req,
@@ -473,12 +425,9 @@ bool GazeboInterface::deleteLight(gazebo_msgs::DeleteLight::Request& req,
 
 bool GazeboInterface::getLinkProperties(gazebo_msgs::GetLinkProperties::Request& req,
                                         gazebo_msgs::GetLinkProperties::Response& res) {
-  res.success = false;
-  try {
+  return answer(res, {"get_link_properties: ", "", false}, [&] {
     const LinkProperties l = simulator_.linkProperties(req.link_name);
-    res.com.position.x = l.com.x();
-    res.com.position.y = l.com.y();
-    res.com.position.z = l.com.z();
+    tianracer_control::toXyzMsg(l.com, &res.com.position);
     res.com.orientation.w = 1.0;  // as gazebo_ros: no rotated inertia
     res.gravity_mode = l.gravity_mode;
     res.mass = l.mass;
@@ -488,12 +437,8 @@ bool GazeboInterface::getLinkProperties(gazebo_msgs::GetLinkProperties::Request&
     res.iyy = l.inertia(1, 1);
     res.iyz = l.inertia(1, 2);
     res.izz = l.inertia(2, 2);
-    res.success = true;
-    res.status_message = "GetLinkProperties: got properties";
-  } catch (const InputError& e) {
-    res.status_message = std::string("get_link_properties: ") + e.what();
-  }
-  return true;
+    return "GetLinkProperties: got properties";
+  });
 }
 
 bool GazeboInterface::setLinkProperties(gazebo_msgs::SetLinkProperties::Request& req,

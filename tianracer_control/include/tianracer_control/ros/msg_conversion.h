@@ -6,6 +6,7 @@
 #include <array>
 #include <string>
 
+#include <Eigen/Geometry>
 #include <ackermann_msgs/AckermannDrive.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <geometry_msgs/Twist.h>
@@ -44,6 +45,31 @@ bool fromJointStateMsg(const sensor_msgs::JointState& msg, const AckermannJointN
 
 /// Diagonals of the 6x6 covariances (x, y, z, roll, pitch, yaw), row-major in the message.
 using CovarianceDiagonal = std::array<double, 6>;
+
+/// An Eigen vector into a message with fields x, y, z (geometry_msgs Point, Vector3).
+template <class XyzMsg>
+void toXyzMsg(const Eigen::Vector3d& v, XyzMsg* msg) {
+  msg->x = v.x();
+  msg->y = v.y();
+  msg->z = v.z();
+}
+
+/// q's coefficients as they are (not normalised).
+void toQuaternionMsg(const Eigen::Quaterniond& q, geometry_msgs::Quaternion* msg);
+
+/// Header, frames, pose (position, orientation of child_frame in frame) and twist (linear,
+/// angular) of an odometry message; the covariances are the caller's. The tianracer_sim
+/// simulator's odometry messages are filled here too.
+void fillOdometryMsg(const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation,
+                     const Eigen::Vector3d& linear, const Eigen::Vector3d& angular,
+                     const ros::Time& stamp, const std::string& frame,
+                     const std::string& child_frame, nav_msgs::Odometry* msg);
+
+/// The pose (translation, rotation) of child_frame in frame as TF.
+geometry_msgs::TransformStamped toTransformMsg(const Eigen::Vector3d& translation,
+                                               const Eigen::Quaterniond& rotation,
+                                               const ros::Time& stamp, const std::string& frame,
+                                               const std::string& child_frame);
 
 /// Pose of base_frame in odom_frame and its twist in base_frame.
 nav_msgs::Odometry toOdometryMsg(const BicycleOdometry& odometry, const ros::Time& stamp,

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <vector>
 
 #include <ros/message_traits.h>
 #include <ros/serialization.h>
@@ -21,23 +22,21 @@
 
 namespace tianracer_sim {
 
-/// An Image: every field in `meta` except data (left empty), which is `size` bytes at `data`.
-struct BorrowedImage {
-  sensor_msgs::Image meta;
-  const uint8_t* data = nullptr;
-  uint32_t size = 0;
-};
-
-/// A PointCloud2: every field in `meta` except data (left empty), `size` bytes at `data`, or,
-/// when `write` is set, written by write(writer, destination) straight into the serialisation
-/// buffer (the depth camera builds its 10 MB cloud there: no copy at all).
-struct BorrowedPointCloud2 {
-  sensor_msgs::PointCloud2 meta;
+/// A `Msg` (a sensor_msgs type with one uint8[] field, `data`): every field in `meta` except
+/// data (left empty), which is `size` bytes at `data`, or, when `write` is set, written by
+/// write(writer, destination) straight into the serialisation buffer (the depth camera builds
+/// its 10 MB cloud there: no copy at all).
+template <class Msg>
+struct Borrowed {
+  Msg meta;
   const uint8_t* data = nullptr;
   uint32_t size = 0;
   void (*write)(const void* writer, uint8_t* out) = nullptr;  // must write all `size` bytes
   const void* writer = nullptr;
 };
+
+using BorrowedImage = Borrowed<sensor_msgs::Image>;
+using BorrowedPointCloud2 = Borrowed<sensor_msgs::PointCloud2>;
 
 }  // namespace tianracer_sim
 
@@ -45,84 +44,66 @@ namespace ros {
 namespace message_traits {
 
 // The wire identity of the sensor_msgs type each one stands for.
-#define TIANRACER_SIM_BORROWED_TRAITS(Borrowed, Msg)                                        \
-  template <>                                                                             \
-  struct IsMessage<Borrowed> : TrueType {};                                               \
-  template <>                                                                             \
-  struct IsMessage<const Borrowed> : TrueType {};                                         \
-  template <>                                                                             \
-  struct MD5Sum<Borrowed> {                                                               \
-    static const char* value() { return MD5Sum<Msg>::value(); }                          \
-    static const char* value(const Borrowed&) { return value(); }                        \
-  };                                                                                      \
-  template <>                                                                             \
-  struct DataType<Borrowed> {                                                             \
-    static const char* value() { return DataType<Msg>::value(); }                        \
-    static const char* value(const Borrowed&) { return value(); }                        \
-  };                                                                                      \
-  template <>                                                                             \
-  struct Definition<Borrowed> {                                                           \
-    static const char* value() { return Definition<Msg>::value(); }                      \
-    static const char* value(const Borrowed&) { return value(); }                        \
-  };
+template <template <class> class Trait, class Msg>
+struct BorrowedTrait {
+  static const char* value() { return Trait<Msg>::value(); }
+  static const char* value(const tianracer_sim::Borrowed<Msg>&) { return value(); }
+};
 
-TIANRACER_SIM_BORROWED_TRAITS(tianracer_sim::BorrowedImage, sensor_msgs::Image)
-TIANRACER_SIM_BORROWED_TRAITS(tianracer_sim::BorrowedPointCloud2, sensor_msgs::PointCloud2)
-#undef TIANRACER_SIM_BORROWED_TRAITS
+template <class Msg>
+struct IsMessage<tianracer_sim::Borrowed<Msg>> : TrueType {};
+template <class Msg>
+struct IsMessage<const tianracer_sim::Borrowed<Msg>> : TrueType {};
+template <class Msg>
+struct MD5Sum<tianracer_sim::Borrowed<Msg>> : BorrowedTrait<MD5Sum, Msg> {};
+template <class Msg>
+struct DataType<tianracer_sim::Borrowed<Msg>> : BorrowedTrait<DataType, Msg> {};
+template <class Msg>
+struct Definition<tianracer_sim::Borrowed<Msg>> : BorrowedTrait<Definition, Msg> {};
 
 }  // namespace message_traits
 
 namespace serialization {
 
 namespace borrowed_detail {
-// A uint8[] field: its length, then the bytes.
-template <typename Stream>
-void writeBytes(Stream& stream, const uint8_t* data, uint32_t size) {
-  stream.next(size);
-  if (size > 0) std::memcpy(stream.advance(size), data, size);
-}
-}  // namespace borrowed_detail
 
-// Field order as in sensor_msgs/Image.h's serializer.
-template <>
-struct Serializer<tianracer_sim::BorrowedImage> {
-  template <typename Stream>
-  inline static void write(Stream& stream, const tianracer_sim::BorrowedImage& m) {
-    stream.next(m.meta.header);
-    stream.next(m.meta.height);
-    stream.next(m.meta.width);
-    stream.next(m.meta.encoding);
-    stream.next(m.meta.is_bigendian);
-    stream.next(m.meta.step);
-    borrowed_detail::writeBytes(stream, m.data, m.size);
+/// The stream Msg's own (generated) serializer writes its fields to: each goes on to `out` as
+/// it is, except meta.data, whose place the borrowed bytes take. The field order is so the
+/// sensor_msgs type's by construction.
+template <class Stream, class Msg>
+struct BorrowingStream {
+  Stream& out;
+  const tianracer_sim::Borrowed<Msg>& m;
+
+  template <class Field>
+  void next(const Field& field) {
+    out.next(field);
   }
-  inline static uint32_t serializedLength(const tianracer_sim::BorrowedImage& m) {
-    // meta's own data is empty: its 4-byte length prefix is counted there.
-    return serializationLength(m.meta) + m.size;
+  void next(const std::vector<uint8_t>& field) {
+    if (&field != &m.meta.data) {
+      out.next(field);
+    } else if (m.write != nullptr) {
+      out.next(m.size);
+      m.write(m.writer, out.advance(m.size));
+    } else {
+      out.next(m.size);
+      if (m.size > 0) std::memcpy(out.advance(m.size), m.data, m.size);
+    }
   }
 };
 
-// Field order as in sensor_msgs/PointCloud2.h's serializer.
-template <>
-struct Serializer<tianracer_sim::BorrowedPointCloud2> {
+}  // namespace borrowed_detail
+
+template <class Msg>
+struct Serializer<tianracer_sim::Borrowed<Msg>> {
   template <typename Stream>
-  inline static void write(Stream& stream, const tianracer_sim::BorrowedPointCloud2& m) {
-    stream.next(m.meta.header);
-    stream.next(m.meta.height);
-    stream.next(m.meta.width);
-    stream.next(m.meta.fields);
-    stream.next(m.meta.is_bigendian);
-    stream.next(m.meta.point_step);
-    stream.next(m.meta.row_step);
-    if (m.write != nullptr) {
-      stream.next(m.size);
-      m.write(m.writer, stream.advance(m.size));
-    } else {
-      borrowed_detail::writeBytes(stream, m.data, m.size);
-    }
-    stream.next(m.meta.is_dense);
+  inline static void write(Stream& stream, const tianracer_sim::Borrowed<Msg>& m) {
+    borrowed_detail::BorrowingStream<Stream, Msg> borrowing{stream, m};
+    Serializer<Msg>::template allInOne<borrowed_detail::BorrowingStream<Stream, Msg>, const Msg&>(
+        borrowing, m.meta);
   }
-  inline static uint32_t serializedLength(const tianracer_sim::BorrowedPointCloud2& m) {
+  inline static uint32_t serializedLength(const tianracer_sim::Borrowed<Msg>& m) {
+    // meta's own data is empty: its 4-byte length prefix is counted there.
     return serializationLength(m.meta) + m.size;
   }
 };

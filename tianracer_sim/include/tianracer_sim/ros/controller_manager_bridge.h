@@ -8,6 +8,7 @@
 #ifndef TIANRACER_SIM_ROS_CONTROLLER_MANAGER_BRIDGE_H
 #define TIANRACER_SIM_ROS_CONTROLLER_MANAGER_BRIDGE_H
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@
 #include <controller_manager_msgs/UnloadController.h>
 #include <ros/ros.h>
 
+#include "tianracer_sim/ros/service_advertiser.h"
 #include "tianracer_sim/simulator/simulator.h"
 
 namespace tianracer_sim {
@@ -36,18 +38,20 @@ class ControllerManagerBridge {
   ControllerManagerBridge& operator=(const ControllerManagerBridge&) = delete;
 
  private:
-  bool onList(controller_manager_msgs::ListControllers::Request&,
-              controller_manager_msgs::ListControllers::Response&);
-  bool onListTypes(controller_manager_msgs::ListControllerTypes::Request&,
-                   controller_manager_msgs::ListControllerTypes::Response&);
-  bool onLoad(controller_manager_msgs::LoadController::Request&,
-              controller_manager_msgs::LoadController::Response&);
-  bool onUnload(controller_manager_msgs::UnloadController::Request&,
-                controller_manager_msgs::UnloadController::Response&);
-  bool onSwitch(controller_manager_msgs::SwitchController::Request&,
-                controller_manager_msgs::SwitchController::Response&);
-  bool onReload(controller_manager_msgs::ReloadControllerLibraries::Request&,
-                controller_manager_msgs::ReloadControllerLibraries::Response&);
+  using ListControllers = controller_manager_msgs::ListControllers;
+  using ListControllerTypes = controller_manager_msgs::ListControllerTypes;
+  using LoadController = controller_manager_msgs::LoadController;
+  using UnloadController = controller_manager_msgs::UnloadController;
+  using SwitchController = controller_manager_msgs::SwitchController;
+  using ReloadLibraries = controller_manager_msgs::ReloadControllerLibraries;
+  bool onList(ListControllers::Request&, ListControllers::Response&);
+  bool onListTypes(ListControllerTypes::Request&, ListControllerTypes::Response&);
+  bool onLoad(LoadController::Request&, LoadController::Response&);
+  bool onUnload(UnloadController::Request&, UnloadController::Response&);
+  bool onSwitch(SwitchController::Request&, SwitchController::Response&);
+  bool onReload(ReloadLibraries::Request&, ReloadLibraries::Response&);
+  /// A load, unload or switch answered: res.ok = ok; the node follows when it succeeded.
+  bool answer(bool ok, uint8_t* res_ok);
 
   bool load(const std::string& name);
   bool unload(const std::string& name);

@@ -45,6 +45,7 @@
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
 
+#include "tianracer_sim/ros/service_advertiser.h"
 #include "tianracer_sim/sim/entity_state.h"
 #include "tianracer_sim/sim/simulation.h"
 #include "tianracer_sim/simulator/simulator.h"
@@ -181,6 +182,16 @@ class GazeboInterface {
   PhysicsRobot* physicsOf(const Entity& e) const;
   /// The frame named by reference_frame (world when isWorldFrame()).
   bool frameState(const std::string& name, EntityState* frame, std::string* error) const;
+  /// The entity and the reference frame a request names (resolve(), then frameState()); when
+  /// either fails, !ok and `error` says what is wrong.
+  struct Target {
+    Entity entity;
+    EntityState frame;
+    std::string error;
+    bool ok = false;
+  };
+  Target target(const std::string& name, bool allow_model,
+                const std::string& reference_frame) const;
   /// The model's base state; `stop_joints` as set_model_state (PhysicsRobot::setModelTwist),
   /// otherwise the joint rates are kept (set_link_state).
   bool setBase(PhysicsRobot* body, const EntityState& X_WB, bool stop_joints, std::string* error);
@@ -195,7 +206,8 @@ class GazeboInterface {
   /// Time went back or the world was reset: wrenches are cleared and the publishing schedule
   /// restarts.
   void onReset();
-  void advertiseProperties(ros::NodeHandle& nh);
+  /// The properties services (gazebo_properties.cpp) and the physics reconfigure topics.
+  void advertiseProperties(ServiceAdvertiser<GazeboInterface>& serve, ros::NodeHandle& nh);
   /// The physics properties as dynamic_reconfigure's Config, published on parameter_updates.
   void publishPhysicsConfig();
 

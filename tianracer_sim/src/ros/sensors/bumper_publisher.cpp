@@ -4,42 +4,21 @@
 
 #include "factories.h"
 #include "tianracer_sim/ros/bumper_msgs.h"
+#include "topic_publisher.h"
 
 namespace tianracer_sim {
 namespace {
 
-class BumperPublisher : public SensorListener {
- public:
-  BumperPublisher(SimBumper& sensor, const PublisherSetup& setup) {
-    const BumperConfig& config = sensor.config();
-    const std::string topic = config.topic();
-    setup.claim_topic(topic, setup.owner() + " contact sensor '" + config.name + "'");
-    ros::NodeHandle root = setup.root;
-    pub_ = root.advertise<gazebo_msgs::ContactsState>(topic, 10);
-    sensor.stat().name = topic;
-    ROS_INFO("contact sensor '%s': link %s, frame %s, %g Hz on %s", config.name.c_str(),
-             config.link.c_str(), sensor.frame().c_str(), config.update_rate, topic.c_str());
-  }
-
-  SensorOutputs wanted(const SimSensor&, SensorOutputs due) override {
-    return pub_.getNumSubscribers() > 0 ? due : 0;
-  }
-
-  void onOutputs(const SimSensor& s, SensorOutputs, double t) override {
-    const auto& sensor = static_cast<const SimBumper&>(s);
-    toContactsState(sensor.states(), ros::Time(t), sensor.frame(), &msg_);
-    pub_.publish(msg_);
-  }
-
- private:
-  ros::Publisher pub_;
-  gazebo_msgs::ContactsState msg_;
-};
+void toMsg(const SimBumper& sensor, const ros::Time& stamp, gazebo_msgs::ContactsState* msg) {
+  toContactsState(sensor.states(), stamp, sensor.frame(), msg);
+}
 
 }  // namespace
 
 std::unique_ptr<SensorListener> makeBumperPublisher(SimSensor& sensor, const PublisherSetup& setup) {
-  return std::make_unique<BumperPublisher>(static_cast<SimBumper&>(sensor), setup);
+  return makeLinkSensorPublisher<SimBumper, gazebo_msgs::ContactsState>(
+      sensor, setup, "contact sensor", "contact sensor '%s': link %s, frame %s, %g Hz on %s",
+      &toMsg);
 }
 
 }  // namespace tianracer_sim

@@ -8,6 +8,7 @@
 #include <std_msgs/Empty.h>
 
 #include <tianracer_control/naming.h>
+#include <tianracer_control/ros/msg_conversion.h>
 
 #include "factories.h"
 #include "tianracer_sim/ros/borrowed_msgs.h"
@@ -17,24 +18,17 @@ namespace tianracer_sim {
 
 void sendOpticalFrame(const PublisherSetup& setup, const std::string& link,
                       const CameraConfig& camera) {
-  geometry_msgs::TransformStamped tf;
-  tf.header.frame_id = tianracer_control::resolveFrame(setup.tf_prefix, link);
-  tf.child_frame_id = camera.opticalFrame();
+  std::string parent = tianracer_control::resolveFrame(setup.tf_prefix, link);
   Eigen::Isometry3d X_LO = camera.X_LO();
   if (setup.world_model) {
     // Nothing puts a world model's links on TF (neither does Gazebo): the optical frame hangs
     // from the frameName the plugin names (the sensor's frame), which the user may place.
-    tf.header.frame_id = camera.frame_name;
+    parent = camera.frame_name;
     X_LO = camera.X_LS.inverse() * X_LO;
   }
-  const Eigen::Quaterniond q(X_LO.linear());
-  tf.transform.translation.x = X_LO.translation().x();
-  tf.transform.translation.y = X_LO.translation().y();
-  tf.transform.translation.z = X_LO.translation().z();
-  tf.transform.rotation.x = q.x();
-  tf.transform.rotation.y = q.y();
-  tf.transform.rotation.z = q.z();
-  tf.transform.rotation.w = q.w();
+  const geometry_msgs::TransformStamped tf = tianracer_control::toTransformMsg(
+      X_LO.translation(), Eigen::Quaterniond(X_LO.linear()), ros::Time(), parent,
+      camera.opticalFrame());
   setup.static_tf->sendTransform(tf);
 }
 

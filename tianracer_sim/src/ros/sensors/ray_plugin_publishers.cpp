@@ -5,74 +5,58 @@
 
 #include "factories.h"
 #include "tianracer_sim/ros/laser_msgs.h"
+#include "topic_publisher.h"
 
 namespace tianracer_sim {
 namespace {
 
-class RangePublisher : public SensorListener {
- public:
-  RangePublisher(SimRange& sensor, const PublisherSetup& setup) {
-    const RangeConfig& c = sensor.config();
-    const std::string topic = publishedTopics(c).front().topic;
-    setup.claim_topic(topic, setup.owner() + " range sensor '" + c.ray.name + "'");
-    ros::NodeHandle root = setup.root;
-    pub_ = root.advertise<sensor_msgs::Range>(topic, 1);
-    ROS_INFO("range '%s' on link %s: %d x %d rays, %.4g..%.4g m, fov %.4g, %g Hz on %s (frame %s)",
-             c.ray.name.c_str(), c.ray.link.c_str(), c.ray.vertical_samples, c.ray.samples,
-             c.ray.range_min, c.ray.range_max, c.fov, c.publishRate(), topic.c_str(),
-             c.frame_name.c_str());
-    sensor.stat().name = topic;
-  }
-  SensorOutputs wanted(const SimSensor&, SensorOutputs due) override {
-    return pub_.getNumSubscribers() > 0 ? due : 0;
-  }
-  void onOutputs(const SimSensor& s, SensorOutputs, double t) override {
-    const auto& sensor = static_cast<const SimRange&>(s);
-    toRange(sensor.config(), sensor.reading(), ros::Time(t), &msg_);
-    pub_.publish(msg_);
-  }
+void toRangeMsg(const SimRange& sensor, const ros::Time& stamp, sensor_msgs::Range* msg) {
+  toRange(sensor.config(), sensor.reading(), stamp, msg);
+}
 
- private:
-  ros::Publisher pub_;
-  sensor_msgs::Range msg_;
-};
+void toCloudMsg(const SimBlockLaser& sensor, const ros::Time& stamp,
+                sensor_msgs::PointCloud* msg) {
+  toPointCloud(sensor.config(), sensor.cloud(), stamp, msg);
+}
 
-class BlockLaserPublisher : public SensorListener {
- public:
-  BlockLaserPublisher(SimBlockLaser& sensor, const PublisherSetup& setup) {
-    const BlockLaserConfig& c = sensor.config();
-    const std::string topic = publishedTopics(c).front().topic;
-    setup.claim_topic(topic, setup.owner() + " block laser '" + c.ray.name + "'");
-    ros::NodeHandle root = setup.root;
-    pub_ = root.advertise<sensor_msgs::PointCloud>(topic, 1);
-    ROS_INFO("block laser '%s' on link %s: %d x %d points, %g Hz on %s (frame %s)",
-             c.ray.name.c_str(), c.ray.link.c_str(), c.rows(), c.columns(), c.ray.update_rate,
-             topic.c_str(), c.frame_name.c_str());
-    sensor.stat().name = topic;
-  }
-  SensorOutputs wanted(const SimSensor&, SensorOutputs due) override {
-    return pub_.getNumSubscribers() > 0 ? due : 0;
-  }
-  void onOutputs(const SimSensor& s, SensorOutputs, double t) override {
-    const auto& sensor = static_cast<const SimBlockLaser&>(s);
-    toPointCloud(sensor.config(), sensor.cloud(), ros::Time(t), &msg_);
-    pub_.publish(msg_);
-  }
+void logRange(const SimRange& sensor, const std::string& topic) {
+  const RangeConfig& c = sensor.config();
+  ROS_INFO("range '%s' on link %s: %d x %d rays, %.4g..%.4g m, fov %.4g, %g Hz on %s (frame %s)",
+           c.ray.name.c_str(), c.ray.link.c_str(), c.ray.vertical_samples, c.ray.samples,
+           c.ray.range_min, c.ray.range_max, c.fov, c.publishRate(), topic.c_str(),
+           c.frame_name.c_str());
+}
 
- private:
-  ros::Publisher pub_;
-  sensor_msgs::PointCloud msg_;
-};
+void logBlockLaser(const SimBlockLaser& sensor, const std::string& topic) {
+  const BlockLaserConfig& c = sensor.config();
+  ROS_INFO("block laser '%s' on link %s: %d x %d points, %g Hz on %s (frame %s)",
+           c.ray.name.c_str(), c.ray.link.c_str(), c.rows(), c.columns(), c.ray.update_rate,
+           topic.c_str(), c.frame_name.c_str());
+}
+
+/// Both plugins publish on their one topic with a queue of 1, as upstream.
+template <class Sensor, class Msg>
+std::unique_ptr<SensorListener> makeRayPluginPublisher(
+    SimSensor& s, const PublisherSetup& setup, const std::string& label,
+    void (*convert)(const Sensor&, const ros::Time&, Msg*),
+    void (*log)(const Sensor&, const std::string& topic)) {
+  auto& sensor = static_cast<Sensor&>(s);
+  const std::string topic = publishedTopics(sensor.config()).front().topic;
+  auto publisher = std::make_unique<TopicPublisher<Sensor, Msg>>(
+      sensor, setup, TopicSpec{topic, label + " '" + sensor.config().ray.name + "'", 1}, convert);
+  log(sensor, topic);
+  return publisher;
+}
 
 }  // namespace
 
 std::unique_ptr<SensorListener> makeRangePublisher(SimSensor& sensor, const PublisherSetup& setup) {
-  return std::make_unique<RangePublisher>(static_cast<SimRange&>(sensor), setup);
+  return makeRayPluginPublisher(sensor, setup, "range sensor", &toRangeMsg, &logRange);
 }
 
 std::unique_ptr<SensorListener> makeBlockLaserPublisher(SimSensor& sensor,
                                                         const PublisherSetup& setup) {
-  return std::make_unique<BlockLaserPublisher>(static_cast<SimBlockLaser&>(sensor), setup);
+  return makeRayPluginPublisher(sensor, setup, "block laser", &toCloudMsg, &logBlockLaser);
 }
 
 }  // namespace tianracer_sim
