@@ -20,7 +20,7 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Float64
 from std_srvs.srv import Empty
-from tianracer_bringup.ros_session import yaw_from_quaternion as yaw_of
+from tianracer_sim.rotation import yaw_from_quaternion as yaw_of
 from tianracer_sim.sim_time import (Paused, lossless, messages_received, sim_sleep,
                                     wait_connected, wait_for)
 

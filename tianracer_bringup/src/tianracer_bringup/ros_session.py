@@ -1,12 +1,11 @@
 """What the demo, the benchmarks, the soak, the batch runner and the tests share: a ROS graph
 of their own (a private master on a free port, the environment for it), one roslaunch with a
-reliable way to end it, questions to the graph, and yaw from a quaternion.
+reliable way to end it, and questions to the graph.
 
 roslaunch starts every node (and the master) in a new session (os.setsid), so killing
 roslaunch's process group does not reach them: RosSession records the pid of the master and
 of every node it sees, asks roslaunch to shut down (SIGINT), and SIGKILLs whatever is left.
 """
-import math
 import os
 import signal
 import socket
@@ -247,8 +246,3 @@ def graph_connected(master, caller=CALLER):
             if len(out) < len(wanted - {node}):
                 return False
     return True
-
-
-def yaw_from_quaternion(q):
-    """Yaw (rad) of a quaternion with fields x, y, z, w (REP-103: about z, from x towards y)."""
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))

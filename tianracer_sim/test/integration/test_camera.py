@@ -31,6 +31,7 @@ import rostest
 import tf2_ros
 from diagnostic_msgs.msg import DiagnosticArray
 from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField
+from tianracer_sim.rotation import quaternion_from_rpy
 from tianracer_sim.sim_time import bus_info, lossless, sim_sleep, wait_connected, wait_for
 
 CAMERA = '/rrbot/camera1/image_raw'
@@ -73,15 +74,6 @@ def read_png(path):
     with Image.open(path) as im:
         assert im.format == 'PNG', path
         return im.width, im.height, im.mode, np.asarray(im)
-
-
-def rpy_quaternion(roll, pitch, yaw):
-    """(x, y, z, w) of R = Rz(yaw) Ry(pitch) Rx(roll), as URDF and tf use it."""
-    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
-    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
-    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    return (sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy,
-            cr * cp * sy - sr * sp * cy, cr * cp * cy + sr * sp * sy)
 
 
 class Camera(unittest.TestCase):
@@ -352,7 +344,7 @@ class Camera(unittest.TestCase):
             self.assertEqual(rs.distortion_model, 'plumb_bob')
 
     def test_4_optical_frames_in_tf(self):
-        expected = rpy_quaternion(-math.pi / 2, 0, -math.pi / 2)
+        expected = quaternion_from_rpy(-math.pi / 2, 0, -math.pi / 2)
         for link in ('camera', 'real_sense'):
             optical = link + '_optical_frame'
             tf = self.tf_buffer.lookup_transform(link, optical, rospy.Time(0),

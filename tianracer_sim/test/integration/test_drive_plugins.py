@@ -21,6 +21,7 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock, Log
 from sensor_msgs.msg import JointState
 from tf2_msgs.msg import TFMessage
+from tianracer_sim.rotation import yaw_from_quaternion as yaw_of
 from tianracer_sim.sim_time import Stream, clock_stamp, drive_twist, sim_sleep, wait_connected
 from tianracer_sim.sim_time import wait_for as wait_until
 
@@ -30,10 +31,6 @@ TOLERANCE = 0.03  # relative
 
 def wait_for(cond, what):
     return wait_until(cond, what, WALL_TIMEOUT)
-
-
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
 def wrap(a):

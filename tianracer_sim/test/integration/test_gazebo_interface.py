@@ -25,6 +25,7 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
 from std_msgs.msg import Float64
 from std_srvs.srv import Empty
+from tianracer_sim.rotation import quaternion_from_rpy
 from tianracer_sim.sim_time import (Paused, Stream, messages_sent, sim_sleep, wait_connected,
                                     wait_for)
 
@@ -35,7 +36,7 @@ WORLD_MODELS = ['ground_plane', 'walls', 'box_front', 'box_sw', 'box_nw', 'box_r
 
 
 def yaw_quaternion(yaw):
-    return Quaternion(0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
+    return Quaternion(*quaternion_from_rpy(0.0, 0.0, yaw))
 
 
 def rot(q):
