@@ -12,8 +12,6 @@ cloud at 20 Hz, camera_infos at 10 Hz) in walled_room, as docs/model_and_sensors
 - scripts/save_frames against the live sim (PNG files checked by decoding them here), its pure
   parts (PNG writer, colour map), and its exit code on a timeout.
 """
-import importlib.machinery
-import importlib.util
 import math
 import os
 import shutil
@@ -32,6 +30,7 @@ import tf2_ros
 from diagnostic_msgs.msg import DiagnosticArray
 from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField
 from tianracer_sim.rotation import quaternion_from_rpy
+from tianracer_sim.script_module import load_script
 from tianracer_sim.sim_time import bus_info, lossless, sim_sleep, wait_connected, wait_for
 
 CAMERA = '/rrbot/camera1/image_raw'
@@ -54,15 +53,6 @@ TOPICS = {
 CLOUD_DTYPE = np.dtype({'names': ['x', 'y', 'z', 'rgb'], 'formats': ['<f4', '<f4', '<f4', '<u4'],
                         'offsets': [0, 4, 8, 16], 'itemsize': 32})
 SAVE_FRAMES = os.path.join(rospkg.RosPack().get_path('tianracer_sim'), 'scripts', 'save_frames')
-
-
-def load_save_frames():
-    """scripts/save_frames as a module (it has no .py suffix)."""
-    loader = importlib.machinery.SourceFileLoader('save_frames', SAVE_FRAMES)
-    spec = importlib.util.spec_from_loader('save_frames', loader)
-    module = importlib.util.module_from_spec(spec)
-    loader.exec_module(module)
-    return module
 
 
 def read_png(path):
@@ -124,7 +114,7 @@ class Camera(unittest.TestCase):
     # --- save_frames' pure parts --------------------------------------------------------------
 
     def test_0_save_frames_png_and_colour_map(self):
-        sf = load_save_frames()
+        sf = load_script(SAVE_FRAMES)
         rgb = np.random.RandomState(1).randint(0, 256, (7, 5, 3)).astype(np.uint8)
         tmp = tempfile.mkdtemp()
         try:
