@@ -10,6 +10,9 @@ import time
 from tianracer_sim.master import free_port, ros_env, start_master, stop_master
 
 
+TEST_URDF = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data', 'urdf')
+
+
 def node_binary():
     for d in os.environ.get('CMAKE_PREFIX_PATH', '').split(':'):
         path = os.path.join(d, 'lib', 'tianracer_sim', 'tianracer_sim_node')
@@ -50,3 +53,10 @@ def startup_output(args, wanted, name, timeout=90.0):
         return ''.join(lines)
     finally:
         stop_master(master)
+
+
+def sensor_startup_output(xacro, wanted, name):
+    """startup_output() of the model test/data/urdf/<xacro>, paused, with the camera, depth
+    and ray sensors left out (the other kinds' messages are read)."""
+    return startup_output(['_model:=' + os.path.join(TEST_URDF, xacro), '_paused:=true',
+                           '_disable_sensors:=camera depth ray'], wanted, name)
