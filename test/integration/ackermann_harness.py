@@ -20,7 +20,7 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Float64
 from std_srvs.srv import Empty
-from tianracer_bringup.ros_session import yaw_from_quaternion as yaw_of
+from tianracer_sim.rotation import yaw_from_quaternion as yaw_of
 from tianracer_sim.sim_time import (Paused, lossless, messages_received, sim_sleep,
                                     wait_connected, wait_for)
 
@@ -146,12 +146,69 @@ def relative_pose(start, end):
 
 # ---- the harness -------------------------------------------------------------------------------
 
+class Repeater(object):
+    """Publishes a message on `pub` now and then every 0.05 s of sim time (20 Hz, from a thread)
+    until stopped; `last` is the sim time of the last message published, `count` how many the
+    repetition has published."""
+
+    def __init__(self, pub):
+        self.pub = pub
+        self.lock = threading.Lock()
+        self.msg = None  # being repeated, or None
+        self.last = None
+        self.count = 0
+        thread = threading.Thread(target=self._run, name=pub.resolved_name)
+        thread.daemon = True
+        thread.start()
+
+    def start(self, msg):
+        """Publishes msg now and repeats it until stop() or once()."""
+        with self.lock:
+            self.msg = msg
+            self._publish()
+
+    def once(self, msg):
+        """Publishes msg once, not repeated (stops any repetition)."""
+        with self.lock:
+            self.msg = None
+            self.pub.publish(msg)
+            self.last = rospy.get_time()
+
+    def stop(self):
+        """Stops repeating; returns the sim time of the last message published."""
+        with self.lock:
+            self.msg = None
+            return self.last
+
+    def _publish(self):
+        self.pub.publish(self.msg)
+        self.last = rospy.get_time()
+        self.count += 1
+
+    def _run(self):
+        while not rospy.is_shutdown():
+            with self.lock:
+                if self.msg is not None:
+                    self._publish()
+            try:
+                rospy.sleep(0.05)
+            except rospy.ROSInterruptException:
+                return
+            except rospy.ROSTimeMovedBackwardsException:
+                pass
+
+
+def twist(v, w):
+    msg = Twist()
+    msg.linear.x, msg.angular.z = v, w
+    return msg
+
+
 class Harness(object):
     """Subscribes to what the tests read and publishes /cmd_vel from a thread."""
 
     def __init__(self):
         self.lock = threading.Lock()       # sample lists
-        self.pub_lock = threading.Lock()   # the /cmd_vel publisher and what it repeats
         self.truth = []        # Pose2 of base_link in world
         self.odom = []         # Pose2 of base_link in odom (wheel odometry)
         self.wheel_cmd = []    # (receive sim time, rad/s) of the cmd_vel node's left rear command
@@ -165,11 +222,7 @@ class Harness(object):
                                ('/rosout', Log, self._on_rosout)):
             lossless(rospy.Subscriber(topic, cls, cb))
         self.pub = rospy.Publisher('/cmd_vel', Twist, queue_size=10)
-        self._cmd = None       # Twist being repeated, or None
-        self._last_pub = None  # sim time of the last /cmd_vel published
-        self._thread = threading.Thread(target=self._repeat, name='cmd_vel')
-        self._thread.daemon = True
-        self._thread.start()
+        self.cmd_vel = Repeater(self.pub)
 
     # callbacks
     def _on_truth(self, msg):
@@ -236,40 +289,26 @@ class Harness(object):
     # commanding
     def drive(self, v, w):
         """Publish Twist(v, w) now and then every 0.05 s of sim time until stop_publishing()."""
-        msg = Twist()
-        msg.linear.x, msg.angular.z = v, w
-        with self.pub_lock:
-            self._cmd = msg
-            self.pub.publish(msg)
-            self._last_pub = rospy.get_time()
+        self.cmd_vel.start(twist(v, w))
 
     def publish_once(self, v, w):
         """One Twist(v, w), not repeated (stops any repetition)."""
-        msg = Twist()
-        msg.linear.x, msg.angular.z = v, w
-        with self.pub_lock:
-            self._cmd = None
-            self.pub.publish(msg)
-            self._last_pub = rospy.get_time()
+        self.cmd_vel.once(twist(v, w))
 
     def stop_publishing(self):
         """Stops repeating; returns the sim time of the last /cmd_vel published."""
-        with self.pub_lock:
-            self._cmd = None
-            return self._last_pub
+        return self.cmd_vel.stop()
 
-    def _repeat(self):
-        while not rospy.is_shutdown():
-            with self.pub_lock:
-                if self._cmd is not None:
-                    self.pub.publish(self._cmd)
-                    self._last_pub = rospy.get_time()
-            try:
-                rospy.sleep(0.05)
-            except rospy.ROSInterruptException:
-                return
-            except rospy.ROSTimeMovedBackwardsException:
-                pass
+    def moved_by(self, send, commands):
+        """Sends each command with send(*command), 0.1 s of sim time apart, then lets 0.5 s of
+        sim time pass; returns how far (m, in the plane) ground truth moved meanwhile."""
+        p0 = self.latest_truth()
+        for command in commands:
+            send(*command)
+            self.wait_sim(0.1)
+        self.wait_sim(0.5)
+        p1 = self.latest_truth()
+        return math.hypot(p1.x - p0.x, p1.y - p0.y)
 
     def stop_and_settle(self, max_sim=5.0):
         """Commands zero and waits until the car stands still; returns the last truth sample."""
@@ -355,6 +394,22 @@ class AckermannTestCase(unittest.TestCase):
         rospy.loginfo('[%s] %s', name, text)
         print('FIGURE %s: %s' % (name, text))
         return text
+
+    def drive_lap(self, v, angular_z, r_expected, what):
+        """One lap of a circle of radius r_expected at v (Twist angular.z = angular_z) after 3 s
+        of settling: the radius error of the fit (Harness.drive_circle) relative to r_expected,
+        and the figures of the fit for a report."""
+        lap = 2.0 * math.pi * r_expected / v
+        res = self.h.drive_circle(v, angular_z, settle=3.0, duration=lap, geometry=self.geometry)
+        err = (res['radius'] - r_expected) / r_expected
+        self.assert_no_timeout(res['t0'], res['t1'], what)
+        figures = ('fitted radius of the rear axle midpoint %.4f m (%+.2f %%, rms %.2f mm, %d '
+                   'samples over %.2f s, %.0f deg); base_link circle %.4f m; measured speed '
+                   '%.4f m/s, yaw rate %.4f rad/s' % (
+                       res['radius'], 100.0 * err, 1000.0 * res['rms'], res['samples'],
+                       res['duration'], math.degrees(res['turned']), res['radius_base_link'],
+                       res['speed'], res['yaw_rate']))
+        return err, figures
 
     def assert_no_timeout(self, t0, t1, what):
         """cmd_vel_node kept driving from t0 to t1 (sim time): a zero wheel command in a

@@ -136,6 +136,18 @@ class ControllerTestCase(unittest.TestCase):
                 self.pubs[name].publish(Float64(value))
             sim_sleep(0.05)
 
+    def assert_stopped_left_wheel_goes_then_follows_again(self):
+        """With the left wheel's controller stopped: the right wheel holds 0, the left one is
+        commanded hard but no longer follows; started again, it follows."""
+        self.command({LEFT: 30.0, RIGHT: 0.0}, 1.0)
+        self.assertLess(abs(self.wheel_velocity('left_rear_wheel_joint')), 5.0)
+        self.assertLess(abs(self.wheel_velocity('right_rear_wheel_joint')), 0.5)
+        # Started again, it follows.
+        self.assertTrue(self.switch([LEFT], [], STRICT, False, 0.0).ok)
+        self.command({LEFT: 10.0, RIGHT: 10.0}, 1.0)
+        self.assertAlmostEqual(self.wheel_velocity('left_rear_wheel_joint'), 10.0, delta=1.0)
+        self.command({LEFT: 0.0, RIGHT: 0.0}, 0.5)
+
     def wheel_velocity(self, joint):
         msg = self.joints.msg
         return msg.velocity[msg.name.index(joint)]

@@ -81,17 +81,8 @@ class AckermannDrive(AckermannTestCase):
     def test_b_circle_from_yaw_rate(self):
         v, w = 0.5, 0.5
         r_cmd = v / w
-        lap = 2.0 * math.pi * r_cmd / v
-        res = self.h.drive_circle(v, w, settle=3.0, duration=lap, geometry=self.geometry)
-        err = (res['radius'] - r_cmd) / r_cmd
-        self.assert_no_timeout(res['t0'], res['t1'], '(b)')
-        text = self.report(
-            'v %.2f m/s, yaw rate %.2f rad/s (R = %.3f m): fitted radius of the rear axle '
-            'midpoint %.4f m (%+.2f %%, rms %.2f mm, %d samples over %.2f s, %.0f deg); '
-            'base_link circle %.4f m; measured speed %.4f m/s, yaw rate %.4f rad/s', v, w, r_cmd,
-            res['radius'], 100.0 * err, 1000.0 * res['rms'], res['samples'], res['duration'],
-            math.degrees(res['turned']), res['radius_base_link'], res['speed'],
-            res['yaw_rate'])
+        err, figures = self.drive_lap(v, w, r_cmd, '(b)')
+        text = self.report('v %.2f m/s, yaw rate %.2f rad/s (R = %.3f m): %s', v, w, r_cmd, figures)
         self.assertLess(abs(err), RADIUS_TOL, text)
 
 

@@ -8,7 +8,6 @@ command the car. Sim time, as test_ackermann_drive.py.
 The tests run in name order on one car, each from rest where the previous one left it.
 """
 import math
-import threading
 
 import rosnode
 import rospy
@@ -18,7 +17,7 @@ from rosgraph_msgs.msg import Log
 from std_msgs.msg import Float64
 from tianracer_sim.sim_time import wait_connected
 
-from ackermann_harness import CMD_NODE, AckermannTestCase, fit_circle
+from ackermann_harness import CMD_NODE, AckermannTestCase, Repeater, fit_circle
 
 TOPIC = '/ackermann_cmd'
 RADIUS_TOL = 0.03   # 3 %
@@ -26,19 +25,12 @@ STOP_SPEED = 0.01   # m/s
 STOP_WITHIN = 1.0   # s after the last command: cmd_timeout 0.5 s + braking
 
 
-class AckermannStream(object):
+class AckermannStream(Repeater):
     """Publishes an Ackermann command every 0.05 s of sim time (20 Hz) until stopped."""
 
     def __init__(self, msg_type=AckermannDriveStamped):
         self.msg_type = msg_type
-        self.pub = rospy.Publisher(TOPIC, msg_type, queue_size=10)
-        self.lock = threading.Lock()
-        self.cmd = None
-        self.last = None
-        self.count = 0
-        self.thread = threading.Thread(target=self._run)
-        self.thread.daemon = True
-        self.thread.start()
+        Repeater.__init__(self, rospy.Publisher(TOPIC, msg_type, queue_size=10))
 
     def make(self, speed, angle, angle_rate=0.0, accel=0.0):
         drive = AckermannDrive(steering_angle=angle, steering_angle_velocity=angle_rate,
@@ -50,35 +42,10 @@ class AckermannStream(object):
         return msg
 
     def start(self, *args):
-        with self.lock:
-            self.cmd = self.make(*args)
-            self._publish()
+        Repeater.start(self, self.make(*args))
 
     def once(self, *args):
-        with self.lock:
-            self.cmd = None
-            self.pub.publish(self.make(*args))
-            self.last = rospy.get_time()
-
-    def stop(self):
-        with self.lock:
-            self.cmd = None
-            return self.last
-
-    def _publish(self):
-        self.pub.publish(self.cmd)
-        self.last = rospy.get_time()
-        self.count += 1
-
-    def _run(self):
-        while not rospy.is_shutdown():
-            with self.lock:
-                if self.cmd is not None:
-                    self._publish()
-            try:
-                rospy.sleep(0.05)
-            except (rospy.ROSInterruptException, rospy.ROSTimeMovedBackwardsException):
-                pass
+        Repeater.once(self, self.make(*args))
 
     def wait_connected(self, wall_timeout=30.0):
         try:
@@ -175,14 +142,8 @@ class AckermannInput(AckermannTestCase):
         self.settle()
         n_log = self.log_count()
         t0 = rospy.get_time()
-        p0 = h.latest_truth()
         nan, inf = float('nan'), float('inf')
-        for speed, angle in ((nan, 0.0), (0.0, nan), (inf, 0.0), (0.0, -inf), (-inf, inf)):
-            s.once(speed, angle)
-            h.wait_sim(0.1)
-        h.wait_sim(0.5)
-        p1 = h.latest_truth()
-        moved = math.hypot(p1.x - p0.x, p1.y - p0.y)
+        moved = h.moved_by(s.once, ((nan, 0.0), (0.0, nan), (inf, 0.0), (0.0, -inf), (-inf, inf)))
         phases = {}
         for name, speed, angle, secs in (('speed 1e30', 1e30, 0.0, 2.5),
                                          ('angle 1e30', 0.3, 1e30, 1.5),

@@ -2,8 +2,6 @@
 """rostest: cmd_vel_node with its default parameters (control.launch) stops the car when the
 commands stop, and survives NaN, inf and huge commands. Issue 4 (e), (f). Sim time; see
 test_ackermann_drive.py."""
-import math
-
 import rosnode
 import rospy
 import rostest
@@ -55,15 +53,10 @@ class AckermannSafety(AckermannTestCase):
         with h.lock:
             n_log = len(h.rosout)
         t0 = rospy.get_time()
-        p0 = h.latest_truth()
         # Non-finite: ignored; the car (stopped, command timed out) stays where it is.
         nan, inf = float('nan'), float('inf')
-        for v, w in ((nan, 0.0), (0.0, nan), (inf, 0.0), (0.0, -inf), (-inf, inf), (nan, nan)):
-            h.publish_once(v, w)
-            h.wait_sim(0.1)
-        h.wait_sim(0.5)
-        p1 = h.latest_truth()
-        moved = math.hypot(p1.x - p0.x, p1.y - p0.y)
+        moved = h.moved_by(h.publish_once, ((nan, 0.0), (0.0, nan), (inf, 0.0), (0.0, -inf),
+                                            (-inf, inf), (nan, nan)))
         # Huge, each from rest: speed clamped to max_speed, forward and backward; the steering
         # to full lock (slowly: full lock at max_speed is not what this is about).
         phases = {}

@@ -22,18 +22,11 @@ class AckermannSteeringMode(AckermannTestCase):
         v, delta = 0.5, 0.3
         L = self.geometry['wheelbase']
         r_exp = L / math.tan(delta)
-        lap = 2.0 * math.pi * r_exp / v
-        res = self.h.drive_circle(v, delta, settle=3.0, duration=lap, geometry=self.geometry)
-        err = (res['radius'] - r_exp) / r_exp
-        self.assert_no_timeout(res['t0'], res['t1'], '(c)')
+        err, figures = self.drive_lap(v, delta, r_exp, '(c)')
         text = self.report(
             'v %.2f m/s, steering angle %.2f rad, L = %.5f m (URDF joint origins): expected '
-            'R = L / tan(delta) = %.4f m; fitted radius of the rear axle midpoint %.4f m '
-            '(%+.2f %%, rms %.2f mm, %d samples over %.2f s, %.0f deg); base_link circle %.4f m; '
-            'measured speed %.4f m/s, yaw rate %.4f rad/s (bicycle: %.4f)', v, delta, L, r_exp,
-            res['radius'], 100.0 * err, 1000.0 * res['rms'], res['samples'], res['duration'],
-            math.degrees(res['turned']), res['radius_base_link'], res['speed'],
-            res['yaw_rate'], v / r_exp)
+            'R = L / tan(delta) = %.4f m; %s (bicycle: %.4f)', v, delta, L, r_exp, figures,
+            v / r_exp)
         self.assertLess(abs(err), RADIUS_TOL, text)
 
 

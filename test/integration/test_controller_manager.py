@@ -75,15 +75,7 @@ class ControllerManagerTest(ControllerTestCase):
         res = self.switch([], [LEFT], STRICT, False, 0.0)
         self.assertTrue(res.ok)
         self.assertEqual(self.states()[LEFT], 'stopped')
-        # The right wheel holds 0; the left one is commanded hard but no longer follows.
-        self.command({LEFT: 30.0, RIGHT: 0.0}, 1.0)
-        self.assertLess(abs(self.wheel_velocity('left_rear_wheel_joint')), 5.0)
-        self.assertLess(abs(self.wheel_velocity('right_rear_wheel_joint')), 0.5)
-        # Started again, it follows.
-        self.assertTrue(self.switch([LEFT], [], STRICT, False, 0.0).ok)
-        self.command({LEFT: 10.0, RIGHT: 10.0}, 1.0)
-        self.assertAlmostEqual(self.wheel_velocity('left_rear_wheel_joint'), 10.0, delta=1.0)
-        self.command({LEFT: 0.0, RIGHT: 0.0}, 0.5)
+        self.assert_stopped_left_wheel_goes_then_follows_again()
 
     def test_e_bad_input_gets_controller_managers_errors(self):
         rospy.set_param(NS + '/diff_drive', {'type': 'diff_drive_controller/DiffDriveController'})

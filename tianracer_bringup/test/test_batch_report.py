@@ -2,25 +2,19 @@
 metrics from messages, and the CSV, report and pictures."""
 import os
 import shutil
+import sys
 import tempfile
-import textwrap
 import unittest
 
-from tianracer_bringup import metrics, report, scenario
+from tianracer_bringup import metrics, report
 from tianracer_bringup.run import driver_cmd, sim_launch_xml
+from tianracer_sim.script_module import load_script
+
+# catkin runs nosetests with -P (no path adjustment): the test folder's helpers by path.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from scenario_text import load_text  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-
-
-def load_text(text, name='s.yaml'):
-    d = tempfile.mkdtemp()
-    path = os.path.join(d, name)
-    with open(path, 'w') as f:
-        f.write(textwrap.dedent(text))
-    try:
-        return scenario.load(path), path
-    finally:
-        shutil.rmtree(d)
 
 
 class TestRunFiles(unittest.TestCase):
@@ -195,12 +189,8 @@ class TestFollowTheGap(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        from importlib.machinery import SourceFileLoader
-        from importlib.util import module_from_spec, spec_from_loader
-        path = os.path.join(HERE, '..', '..', 'tianracer_control', 'scripts', 'follow_the_gap')
-        loader = SourceFileLoader('follow_the_gap', path)
-        cls.ftg = module_from_spec(spec_from_loader('follow_the_gap', loader))
-        loader.exec_module(cls.ftg)
+        cls.ftg = load_script(os.path.join(HERE, '..', '..', 'tianracer_control', 'scripts',
+                                           'follow_the_gap'))
 
     def choose(self, ranges_of_angle):
         import math

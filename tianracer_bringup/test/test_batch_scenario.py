@@ -1,26 +1,17 @@
 """Scenario files of `batch`: strict validation with file and line, and the matrix expansion."""
 import glob
 import os
-import shutil
-import tempfile
-import textwrap
+import sys
 import unittest
 
 from tianracer_bringup import scenario
 
+# catkin runs nosetests with -P (no path adjustment): the test folder's helpers by path.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from scenario_text import load_text  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 SHIPPED = os.path.join(HERE, '..', 'scenarios')
-
-
-def load_text(text, name='s.yaml'):
-    d = tempfile.mkdtemp()
-    path = os.path.join(d, name)
-    with open(path, 'w') as f:
-        f.write(textwrap.dedent(text))
-    try:
-        return scenario.load(path), path
-    finally:
-        shutil.rmtree(d)
 
 
 def problems(text):

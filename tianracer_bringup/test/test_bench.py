@@ -7,6 +7,8 @@ import subprocess
 import tempfile
 import unittest
 
+from tianracer_sim.script_module import load_script
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 BENCH = os.path.join(os.path.dirname(HERE), "bench")
 HARNESS = os.path.join(BENCH, "run_benchmarks")
@@ -38,11 +40,7 @@ class BenchHarnessTest(unittest.TestCase):
         return p.returncode, p.stdout + p.stderr
 
     def test_the_header_names_each_scenarios_own_world_and_model(self):
-        import importlib.machinery
-        import importlib.util
-        loader = importlib.machinery.SourceFileLoader("run_benchmarks", HARNESS)
-        harness = importlib.util.module_from_spec(importlib.util.spec_from_loader(loader.name, loader))
-        loader.exec_module(harness)
+        harness = load_script(HARNESS)
         self.assertEqual(harness.own_content(["physics", "lidar", "full"]), "")
         text = harness.own_content(["physics", "lane_track", "boxes", "lidar3d"])
         self.assertEqual(text, " unless named (lane_track: world lane_track; "

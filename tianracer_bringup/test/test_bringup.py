@@ -11,29 +11,24 @@
 import math
 import os
 import sys
-import unittest
 
 import rospy
 import rostest
 from sensor_msgs.msg import CameraInfo
-from tianracer_sim.sim_time import Stream, sim_sleep
+from tianracer_sim.sim_time import Stream
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import tf_check  # noqa: E402
 
 
-class Bringup(unittest.TestCase):
+class Bringup(tf_check.CarTestCase):
+    node_name, ns = 'test_bringup', '/tianracer'
+
     @classmethod
-    def setUpClass(cls):
-        rospy.init_node('test_bringup')
-        cls.tf = tf_check.TfRecorder()
-        cls.truth = tf_check.truth('/tianracer')
-        cls.scan = tf_check.scans('/scan')
-        cls.camera_info = Stream('/rrbot/camera1/camera_info', CameraInfo)
-        cls.depth_info = Stream('/real_sense/depth/camera_info', CameraInfo)
-        for stream in (cls.truth, cls.scan, cls.camera_info, cls.depth_info):
-            stream.wait_count(1)
-        sim_sleep(1.0)  # every node's TF at least once
+    def streams(cls):
+        return {'scan': tf_check.scans('/scan'),
+                'camera_info': Stream('/rrbot/camera1/camera_info', CameraInfo),
+                'depth_info': Stream('/real_sense/depth/camera_info', CameraInfo)}
 
     def test_a_tf_tree_complete_without_duplicates(self):
         frames = tf_check.urdf_links() + [self.scan.latest().header.frame_id,

@@ -8,29 +8,24 @@ Nothing is left under /tianracer.
 import math
 import os
 import sys
-import unittest
 
 import rospy
 import rostest
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import JointState
-from tianracer_sim.sim_time import Stream, sim_sleep
+from tianracer_sim.sim_time import Stream
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import tf_check  # noqa: E402
 
 
-class RobotName(unittest.TestCase):
+class RobotName(tf_check.CarTestCase):
+    node_name, ns = 'test_robot_name', '/other'
+
     @classmethod
-    def setUpClass(cls):
-        rospy.init_node('test_robot_name')
-        cls.tf = tf_check.TfRecorder()
-        cls.truth = tf_check.truth('/other')
-        cls.joints = Stream('/other/joint_states', JointState)
-        cls.odom = Stream('/other/odom', Odometry)
-        for stream in (cls.truth, cls.joints, cls.odom):
-            stream.wait_count(1)
-        sim_sleep(1.0)
+    def streams(cls):
+        return {'joints': Stream('/other/joint_states', JointState),
+                'odom': Stream('/other/odom', Odometry)}
 
     def test_a_wheels_in_tf(self):
         for link in tf_check.urdf_links():

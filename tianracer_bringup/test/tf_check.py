@@ -3,6 +3,7 @@ ground truth, scans, and /cmd_vel driving. Waits are on what the sim guarantees,
 (tianracer_sim.sim_time)."""
 import math
 import threading
+import unittest
 import xml.etree.ElementTree as ET
 
 import rospy
@@ -11,11 +12,8 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
 from tf2_msgs.msg import TFMessage
 
-from tianracer_bringup.ros_session import yaw_from_quaternion
-from tianracer_sim.sim_time import Stream, drive_twist, lossless
-
-
-yaw_of = yaw_from_quaternion
+from tianracer_sim.rotation import yaw_from_quaternion as yaw_of  # noqa: F401 (for the tests)
+from tianracer_sim.sim_time import Stream, drive_twist, lossless, sim_sleep
 
 
 class TfRecorder(object):
@@ -61,6 +59,31 @@ class TfRecorder(object):
                         child in self.static and child in self.dynamic):
                     bad[child] = (sorted(pubs), sorted(self.parent[child]))
             return bad
+
+
+class CarTestCase(unittest.TestCase):
+    """A rostest of one car under namespace `ns`: a node named `node_name`, a TfRecorder (tf),
+    the car's ground truth (truth) and the streams of streams(), each an attribute; set up once
+    each of those has a message and 1 s more of sim time has passed (every node's TF at least
+    once)."""
+    node_name = ns = None
+
+    @classmethod
+    def streams(cls):
+        """{attribute: Stream}, made once the node is up."""
+        return {}
+
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node(cls.node_name)
+        cls.tf = TfRecorder()
+        cls.truth = truth(cls.ns)
+        streams = cls.streams()
+        for name, stream in streams.items():
+            setattr(cls, name, stream)
+        for stream in [cls.truth] + list(streams.values()):
+            stream.wait_count(1)
+        sim_sleep(1.0)
 
 
 def urdf_links(param='/robot_description'):

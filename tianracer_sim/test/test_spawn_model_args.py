@@ -2,26 +2,18 @@
 """spawn_model's arguments: gazebo_ros spawn_model's, parsed the same way; what we cannot
 honour (-J, -database) and bad values are refused with a message."""
 import contextlib
-import importlib.machinery
-import importlib.util
 import io
 import math
 import os
 import tempfile
 import unittest
 
+from tianracer_sim.script_module import load_script
+
 SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'scripts', 'spawn_model')
 
 
-def load_script():
-    loader = importlib.machinery.SourceFileLoader('spawn_model_script', SCRIPT)
-    spec = importlib.util.spec_from_loader('spawn_model_script', loader)
-    module = importlib.util.module_from_spec(spec)
-    loader.exec_module(module)
-    return module
-
-
-sm = load_script()
+sm = load_script(SCRIPT, 'spawn_model_script')
 
 
 class ParseTest(unittest.TestCase):

@@ -16,7 +16,7 @@ import threading
 import time
 
 from tianracer_bringup.metrics import Metrics, get_field
-from tianracer_bringup.ros_session import yaw_from_quaternion
+from tianracer_sim.rotation import yaw_from_quaternion
 
 
 def main(argv):

@@ -1,37 +1,22 @@
 """What the demo, the benchmarks, the soak, the batch runner and the tests share: a ROS graph
 of their own (a private master on a free port, the environment for it), one roslaunch with a
-reliable way to end it, questions to the graph, and yaw from a quaternion.
+reliable way to end it, and questions to the graph.
 
 roslaunch starts every node (and the master) in a new session (os.setsid), so killing
 roslaunch's process group does not reach them: RosSession records the pid of the master and
 of every node it sees, asks roslaunch to shut down (SIGINT), and SIGKILLs whatever is left.
 """
-import math
 import os
+import shlex
 import signal
-import socket
 import subprocess
 import time
 import xmlrpc.client
 
+from tianracer_sim.master import (free_port, master_cmd, ros_env, spawn_master,  # noqa: F401
+                                  stop_master, wait_for_master)
+
 CALLER = "/ros_session"
-
-
-def free_port():
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
-        s.bind(("localhost", 0))
-        return s.getsockname()[1]
-
-
-def ros_env(port, log_dir=None):
-    env = dict(os.environ)
-    env["PATH"] = "/usr/bin:" + env.get("PATH", "")
-    env["ROS_MASTER_URI"] = "http://localhost:%d" % port
-    env["ROS_HOSTNAME"] = "localhost"
-    env.pop("ROS_IP", None)
-    if log_dir:
-        env["ROS_LOG_DIR"] = log_dir
-    return env
 
 
 def wrapper_launch(path, args, params, extra_xml=""):
@@ -59,79 +44,103 @@ class RosSession:
     """own_master: start rosmaster first and wait for it (roslaunch gives a master 10 s to come
     up, which a loaded machine can miss); False: roslaunch starts it, as a user's launch does.
     launch_file is a path, or roslaunch's arguments as a user types them (a list, e.g.
-    ['tianracer_bringup', 'tianracer.launch', 'robot_name:=racecar'])."""
+    ['tianracer_bringup', 'tianracer.launch', 'robot_name:=racecar']). env: more environment
+    variables for every process of the session; popen: more Popen arguments for each (cwd,
+    preexec_fn)."""
 
-    def __init__(self, launch_file, log_path, log_dir=None, port=None, own_master=True):
+    def __init__(self, launch_file, log_path, log_dir=None, port=None, own_master=True, env=None,
+                 **popen):
         self.own_master = own_master
         self.master_proc = None
         self.port = port or free_port()
         self.uri = "http://localhost:%d" % self.port
         self.env = ros_env(self.port, log_dir)
+        self.env.update(env or {})
+        self.popen_kw = popen
         self.launch_file = launch_file
         self.log_path = log_path
         self.proc = None
+        self.procs = {}  # name -> Popen of every process started but the master, in start order
         self.pids = {}  # name -> pid of the master and of nodes seen
-        self.others = []  # extra Popen objects tied to this session (clients)
+        self.files = []  # logs opened, closed by close()
+        self._log = None  # the session's log, opened by the first process that writes to it
         self.t_start = None
 
     # -- lifetime -------------------------------------------------------------------------
     def start(self):
-        self._log = open(self.log_path, "w")
         if self.own_master:
-            self.master_proc = subprocess.Popen(["rosmaster", "--core", "-p", str(self.port), "-w", "3"],
-                                                env=self.env, stdout=self._log, stderr=subprocess.STDOUT,
-                                                stdin=subprocess.DEVNULL, start_new_session=True)
-            deadline = time.time() + 120.0
-            while True:
-                try:
-                    self.pids["master"] = self.master().getPid(CALLER)[2]
-                    break
-                except OSError:
-                    if self.master_proc.poll() is not None or time.time() > deadline:
-                        raise RuntimeError("rosmaster on port %d did not start; see %s" % (self.port, self.log_path))
-                    time.sleep(0.05)
+            self.spawn_master()
+            self.pids["master"] = wait_for_master(self.master_proc, self.port,
+                                                  what="; see %s" % self.log_path)
         self.t_start = time.time()
-        launch = list(self.launch_file) if isinstance(self.launch_file, (list, tuple)) else [self.launch_file]
-        self.proc = subprocess.Popen(["roslaunch", "-p", str(self.port)] + launch,
-                                     env=self.env, stdout=self._log, stderr=subprocess.STDOUT,
-                                     stdin=subprocess.DEVNULL, start_new_session=True)
+        self.launch()
         return self
+
+    def launch(self, name="launch", log_path=None):
+        """roslaunch of the session's launch file (self.proc)."""
+        launch = list(self.launch_file) if isinstance(self.launch_file, (list, tuple)) else [self.launch_file]
+        self.proc = self.spawn(name, ["roslaunch", "-p", str(self.port)] + launch, log_path)
+        return self.proc
+
+    def _open_log(self, log_path, cmd):
+        """The session's log (log_path None), or a log of its own that starts with the command."""
+        if log_path is None:
+            if self._log is None:
+                self._log = open(self.log_path, "w")
+                self.files.append(self._log)
+            return self._log
+        f = open(log_path, "w")
+        self.files.append(f)
+        f.write("$ %s\n" % " ".join(shlex.quote(c) for c in cmd))
+        f.flush()
+        return f
+
+    def spawn_master(self, log_path=None):
+        """rosmaster on the session's port, its output to the session's log or to log_path."""
+        log = self._open_log(log_path, master_cmd(self.port))
+        self.master_proc = spawn_master(self.port, self.env, log, **self.popen_kw)
+        return self.master_proc
+
+    def spawn(self, name, cmd, log_path=None):
+        """A process of the session's graph (roslaunch, a node, a client) in a session of its own,
+        its output to the session's log or to log_path; ended by close()."""
+        log = self._open_log(log_path, cmd)
+        p = subprocess.Popen(cmd, env=self.env, stdout=log, stderr=subprocess.STDOUT,
+                             stdin=subprocess.DEVNULL, start_new_session=True, **self.popen_kw)
+        self.procs[name] = p
+        return p
 
     def popen(self, cmd, **kw):
         """A client process in this session's ROS graph; ended by close()."""
         kw.setdefault("stdin", subprocess.DEVNULL)
         p = subprocess.Popen(cmd, env=self.env, start_new_session=True, **kw)
-        self.others.append(p)
+        self.procs["client %d" % len(self.procs)] = p
         return p
 
     def close(self):
+        """SIGINT to every process (the clients first), SIGKILL to those still there after 15 s;
+        then the master; then every node seen that is still alive."""
         self.remember_pids()
-        for p in self.others:
+        running = list(reversed(list(self.procs.values())))
+        for p in running:
             _signal_group(p, signal.SIGINT)
-        if self.proc and self.proc.poll() is None:
-            _signal_group(self.proc, signal.SIGINT)
         deadline = time.time() + 15.0
-        for p in self.others + ([self.proc] if self.proc else []):
-            try:
-                p.wait(max(0.1, deadline - time.time()))
-            except subprocess.TimeoutExpired:
-                _signal_group(p, signal.SIGKILL)
-                p.wait()
+        for p in running:
+            stop_process(p, max(0.1, deadline - time.time()), signal_first=False)
         if self.master_proc:
-            _signal_group(self.master_proc, signal.SIGINT)
-            try:
-                self.master_proc.wait(5.0)
-            except subprocess.TimeoutExpired:
-                _signal_group(self.master_proc, signal.SIGKILL)
-                self.master_proc.wait()
+            stop_master(self.master_proc)
         for name, pid in self.pids.items():
             if _alive(pid):
                 try:
                     os.kill(pid, signal.SIGKILL)
                 except ProcessLookupError:
                     pass
-        if getattr(self, "_log", None):
-            self._log.close()
+        self.close_logs()
+
+    def close_logs(self):
+        for f in self.files:
+            f.close()
+        self.files = []
 
     def __enter__(self):
         return self.start()
@@ -203,6 +212,18 @@ def _signal_group(p, sig):
         pass
 
 
+def stop_process(p, timeout, signal_first=True):
+    """SIGINT to the process group of `p` (a process started in a session of its own) while it
+    runs, SIGKILL to the group after `timeout` s."""
+    if signal_first and p.poll() is None:
+        _signal_group(p, signal.SIGINT)
+    try:
+        p.wait(timeout)
+    except subprocess.TimeoutExpired:
+        _signal_group(p, signal.SIGKILL)
+        p.wait()
+
+
 def proc_cpu_seconds(pid):
     """utime + stime of a process (all its threads), seconds."""
     with open("/proc/%d/stat" % pid) as f:
@@ -247,8 +268,3 @@ def graph_connected(master, caller=CALLER):
             if len(out) < len(wanted - {node}):
                 return False
     return True
-
-
-def yaw_from_quaternion(q):
-    """Yaw (rad) of a quaternion with fields x, y, z, w (REP-103: about z, from x towards y)."""
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))

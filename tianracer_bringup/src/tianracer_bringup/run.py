@@ -2,11 +2,11 @@
 simulator paused until the recorder and the user's driver are connected, then unpaused and run to
 the scenario's sim duration; everything stopped afterwards, whatever happened.
 
-The approach is the one of tianracer_bringup.ros_session (a private master, roslaunch in its
-own session, SIGINT then SIGKILL). roslaunch puts every node in a new
-session, so process groups do not reach them all: every process of a run carries the environment
-variable TIANRACER_BATCH_RUN=<token>, and after stopping, the process table is searched for that
-token; survivors are killed and counted.
+A run is a tianracer_bringup.ros_session.RosSession (a private master, roslaunch and the
+clients each in a session of its own, SIGINT then SIGKILL), one log per process. roslaunch puts
+every node in a new session, so process groups do not reach them all: every process of a run
+carries the environment variable TIANRACER_BATCH_RUN=<token>, and after stopping, the process
+table is searched for that token; survivors are killed and counted.
 """
 import json
 import os
@@ -15,14 +15,13 @@ import resource
 import shlex
 import signal
 import socket
-import subprocess
 import sys
 import time
 import uuid
 import xmlrpc.client
 from xml.sax.saxutils import quoteattr
 
-from tianracer_bringup.ros_session import free_port, graph_connected, ros_env
+from tianracer_bringup.ros_session import RosSession, graph_connected, stop_master, stop_process
 from tianracer_bringup.scenario import lockstep, run_timeout
 
 TOKEN_VAR = 'TIANRACER_BATCH_RUN'
@@ -114,45 +113,37 @@ class RunFailed(Exception):
     pass
 
 
-class _Run:
+class _Run(RosSession):
     def __init__(self, cfg, run_dir):
         self.cfg = cfg
         self.dir = run_dir
         self.logs = os.path.join(run_dir, 'logs')
         os.makedirs(self.logs, exist_ok=True)
-        self.port = free_port()
         self.token = uuid.uuid4().hex
-        env = ros_env(self.port, self.logs)
-        env['ROS_HOME'] = os.path.join(run_dir, 'ros_home')
-        env[TOKEN_VAR] = self.token
-        self.env = env
-        self.procs = {}
-        self.files = []
-        self.uri = env['ROS_MASTER_URI']
+        RosSession.__init__(self, os.path.join(run_dir, 'run.launch'), self.log_file('sim'),
+                            log_dir=self.logs,
+                            env={'ROS_HOME': os.path.join(run_dir, 'ros_home'),
+                                 TOKEN_VAR: self.token},
+                            cwd=run_dir, preexec_fn=_default_signals)
 
-    def log_path(self, name):
+    def log_file(self, name):
         return os.path.join(self.logs, name + '.log')
 
-    def spawn(self, name, cmd):
-        f = open(self.log_path(name), 'w')
-        self.files.append(f)
-        f.write('$ %s\n' % ' '.join(shlex.quote(c) for c in cmd))
-        f.flush()
+    def spawn(self, name, cmd, log_path=None):
         try:
-            p = subprocess.Popen(cmd, env=self.env, stdout=f, stderr=subprocess.STDOUT,
-                                 stdin=subprocess.DEVNULL, start_new_session=True, cwd=self.dir,
-                                 preexec_fn=_default_signals)
+            return RosSession.spawn(self, name, cmd, log_path or self.log_file(name))
         except OSError as e:
             raise RunFailed('%s: cannot start %r: %s' % (name, cmd[0], e.strerror))
-        self.procs[name] = p
-        return p
 
-    def master(self):
-        return xmlrpc.client.ServerProxy(self.uri)
+    def spawn_master(self, log_path=None):
+        try:
+            return RosSession.spawn_master(self, log_path or self.log_file('master'))
+        except OSError as e:
+            raise RunFailed('master: cannot start %r: %s' % ('rosmaster', e.strerror))
 
     def check(self, names):
         for name in names:
-            p = self.procs.get(name)
+            p = self.master_proc if name == 'master' else self.procs.get(name)
             if p is not None and p.poll() is not None and (p.returncode != 0 or name != 'driver'):
                 raise RunFailed('%s exited with code %s before the run ended' % (
                     {'sim': 'the simulator launch', 'driver': 'the driver',
@@ -179,18 +170,11 @@ class _Run:
 
     def stop(self):
         """SIGINT to every process group, then SIGKILL; then whatever still carries the token."""
-        order = ['driver', 'recorder', 'sim', 'master']
-        for name in order:
-            p = self.procs.get(name)
-            if p is not None and p.poll() is None:
-                _killpg(p, signal.SIGINT)
-            deadline = time.time() + (10.0 if name == 'sim' else 5.0)
-            if p is not None:
-                try:
-                    p.wait(max(0.1, deadline - time.time()))
-                except subprocess.TimeoutExpired:
-                    _killpg(p, signal.SIGKILL)
-                    p.wait()
+        for name in ['driver', 'recorder', 'sim']:
+            if name in self.procs:
+                stop_process(self.procs[name], 10.0 if name == 'sim' else 5.0)
+        if self.master_proc:
+            stop_master(self.master_proc)
         leftovers = processes_with_token(self.token)
         self.leftover_names = []
         for pid in leftovers:
@@ -207,8 +191,7 @@ class _Run:
         deadline = time.time() + 5.0
         while processes_with_token(self.token) and time.time() < deadline:
             time.sleep(0.05)
-        for f in self.files:
-            f.close()
+        self.close_logs()
         return leftovers
 
 
@@ -218,13 +201,6 @@ def _default_signals():
     signal.pthread_sigmask(signal.SIG_UNBLOCK, [signal.SIGINT, signal.SIGTERM])
     signal.signal(signal.SIGINT, signal.SIG_DFL)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
-
-
-def _killpg(p, sig):
-    try:
-        os.killpg(p.pid, sig)
-    except (ProcessLookupError, PermissionError):
-        pass
 
 
 def run_one(run_id, cfg, run_dir):
@@ -250,10 +226,10 @@ def run_one(run_id, cfg, run_dir):
         if os.path.exists(p):
             os.remove(p)
     try:
-        r.spawn('master', ['rosmaster', '--core', '-p', str(r.port), '-w', '3'])
+        r.spawn_master()
         r.wait('rosmaster', lambda: r.master().getPid(CALLER)[0] == 1, deadline, ['master'])
         stage = 'starting the simulator'
-        r.spawn('sim', ['roslaunch', '-p', str(r.port), launch_file])
+        r.launch('sim')
         r.wait('the simulator (/gazebo/unpause_physics)',
                lambda: r.has_service('/gazebo/unpause_physics'), deadline, ['master', 'sim'])
         stage = 'starting the recorder'
@@ -305,8 +281,8 @@ def run_one(run_id, cfg, run_dir):
     result['leftover_processes'] = len(leftovers)
     result['leftover_commands'] = r.leftover_names
     if result['status'] != 'ok' or result['metrics'] is None or not result['metrics']['success']:
-        result['log_tails'] = {name: _tail(r.log_path(name)) for name in ('driver', 'recorder', 'sim')
-                               if os.path.exists(r.log_path(name))}
+        result['log_tails'] = {name: _tail(r.log_file(name)) for name in ('driver', 'recorder', 'sim')
+                               if os.path.exists(r.log_file(name))}
         import glob
         for path in sorted(glob.glob(os.path.join(r.logs, '**', 'tianracer_sim-*.log'), recursive=True)):
             result['log_tails']['tianracer_sim node'] = _tail(path)

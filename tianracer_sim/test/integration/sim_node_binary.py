@@ -3,10 +3,14 @@ themselves, with arguments or an environment a launch file cannot give), and rea
 start-up output. (Waiting on the running sim: tianracer_sim.sim_time.)"""
 import os
 import signal
-import socket
 import subprocess
 import threading
 import time
+
+from tianracer_sim.master import free_port, ros_env, start_master, stop_master
+
+
+TEST_URDF = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data', 'urdf')
 
 
 def node_binary():
@@ -22,14 +26,10 @@ def startup_output(args, wanted, name, timeout=90.0):
     start-up messages can be read apart from the rostest's sim): read until every string of
     `wanted` has appeared, or for at most `timeout` s of a loaded machine's wall time, then
     interrupted. The node should be paused (it runs until interrupted)."""
-    with socket.socket() as s:
-        s.bind(('localhost', 0))
-        port = s.getsockname()[1]
+    port = free_port()
     # Line-buffered stdout: INFO lines arrive as they are logged, not when the node exits.
-    env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port,
-               ROSCONSOLE_STDOUT_LINE_BUFFERED='1')
-    master = subprocess.Popen(['rosmaster', '--core', '-p', str(port)], env=env,
-                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    env = dict(ros_env(port), ROSCONSOLE_STDOUT_LINE_BUFFERED='1')
+    master, _ = start_master(port, env)
     try:
         node = subprocess.Popen([node_binary(), '__name:=' + name] + list(args), env=env,
                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
@@ -52,5 +52,11 @@ def startup_output(args, wanted, name, timeout=90.0):
         reader.join(timeout=10)
         return ''.join(lines)
     finally:
-        master.terminate()
-        master.wait(timeout=10)
+        stop_master(master)
+
+
+def sensor_startup_output(xacro, wanted, name):
+    """startup_output() of the model test/data/urdf/<xacro>, paused, with the camera, depth
+    and ray sensors left out (the other kinds' messages are read)."""
+    return startup_output(['_model:=' + os.path.join(TEST_URDF, xacro), '_paused:=true',
+                           '_disable_sensors:=camera depth ray'], wanted, name)

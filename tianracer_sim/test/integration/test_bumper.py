@@ -6,7 +6,6 @@ contact points at the box's face, normals pushing the car back and a force that 
 The robot's own /tianracer/contacts (tianracer_sim/Contact), subscribed, reports the box too:
 contacts are tracked while someone reads them. Everything in sim time. A bumper whose frameName
 is no link, and a contact sensor without the plugin, are left out with a message."""
-import os
 import unittest
 
 import rospy
@@ -16,7 +15,7 @@ from std_msgs.msg import Float64
 from tianracer_sim.msg import Contact
 from tianracer_sim.sim_time import Stream, published_rate
 
-from sim_node_binary import startup_output
+from sim_node_binary import sensor_startup_output
 
 WHEEL_RADIUS = 0.032
 COMMANDS = ['/tianracer/left_rear_wheel_velocity_controller/command',
@@ -75,12 +74,10 @@ class BumperTest(unittest.TestCase):
     def test_b_bad_sensors_messages(self):
         """What the node says about them: the same model in a sim of its own (own master), so
         that its start-up output can be read."""
-        model = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data', 'urdf',
-                             'tianracer_bumper.xacro')
-        out = startup_output(['_model:=' + model, '_paused:=true',
-                              '_disable_sensors:=camera depth ray'],
-                             ["'nowhere'", 'no libgazebo_ros_bumper plugin', "contact sensor 'bumper'"],
-                             'bumper_bad_input')
+        out = sensor_startup_output(
+            'tianracer_bumper.xacro',
+            ["'nowhere'", 'no libgazebo_ros_bumper plugin', "contact sensor 'bumper'"],
+            'bumper_bad_input')
         bad = [l for l in out.splitlines() if 'bad_frame_bumper' in l and "'nowhere'" in l
                and 'neither world nor a link' in l and 'left out' in l]
         self.assertTrue(bad, out)

@@ -12,8 +12,6 @@ cloud at 20 Hz, camera_infos at 10 Hz) in walled_room, as docs/model_and_sensors
 - scripts/save_frames against the live sim (PNG files checked by decoding them here), its pure
   parts (PNG writer, colour map), and its exit code on a timeout.
 """
-import importlib.machinery
-import importlib.util
 import math
 import os
 import shutil
@@ -31,6 +29,8 @@ import rostest
 import tf2_ros
 from diagnostic_msgs.msg import DiagnosticArray
 from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField
+from tianracer_sim.rotation import quaternion_from_rpy
+from tianracer_sim.script_module import load_script
 from tianracer_sim.sim_time import bus_info, lossless, sim_sleep, wait_connected, wait_for
 
 CAMERA = '/rrbot/camera1/image_raw'
@@ -55,15 +55,6 @@ CLOUD_DTYPE = np.dtype({'names': ['x', 'y', 'z', 'rgb'], 'formats': ['<f4', '<f4
 SAVE_FRAMES = os.path.join(rospkg.RosPack().get_path('tianracer_sim'), 'scripts', 'save_frames')
 
 
-def load_save_frames():
-    """scripts/save_frames as a module (it has no .py suffix)."""
-    loader = importlib.machinery.SourceFileLoader('save_frames', SAVE_FRAMES)
-    spec = importlib.util.spec_from_loader('save_frames', loader)
-    module = importlib.util.module_from_spec(spec)
-    loader.exec_module(module)
-    return module
-
-
 def read_png(path):
     """(width, height, mode, pixels) of a PNG file, decoded by Pillow after it checked the
     file's structure and CRCs (verify())."""
@@ -73,15 +64,6 @@ def read_png(path):
     with Image.open(path) as im:
         assert im.format == 'PNG', path
         return im.width, im.height, im.mode, np.asarray(im)
-
-
-def rpy_quaternion(roll, pitch, yaw):
-    """(x, y, z, w) of R = Rz(yaw) Ry(pitch) Rx(roll), as URDF and tf use it."""
-    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
-    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
-    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    return (sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy,
-            cr * cp * sy - sr * sp * cy, cr * cp * cy + sr * sp * sy)
 
 
 class Camera(unittest.TestCase):
@@ -132,7 +114,7 @@ class Camera(unittest.TestCase):
     # --- save_frames' pure parts --------------------------------------------------------------
 
     def test_0_save_frames_png_and_colour_map(self):
-        sf = load_save_frames()
+        sf = load_script(SAVE_FRAMES)
         rgb = np.random.RandomState(1).randint(0, 256, (7, 5, 3)).astype(np.uint8)
         tmp = tempfile.mkdtemp()
         try:
@@ -352,7 +334,7 @@ class Camera(unittest.TestCase):
             self.assertEqual(rs.distortion_model, 'plumb_bob')
 
     def test_4_optical_frames_in_tf(self):
-        expected = rpy_quaternion(-math.pi / 2, 0, -math.pi / 2)
+        expected = quaternion_from_rpy(-math.pi / 2, 0, -math.pi / 2)
         for link in ('camera', 'real_sense'):
             optical = link + '_optical_frame'
             tf = self.tf_buffer.lookup_transform(link, optical, rospy.Time(0),

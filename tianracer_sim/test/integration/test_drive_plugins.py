@@ -21,19 +21,12 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock, Log
 from sensor_msgs.msg import JointState
 from tf2_msgs.msg import TFMessage
+from tianracer_sim.rotation import yaw_from_quaternion as yaw_of
 from tianracer_sim.sim_time import Stream, clock_stamp, drive_twist, sim_sleep, wait_connected
-from tianracer_sim.sim_time import wait_for as wait_until
+from tianracer_sim.sim_time import wait_for
 
 WALL_TIMEOUT = 120.0
 TOLERANCE = 0.03  # relative
-
-
-def wait_for(cond, what):
-    return wait_until(cond, what, WALL_TIMEOUT)
-
-
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
 def wrap(a):
@@ -73,7 +66,7 @@ class DrivePluginsTest(unittest.TestCase):
         rospy.Subscriber('/tf', TFMessage, self.on_tf)
         rospy.Subscriber('/rosout', Log, lambda m: self.log.append(m.msg))
         self.cmd = rospy.Publisher(ns + '/cmd_vel', Twist, queue_size=1)
-        wait_for(lambda: self.clock.latest(), '/clock')
+        wait_for(lambda: self.clock.latest(), '/clock', WALL_TIMEOUT)
         wait_connected(self.cmd)
 
     def on_tf(self, msg):
@@ -108,7 +101,7 @@ class DrivePluginsTest(unittest.TestCase):
 
     def check_tf(self, odom_frame):
         key = (odom_frame, self.base)
-        t = wait_for(lambda: self.tf.get(key), 'TF %s -> %s' % key)
+        t = wait_for(lambda: self.tf.get(key), 'TF %s -> %s' % key, WALL_TIMEOUT)
         # The TF is the odometry's pose (same stamp).
         stamp = t.header.stamp.to_sec()
         msgs = [m for m in self.odom.messages() if abs(m.header.stamp.to_sec() - stamp) < 1e-6]
@@ -133,17 +126,22 @@ class DrivePluginsTest(unittest.TestCase):
         self.assertTrue(all(math.isfinite(x) for x in (last.pose.pose.position.x,
                                                          last.twist.twist.linear.x)))
         wait_for(lambda: any('non-finite command' in m for m in self.log),
-                 'the warning about the NaN command on /rosout')
+                 'the warning about the NaN command on /rosout', WALL_TIMEOUT)
 
     def test_drive(self):
         getattr(self, 'case_' + self.case)()
 
-    def case_diff_drive(self):
-        for v, w in ((0.5, 0.0), (0.0, 0.5), (0.5, 0.5)):
+    def assert_follows(self, commands):
+        """Drives each (v, w) of `commands`: the odometry twist and poses and the ground truth
+        move at v and w."""
+        for v, w in commands:
             twist, odom, truth = self.drive(v, w)
             self.assert_speeds(twist, v, w, 'odometry twist')
             self.assert_speeds(odom, v, w, 'odometry poses')
             self.assert_speeds(truth, v, w, 'ground truth')
+
+    def case_diff_drive(self):
+        self.assert_follows(((0.5, 0.0), (0.0, 0.5), (0.5, 0.5)))
         msg = self.odom.latest()
         self.assertEqual((msg.header.frame_id, msg.child_frame_id), ('odom', 'base_link'))
         self.assertEqual(msg.pose.covariance[0], 0.00001)
@@ -151,7 +149,7 @@ class DrivePluginsTest(unittest.TestCase):
         self.assertAlmostEqual(msg.pose.pose.position.z, 0.05, delta=0.01)  # world source: z
         self.check_tf('odom')
         # publishWheelTF: each wheel in base_link, on its axle 0.12 m to the side.
-        t = wait_for(lambda: self.tf.get(('base_link', 'left_wheel')), 'wheel TF')
+        t = wait_for(lambda: self.tf.get(('base_link', 'left_wheel')), 'wheel TF', WALL_TIMEOUT)
         self.assertAlmostEqual(t.transform.translation.y, 0.12, delta=1e-6)
         # publishWheelJointState: names and positions.
         js = Stream('/diff_bot/joint_states', JointState)
@@ -175,7 +173,8 @@ class DrivePluginsTest(unittest.TestCase):
                     reference_frame='world')
         self.assertTrue(res.success, res.status_message)
         wait_for(lambda: any("diff_drive plugin 'diff_drive' of model 'bad_bot': <wheelDiameter> 0 "
-                             "must be > 0" in m for m in self.log), 'the error about wheelDiameter')
+                             "must be > 0" in m for m in self.log),
+                 'the error about wheelDiameter', WALL_TIMEOUT)
         twist, _, truth = self.drive(0.5, 0.0)
         self.assert_speeds(truth, 0.5, 0.0, 'ground truth after the bad spawn')
 
@@ -197,11 +196,7 @@ class DrivePluginsTest(unittest.TestCase):
         self.check_tf('odom')
 
     def case_planar_move(self):
-        for v, w in ((0.5, 0.5),):
-            twist, odom, truth = self.drive(v, w)
-            self.assert_speeds(twist, v, w, 'odometry twist')
-            self.assert_speeds(odom, v, w, 'odometry poses')
-            self.assert_speeds(truth, v, w, 'ground truth')
+        self.assert_follows(((0.5, 0.5),))
         msg = self.odom.latest()
         self.assertEqual((msg.header.frame_id, msg.child_frame_id), ('odom', 'mover'))
         self.check_tf('odom')

@@ -3,47 +3,28 @@
 model_states and link_states where the physics has it, set_model_state moves it, and
 apply_body_wrench moves it by F t^2/(2m) (lifted 10 m, so that only gravity, vertical, acts
 besides the force). Sim time; wall time only bounds the waits."""
-import unittest
-
 import rospy
 import rostest
 from gazebo_msgs.msg import LinkStates, ModelState, ModelStates
-from gazebo_msgs.srv import (ApplyBodyWrench, GetModelProperties, GetModelState,
-                             GetWorldProperties, SetModelState)
-from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3, Wrench
-from std_srvs.srv import Empty
-from tianracer_sim.sim_time import Paused, Stream, sim_sleep, wait_for
+from geometry_msgs.msg import Point, Pose, Quaternion, Twist
+from tianracer_sim.sim_time import Stream, wait_for
 
-
-def no_stamp(msg):
-    return 0.0  # ModelStates and LinkStates carry no header
+from gazebo_case import GazeboCase, no_stamp
 
 BOX, MASS = 'crate', 0.5
 
 
-class GazeboFreeBody(unittest.TestCase):
+class GazeboFreeBody(GazeboCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('test_gazebo_free_body')
         cls.models = Stream('/gazebo/model_states', ModelStates, stamp=no_stamp, keep=500)
         cls.links = Stream('/gazebo/link_states', LinkStates, stamp=no_stamp, keep=500)
-        names = ['pause_physics', 'unpause_physics', 'reset_world', 'get_model_state',
-                 'set_model_state', 'get_model_properties', 'get_world_properties',
-                 'apply_body_wrench']
-        types = [Empty, Empty, Empty, GetModelState, SetModelState, GetModelProperties,
-                 GetWorldProperties, ApplyBodyWrench]
-        for n, t in zip(names, types):
-            rospy.wait_for_service('/gazebo/' + n, timeout=60)
-            setattr(cls, n, rospy.ServiceProxy('/gazebo/' + n, t))
+        cls.connect(['pause_physics', 'unpause_physics', 'reset_world', 'get_model_state',
+                     'set_model_state', 'get_model_properties', 'get_world_properties',
+                     'apply_body_wrench'])
         cls.models.wait_count(1)
         cls.links.wait_count(1)
-
-    def wait_sim(self, seconds):
-        sim_sleep(seconds)
-
-    def paused(self):
-        """Pauses; returns once this process's clock is at the paused time."""
-        return Paused()
 
     def test_a_the_box_is_a_moving_model(self):
         props = self.get_model_properties(BOX)
@@ -93,13 +74,7 @@ class GazeboFreeBody(unittest.TestCase):
         self.assertTrue(r.success, r.status_message)
         x0 = self.get_model_state(BOX, '').pose.position.x
         t0 = self.get_world_properties().sim_time
-        r = self.apply_body_wrench(BOX + '::link', '', Point(),
-                                   Wrench(Vector3(F, 0, 0), Vector3()), rospy.Time(0),
-                                   rospy.Duration(T))
-        self.assertTrue(r.success, r.status_message)
-        self.unpause_physics()
-        self.wait_sim(0.5)
-        self.paused()
+        self.push_x(BOX + '::link', F, T)
         s = self.get_model_state(BOX, '')
         t = self.get_world_properties().sim_time - t0
         self.unpause_physics()

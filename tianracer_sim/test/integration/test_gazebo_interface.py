@@ -11,22 +11,20 @@
 Sim time throughout; wall time only bounds the waits.
 """
 import math
-import unittest
 import xml.etree.ElementTree as ET
 
 import numpy as np
 import rospy
 import rostest
 from gazebo_msgs.msg import LinkStates, ModelState, ModelStates, LinkState
-from gazebo_msgs.srv import (ApplyBodyWrench, BodyRequest, GetLinkState, GetModelProperties,
-                             GetModelState, GetWorldProperties, SetLinkState, SetModelState)
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Wrench, Vector3
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
 from std_msgs.msg import Float64
-from std_srvs.srv import Empty
-from tianracer_sim.sim_time import (Paused, Stream, messages_sent, sim_sleep, wait_connected,
-                                    wait_for)
+from tianracer_sim.rotation import quaternion_from_rpy
+from tianracer_sim.sim_time import Stream, messages_sent, wait_connected, wait_for
+
+from gazebo_case import GazeboCase, no_stamp
 
 MODEL = 'tianracer'
 NS = '/tianracer'
@@ -35,7 +33,7 @@ WORLD_MODELS = ['ground_plane', 'walls', 'box_front', 'box_sw', 'box_nw', 'box_r
 
 
 def yaw_quaternion(yaw):
-    return Quaternion(0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
+    return Quaternion(*quaternion_from_rpy(0.0, 0.0, yaw))
 
 
 def rot(q):
@@ -77,11 +75,7 @@ def urdf_inertials(urdf_xml):
 SIM = '/tianracer_sim'
 
 
-def no_stamp(msg):
-    return 0.0  # ModelStates and LinkStates carry no header
-
-
-class GazeboInterface(unittest.TestCase):
+class GazeboInterface(GazeboCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('test_gazebo_interface')
@@ -91,27 +85,15 @@ class GazeboInterface(unittest.TestCase):
         cls.relay = Stream('/relay/odom', Odometry, keep=1000)
         cls.truth = Stream(NS + '/ground_truth/odom', Odometry, keep=1000)
         cls.scans = Stream('/scan', LaserScan, keep=1000)
-        names = ['pause_physics', 'unpause_physics', 'reset_world', 'get_model_state',
-                 'set_model_state', 'get_link_state', 'set_link_state', 'get_model_properties',
-                 'get_world_properties', 'apply_body_wrench', 'clear_body_wrenches']
-        for n in names:
-            rospy.wait_for_service('/gazebo/' + n, timeout=60)
-        types = [Empty, Empty, Empty, GetModelState, SetModelState, GetLinkState, SetLinkState,
-                 GetModelProperties, GetWorldProperties, ApplyBodyWrench, BodyRequest]
-        for n, t in zip(names, types):
-            setattr(cls, n, rospy.ServiceProxy('/gazebo/' + n, t))
+        cls.connect(['pause_physics', 'unpause_physics', 'reset_world', 'get_model_state',
+                     'set_model_state', 'get_link_state', 'set_link_state',
+                     'get_model_properties', 'get_world_properties', 'apply_body_wrench',
+                     'clear_body_wrenches'])
         cls.set_model_state_pub = rospy.Publisher('/gazebo/set_model_state', ModelState,
                                                   queue_size=10)
         cls.urdf = rospy.get_param('/robot_description')
         for stream in (cls.relay, cls.truth, cls.scans, cls.link_states, cls.model_states):
             stream.wait_count(1)
-
-    def wait_sim(self, seconds):
-        sim_sleep(seconds)
-
-    def paused(self):
-        """pause_physics; returns once this process's clock is at the paused time."""
-        return Paused()
 
     @staticmethod
     def latest(stream):
@@ -381,13 +363,7 @@ class GazeboInterface(unittest.TestCase):
         c0 = com()
         t0 = self.get_world_properties().sim_time
         F, T = 2.0, 0.4
-        r = self.apply_body_wrench(MODEL + '::base_link', '', Point(),
-                                   Wrench(Vector3(F, 0, 0), Vector3()), rospy.Time(0),
-                                   rospy.Duration(T))
-        self.assertTrue(r.success, r.status_message)
-        self.unpause_physics()
-        self.wait_sim(0.5)
-        self.paused()
+        self.push_x(MODEL + '::base_link', F, T)
         c1 = com()
         t1 = self.get_world_properties().sim_time
         self.unpause_physics()

@@ -8,7 +8,6 @@ base_link with no offset, so in a steady turn the yaw rate is the truth's, the l
 force is v_x * w (centripetal), and the orientation's yaw is the truth's. Everything is sim time.
 """
 import math
-import os
 import unittest
 
 import rospy
@@ -17,19 +16,26 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu
 from std_srvs.srv import Empty
+from tianracer_sim.rotation import yaw_from_quaternion as yaw_of
 from tianracer_sim.sim_time import Stream, drive_twist
 
-from sim_node_binary import startup_output
+from sim_node_binary import sensor_startup_output
 
 V, W = 0.5, 0.5
 
 
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
-
-
 def mean(xs):
     return sum(xs) / len(xs)
+
+
+def stamp_key(msg):
+    return round(msg.header.stamp.to_sec(), 6)
+
+
+def same_stamps(samples, truth):
+    """[(sample, the truth message with the same stamp)] for the samples that have one."""
+    by_stamp = {stamp_key(m): m for m in truth}
+    return [(m, by_stamp[stamp_key(m)]) for m in samples if stamp_key(m) in by_stamp]
 
 
 class ImuTest(unittest.TestCase):
@@ -62,7 +68,6 @@ class ImuTest(unittest.TestCase):
         imus = {'/tianracer/imu': self.between(self.imu, t0, t1),
                 '/tianracer/imu_model': self.between(self.imu_model, t0, t1)}
         self.assertGreater(len(truth), 100)
-        by_stamp = {round(m.header.stamp.to_sec(), 6): m for m in truth}
         wz_true = mean([m.twist.twist.angular.z for m in truth])
         vx_true = mean([m.twist.twist.linear.x for m in truth])
         rospy.loginfo('truth: v_x %.4f m/s, w %.4f rad/s', vx_true, wz_true)
@@ -79,16 +84,12 @@ class ImuTest(unittest.TestCase):
             self.assertAlmostEqual(ay, vx_true * wz_true, delta=0.03 * vx_true * wz_true,
                                    msg=topic)
             self.assertAlmostEqual(az, 9.8, delta=0.05, msg=topic)
-            matched = 0
-            for m in samples:
-                t = by_stamp.get(round(m.header.stamp.to_sec(), 6))
-                if t is None:
-                    continue
-                matched += 1
+            matched = same_stamps(samples, truth)
+            for m, t in matched:
                 err = math.atan2(math.sin(yaw_of(m.orientation) - yaw_of(t.pose.pose.orientation)),
                                  math.cos(yaw_of(m.orientation) - yaw_of(t.pose.pose.orientation)))
                 self.assertLess(abs(math.degrees(err)), 0.1, '%s at %.3f' % (topic, t.header.stamp.to_sec()))
-            self.assertGreater(matched, 50, topic)
+            self.assertGreater(len(matched), 50, topic)
             cov = samples[-1].angular_velocity_covariance
             self.assertEqual(list(cov), [0.0] * 9, topic)  # noise off
 
@@ -98,14 +99,9 @@ class ImuTest(unittest.TestCase):
         self.p3d.wait_count(1)
         _, t1 = self.drive(1.0)
         self.truth.first_stamped(t1)
-        by_stamp = {round(m.header.stamp.to_sec(), 6): m for m in self.truth.messages()}
-        p3d = self.between(self.p3d, 0.0, t1)
-        matched = 0
-        for m in p3d:
-            t = by_stamp.get(round(m.header.stamp.to_sec(), 6))
-            if t is None:
-                continue
-            matched += 1
+        truth = self.truth.messages()
+        matched = same_stamps(self.between(self.p3d, 0.0, t1), truth)
+        for m, t in matched:
             self.assertEqual(m.header.frame_id, 'world')
             self.assertEqual(m.child_frame_id, 'base_link')
             a, b = m.pose.pose, t.pose.pose
@@ -123,7 +119,7 @@ class ImuTest(unittest.TestCase):
             self.assertAlmostEqual(m.twist.twist.linear.y, vy_w, delta=2e-3)
             self.assertAlmostEqual(m.twist.twist.angular.z, t.twist.twist.angular.z, delta=2e-3)
             self.assertEqual(list(m.twist.covariance), [0.0] * 36)
-        self.assertGreater(matched, 50)
+        self.assertGreater(len(matched), 50)
 
     def test_b_bad_imus_left_out(self):
         """The bad IMUs are left out and the others publish (this sim)."""
@@ -137,12 +133,9 @@ class ImuTest(unittest.TestCase):
     def test_c_bad_imu_messages(self):
         """What the node says about them: the same model in a sim of its own (own master), so
         that its start-up output can be read."""
-        model = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data', 'urdf',
-                             'tianracer_imu.xacro')
-        out = startup_output(['_model:=' + model, '_paused:=true',
-                              '_disable_sensors:=camera depth ray'],
-                             ["'laplace'", "'-5'", 'no_such_link', "IMU 'imu_sensor'"],
-                             'imu_bad_input')
+        out = sensor_startup_output('tianracer_imu.xacro',
+                                    ["'laplace'", "'-5'", 'no_such_link', "IMU 'imu_sensor'"],
+                                    'imu_bad_input')
         expected = [('imu_bad_noise', "'laplace'"), ('imu_bad_rate', "'-5'"),
                     ('imu_nowhere', 'no_such_link')]
         for name, value in expected:

@@ -12,7 +12,7 @@ import unittest
 
 import rospy
 import rostest
-from tianracer_sim.sim_time import Stream, clock_stamp, wait_for as wait_until
+from tianracer_sim.sim_time import Stream, clock_stamp, wait_for
 from gazebo_msgs.srv import SpawnModel
 from geometry_msgs.msg import Pose
 from rosgraph_msgs.msg import Clock
@@ -44,10 +44,6 @@ SONARBOT = """<robot name='sonarbot'>
 </robot>"""
 
 
-def wait_for(cond, what):
-    return wait_until(cond, what, WALL_TIMEOUT)
-
-
 class PeerSensorsTest(unittest.TestCase):
     def test_peer_sensors(self):
         rospy.init_node('test_peer_sensors')
@@ -58,10 +54,10 @@ class PeerSensorsTest(unittest.TestCase):
         barrel = Stream('/barrel/image_raw', Image, keep=1)
         barrel_info = Stream('/barrel/camera_info', CameraInfo, keep=1)
         trig = Stream('/trig/image_raw', Image, keep=10)
-        wait_for(lambda: clock.latest(), '/clock')
+        wait_for(lambda: clock.latest(), '/clock', WALL_TIMEOUT)
 
         # Range: the nearest of the 25 rays, 0.475 - 0.25 m; fov the grid's span (no <fov>).
-        msg = wait_for(lambda: sonar.latest(), '/sonar')
+        msg = wait_for(lambda: sonar.latest(), '/sonar', WALL_TIMEOUT)
         self.assertEqual(msg.header.frame_id, 'sonar_link')
         self.assertEqual(msg.radiation_type, Range.INFRARED)
         self.assertAlmostEqual(msg.range, 0.225, delta=1e-3)
@@ -70,7 +66,7 @@ class PeerSensorsTest(unittest.TestCase):
         self.assertAlmostEqual(msg.field_of_view, 0.5, places=5)
 
         # Block laser: 8 x 10 points of the floor 0.8 m below, none clipped.
-        msg = wait_for(lambda: block.latest(), '/test_block_laser')
+        msg = wait_for(lambda: block.latest(), '/test_block_laser', WALL_TIMEOUT)
         self.assertEqual(msg.header.frame_id, 'test_block_laser_frame')
         self.assertEqual(len(msg.points), 80)
         self.assertEqual(len(msg.channels), 1)
@@ -83,13 +79,13 @@ class PeerSensorsTest(unittest.TestCase):
         self.assertAlmostEqual(msg.points[-1].x, 0.8, delta=1e-3)
 
         # 16-bit colour and Bayer encodings with their steps.
-        msg = wait_for(lambda: cam16.latest(), '/cam16/image_raw')
+        msg = wait_for(lambda: cam16.latest(), '/cam16/image_raw', WALL_TIMEOUT)
         self.assertEqual((msg.encoding, msg.width, msg.step, len(msg.data)),
                          ('rgb16', 64, 64 * 6, 64 * 48 * 6))
-        msg = wait_for(lambda: barrel.latest(), '/barrel/image_raw')
+        msg = wait_for(lambda: barrel.latest(), '/barrel/image_raw', WALL_TIMEOUT)
         self.assertEqual((msg.encoding, msg.step), ('bayer_rggb8', 64))
         # autoDistortion: D is the <distortion> applied to the images.
-        msg = wait_for(lambda: barrel_info.latest(), '/barrel/camera_info')
+        msg = wait_for(lambda: barrel_info.latest(), '/barrel/camera_info', WALL_TIMEOUT)
         self.assertEqual(msg.distortion_model, 'plumb_bob')
         self.assertEqual(list(msg.D), [-0.1, -0.1, 0.0, 0.0, -0.1])
         # The barrel's black corners (borderCrop false): nothing lands there.
@@ -98,21 +94,23 @@ class PeerSensorsTest(unittest.TestCase):
         self.assertGreater(img[40 * 64 + 32], 0)  # the floor, red channel
 
         # Triggered camera: nothing without a trigger, one image per trigger.
-        start = clock.latest().clock.to_sec()
-        wait_for(lambda: clock.latest().clock.to_sec() > start + 1.0, '1 s of sim time')
+        def one_sim_second():
+            start = clock.latest().clock.to_sec()
+            wait_for(lambda: clock.latest().clock.to_sec() > start + 1.0, '1 s of sim time',
+                     WALL_TIMEOUT)
+
+        one_sim_second()
         self.assertEqual(trig.count(), 0)
         trigger = rospy.Publisher('/trig/image_trigger', Empty, queue_size=10)
-        wait_for(lambda: trigger.get_num_connections() > 0, 'the trigger subscriber')
+        wait_for(lambda: trigger.get_num_connections() > 0, 'the trigger subscriber', WALL_TIMEOUT)
         trigger.publish(Empty())
-        wait_for(lambda: trig.count() == 1 or None, 'one triggered image')
-        start = clock.latest().clock.to_sec()
-        wait_for(lambda: clock.latest().clock.to_sec() > start + 1.0, '1 s of sim time')
+        wait_for(lambda: trig.count() == 1 or None, 'one triggered image', WALL_TIMEOUT)
+        one_sim_second()
         self.assertEqual(trig.count(), 1)
         trigger.publish(Empty())
         trigger.publish(Empty())
-        wait_for(lambda: trig.count() == 3 or None, 'two more triggered images')
-        start = clock.latest().clock.to_sec()
-        wait_for(lambda: clock.latest().clock.to_sec() > start + 1.0, '1 s of sim time')
+        wait_for(lambda: trig.count() == 3 or None, 'two more triggered images', WALL_TIMEOUT)
+        one_sim_second()
         self.assertEqual(trig.count(), 3)
 
         # On a robot: the same plugin, its sensor looking down at its own box from 0.2 m above.
@@ -125,7 +123,7 @@ class PeerSensorsTest(unittest.TestCase):
         res = spawn(model_name='sonarbot', model_xml=SONARBOT, robot_namespace='',
                     initial_pose=pose, reference_frame='world')
         self.assertTrue(res.success, res.status_message)
-        msg = wait_for(lambda: bot.latest(), '/bot_sonar')
+        msg = wait_for(lambda: bot.latest(), '/bot_sonar', WALL_TIMEOUT)
         self.assertTrue(msg.header.frame_id.endswith('bot_sonar_link'), msg.header.frame_id)
         self.assertEqual(msg.radiation_type, Range.ULTRASOUND)
         self.assertAlmostEqual(msg.field_of_view, 0.1, places=5)

@@ -43,6 +43,12 @@ class SimBadInput(unittest.TestCase):
         for text in expected:
             self.assertIn(text, out)
 
+    def assert_bad_controller(self, params, expected):
+        """The car with a controller 'bad' of `params` fails, naming it and `expected`."""
+        rospy.set_param('/robot_description', self.urdf)
+        rospy.set_param('/tianracer/bad', params)
+        self.assert_fails(["controller 'bad'"] + expected, '_controllers:=bad')
+
     def test_missing_robot_description(self):
         self.assert_fails(['/robot_description', 'is not set'])
 
@@ -69,23 +75,17 @@ class SimBadInput(unittest.TestCase):
         self.assert_fails(['inertia'], '_model:=' + os.path.join(DATA, 'invalid_inertia.urdf'))
 
     def test_controller_on_unknown_joint(self):
-        rospy.set_param('/robot_description', self.urdf)
-        rospy.set_param('/tianracer/bad', {'type': 'velocity_controllers/JointVelocityController',
-                                           'joint': 'no_such_joint'})
-        self.assert_fails(["controller 'bad'", 'no_such_joint'], '_controllers:=bad')
+        self.assert_bad_controller({'type': 'velocity_controllers/JointVelocityController',
+                                    'joint': 'no_such_joint'}, ['no_such_joint'])
 
     def test_controller_interface_mismatch(self):
-        rospy.set_param('/robot_description', self.urdf)
         # The hinge's transmission gives EffortJointInterface, not velocity.
-        rospy.set_param('/tianracer/bad', {'type': 'velocity_controllers/JointVelocityController',
-                                           'joint': 'left_steering_hinge_joint'})
-        self.assert_fails(["controller 'bad'", 'Effort', 'Velocity'], '_controllers:=bad')
+        self.assert_bad_controller({'type': 'velocity_controllers/JointVelocityController',
+                                    'joint': 'left_steering_hinge_joint'}, ['Effort', 'Velocity'])
 
     def test_unknown_controller_type(self):
-        rospy.set_param('/robot_description', self.urdf)
-        rospy.set_param('/tianracer/bad', {'type': 'foo_controllers/Bar',
-                                           'joint': 'left_rear_wheel_joint'})
-        self.assert_fails(["controller 'bad'", 'foo_controllers/Bar'], '_controllers:=bad')
+        self.assert_bad_controller({'type': 'foo_controllers/Bar',
+                                    'joint': 'left_rear_wheel_joint'}, ['foo_controllers/Bar'])
 
     def test_controller_without_parameters(self):
         rospy.set_param('/robot_description', self.urdf)

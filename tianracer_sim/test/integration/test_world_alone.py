@@ -12,7 +12,7 @@ import unittest
 
 import rospy
 import rostest
-from tianracer_sim.sim_time import Stream, clock_stamp, wait_for as wait_until
+from tianracer_sim.sim_time import Stream, clock_stamp, wait_for
 from gazebo_msgs.msg import ModelStates
 from gazebo_msgs.srv import GetWorldProperties, SpawnModel
 from geometry_msgs.msg import Pose
@@ -25,10 +25,6 @@ WALL_TIMEOUT = 120.0
 WHEEL_RADIUS = 0.032
 
 
-def wait_for(cond, what):
-    return wait_until(cond, what, WALL_TIMEOUT)
-
-
 class WorldAloneTest(unittest.TestCase):
     def test_world_alone_then_spawn(self):
         rospy.init_node('test_world_alone')
@@ -38,10 +34,10 @@ class WorldAloneTest(unittest.TestCase):
         truth = Stream('/tianracer/ground_truth/odom', Odometry, keep=1)
 
         # The world runs alone: sim time passes, the world's models are there, no robot.
-        first = wait_for(lambda: clock.latest(), '/clock')
+        first = wait_for(lambda: clock.latest(), '/clock', WALL_TIMEOUT)
         wait_for(lambda: clock.latest().clock.to_sec() > first.clock.to_sec() + 0.5,
-                 '/clock to advance 0.5 s')
-        msg = wait_for(lambda: states.latest(), '/gazebo/model_states')
+                 '/clock to advance 0.5 s', WALL_TIMEOUT)
+        msg = wait_for(lambda: states.latest(), '/gazebo/model_states', WALL_TIMEOUT)
         self.assertIn('ground_plane', msg.name)
         self.assertGreater(len(msg.name), 1, 'walled_room has walls: %s' % msg.name)
         self.assertNotIn('tianracer', msg.name)
@@ -59,9 +55,10 @@ class WorldAloneTest(unittest.TestCase):
         res = spawn(model_name='tianracer', model_xml=rospy.get_param('/car_description'),
                     robot_namespace='/tianracer', initial_pose=pose, reference_frame='world')
         self.assertTrue(res.success, res.status_message)
-        js = wait_for(lambda: joints.latest(), '/tianracer/joint_states after the spawn')
+        js = wait_for(lambda: joints.latest(),
+                      '/tianracer/joint_states after the spawn', WALL_TIMEOUT)
         self.assertIn('left_rear_wheel_joint', js.name)
-        wait_for(lambda: truth.latest(), 'ground truth')
+        wait_for(lambda: truth.latest(), 'ground truth', WALL_TIMEOUT)
         wheels = [rospy.Publisher('/tianracer/%s_rear_wheel_velocity_controller/command' % side,
                                   Float64, queue_size=1, latch=True) for side in ('left', 'right')]
         for pub in wheels:
@@ -71,10 +68,12 @@ class WorldAloneTest(unittest.TestCase):
             js = joints.latest()
             return js.velocity[js.name.index('left_rear_wheel_joint')]
         # Once the commands are in (connections take wall time), 1 s of sim time at 0.5 m/s.
-        wait_for(lambda: wheel_speed() > 0.8 * 0.5 / WHEEL_RADIUS, 'the wheels to turn')
+        wait_for(lambda: wheel_speed() > 0.8 * 0.5 / WHEEL_RADIUS,
+                 'the wheels to turn', WALL_TIMEOUT)
         start = truth.latest().pose.pose.position.x
         t0 = clock.latest().clock.to_sec()
-        wait_for(lambda: clock.latest().clock.to_sec() > t0 + 1.0, '1 s of sim time driving')
+        wait_for(lambda: clock.latest().clock.to_sec() > t0 + 1.0,
+                 '1 s of sim time driving', WALL_TIMEOUT)
         x = truth.latest().pose.pose.position.x
         self.assertGreater(x - start, 0.3, 'the spawned car drives: x %.3f -> %.3f' % (start, x))
         msg = states.latest()

@@ -15,7 +15,7 @@ import unittest
 
 import rospy
 import rostest
-from tianracer_sim.sim_time import Stream, clock_stamp, wait_for as wait_until
+from tianracer_sim.sim_time import Stream, clock_stamp, wait_for
 from gazebo_msgs.msg import ContactsState
 from gazebo_msgs.srv import DeleteModel, SpawnModel
 from geometry_msgs.msg import Pose
@@ -36,10 +36,6 @@ SPAWNED = """<sdf version='1.6'><model name='spawned'><static>true</static><link
 </link></model></sdf>"""
 
 
-def wait_for(cond, what):
-    return wait_until(cond, what, WALL_TIMEOUT)
-
-
 class WorldModelSensorsTest(unittest.TestCase):
     def test_world_model_sensors(self):
         rospy.init_node('test_world_model_sensors')
@@ -57,37 +53,37 @@ class WorldModelSensorsTest(unittest.TestCase):
             for t in msg.transforms:
                 static_frames[t.child_frame_id] = t
         rospy.Subscriber('/tf_static', TFMessage, on_static)
-        wait_for(lambda: clock.latest(), '/clock')
+        wait_for(lambda: clock.latest(), '/clock', WALL_TIMEOUT)
 
         # The post's lidar: the box's near face 2.5 m straight ahead.
-        msg = wait_for(lambda: scan.latest(), '/post/scan')
+        msg = wait_for(lambda: scan.latest(), '/post/scan', WALL_TIMEOUT)
         self.assertEqual(msg.header.frame_id, 'post_laser')
         self.assertEqual(len(msg.ranges), 181)
         self.assertAlmostEqual(msg.ranges[90], 2.5, delta=0.05)
 
         # Its camera: the red box in the middle of the image.
-        msg = wait_for(lambda: image.latest(), '/post_camera/image_raw')
+        msg = wait_for(lambda: image.latest(), '/post_camera/image_raw', WALL_TIMEOUT)
         self.assertEqual(msg.header.frame_id, 'post_camera_frame_optical_frame')
         self.assertEqual((msg.width, msg.height, msg.encoding), (160, 120, 'rgb8'))
         mid = (msg.height // 2) * msg.step + (msg.width // 2) * 3
         r, g, b = bytearray(msg.data[mid:mid + 3])
         self.assertGreater(r, 2 * g, 'red box in the middle: %d %d %d' % (r, g, b))
         self.assertGreater(r, 2 * b, 'red box in the middle: %d %d %d' % (r, g, b))
-        msg = wait_for(lambda: info.latest(), '/post_camera/camera_info')
+        msg = wait_for(lambda: info.latest(), '/post_camera/camera_info', WALL_TIMEOUT)
         self.assertEqual(msg.header.frame_id, 'post_camera_frame_optical_frame')
         self.assertEqual((msg.width, msg.height), (160, 120))
 
         # As a robot's camera, the image is in "<frameName>_optical_frame" (z forward); a world
         # model's link is on no TF tree, so that frame hangs from the frameName.
         t = wait_for(lambda: static_frames.get('post_camera_frame_optical_frame'),
-                     'the optical frame on /tf_static')
+                     'the optical frame on /tf_static', WALL_TIMEOUT)
         self.assertEqual(t.header.frame_id, 'post_camera_frame')
         q = t.transform.rotation
         self.assertAlmostEqual(abs(q.w), 0.5, delta=1e-6)  # rpy(-pi/2, 0, -pi/2)
         self.assertAlmostEqual(t.transform.translation.x, 0.0, delta=1e-9)
 
         # Its depth camera: 2.5 m in the middle.
-        msg = wait_for(lambda: depth.latest(), '/post_depth/depth/image_raw')
+        msg = wait_for(lambda: depth.latest(), '/post_depth/depth/image_raw', WALL_TIMEOUT)
         self.assertEqual(msg.header.frame_id, 'post_depth_frame_optical_frame')
         self.assertEqual(msg.encoding, '32FC1')
         mid = (msg.height // 2) * msg.step + (msg.width // 2) * 4
@@ -95,21 +91,21 @@ class WorldModelSensorsTest(unittest.TestCase):
         self.assertAlmostEqual(d, 2.5, delta=0.05)
 
         # The falling box's beam, under its robotNamespace, ends with the box at rest.
-        msg = wait_for(lambda: beam.latest(), '/faller/beam')
+        msg = wait_for(lambda: beam.latest(), '/faller/beam', WALL_TIMEOUT)
         self.assertEqual(msg.header.frame_id, 'faller_beam')
-        wait_for(lambda: clock.latest().clock.to_sec() > 2.5, '2.5 s of sim time')
+        wait_for(lambda: clock.latest().clock.to_sec() > 2.5, '2.5 s of sim time', WALL_TIMEOUT)
         t = clock.latest().clock.to_sec()
         msg = wait_for(lambda: beam.latest() if beam.latest().header.stamp.to_sec() >= t else None,
-                       'a beam after the fall')
+                       'a beam after the fall', WALL_TIMEOUT)
         self.assertAlmostEqual(msg.ranges[0], 0.1, delta=0.02)
         # Its ground truth plugin (libgazebo_ros_p3d on the world model) agrees.
-        msg = wait_for(lambda: truth.latest(), '/faller/odom')
+        msg = wait_for(lambda: truth.latest(), '/faller/odom', WALL_TIMEOUT)
         self.assertEqual((msg.header.frame_id, msg.child_frame_id), ('world', 'body'))
         self.assertAlmostEqual(msg.pose.pose.position.z, 0.1, delta=0.02)
         # Its bumper: the ground holds the 1 kg box up with m g.
         msg = wait_for(lambda: bumper.latest() if bumper.latest() is not None and
                        bumper.latest().header.stamp.to_sec() >= t else None,
-                       'a bumper message after the fall')
+                       'a bumper message after the fall', WALL_TIMEOUT)
         self.assertEqual(msg.header.frame_id, 'world')
         self.assertEqual([s.collision2_name for s in msg.states], ['ground_plane'], msg)
         self.assertAlmostEqual(msg.states[0].total_wrench.force.z, 9.8, delta=0.3)
@@ -126,7 +122,8 @@ class WorldModelSensorsTest(unittest.TestCase):
             res = spawn(model_name='spawned', model_xml=SPAWNED, robot_namespace='',
                         initial_pose=pose, reference_frame='world')
             self.assertTrue(res.success, res.status_message)
-            msg = wait_for(lambda: spawned.latest(), '/spawned/scan (spawn %d)' % attempt)
+            msg = wait_for(lambda: spawned.latest(),
+                           '/spawned/scan (spawn %d)' % attempt, WALL_TIMEOUT)
             self.assertEqual(msg.header.frame_id, 'spawned_laser')
             self.assertAlmostEqual(msg.ranges[1], 1.0, delta=0.05)
             spawned.unregister()

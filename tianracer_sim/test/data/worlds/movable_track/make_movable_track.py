@@ -124,42 +124,32 @@ def ring_inertia(m):
     return ixx, iyy, izz
 
 
+def mesh_link(name, com_z, inertia, pose=False):
+    """A link of MASS whose collision and visual are the mesh <name>.stl."""
+    return ('      <link name="%s">\n' % name +
+            ('        <pose>0 0 0 0 0 0</pose>\n' if pose else '') + """        <inertial>
+          <pose>0 0 %g 0 0 0</pose>
+          <mass>%g</mass>
+          <inertia><ixx>%.6g</ixx><iyy>%.6g</iyy><izz>%.6g</izz></inertia>
+        </inertial>
+        <collision name="collision">
+          <geometry><mesh><uri>%s.stl</uri></mesh></geometry>
+        </collision>
+        <visual name="visual">
+          <geometry><mesh><uri>%s.stl</uri></mesh></geometry>
+        </visual>
+      </link>
+""" % ((com_z, MASS) + tuple(inertia) + (name, name)))
+
+
 def model(name, static):
-    fi = slab_inertia(MASS, SIZE, SIZE, THICK)
-    wi = ring_inertia(MASS)
     return """    <model name="%s">
       <static>%s</static>
       <pose>0 0 0 0 0 0</pose>
-      <link name="floor">
-        <inertial>
-          <pose>0 0 %g 0 0 0</pose>
-          <mass>%g</mass>
-          <inertia><ixx>%.6g</ixx><iyy>%.6g</iyy><izz>%.6g</izz></inertia>
-        </inertial>
-        <collision name="collision">
-          <geometry><mesh><uri>floor.stl</uri></mesh></geometry>
-        </collision>
-        <visual name="visual">
-          <geometry><mesh><uri>floor.stl</uri></mesh></geometry>
-        </visual>
-      </link>
-      <link name="walls">
-        <pose>0 0 0 0 0 0</pose>
-        <inertial>
-          <pose>0 0 %g 0 0 0</pose>
-          <mass>%g</mass>
-          <inertia><ixx>%.6g</ixx><iyy>%.6g</iyy><izz>%.6g</izz></inertia>
-        </inertial>
-        <collision name="collision">
-          <geometry><mesh><uri>walls.stl</uri></mesh></geometry>
-        </collision>
-        <visual name="visual">
-          <geometry><mesh><uri>walls.stl</uri></mesh></geometry>
-        </visual>
-      </link>
-    </model>
-""" % (name, "true" if static else "false", THICK / 2, MASS, fi[0], fi[1], fi[2],
-       HEIGHT / 2, MASS, wi[0], wi[1], wi[2])
+%s%s    </model>
+""" % (name, "true" if static else "false",
+       mesh_link("floor", THICK / 2, slab_inertia(MASS, SIZE, SIZE, THICK)),
+       mesh_link("walls", HEIGHT / 2, ring_inertia(MASS), pose=True))
 
 
 def world():
