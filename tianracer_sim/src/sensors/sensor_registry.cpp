@@ -8,12 +8,6 @@
 #include <urdf_model/model.h>
 
 #include "tianracer_sim/common/text.h"
-#include "tianracer_sim/sensors/bumper/sim_bumper.h"
-#include "tianracer_sim/sensors/camera/sim_camera.h"
-#include "tianracer_sim/sensors/drives/sim_drive.h"
-#include "tianracer_sim/sensors/imu/sim_imu.h"
-#include "tianracer_sim/sensors/p3d/sim_p3d.h"
-#include "tianracer_sim/sensors/ray/sim_ray.h"
 
 namespace tianracer_sim {
 namespace {
@@ -26,9 +20,23 @@ bool contains(const std::vector<std::string>& list, const std::string& s) {
 
 }  // namespace
 
+// The kinds, each defined in its folder (sensors/<kind>/sim_<kind>.cpp).
+const SensorKind& lidarKind();
+const SensorKind& rangeKind();
+const SensorKind& blockLaserKind();
+const SensorKind& cameraKind();
+const SensorKind& multiCameraKind();
+const SensorKind& depthCameraKind();
+const SensorKind& imuKind();
+const SensorKind& imuPluginKind();
+const SensorKind& p3dKind();
+const SensorKind& bumperKind();
+const SensorKind& driveKind();
+
 const std::vector<SensorKind>& sensorKinds() {
-  // To add a sensor kind: its folder sensors/<kind>/ and one line here (the order is the order in
-  // which findSensorKind tries them), its publisher in ros/sensors/sensor_publishers.cpp.
+  // To add a sensor kind: its folder sensors/<kind>/, its declaration above and one line here
+  // (the order is the order in which findSensorKind tries them), its publisher in
+  // ros/sensors/sensor_publishers.cpp.
   static const std::vector<SensorKind> kinds = {
       lidarKind(),  rangeKind(),       blockLaserKind(),   // sensors/ray/
       cameraKind(), multiCameraKind(), depthCameraKind(),  // sensors/camera/

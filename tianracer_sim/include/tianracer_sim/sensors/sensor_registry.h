@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "tianracer_sim/model/robot_model.h"
@@ -36,6 +37,19 @@ struct SensorKind {
   /// setup.warn). Throws std::exception naming the sensor on bad input.
   std::unique_ptr<SimSensor> (*make)(const SimSensorSetup& setup);
 };
+
+/// A kind's topics function from its parser, `Config Parse(spec, [model_name,] warn)`, and the
+/// `publishedTopics(const Config&)` of its folder: the topics are those of the settings the
+/// simulator parses, so that the two cannot disagree.
+template <auto Parse>
+std::vector<SensorTopic> topicsOf(const SensorSpec& sensor, const std::string& model_name,
+                                  const WarningSink& warn) {
+  if constexpr (std::is_invocable_v<decltype(Parse), const SensorSpec&, const WarningSink&>) {
+    return publishedTopics(Parse(sensor, warn));
+  } else {
+    return publishedTopics(Parse(sensor, model_name, warn));
+  }
+}
 
 /// Every registered kind, in registration order.
 const std::vector<SensorKind>& sensorKinds();

@@ -4,14 +4,11 @@
 
 #include <tianracer_control/naming.h>
 
+#include "tianracer_sim/sensors/sensor_registry.h"
+
 namespace tianracer_sim {
 
 namespace {
-
-std::vector<SensorTopic> bumperTopics(const SensorSpec& sensor, const std::string& model_name,
-                                     const WarningSink& warn) {
-  return publishedTopics(parseBumperConfig(sensor, model_name, warn));
-}
 
 std::unique_ptr<SimSensor> makeBumper(const SimSensorSetup& setup) {
   BumperConfig config = parseBumperConfig(*setup.spec, setup.model_name, setup.warn);
@@ -28,7 +25,7 @@ std::unique_ptr<SimSensor> makeBumper(const SimSensorSetup& setup) {
 }  // namespace
 
 const SensorKind& bumperKind() {
-  static const SensorKind kind = {"bumper", {"contact"}, {"libgazebo_ros_bumper.so"}, &bumperTopics, &makeBumper};
+  static const SensorKind kind = {"bumper", {"contact"}, {"libgazebo_ros_bumper.so"}, &topicsOf<parseBumperConfig>, &makeBumper};
   return kind;
 }
 

@@ -4,6 +4,8 @@
 
 #include <tianracer_control/naming.h>
 
+#include "tianracer_sim/sensors/sensor_registry.h"
+
 #include "tianracer_sim/sensors/camera/multicamera_topics.h"
 #include "tianracer_sim/sensors/camera/optical_frame.h"
 
@@ -13,7 +15,7 @@ namespace {
 
 // libgazebo_ros_camera: <robotNamespace>/<cameraName>/{image, camera_info} at updateRate (0 =
 // the sensor rate). Without a plugin Gazebo renders but publishes nothing.
-std::vector<SensorTopic> cameraTopics(const SensorSpec& sensor, const std::string& model_name,
+std::vector<SensorTopic> cameraTopics(const SensorSpec& sensor, const std::string& /*model_name*/,
                                       const WarningSink& warn) {
   CameraConfig c = parseCameraConfig(sensor, warn);
   if (!c.has_plugin) return {};
@@ -24,7 +26,7 @@ std::vector<SensorTopic> cameraTopics(const SensorSpec& sensor, const std::strin
 
 // libgazebo_ros_openni_kinect / libgazebo_ros_depth_camera: images and cloud at the sensor
 // rate, both camera_infos at the plugin's updateRate.
-std::vector<SensorTopic> depthCameraTopics(const SensorSpec& sensor, const std::string& model_name,
+std::vector<SensorTopic> depthCameraTopics(const SensorSpec& sensor, const std::string& /*model_name*/,
                                            const WarningSink& warn) {
   DepthCameraConfig d = parseDepthCameraConfig(sensor, warn);
   const CameraConfig& c = d.camera;

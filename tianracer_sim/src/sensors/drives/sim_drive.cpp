@@ -4,14 +4,11 @@
 
 #include <tianracer_control/naming.h>
 
+#include "tianracer_sim/sensors/sensor_registry.h"
+
 namespace tianracer_sim {
 
 namespace {
-
-std::vector<SensorTopic> driveTopics(const SensorSpec& sensor, const std::string& model_name,
-                                     const WarningSink& warn) {
-  return publishedTopics(parseDriveConfig(sensor, model_name, warn));
-}
 
 std::unique_ptr<SimSensor> makeDrive(const SimSensorSetup& setup) {
   return std::make_unique<SimDrive>(setup, parseDriveConfig(*setup.spec, setup.model_name, setup.warn));
@@ -23,7 +20,7 @@ const SensorKind& driveKind() {
   static const SensorKind kind = {"drive", {},
        {"libgazebo_ros_diff_drive.so", "libgazebo_ros_skid_steer_drive.so",
         "libgazebo_ros_planar_move.so"},
-       &driveTopics, &makeDrive};
+       &topicsOf<parseDriveConfig>, &makeDrive};
   return kind;
 }
 

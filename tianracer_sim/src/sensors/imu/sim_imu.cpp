@@ -2,19 +2,11 @@
 
 #include <tianracer_control/naming.h>
 
+#include "tianracer_sim/sensors/sensor_registry.h"
+
 namespace tianracer_sim {
 
 namespace {
-
-std::vector<SensorTopic> imuTopics(const SensorSpec& sensor, const std::string& model_name,
-                                   const WarningSink& warn) {
-  return publishedTopics(parseImuSensorConfig(sensor, model_name, warn));
-}
-
-std::vector<SensorTopic> imuPluginTopics(const SensorSpec& sensor, const std::string& model_name,
-                                         const WarningSink& warn) {
-  return publishedTopics(parseImuPluginConfig(sensor, model_name, warn));
-}
 
 std::unique_ptr<SimSensor> makeImu(const SimSensorSetup& setup) {
   ImuConfig config = parseImuSensorConfig(*setup.spec, setup.model_name, setup.warn);
@@ -35,12 +27,12 @@ std::unique_ptr<SimSensor> makeImuPlugin(const SimSensorSetup& setup) {
 }  // namespace
 
 const SensorKind& imuKind() {
-  static const SensorKind kind = {"imu", {"imu"}, {"libgazebo_ros_imu_sensor.so"}, &imuTopics, &makeImu};
+  static const SensorKind kind = {"imu", {"imu"}, {"libgazebo_ros_imu_sensor.so"}, &topicsOf<parseImuSensorConfig>, &makeImu};
   return kind;
 }
 
 const SensorKind& imuPluginKind() {
-  static const SensorKind kind = {"imu_plugin", {}, {"libgazebo_ros_imu.so"}, &imuPluginTopics, &makeImuPlugin};
+  static const SensorKind kind = {"imu_plugin", {}, {"libgazebo_ros_imu.so"}, &topicsOf<parseImuPluginConfig>, &makeImuPlugin};
   return kind;
 }
 

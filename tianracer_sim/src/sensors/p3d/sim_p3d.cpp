@@ -2,14 +2,11 @@
 
 #include <tianracer_control/naming.h>
 
+#include "tianracer_sim/sensors/sensor_registry.h"
+
 namespace tianracer_sim {
 
 namespace {
-
-std::vector<SensorTopic> p3dTopics(const SensorSpec& sensor, const std::string& model_name,
-                                   const WarningSink& warn) {
-  return publishedTopics(parseP3dConfig(sensor, model_name, warn));
-}
 
 std::unique_ptr<SimSensor> makeP3d(const SimSensorSetup& setup) {
   return std::make_unique<SimP3d>(setup, parseP3dConfig(*setup.spec, setup.model_name, setup.warn));
@@ -18,7 +15,7 @@ std::unique_ptr<SimSensor> makeP3d(const SimSensorSetup& setup) {
 }  // namespace
 
 const SensorKind& p3dKind() {
-  static const SensorKind kind = {"p3d", {}, {"libgazebo_ros_p3d.so"}, &p3dTopics, &makeP3d};
+  static const SensorKind kind = {"p3d", {}, {"libgazebo_ros_p3d.so"}, &topicsOf<parseP3dConfig>, &makeP3d};
   return kind;
 }
 

@@ -2,23 +2,11 @@
 
 #include <tianracer_control/naming.h>
 
+#include "tianracer_sim/sensors/sensor_registry.h"
+
 namespace tianracer_sim {
 
 namespace {
-
-std::vector<SensorTopic> lidarTopics(const SensorSpec& sensor, const std::string&, const WarningSink& warn) {
-  return publishedTopics(parseRaySensorConfig(sensor, warn));
-}
-
-std::vector<SensorTopic> rangeTopics(const SensorSpec& sensor, const std::string&,
-                                     const WarningSink& warn) {
-  return publishedTopics(parseRangeConfig(sensor, warn));
-}
-
-std::vector<SensorTopic> blockLaserTopics(const SensorSpec& sensor, const std::string&,
-                                          const WarningSink& warn) {
-  return publishedTopics(parseBlockLaserConfig(sensor, warn));
-}
 
 std::unique_ptr<SimSensor> makeLidar(const SimSensorSetup& setup) {
   RaySensorConfig config = parseRaySensorConfig(*setup.spec, setup.warn);
@@ -49,18 +37,18 @@ const SensorKind& lidarKind() {
   static const SensorKind kind = {"lidar", {"ray", "gpu_ray"},
        {"libgazebo_ros_laser.so", "libgazebo_ros_gpu_laser.so", "libgazebo_ros_velodyne_laser.so",
         "libgazebo_ros_velodyne_gpu_laser.so"},
-       &lidarTopics, &makeLidar};
+       &topicsOf<parseRaySensorConfig>, &makeLidar};
   return kind;
 }
 
 const SensorKind& rangeKind() {
-  static const SensorKind kind = {"range", {"ray", "gpu_ray"}, {"libgazebo_ros_range.so"}, &rangeTopics, &makeRange};
+  static const SensorKind kind = {"range", {"ray", "gpu_ray"}, {"libgazebo_ros_range.so"}, &topicsOf<parseRangeConfig>, &makeRange};
   return kind;
 }
 
 const SensorKind& blockLaserKind() {
   static const SensorKind kind = {"block_laser", {"ray", "gpu_ray"}, {"libgazebo_ros_block_laser.so"},
-                                   &blockLaserTopics, &makeBlockLaser};
+                                   &topicsOf<parseBlockLaserConfig>, &makeBlockLaser};
   return kind;
 }
 

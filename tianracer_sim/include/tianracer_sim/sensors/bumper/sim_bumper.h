@@ -6,13 +6,9 @@
 #include <vector>
 
 #include "tianracer_sim/sensors/bumper/bumper.h"
-#include "tianracer_sim/sensors/sensor_registry.h"
 #include "tianracer_sim/sensors/sim_sensor.h"
 
 namespace tianracer_sim {
-
-/// The kinds of this folder, each registered by one line in sensors/sensor_registry.cpp.
-const SensorKind& bumperKind();
 
 /// contact sensor with libgazebo_ros_bumper: the link's touching pairs in the output frame.
 class SimBumper : public SimSensor {

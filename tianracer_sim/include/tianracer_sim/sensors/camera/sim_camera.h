@@ -11,15 +11,9 @@
 #include "tianracer_sim/render/renderer.h"
 #include "tianracer_sim/sensors/camera/camera_sensor.h"
 #include "tianracer_sim/sensors/camera/multicamera_config.h"
-#include "tianracer_sim/sensors/sensor_registry.h"
 #include "tianracer_sim/sensors/sim_sensor.h"
 
 namespace tianracer_sim {
-
-/// The kinds of this folder, each registered by one line in sensors/sensor_registry.cpp.
-const SensorKind& cameraKind();
-const SensorKind& depthCameraKind();
-const SensorKind& multiCameraKind();
 
 /// camera with gazebo_ros_camera: an image (rendered) and camera_info, at the plugin's rate.
 class SimCamera : public SimSensor {

@@ -9,13 +9,9 @@
 #include <Eigen/Geometry>
 
 #include "tianracer_sim/sensors/drives/drives.h"
-#include "tianracer_sim/sensors/sensor_registry.h"
 #include "tianracer_sim/sensors/sim_sensor.h"
 
 namespace tianracer_sim {
-
-/// The kinds of this folder, each registered by one line in sensors/sensor_registry.cpp.
-const SensorKind& driveKind();
 
 /// libgazebo_ros_diff_drive, libgazebo_ros_skid_steer_drive and libgazebo_ros_planar_move
 /// (sensors/drives/drives.h): at every step (update()) the command is applied to the wheel joints or

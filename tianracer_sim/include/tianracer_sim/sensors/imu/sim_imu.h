@@ -4,14 +4,9 @@
 #define TIANRACER_SIM_SENSORS_IMU_SIM_IMU_H
 
 #include "tianracer_sim/sensors/imu/imu_sensor.h"
-#include "tianracer_sim/sensors/sensor_registry.h"
 #include "tianracer_sim/sensors/sim_sensor.h"
 
 namespace tianracer_sim {
-
-/// The kinds of this folder, each registered by one line in sensors/sensor_registry.cpp.
-const SensorKind& imuKind();
-const SensorKind& imuPluginKind();
 
 /// imu sensor (libgazebo_ros_imu_sensor) and the libgazebo_ros_imu model plugin.
 class SimImu : public SimSensor {

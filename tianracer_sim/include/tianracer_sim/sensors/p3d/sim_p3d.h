@@ -5,13 +5,9 @@
 #include <string>
 
 #include "tianracer_sim/sensors/p3d/p3d.h"
-#include "tianracer_sim/sensors/sensor_registry.h"
 #include "tianracer_sim/sensors/sim_sensor.h"
 
 namespace tianracer_sim {
-
-/// The kinds of this folder, each registered by one line in sensors/sensor_registry.cpp.
-const SensorKind& p3dKind();
 
 /// libgazebo_ros_p3d: a link's ground truth, optionally relative to another link.
 class SimP3d : public SimSensor {

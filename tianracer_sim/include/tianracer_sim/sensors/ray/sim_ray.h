@@ -8,15 +8,9 @@
 
 #include "tianracer_sim/sensors/ray/ray_plugins.h"
 #include "tianracer_sim/sensors/ray/ray_sensor.h"
-#include "tianracer_sim/sensors/sensor_registry.h"
 #include "tianracer_sim/sensors/sim_sensor.h"
 
 namespace tianracer_sim {
-
-/// The kinds of this folder, each registered by one line in sensors/sensor_registry.cpp.
-const SensorKind& lidarKind();
-const SensorKind& rangeKind();
-const SensorKind& blockLaserKind();
 
 /// ray / gpu_ray: a scan (ranges in beam order; a 3D lidar's rows one after the other).
 class SimLidar : public SimSensor {
