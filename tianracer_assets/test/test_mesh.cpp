@@ -47,6 +47,18 @@ std::string errorOf(const std::string& path) {
   return "";
 }
 
+// Loading the file `name` written with `content` fails with an error that names its path and,
+// when given, says `why`.
+void expectErrorNamesTheFile(const std::string& name, const std::string& content,
+                             const char* why = nullptr) {
+  const std::string path = writeTemp(name, content);
+  const std::string e = errorOf(path);
+  EXPECT_NE(e.find(path), std::string::npos) << e;
+  if (why) {
+    EXPECT_NE(e.find(why), std::string::npos) << e;
+  }
+}
+
 TEST(MeshLoader, CubeIsTwelveTrianglesOnEightJoinedVertices) {
   const TriangleMesh m = loadMeshFile(kCube);
   EXPECT_EQ(m.triangleCount(), 12u);
@@ -93,25 +105,15 @@ TEST(MeshLoader, MissingFileNamesThePath) {
   EXPECT_NE(e.find("not found"), std::string::npos) << e;
 }
 
-TEST(MeshLoader, EmptyFileNamesThePath) {
-  const std::string path = writeTemp("empty.stl", "");
-  const std::string e = errorOf(path);
-  EXPECT_NE(e.find(path), std::string::npos) << e;
-  EXPECT_NE(e.find("empty"), std::string::npos) << e;
-}
+TEST(MeshLoader, EmptyFileNamesThePath) { expectErrorNamesTheFile("empty.stl", "", "empty"); }
 
 TEST(MeshLoader, GarbageIsUnreadable) {
-  const std::string path = writeTemp("garbage.dae", "this is not a mesh at all");
-  const std::string e = errorOf(path);
-  EXPECT_NE(e.find(path), std::string::npos) << e;
+  expectErrorNamesTheFile("garbage.dae", "this is not a mesh at all");
 }
 
 TEST(MeshLoader, NoTrianglesIsAnError) {
   // A valid OBJ with vertices and a single line element only.
-  const std::string path = writeTemp("lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\n");
-  const std::string e = errorOf(path);
-  EXPECT_NE(e.find(path), std::string::npos) << e;
-  EXPECT_NE(e.find("': no triangles"), std::string::npos) << e;
+  expectErrorNamesTheFile("lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\n", "': no triangles");
 }
 
 TEST(MeshLoader, DirectoryIsNotAMesh) {

@@ -33,22 +33,11 @@ const ParamValue* ParamValue::find(const std::string& key) const {
 }
 
 const char* ParamValue::typeName() const {
-  switch (kind_) {
-    case Kind::kBool:
-      return "a bool";
-    case Kind::kInt:
-      return "an int";
-    case Kind::kDouble:
-      return "a double";
-    case Kind::kString:
-      return "a string";
-    case Kind::kList:
-      return "a list";
-    case Kind::kDict:
-      return "a dictionary";
-    default:
-      return "an unsupported value";
-  }
+  // Indexed by Kind; kNone and kOther are what a YAML reader cannot give as a parameter.
+  static const char* const kNames[] = {"an unsupported value", "a bool", "an int", "a double",
+                                       "a string", "a list", "a dictionary",
+                                       "an unsupported value"};
+  return kNames[static_cast<int>(kind_)];
 }
 
 std::string controllerPrefix(const std::string& name) { return "controller '" + name + "': "; }

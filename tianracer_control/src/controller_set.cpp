@@ -6,15 +6,8 @@
 namespace tianracer_control {
 
 const char* toString(ControllerState state) {
-  switch (state) {
-    case ControllerState::kInitialized:
-      return "initialized";
-    case ControllerState::kRunning:
-      return "running";
-    case ControllerState::kStopped:
-      return "stopped";
-  }
-  return "unknown";
+  static const char* const kNames[] = {"initialized", "running", "stopped"};  // by ControllerState
+  return kNames[static_cast<int>(state)];
 }
 
 Controller& ControllerSet::add(std::unique_ptr<Controller> controller, double time) {
@@ -91,23 +84,21 @@ void ControllerSet::switchControllers(const std::vector<std::string>& start,
                                       const std::vector<std::string>& stop,
                                       Strictness strictness, double time) {
   const bool strict = strictness == Strictness::kStrict;
-  std::set<const Controller*> stop_set, start_set;
-  for (const std::string& name : stop) {
-    const Controller* c = find(name);
-    if (!c && strict) {
-      throw ControllerError("Could not stop controller with name '" + name +
-                            "' because no controller with this name exists");
+  // The named controllers; an unknown name is an error when strict, else skipped.
+  const auto named = [&](const std::vector<std::string>& names, const char* verb) {
+    std::set<const Controller*> found;
+    for (const std::string& name : names) {
+      const Controller* c = find(name);
+      if (!c && strict) {
+        throw ControllerError(std::string("Could not ") + verb + " controller with name '" + name +
+                              "' because no controller with this name exists");
+      }
+      if (c) found.insert(c);
     }
-    if (c) stop_set.insert(c);
-  }
-  for (const std::string& name : start) {
-    const Controller* c = find(name);
-    if (!c && strict) {
-      throw ControllerError("Could not start controller with name '" + name +
-                            "' because no controller with this name exists");
-    }
-    if (c) start_set.insert(c);
-  }
+    return found;
+  };
+  const std::set<const Controller*> stop_set = named(stop, "stop");
+  const std::set<const Controller*> start_set = named(start, "start");
   // What runs afterwards, with controller_manager's checks per controller.
   std::vector<bool> runs(controllers_.size(), false), stops(controllers_.size(), false),
       starts(controllers_.size(), false);

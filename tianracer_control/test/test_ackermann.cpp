@@ -7,7 +7,7 @@
 
 #include "tianracer_control/ackermann.h"
 
-#include "test_geometry.h"
+#include "control_test_support.h"
 
 using namespace tianracer_control;  // NOLINT: test file
 
@@ -16,8 +16,17 @@ namespace {
 // Round numbers for hand computation: L = 0.25, T = 0.14 (T/2 = 0.07), r = 0.05, Tr = 0.16,
 // m = 0.6.
 using test::geometry;
+using test::seedGeometry;
 
 constexpr double kTol = 1e-9;
+
+// bicycleAngleFrom{Left,Right} undo {left,right}WheelAngle over +-0.5 rad.
+void expectWheelAnglesInvert(const AckermannGeometry& g) {
+  for (double delta = -0.5; delta <= 0.5; delta += 0.05) {
+    EXPECT_NEAR(bicycleAngleFromLeft(g, leftWheelAngle(g, delta)), delta, kTol);
+    EXPECT_NEAR(bicycleAngleFromRight(g, rightWheelAngle(g, delta)), delta, kTol);
+  }
+}
 
 }  // namespace
 
@@ -60,11 +69,7 @@ TEST(Ackermann, WheelAxesMeetAtTheTurningCentre) {
 }
 
 TEST(Ackermann, WheelAngleInversesRoundTrip) {
-  const AckermannGeometry g = geometry();
-  for (double delta = -0.5; delta <= 0.5; delta += 0.05) {
-    EXPECT_NEAR(bicycleAngleFromLeft(g, leftWheelAngle(g, delta)), delta, kTol);
-    EXPECT_NEAR(bicycleAngleFromRight(g, rightWheelAngle(g, delta)), delta, kTol);
-  }
+  expectWheelAnglesInvert(geometry());
 }
 
 TEST(Ackermann, YawRateSteeringAngleRoundTrip) {
@@ -123,9 +128,7 @@ TEST(Ackermann, TwistInSteeringAngleMode) {
 
 TEST(Ackermann, DifferentialRearWheels) {
   const AckermannGeometry g = geometry();
-  AckermannOptions o;
-  o.angular_z_is_steering_angle = true;
-  o.differential = true;
+  const AckermannOptions o = test::steeringAngleDifferential();
   // delta = 0.3: k = Tr tan / (2L) = 0.16 * 0.309336249610 / 0.5 = 0.098987599875
   // v = 1, r = 0.05: left = 20 (1 - k) = 18.020248002, right = 20 (1 + k) = 21.979751998
   const AckermannCommand c = twistToAckermann(g, 1.0, 0.3, o);
@@ -188,9 +191,7 @@ TEST(Ackermann, GeometryValidation) {
 
 TEST(Ackermann, FromSteeringMatchesTwistInSteeringMode) {
   const AckermannGeometry g = geometry();
-  AckermannOptions o;
-  o.angular_z_is_steering_angle = true;
-  o.differential = true;
+  const AckermannOptions o = test::steeringAngleDifferential();
   for (double delta : {-0.7, -0.3, 0.0, 0.2, 0.55}) {
     const AckermannCommand a = twistToAckermann(g, 0.8, delta, o);
     const AckermannCommand b = ackermannFromSteering(g, 0.8, delta, true);
@@ -199,28 +200,6 @@ TEST(Ackermann, FromSteeringMatchesTwistInSteeringMode) {
     EXPECT_EQ(a.clamped, b.clamped);
   }
 }
-
-namespace {
-
-// The seed tianracer's joint origins in base_link (m): hinges left (0.1237, 0.070647), right
-// (0.12626, -0.065953); rear wheels left (-0.12626, 0.081602), right (-0.1237, -0.086296).
-// Rear axle midpoint P = (-0.12498, -0.002347); L = 0.24996, T = 0.1366;
-// s = (0.12626 - 0.1237) / 2 = 0.00128; c = (0.070647 - 0.065953) / 2 + 0.002347 = 0.004694.
-AckermannGeometry seedGeometry() {
-  AckermannGeometry g;
-  g.wheelbase = 0.24996;
-  g.hinge_separation = 0.1366;
-  g.wheel_radius = 0.032;
-  g.rear_track = 0.167898;
-  g.max_steering_angle = 0.6;
-  g.rear_axle_x = -0.12498;
-  g.rear_axle_y = -0.002347;
-  g.hinge_skew_x = 0.00128;
-  g.hinge_offset_y = 0.004694;
-  return g;
-}
-
-}  // namespace
 
 TEST(Ackermann, AsymmetricHingesHandComputed) {
   const AckermannGeometry g = seedGeometry();
@@ -257,11 +236,7 @@ TEST(Ackermann, AsymmetricWheelAxesMeetAtTheTurningCentre) {
 }
 
 TEST(Ackermann, AsymmetricInversesRoundTrip) {
-  const AckermannGeometry g = seedGeometry();
-  for (double delta = -0.5; delta <= 0.5; delta += 0.05) {
-    EXPECT_NEAR(bicycleAngleFromLeft(g, leftWheelAngle(g, delta)), delta, kTol);
-    EXPECT_NEAR(bicycleAngleFromRight(g, rightWheelAngle(g, delta)), delta, kTol);
-  }
+  expectWheelAnglesInvert(seedGeometry());
 }
 
 TEST(Ackermann, AsymmetricLimitsPutTheInnerWheelAtTheJointLimitEitherWay) {

@@ -6,7 +6,7 @@
 
 #include "tianracer_control/cmd_vel.h"
 
-#include "test_geometry.h"
+#include "control_test_support.h"
 
 using namespace tianracer_control;  // NOLINT: test file
 

@@ -8,9 +8,13 @@
 
 #include "tianracer_control/joint_controllers.h"
 
+#include "control_test_support.h"
+
 using namespace tianracer_control;  // NOLINT: test file
 
 namespace {
+
+using test::spec;
 
 struct Car {
   JointHandle hinge, wheel;
@@ -28,15 +32,6 @@ struct Car {
     joints = {{hinge.name, &hinge}, {wheel.name, &wheel}};
   }
 };
-
-ControllerSpec spec(const std::string& name, const std::string& type, const std::string& joint) {
-  ControllerSpec s;
-  s.name = name;
-  s.type = type;
-  s.params["type"] = type;
-  if (!joint.empty()) s.params["joint"] = joint;
-  return s;
-}
 
 ControllerSpec wheelSpec(const std::string& name) {
   return spec(name, "velocity_controllers/JointVelocityController", "wheel_joint");
@@ -56,6 +51,13 @@ std::string errorOf(F&& f) {
     return e.what();
   }
   return "";
+}
+
+// "w" (the wheel's velocity controller) loaded, "jsc" loaded and running.
+void loadWheelAndRunJsc(ControllerSet& set, Car& car) {
+  set.loadController(wheelSpec("w"), car.joints);
+  set.loadController(jscSpec(), car.joints);
+  set.switchControllers({"jsc"}, {}, Strictness::kStrict, 0.0);
 }
 
 std::vector<std::string> states(const ControllerSet& set) {
@@ -128,9 +130,7 @@ TEST(ControllerManager, LoadErrorsAreControllerManagersTexts) {
 TEST(ControllerManager, StrictSwitchRefusesAndChangesNothing) {
   Car car;
   ControllerSet set;
-  set.loadController(wheelSpec("w"), car.joints);
-  set.loadController(jscSpec(), car.joints);
-  set.switchControllers({"jsc"}, {}, Strictness::kStrict, 0.0);
+  loadWheelAndRunJsc(set, car);
   EXPECT_EQ(errorOf([&] { set.switchControllers({"w", "nope"}, {}, Strictness::kStrict, 0.0); }),
             "Could not start controller with name 'nope' because no controller with this name "
             "exists");
@@ -149,9 +149,7 @@ TEST(ControllerManager, StrictSwitchRefusesAndChangesNothing) {
 TEST(ControllerManager, BestEffortSkipsWhatCannotBeDone) {
   Car car;
   ControllerSet set;
-  set.loadController(wheelSpec("w"), car.joints);
-  set.loadController(jscSpec(), car.joints);
-  set.switchControllers({"jsc"}, {}, Strictness::kStrict, 0.0);
+  loadWheelAndRunJsc(set, car);
   set.switchControllers({"w", "jsc", "nope"}, {"also_nope"}, Strictness::kBestEffort, 0.0);
   EXPECT_EQ(states(set), (std::vector<std::string>{"w:running", "jsc:running"}));
   set.switchControllers({}, {"w", "w", "nope"}, Strictness::kBestEffort, 0.0);

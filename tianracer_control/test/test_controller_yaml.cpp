@@ -4,6 +4,8 @@
 
 #include "tianracer_control/controller_yaml.h"
 
+#include "control_test_support.h"
+
 using namespace tianracer_control;  // NOLINT: test file
 
 namespace {
@@ -62,8 +64,7 @@ TEST(ControllerYaml, ShippedFileLoadsEveryControllerSorted) {
   hinge.interface = JointHandle::Interface::kEffort;
   std::map<std::string, JointHandle*> joints{{hinge.name, &hinge}};
   std::vector<std::string> warnings;
-  EXPECT_NO_THROW(builtinControllers().create(
-      specs[2], joints, [&](const std::string& w) { warnings.push_back(w); }));
+  EXPECT_NO_THROW(warnings = test::creationWarnings(specs[2], joints));
   EXPECT_TRUE(warnings.empty()) << warnings.front();
 }
 
@@ -96,13 +97,11 @@ TEST(ControllerYaml, SameTreeAsTheParameterServer) {
   hinge.name = "left_steering_hinge_joint";
   hinge.interface = JointHandle::Interface::kEffort;
   std::map<std::string, JointHandle*> joints{{hinge.name, &hinge}};
-  std::vector<std::string> warnings;
-  builtinControllers().create(s, joints, [&](const std::string& w) { warnings.push_back(w); });
-  ASSERT_EQ(warnings.size(), 2u);
-  EXPECT_EQ(warnings[0], "test.yaml:3: controller 'hinge': key 'names' is not used by "
-                         "effort_controllers/JointPositionController, ignored");
-  EXPECT_EQ(warnings[1], "test.yaml:3: controller 'hinge': key 'pid/pp' is not used by "
-                         "effort_controllers/JointPositionController, ignored");
+  const std::string where = "test.yaml:3: controller 'hinge': ";
+  const std::string type = "effort_controllers/JointPositionController";
+  EXPECT_EQ(test::creationWarnings(s, joints),
+            (std::vector<std::string>{test::unusedKeyWarning(where, "names", type),
+                                      test::unusedKeyWarning(where, "pid/pp", type)}));
 }
 
 TEST(ControllerYaml, NestedNamespaceTopLevelAndNamedControllers) {

@@ -10,30 +10,23 @@
 #include "tianracer_control/controllers/effort_joint_position_controller.h"
 #include "tianracer_control/joint_controllers.h"
 
+#include "control_test_support.h"
+
 using namespace tianracer_control;  // NOLINT: test file
 
 namespace {
 
+using test::spec;
+
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// The seed's actuated joints: hinges (effort, +-0.6 rad, effort 10), rear wheels (velocity).
-struct Car {
-  JointHandle left_hinge, right_hinge, left_rear, right_rear, pos_joint;
-  std::map<std::string, JointHandle*> joints;
+// The seed's actuated joints, the rear wheels with limits, and a position joint.
+struct Car : test::SeedJoints {
+  JointHandle pos_joint;
 
   Car() {
-    for (JointHandle* h : {&left_hinge, &right_hinge}) {
-      h->interface = JointHandle::Interface::kEffort;
-      h->has_position_limits = true;
-      h->lower = -0.6;
-      h->upper = 0.6;
-      h->effort_limit = 10.0;
-      h->velocity_limit = 1000.0;
-    }
     for (JointHandle* h : {&left_rear, &right_rear}) {
-      h->interface = JointHandle::Interface::kVelocity;
-      h->continuous = true;
       h->velocity_limit = 100.0;
       h->effort_limit = 5.0;
     }
@@ -41,26 +34,10 @@ struct Car {
     pos_joint.has_position_limits = true;
     pos_joint.lower = -1.0;
     pos_joint.upper = 2.0;
-    left_hinge.name = "left_steering_hinge_joint";
-    right_hinge.name = "right_steering_hinge_joint";
-    left_rear.name = "left_rear_wheel_joint";
-    right_rear.name = "right_rear_wheel_joint";
     pos_joint.name = "pos_joint";
-    for (JointHandle* h : {&left_hinge, &right_hinge, &left_rear, &right_rear, &pos_joint}) {
-      joints[h->name] = h;
-    }
+    joints[pos_joint.name] = &pos_joint;
   }
 };
-
-// A YAML entry as the parameter server gives it: type, joint (when not empty).
-ControllerSpec spec(const std::string& name, const std::string& type, const std::string& joint) {
-  ControllerSpec s;
-  s.name = name;
-  s.type = type;
-  if (!type.empty()) s.params["type"] = type;
-  if (!joint.empty()) s.params["joint"] = joint;
-  return s;
-}
 
 ControllerSpec hingeSpec(double p, double i = 0.0, double d = 0.0) {
   ControllerSpec s = spec("hinge", "effort_controllers/JointPositionController",
@@ -397,13 +374,11 @@ TEST(ControllerRegistry, UnknownKeysAreWarned) {
   s.params["pid"]["pp"] = 2.0;
   s.params["joints"] = ParamValue::list({"a", "b"});
   s.line = 4;
-  std::vector<std::string> warnings;
-  create(s, car.joints, [&](const std::string& w) { warnings.push_back(w); });
-  ASSERT_EQ(warnings.size(), 2u);
-  EXPECT_EQ(warnings[0], "line 4: controller 'hinge': key 'joints' is not used by "
-                         "effort_controllers/JointPositionController, ignored");
-  EXPECT_EQ(warnings[1], "line 4: controller 'hinge': key 'pid/pp' is not used by "
-                         "effort_controllers/JointPositionController, ignored");
+  const std::string where = "line 4: controller 'hinge': ";
+  const std::string type = "effort_controllers/JointPositionController";
+  EXPECT_EQ(test::creationWarnings(s, car.joints),
+            (std::vector<std::string>{test::unusedKeyWarning(where, "joints", type),
+                                      test::unusedKeyWarning(where, "pid/pp", type)}));
 }
 
 TEST(ControllerRegistry, KeysOfAnotherTypeAreWarnedOncePerSubtree) {
@@ -412,13 +387,11 @@ TEST(ControllerRegistry, KeysOfAnotherTypeAreWarnedOncePerSubtree) {
   s.params["publish_rate"] = 50;
   s.params["pid"]["p"] = 1.0;
   s.params["pid"]["d"] = 1.0;
-  std::vector<std::string> warnings;
-  create(s, car.joints, [&](const std::string& w) { warnings.push_back(w); });
-  ASSERT_EQ(warnings.size(), 2u);
-  EXPECT_EQ(warnings[0], "controller 'jsc': key 'joint' is not used by "
-                         "joint_state_controller/JointStateController, ignored");
-  EXPECT_EQ(warnings[1], "controller 'jsc': key 'pid' is not used by "
-                         "joint_state_controller/JointStateController, ignored");
+  const std::string where = "controller 'jsc': ";
+  const std::string type = "joint_state_controller/JointStateController";
+  EXPECT_EQ(test::creationWarnings(s, car.joints),
+            (std::vector<std::string>{test::unusedKeyWarning(where, "joint", type),
+                                      test::unusedKeyWarning(where, "pid", type)}));
 }
 
 TEST(ControllerRegistry, EachClassChecksTheKindsOfItsKeys) {

@@ -6,7 +6,7 @@
 #include "tianracer_control/ackermann.h"
 #include "tianracer_control/odometry.h"
 
-#include "test_geometry.h"
+#include "control_test_support.h"
 
 using namespace tianracer_control;  // NOLINT: test file
 
@@ -28,10 +28,7 @@ TEST(Odometry, StraightLine) {
 TEST(Odometry, KnownArcMatchesTheClosedForm) {
   const AckermannGeometry g = geometry();
   // Exact Ackermann angles for delta = 0.3; v = 0.5 m/s (omega = 10 rad/s, differential).
-  AckermannOptions o;
-  o.angular_z_is_steering_angle = true;
-  o.differential = true;
-  const AckermannCommand c = twistToAckermann(g, 0.5, 0.3, o);
+  const AckermannCommand c = twistToAckermann(g, 0.5, 0.3, test::steeringAngleDifferential());
   const double R = g.wheelbase / std::tan(0.3);  // 0.808183... m, rear axle midpoint
   const double w = 0.5 / R;
   BicycleOdometry odo(g);

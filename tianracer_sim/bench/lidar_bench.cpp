@@ -19,6 +19,8 @@
 #include "tianracer_sim/sensors/ray/ray_sensor.h"
 #include "tianracer_sim/world/world.h"
 
+#include "bench_support.h"
+
 #ifndef TIANRACER_SIM_DIR
 #define TIANRACER_SIM_DIR "."
 #endif
@@ -186,28 +188,14 @@ int main(int argc, char** argv) {
   // the default caster, from the car's lidar mount; sensor-side cost only (no message).
   {
     RaySensorConfig v = seedLidar();
-    v.samples = 1800;
-    v.min_angle = -M_PI;
-    v.max_angle = M_PI * (1.0 - 2.0 / 1800);
-    v.vertical_samples = 16;
-    v.vertical_min_angle = -0.2617993878;
-    v.vertical_max_angle = 0.2617993878;
-    v.range_min = 0.4;
-    v.range_max = 100.0;
-    v.velodyne = true;
-    v.cloud_noise = 0.008;
+    bench::makeVelodyne16(v);
     RayCaster caster;
     RayScanBuffers buffers;
     const auto& poses = trackPoses();
     const int n3d = std::max(20, scans / 20);
     double best = 1e9, best_quiet = 1e9;
     long points = 0, total = 0;
-    // Thread CPU time: on a shared machine wall time measures the other jobs' load.
-    const auto cpuNow = [] {
-      timespec ts;
-      clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-      return ts.tv_sec + 1e-9 * ts.tv_nsec;
-    };
+    const auto cpuNow = bench::threadCpuSeconds;
     for (int round = 0; round < 10; ++round) {
       v.cloud_noise = round % 2 ? 0.0 : 0.008;  // noise on and off, interleaved
       const double t0 = cpuNow();

@@ -28,15 +28,13 @@
 #include "tianracer_sim/sensors/imu/imu_sensor.h"
 #include "tianracer_sim/world/world.h"
 
+#include "bench_support.h"
+
 namespace ts = tianracer_sim;
 
 namespace {
 
-double threadCpu() {
-  timespec t;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return t.tv_sec + 1e-9 * t.tv_nsec;
-}
+using ts::bench::threadCpuSeconds;
 
 double processCpu() {
   timespec t;
@@ -102,7 +100,7 @@ Row imuRow(bool noise) {
   double t = 0.0;
   double checksum = 0.0;
   Row r = best(noise ? "IMU sample, SDF noise + bias on all axes" : "IMU sample, noise off",
-               "us/sample", 1e6, 20000, &threadCpu, [&] {
+               "us/sample", 1e6, 20000, &threadCpuSeconds, [&] {
                  for (int k = 0; k < 10; ++k) {
                    t += 0.001;
                    const Eigen::Isometry3d X = pose(std::sin(0.5 * t), 1.0 - std::cos(0.5 * t),
@@ -119,16 +117,7 @@ Row imuRow(bool noise) {
 Row lidar3dRow(const ts::Scene& scene) {
   ts::RaySensorConfig v;
   v.name = "velodyne";
-  v.samples = 1800;
-  v.min_angle = -M_PI;
-  v.max_angle = M_PI * (1.0 - 2.0 / 1800);
-  v.vertical_samples = 16;
-  v.vertical_min_angle = -0.2617993878;
-  v.vertical_max_angle = 0.2617993878;
-  v.range_min = 0.4;
-  v.range_max = 100.0;
-  v.velodyne = true;
-  v.cloud_noise = 0.008;
+  ts::bench::makeVelodyne16(v);
   v.update_rate = 10;
   ts::RayCaster caster;
   ts::RayScanBuffers buffers;
@@ -138,7 +127,7 @@ Row lidar3dRow(const ts::Scene& scene) {
                                                 pose(0.5, 4.0, 0.15, M_PI)};
   std::size_t i = 0;
   return best("3D lidar 16 x 1800, gaussianNoise 0.008 (racetrack)", "ms/scan", 1e3, 20,
-              &threadCpu, [&] { scanRays(caster, scene, poses[i++ % poses.size()], v, rng,
+              &threadCpuSeconds, [&] { scanRays(caster, scene, poses[i++ % poses.size()], v, rng,
                                          &buffers, &ranges); });
 }
 

@@ -4,22 +4,16 @@
 //   scripts/fuzz.sh [seconds]
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
-#include <cstdio>
 #include <string>
 
 #include <urdf_model/model.h>
 
+#include "fuzz_check.h"
 #include "tianracer_sim/model/robot_model.h"
 
 namespace {
 
-void check(bool ok, const char* what) {
-  if (!ok) {
-    std::fprintf(stderr, "fuzz_extensions: broken promise: %s\n", what);
-    std::abort();
-  }
-}
+const tianracer_sim_fuzz::PromiseCheck check{"fuzz_extensions"};
 
 // What loadRobotModel validates on success (validated once, on load).
 void checkModel(const tianracer_sim::RobotModel& m) {

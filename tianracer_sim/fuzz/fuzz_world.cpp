@@ -4,20 +4,14 @@
 //   scripts/fuzz.sh [seconds]
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <string>
 
+#include "fuzz_check.h"
 #include "tianracer_sim/world/world.h"
 
 namespace {
 
-void check(bool ok, const char* what) {
-  if (!ok) {
-    std::fprintf(stderr, "fuzz_world: broken promise: %s\n", what);
-    std::abort();
-  }
-}
+const tianracer_sim_fuzz::PromiseCheck check{"fuzz_world"};
 
 void checkWorld(const tianracer_sim::WorldDescription& w) {
   check(std::isfinite(w.physics.max_step_size) && w.physics.max_step_size > 0.0,

@@ -20,24 +20,15 @@
 
 #include "tianracer_control/ackermann.h"
 
+#include "../control_test_support.h"
+#include "spin_until.h"
+
 using namespace tianracer_control;  // NOLINT: test file
 
 namespace {
 
-// What the nodes derive from test/data/urdf/ackermann_cylinders.urdf.
-AckermannGeometry urdfGeometry() {
-  AckermannGeometry g;
-  g.wheelbase = 0.24996;
-  g.hinge_separation = 0.1366;
-  g.wheel_radius = 0.032;
-  g.rear_track = 0.167898;
-  g.max_steering_angle = 0.55;
-  g.rear_axle_x = -0.12498;
-  g.rear_axle_y = -0.002347;
-  g.hinge_skew_x = 0.00128;
-  g.hinge_offset_y = 0.004694;
-  return g;
-}
+// What the nodes derive from test/data/urdf/ackermann_cylinders.urdf: the seed, hinges to 0.55.
+AckermannGeometry urdfGeometry() { return test::seedGeometry(0.55); }
 
 class Wiring : public ::testing::Test {
  protected:
@@ -78,13 +69,7 @@ class Wiring : public ::testing::Test {
   static constexpr double kWallTimeout = 60.0;
 
   bool waitFor(const std::function<bool()>& done, double seconds = kWallTimeout) {
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
-    while (ros::WallTime::now() < end) {
-      ros::spinOnce();
-      if (done()) return true;
-      ros::WallDuration(0.005).sleep();
-    }
-    return done();
+    return test::spinUntil(done, seconds, 0.005);
   }
 
   void publishClock(double t) {

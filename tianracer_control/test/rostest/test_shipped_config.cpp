@@ -15,33 +15,12 @@
 #include "tianracer_control/controllers/effort_joint_position_controller.h"
 #include "tianracer_control/ros/controller_adapter.h"
 
+#include "../control_test_support.h"
+#include "spin_until.h"
+
 using namespace tianracer_control;  // NOLINT: test file
 
 namespace {
-
-struct SeedJoints {
-  JointHandle lh, rh, lr, rr;
-  std::map<std::string, JointHandle*> map;
-  SeedJoints() {
-    lh.name = "left_steering_hinge_joint";
-    rh.name = "right_steering_hinge_joint";
-    lr.name = "left_rear_wheel_joint";
-    rr.name = "right_rear_wheel_joint";
-    for (JointHandle* h : {&lh, &rh}) {
-      h->interface = JointHandle::Interface::kEffort;
-      h->has_position_limits = true;
-      h->lower = -0.6;
-      h->upper = 0.6;
-      h->effort_limit = 10.0;
-      h->velocity_limit = 1000.0;
-    }
-    for (JointHandle* h : {&lr, &rr}) {
-      h->interface = JointHandle::Interface::kVelocity;
-      h->continuous = true;
-    }
-    for (JointHandle* h : {&lh, &rh, &lr, &rr}) map[h->name] = h;
-  }
-};
 
 // Every key under the namespace whose value has a "type": the controllers of the file.
 std::vector<std::string> controllerNames(const ros::NodeHandle& ns) {
@@ -57,13 +36,7 @@ std::vector<std::string> controllerNames(const ros::NodeHandle& ns) {
 }
 
 bool waitFor(const std::function<bool()>& done, double seconds) {
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
-  while (ros::WallTime::now() < end) {
-    ros::spinOnce();
-    if (done()) return true;
-    ros::WallDuration(0.01).sleep();
-  }
-  return done();
+  return test::spinUntil(done, seconds, 0.01);
 }
 
 }  // namespace
@@ -72,11 +45,11 @@ TEST(ShippedConfig, LoadsUnchangedWithoutWarnings) {
   ros::NodeHandle ns("/tianracer");
   const std::vector<std::string> names = controllerNames(ns);
   ASSERT_EQ(names.size(), 5u);
-  SeedJoints joints;
+  test::SeedJoints seed;
   ControllerSet set;
   std::vector<std::string> warnings;
   for (const ControllerSpec& spec : loadControllerSpecs(ns, names)) {
-    set.load(spec, joints.map, 0.0, [&](const std::string& w) { warnings.push_back(w); });
+    set.load(spec, seed.joints, 0.0, [&](const std::string& w) { warnings.push_back(w); });
   }
   EXPECT_TRUE(warnings.empty()) << warnings.front();
   auto* jsc = dynamic_cast<JointStateController*>(set.find("joint_state_controller"));
@@ -88,7 +61,7 @@ TEST(ShippedConfig, LoadsUnchangedWithoutWarnings) {
   EXPECT_EQ(hinge->pid().gains().p, 20.0);
   EXPECT_EQ(hinge->pid().gains().d, 0.2);
   ASSERT_NE(set.find("right_rear_wheel_velocity_controller"), nullptr);
-  EXPECT_EQ(set.find("right_rear_wheel_velocity_controller")->joint(), &joints.rr);
+  EXPECT_EQ(set.find("right_rear_wheel_velocity_controller")->joint(), &seed.right_rear);
 }
 
 TEST(ShippedConfig, MissingControllerIsNamed) {
@@ -105,10 +78,10 @@ TEST(ShippedConfig, MissingControllerIsNamed) {
 
 TEST(ShippedConfig, CommandTopicsReachTheControllers) {
   ros::NodeHandle ns("/tianracer");
-  SeedJoints joints;
+  test::SeedJoints seed;
   ControllerSet set;
   for (const ControllerSpec& spec : loadControllerSpecs(ns, controllerNames(ns))) {
-    set.load(spec, joints.map);
+    set.load(spec, seed.joints);
   }
   ControllerCommandSubscribers subs(ns, set);
   const std::vector<std::string> topics = subs.topics();
@@ -136,7 +109,7 @@ TEST(ShippedConfig, CommandTopicsReachTheControllers) {
     return w->command() == 12.5 && h->command() == 0.6;
   }, 10.0));
   set.update(0.001);
-  EXPECT_EQ(joints.lr.command, 12.5);
+  EXPECT_EQ(seed.left_rear.command, 12.5);
 
   // NaN is dropped; the command stays.
   m.data = std::numeric_limits<double>::quiet_NaN();

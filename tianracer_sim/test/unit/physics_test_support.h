@@ -18,6 +18,14 @@ struct TestRobot {
   LinkSurfaces surfaces;
 };
 
+/// No ground plane, no gravity: bodies move only as the test drives them.
+inline PhysicsOptions weightless() {
+  PhysicsOptions o;
+  o.ground_plane = false;
+  o.gravity.setZero();
+  return o;
+}
+
 inline TestRobot parseTestRobot(const std::string& xml) {
   TestRobot m;
   m.urdf = urdf::parseURDF(xml);

@@ -14,6 +14,10 @@
 namespace tianracer_sim {
 namespace test {
 
+/// base_link height at which the rear wheels (centre z 0.0225, radius 0.032) touch the ground.
+constexpr double kSpawnZ = 0.0095;
+constexpr double kWheelRadius = 0.032;
+
 inline std::string descriptionDir() { return TIANRACER_DESCRIPTION_DIR; }
 inline std::string repoDir() { return descriptionDir() + "/.."; }
 
@@ -41,6 +45,15 @@ inline RobotModel loadTianracer() {
   return loadRobotModelFile(descriptionDir() + "/urdf/tianracer_description.xacro", options);
 }
 
+/// The tianracer as spawn_model adds it: named `name`, base_link at p_WB, no controllers.
+inline RobotConfig tianracerAt(const Eigen::Vector3d& p_WB, const std::string& name = "tianracer") {
+  RobotConfig config;
+  config.name = name;
+  config.model = loadTianracer();
+  config.X_WB_spawn.translation() = p_WB;
+  return config;
+}
+
 /// The controllers of a ros_control YAML under `ns`, as the node reads them from the
 /// parameter server (tianracer_control's reader, shared with the Python simulation).
 inline std::vector<tianracer_control::ControllerSpec> loadControllerYaml(const std::string& file,
@@ -52,10 +65,6 @@ inline std::vector<tianracer_control::ControllerSpec> shippedControllers() {
   return loadControllerYaml(repoDir() + "/tianracer_control/config/tianracer_control.yaml",
                             "tianracer");
 }
-
-/// base_link height at which the rear wheels (centre z 0.0225, radius 0.032) touch the ground.
-constexpr double kSpawnZ = 0.0095;
-constexpr double kWheelRadius = 0.032;
 
 }  // namespace test
 }  // namespace tianracer_sim

@@ -9,6 +9,8 @@
 
 #include "tianracer_sim/mesh/mesh_loader.h"
 
+#include "common_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
@@ -35,12 +37,7 @@ void expectBounds(const TriangleMesh& m, const Eigen::Vector3f& lo, const Eigen:
 }
 
 std::string errorOf(const Shape& s) {
-  try {
-    meshOf(s);
-  } catch (const MeshError& e) {
-    return e.what();
-  }
-  return "";
+  return test::errorText<MeshError>([&] { meshOf(s); });
 }
 
 TEST(MeshRules, ColladaUnitAndNestedNodeTransformsApplyAndZUpStaysUp) {

@@ -11,6 +11,8 @@
 
 #include "tianracer_sim/model/robot_model.h"
 
+#include "common_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
@@ -36,12 +38,7 @@ struct Parser {
                            [this](const std::string& w) { warnings.push_back(w); });
   }
   std::string error(const std::string& xml) {
-    try {
-      parse(xml);
-    } catch (const ModelError& e) {
-      return e.what();
-    }
-    return "";
+    return test::errorText<ModelError>([&] { parse(xml); });
   }
 };
 
@@ -87,20 +84,19 @@ TEST(Extensions, BadSurfaceValuesNameElementAndValue) {
   EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><mu1>slippery</mu1></gazebo>")),
               HasSubstr("test.urdf:5: <gazebo reference='wheel'>: <mu1> value 'slippery' "
                         "is not a number"));
-  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><kp value='-1'/></gazebo>")),
-              HasSubstr("<kp> value '-1' must be finite and >= 0"));
-  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><kd value='inf'/></gazebo>")),
-              HasSubstr("<kd> value 'inf' must be finite and >= 0"));
-  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><mu2/></gazebo>")),
-              HasSubstr("<mu2> value '' is not a number"));
-  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><mu1>-inf</mu1></gazebo>")),
-              HasSubstr("<mu1> value '-inf' must be finite"));
-  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><fdir1>1 0</fdir1></gazebo>")),
-              HasSubstr("<fdir1> value '1 0' is not 3 finite numbers"));
-  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><fdir1>1 nan 0</fdir1></gazebo>")),
-              HasSubstr("<fdir1> value '1 nan 0'"));
-  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><selfCollide>yes</selfCollide></gazebo>")),
-              HasSubstr("<selfCollide> value 'yes' is not a boolean"));
+  // <gazebo reference='wheel'> bodies and what their error says.
+  const std::pair<const char*, const char*> cases[] = {
+      {"<kp value='-1'/>", "<kp> value '-1' must be finite and >= 0"},
+      {"<kd value='inf'/>", "<kd> value 'inf' must be finite and >= 0"},
+      {"<mu2/>", "<mu2> value '' is not a number"},
+      {"<mu1>-inf</mu1>", "<mu1> value '-inf' must be finite"},
+      {"<fdir1>1 0</fdir1>", "<fdir1> value '1 0' is not 3 finite numbers"},
+      {"<fdir1>1 nan 0</fdir1>", "<fdir1> value '1 nan 0'"},
+      {"<selfCollide>yes</selfCollide>", "<selfCollide> value 'yes' is not a boolean"}};
+  for (const auto& [body, message] : cases) {
+    EXPECT_THAT(p.error(robot(std::string("<gazebo reference='wheel'>") + body + "</gazebo>")),
+                HasSubstr(message));
+  }
 }
 
 TEST(Extensions, ReferencesToJointsAndMissingLinksAreWarnings) {
@@ -287,18 +283,11 @@ TEST(Extensions, SyntaxAndEmptyInput) {
   EXPECT_THAT(p.error("not xml at all"), HasSubstr("test.urdf:1: XML error: "));
 }
 
-std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // A small deterministic stand-in for the libFuzzer run (fuzz.sh): byte flips, insertions and
 // truncations of full.urdf. Anything but a result or a ModelError fails the test (a crash
 // fails it too).
 TEST(Extensions, MutatedInputsOnlyEverThrowModelError) {
-  const std::string seed = readFile(std::string(TEST_DATA_DIR) + "/urdf/full.urdf");
+  const std::string seed = test::readFile(std::string(TEST_DATA_DIR) + "/urdf/full.urdf");
   ASSERT_FALSE(seed.empty());
   const std::string alphabet = "<>/='\" \n0123456789.-+eEnaif,abcdefghijklmnopqrstuvwxyz_&;!?";
   std::mt19937 rng(12345);

@@ -12,6 +12,8 @@
 
 #include "tianracer_sim/model/robot_model.h"
 
+#include "common_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
@@ -34,20 +36,10 @@ struct Loader {
   RobotModel load(const std::string& file) { return loadRobotModelFile(kData + file, options); }
   /// The ModelError text of loading `file` ("" if it loads).
   std::string error(const std::string& file) {
-    try {
-      load(file);
-    } catch (const ModelError& e) {
-      return e.what();
-    }
-    return "";
+    return test::errorText<ModelError>([&] { load(file); });
   }
   std::string errorOf(const std::string& xml, const std::string& source = "robot_description") {
-    try {
-      loadRobotModel(xml, source, options);
-    } catch (const ModelError& e) {
-      return e.what();
-    }
-    return "";
+    return test::errorText<ModelError>([&] { loadRobotModel(xml, source, options); });
   }
   size_t countWarnings(const std::string& needle) const {
     return std::count_if(warnings.begin(), warnings.end(), [&](const std::string& w) {

@@ -7,25 +7,15 @@
 
 #include "tianracer_sim/ros/laser_msgs.h"
 
+#include "lidar_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
-RaySensorConfig seedConfig() {
-  RaySensorConfig c;
-  c.name = "hokuyo_sensor";
-  c.link = "lidar";
-  c.update_rate = 40;
-  c.samples = 1081;
-  c.min_angle = -2.3561944902;
-  c.max_angle = 2.3561944902;
-  c.range_min = 0.1;
-  c.range_max = 10.0;
-  c.frame_name = "lidar";
-  return c;
-}
+using test::seedHokuyo;
 
 TEST(LaserMsgs, SeedHokuyoFields) {
-  const RaySensorConfig c = seedConfig();
+  const RaySensorConfig c = seedHokuyo();
   std::vector<float> ranges(1081, 1.5f);
   ranges[0] = std::numeric_limits<float>::infinity();
   ranges[1] = -std::numeric_limits<float>::infinity();
@@ -50,7 +40,7 @@ TEST(LaserMsgs, SeedHokuyoFields) {
 }
 
 TEST(LaserMsgs, ZeroRateAndReuse) {
-  RaySensorConfig c = seedConfig();
+  RaySensorConfig c = seedHokuyo();
   c.update_rate = 0;
   c.samples = 3;
   c.frame_name = "tianracer_02/lidar";

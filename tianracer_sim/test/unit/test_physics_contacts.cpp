@@ -28,10 +28,7 @@ Eigen::Isometry3d at(double x, double y, double z) {
 // A weightless cube sliding at 1 m/s into a 1 m static box: contact begins when its face
 // reaches the box's (0.45 s), against static shape 0, with the normal pushing it back.
 TEST(RobotContacts, SlidingIntoAStaticBox) {
-  PhysicsOptions o;
-  o.ground_plane = false;
-  o.gravity.setZero();
-  PhysicsWorld w(o);
+  PhysicsWorld w(weightless());
   StaticShape box;
   box.name = "wall::link::collision";
   box.shape.size = Eigen::Vector3d::Ones();

@@ -42,9 +42,7 @@ const char* kBox = R"(<robot name="box"><link name="base_link">
   </link></robot>)";
 
 TEST(PhysicsExternal, LinkTwistIsTheDerivativeOfTheLinkPose) {
-  PhysicsOptions o;
-  o.ground_plane = false;
-  o.gravity.setZero();
+  const PhysicsOptions o = weightless();
   PhysicsWorld w(o);
   PhysicsRobot& r = w.robot(addTestRobot(w, parseTestRobot(kArm), at(1, 2, 3, 0.5), "arm"));
   Twist base;
@@ -81,9 +79,7 @@ TEST(PhysicsExternal, LinkTwistIsTheDerivativeOfTheLinkPose) {
 }
 
 TEST(PhysicsExternal, WrenchThroughTheCentreOfMass) {
-  PhysicsOptions o;
-  o.ground_plane = false;
-  o.gravity.setZero();
+  const PhysicsOptions o = weightless();
   PhysicsWorld w(o);
   PhysicsRobot& r = w.robot(addTestRobot(w, parseTestRobot(kBox), at(0, 0, 0, 0.7), "box"));
   r.setExternalWrench("base_link", {2.0, 0.0, 0.0}, {0.0, 0.0, 0.04});

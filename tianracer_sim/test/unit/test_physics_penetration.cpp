@@ -33,13 +33,6 @@ Eigen::Isometry3d at(double x, double y, double z) {
   return X;
 }
 
-PhysicsOptions weightless() {
-  PhysicsOptions o;
-  o.ground_plane = false;
-  o.gravity.setZero();
-  return o;
-}
-
 /// A 1 m static box at the origin.
 StaticShape block() {
   StaticShape s;

@@ -118,10 +118,7 @@ TEST(PhysicsWorld, StaticShapesCollide) {
 }
 
 TEST(PhysicsWorld, RobotsCollideWithEachOther) {
-  PhysicsOptions o;
-  o.ground_plane = false;
-  o.gravity.setZero();
-  PhysicsWorld w(o);
+  PhysicsWorld w(weightless());
   const TestRobot ball = modelFrom(boxRobot("<geometry><sphere radius='0.05'/></geometry>"));
   PhysicsRobot& a = w.robot(addTestRobot(w, ball, at(0, 0, 0), "a"));
   PhysicsRobot& b = w.robot(addTestRobot(w, ball, at(0.3, 0, 0), "b"));
@@ -136,10 +133,7 @@ TEST(PhysicsWorld, RobotsCollideWithEachOther) {
 }
 
 TEST(PhysicsWorld, JointConventionsAndLinkPoses) {
-  PhysicsOptions o;
-  o.ground_plane = false;
-  o.gravity.setZero();
-  PhysicsWorld w(o);
+  PhysicsWorld w(weightless());
   PhysicsRobot& r = w.robot(addTestRobot(w, modelFrom(kArm), at(1, 2, 3, 0.5), "arm"));
   ASSERT_EQ(r.joints().size(), 2u);
   const int hinge = r.jointIndex("hinge"), spin = r.jointIndex("spin");
@@ -162,10 +156,7 @@ TEST(PhysicsWorld, JointConventionsAndLinkPoses) {
 }
 
 TEST(PhysicsWorld, JointLimitHoldsAndEffortIsClamped) {
-  PhysicsOptions o;
-  o.ground_plane = false;
-  o.gravity.setZero();
-  PhysicsWorld w(o);
+  PhysicsWorld w(weightless());
   PhysicsRobot& r = w.robot(addTestRobot(w, modelFrom(kArm), at(0, 0, 0), "arm"));
   const int hinge = r.jointIndex("hinge");
   r.setJointEffort(hinge, 100.0);  // clamped to 5
@@ -178,10 +169,7 @@ TEST(PhysicsWorld, JointLimitHoldsAndEffortIsClamped) {
 }
 
 TEST(PhysicsWorld, VelocityMotorReachesTargetWithinItsEffort) {
-  PhysicsOptions o;
-  o.ground_plane = false;
-  o.gravity.setZero();
-  PhysicsWorld w(o);
+  PhysicsWorld w(weightless());
   PhysicsRobot& r = w.robot(addTestRobot(w, modelFrom(kArm), at(0, 0, 0), "arm"));
   const int spin = r.jointIndex("spin");
   // Izz 0.001 about x; 0.01 N m -> 10 rad/s^2: 20 rad/s needs 2 s.
@@ -335,9 +323,7 @@ TEST(PhysicsWorld, FrictionCombinesByMinimum) {
 
 // URDF <dynamics damping friction>: viscous decay and Coulomb deceleration of a free joint.
 TEST(PhysicsWorld, JointDampingAndFriction) {
-  PhysicsOptions o;
-  o.ground_plane = false;
-  o.gravity.setZero();
+  const PhysicsOptions o = weightless();
   std::string xml = kArm;
   const std::string spin_end = "<axis xyz=\"1 0 0\"/>\n  </joint>";
   for (int variant = 0; variant < 2; ++variant) {

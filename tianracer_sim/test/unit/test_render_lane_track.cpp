@@ -15,12 +15,18 @@
 namespace tianracer_sim {
 namespace {
 
-TEST(RenderLaneTrack, FloorMaterialResolvesToTheShippedTexture) {
+// The shipped worlds/lane_track.world, which loads without a warning.
+WorldDescription loadLaneTrack() {
   std::vector<std::string> warnings;
   WorldLoadOptions options;
   options.warn = [&](const std::string& w) { warnings.push_back(w); };
   const WorldDescription w = loadWorldFile(TEST_DATA_DIR "/../../worlds/lane_track.world", options);
   EXPECT_TRUE(warnings.empty()) << warnings.front();
+  return w;
+}
+
+TEST(RenderLaneTrack, FloorMaterialResolvesToTheShippedTexture) {
+  const WorldDescription w = loadLaneTrack();
   const ModelDescription* track = nullptr;
   for (const auto& m : w.models) {
     if (m.name == "lane_track") track = &m;
@@ -41,11 +47,8 @@ TEST(RenderLaneTrack, OgreScriptIsFoundInTheModelsFolder) {
 // The shipped lane track as the tianracer's camera sees it from the start: the white edge
 // lines stand out of the asphalt along an image row, where the K projection puts them.
 TEST(RenderLaneTrack, CameraImageShowsTheLaneLines) {
+  const WorldDescription world = loadLaneTrack();
   std::vector<std::string> warnings;
-  WorldLoadOptions options;
-  options.warn = [&](const std::string& w) { warnings.push_back(w); };
-  const WorldDescription world = loadWorldFile(TEST_DATA_DIR "/../../worlds/lane_track.world", options);
-  EXPECT_TRUE(warnings.empty()) << warnings.front();
   Scene scene;
   addToScene(world, scene);
   Renderer renderer([&](const std::string& w) { warnings.push_back(w); });

@@ -10,6 +10,8 @@
 #include "tianracer_sim/sensors/bumper/bumper.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
 
+#include "sensor_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
@@ -29,8 +31,7 @@ TEST(SensorsBumper, ConfigAndTopics) {
   const SensorSpec spec = contactSpec(
       "<plugin name='b' filename='libgazebo_ros_bumper.so'><robotNamespace>/car</robotNamespace>"
       "<bumperTopicName>bumper</bumperTopicName><frameName>base</frameName></plugin>");
-  ASSERT_NE(findSensorKind(spec), nullptr);
-  EXPECT_EQ(findSensorKind(spec)->id, "bumper");
+  EXPECT_EQ(test::kindOf(spec), "bumper");
   const BumperConfig c = parseBumperConfig(spec, "car");
   EXPECT_EQ(c.link, "base");
   EXPECT_EQ(c.topic(), "/car/bumper");

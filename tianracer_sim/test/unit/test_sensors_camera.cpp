@@ -16,41 +16,17 @@
 #include "tianracer_sim/scene/materials.h"
 #include "tianracer_sim/render/png_writer.h"
 
+#include "common_test_support.h"
+#include "sensor_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
-std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using test::readFile;
 
 // What the model loader makes of a <sensor> element (name, type, rate, xml, plugins).
 SensorSpec specFromXml(const std::string& xml, const std::string& link) {
-  tinyxml2::XMLDocument doc;
-  EXPECT_EQ(doc.Parse(xml.c_str()), tinyxml2::XML_SUCCESS) << xml;
-  const tinyxml2::XMLElement* root = doc.RootElement();
-  SensorSpec spec;
-  spec.name = root->Attribute("name");
-  spec.type = root->Attribute("type");
-  spec.link = link;
-  spec.xml = xml;
-  spec.source = "car.urdf";
-  spec.line = 7;
-  if (const auto* rate = root->FirstChildElement("update_rate")) {
-    spec.update_rate = std::stod(rate->GetText());
-  }
-  for (const auto* c = root->FirstChildElement("plugin"); c; c = c->NextSiblingElement("plugin")) {
-    PluginSpec p;
-    p.name = c->Attribute("name");
-    p.filename = c->Attribute("filename");
-    for (const auto* param = c->FirstChildElement(); param; param = param->NextSiblingElement()) {
-      p.params[param->Name()] = param->GetText() ? param->GetText() : "";
-    }
-    spec.plugins.push_back(p);
-  }
-  return spec;
+  return test::specFromXml(xml, link, "car.urdf", 7);
 }
 
 SensorSpec seedCamera() { return specFromXml(readFile(TEST_DATA_DIR "/render/seed_camera.xml"), "camera"); }
@@ -60,11 +36,7 @@ SensorSpec seedRealSense() {
 
 // Replaces the first occurrence of `from` in the sensor's XML (and its plugin params again).
 SensorSpec edited(const SensorSpec& spec, const std::string& from, const std::string& to) {
-  std::string xml = spec.xml;
-  const auto at = xml.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  xml.replace(at, from.size(), to);
-  return specFromXml(xml, spec.link);
+  return specFromXml(test::replaced(spec.xml, from, to), spec.link);
 }
 
 TEST(RenderCameraConfig, SeedCamera) {

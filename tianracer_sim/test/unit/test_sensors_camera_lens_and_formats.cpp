@@ -14,6 +14,8 @@
 #include "tianracer_sim/sensors/camera/lens_distortion.h"
 #include "tianracer_sim/scene/materials.h"
 
+#include "common_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
@@ -53,12 +55,7 @@ const std::string kBarrel =
     "<center>0.5 0.5</center></distortion>";
 
 std::string errorOf(const std::string& xml) {
-  try {
-    parseCameraConfig(spec(xml));
-  } catch (const CameraError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::errorText<CameraError>([&] { parseCameraConfig(spec(xml)); }, "(no error)");
 }
 
 TEST(LensDistortionModel, BrownsModelAndItsInverse) {

@@ -19,23 +19,16 @@
 #include "tianracer_sim/render/renderer.h"
 #include "tianracer_sim/scene/materials.h"
 
+#include "common_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh folder under the system's temp folder, removed at the end of the test.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::string tmpl = (fs::temp_directory_path() / "tianracer_textures_XXXXXX").string();
-    path = mkdtemp(tmpl.data());
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string file(const std::string& name) const { return (path / name).string(); }
+// A fresh folder per test, <tmp>/tianracer_textures_XXXXXX, removed at its end.
+struct TempDir : test::TempDir {
+  TempDir() : test::TempDir("textures") {}
 };
 
 // 10 x 10 squares of `cell` px. Square (i, j), i from the left, j from the top of the image:
@@ -71,6 +64,16 @@ Scene flatScene() {
   scene.ambient = Eigen::Vector4f(1, 1, 1, 1);
   scene.sky = Eigen::Vector4f(0, 0, 0, 1);
   scene.addBody(SceneBody{"quad::link", "quad", true, Eigen::Isometry3d::Identity()});
+  return scene;
+}
+
+// flatScene() with the mesh file `path`, which has no material of its own: the file's.
+Scene meshScene(const std::string& path) {
+  Scene scene = flatScene();
+  SceneItem item;
+  item.shape.type = ShapeType::kMesh;
+  item.shape.mesh_path = path;
+  scene.items.push_back(item);
   return scene;
 }
 
@@ -228,11 +231,7 @@ TEST(RenderTextures, MeshFilesKeepTheirMaterialsAndTextures) {
                                          "usemtl paint\nf 2/2 5/2 6/3 3/3\n";
   std::vector<std::string> warnings;
   Renderer renderer([&](const std::string& w) { warnings.push_back(w); });
-  Scene scene = flatScene();
-  SceneItem item;
-  item.shape.type = ShapeType::kMesh;
-  item.shape.mesh_path = dir.file("quad.obj");
-  scene.items.push_back(item);  // no material of its own: the file's
+  Scene scene = meshScene(dir.file("quad.obj"));
   const CameraIntrinsics K = CameraIntrinsics::fromHorizontalFov(240, 240, 1.2, 0.05, 10.0);
   const double h = 1.2 / std::tan(0.6);
   std::vector<uint8_t> rgb(240 * 240 * 3);
@@ -271,11 +270,7 @@ TEST(RenderTextures, MeshTextureThatIsMissingWarnsNamingMeshAndFile) {
                                          "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl board\nf 1/1 2/2 3/3 4/4\n";
   std::vector<std::string> warnings;
   Renderer renderer([&](const std::string& w) { warnings.push_back(w); });
-  Scene scene = flatScene();
-  SceneItem item;
-  item.shape.type = ShapeType::kMesh;
-  item.shape.mesh_path = dir.file("quad.obj");
-  scene.items.push_back(item);
+  Scene scene = meshScene(dir.file("quad.obj"));
   const CameraIntrinsics K = CameraIntrinsics::fromHorizontalFov(32, 32, 0.5, 0.05, 10.0);
   std::vector<uint8_t> rgb(32 * 32 * 3);
   renderer.renderView(scene, lookingDown(2.0), K, rgb.data());

@@ -10,6 +10,8 @@
 #include "tianracer_sim/sensors/imu/imu_sensor.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
 
+#include "sensor_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
@@ -31,6 +33,35 @@ SensorSpec imuSpec(const std::string& inner, const std::string& plugin =
                                       "<update_rate>100</update_rate>" + inner + plugin +
                                       "</sensor></gazebo>");
   return ext.links.at("base").sensors.at(0);
+}
+
+// Mean and standard deviation of the samples added.
+struct SampleStats {
+  double sum = 0, sum2 = 0;
+  int n = 0;
+  void add(double x) {
+    sum += x;
+    sum2 += x * x;
+    ++n;
+  }
+  double mean() const { return sum / n; }
+  double sd() const { return std::sqrt(sum2 / n - mean() * mean()); }
+};
+
+constexpr int kSamples = 10000;
+
+// Over kSamples readings at rest, one every kDt, `reading` has mean `mean` (within mean_tol)
+// and standard deviation `sd` (within sd_tol).
+template <class F>
+void expectRestingNoise(ImuSensor& imu, F reading, double mean, double mean_tol, double sd,
+                        double sd_tol) {
+  SampleStats stats;
+  for (int k = 0; k < kSamples; ++k) {
+    imu.record(k * kDt, Eigen::Isometry3d::Identity());
+    stats.add(reading(imu.read()));
+  }
+  EXPECT_NEAR(stats.mean(), mean, mean_tol);
+  EXPECT_NEAR(stats.sd(), sd, sd_tol);
 }
 
 ImuConfig quiet() {
@@ -127,17 +158,8 @@ TEST(SensorsImu, NoiseAndBiasStatistics) {
   n.stddev = 0.02;
   c.rate_noise.fill(n);
   ImuSensor imu(c, kGravity);
-  constexpr int kSamples = 10000;
-  double sum = 0, sum2 = 0;
-  for (int k = 0; k < kSamples; ++k) {
-    imu.record(k * kDt, Eigen::Isometry3d::Identity());
-    const double x = imu.read().angular_velocity.x();
-    sum += x;
-    sum2 += x * x;
-  }
-  const double mean = sum / kSamples, sd = std::sqrt(sum2 / kSamples - mean * mean);
-  EXPECT_NEAR(mean, 0.05, 0.005);
-  EXPECT_NEAR(sd, 0.02, 0.002);
+  expectRestingNoise(imu, [](const ImuReading& r) { return r.angular_velocity.x(); }, 0.05, 0.005,
+                     0.02, 0.002);
   EXPECT_DOUBLE_EQ(imu.read().angular_velocity_covariance[0], 0.02 * 0.02);
 
   // Bias: drawn once per sensor, N(bias_mean, bias_stddev) with a random sign.
@@ -145,7 +167,7 @@ TEST(SensorsImu, NoiseAndBiasStatistics) {
   b.type = "gaussian";
   b.bias_mean = 0.1;
   b.bias_stddev = 0.01;
-  double bsum = 0, bsum2 = 0;
+  SampleStats bias_size;
   int negative = 0;
   for (int s = 0; s < kSamples; ++s) {
     ImuConfig cb = quiet();
@@ -154,12 +176,10 @@ TEST(SensorsImu, NoiseAndBiasStatistics) {
     ImuSensor biased(cb, kGravity);
     const double bias = biased.biases()[3];
     negative += bias < 0;
-    bsum += std::abs(bias);
-    bsum2 += bias * bias;
+    bias_size.add(std::abs(bias));
   }
-  const double bmean = bsum / kSamples, bsd = std::sqrt(bsum2 / kSamples - bmean * bmean);
-  EXPECT_NEAR(bmean, 0.1, 0.01);
-  EXPECT_NEAR(bsd, 0.01, 0.001);
+  EXPECT_NEAR(bias_size.mean(), 0.1, 0.01);
+  EXPECT_NEAR(bias_size.sd(), 0.01, 0.001);
   EXPECT_NEAR(negative / double(kSamples), 0.5, 0.05);
 
   // The bias is in every sample: at rest the mean reading is 9.81 + bias.
@@ -176,17 +196,8 @@ TEST(SensorsImu, PluginGaussianNoise) {
   ImuConfig c = quiet();
   c.gaussian_noise = 0.03;
   ImuSensor imu(c, kGravity);
-  constexpr int kSamples = 10000;
-  double sum = 0, sum2 = 0;
-  for (int k = 0; k < kSamples; ++k) {
-    imu.record(k * kDt, Eigen::Isometry3d::Identity());
-    const double x = imu.read().linear_acceleration.x();
-    sum += x;
-    sum2 += x * x;
-  }
-  const double mean = sum / kSamples, sd = std::sqrt(sum2 / kSamples - mean * mean);
-  EXPECT_NEAR(mean, 0.0, 0.003);
-  EXPECT_NEAR(sd, 0.03, 0.003);
+  expectRestingNoise(imu, [](const ImuReading& r) { return r.linear_acceleration.x(); }, 0.0, 0.003,
+                     0.03, 0.003);
   EXPECT_DOUBLE_EQ(imu.read().orientation_covariance[4], 0.03 * 0.03);
 }
 
@@ -207,8 +218,7 @@ TEST(SensorsImu, SensorAndPluginConfig) {
   EXPECT_EQ(c.frame_name, "imu_link");
   EXPECT_DOUBLE_EQ(c.publishRate(), 100.0);
   EXPECT_FALSE(c.initial_orientation_as_reference);  // REP 145: the world is the reference
-  ASSERT_NE(findSensorKind(spec), nullptr);
-  EXPECT_EQ(findSensorKind(spec)->id, "imu");
+  EXPECT_EQ(test::kindOf(spec), "imu");
   const std::vector<SensorTopic> t = sensorTopics(spec, "car");
   ASSERT_EQ(t.size(), 1u);
   EXPECT_EQ(t[0].msg_type, "sensor_msgs/Imu");
@@ -229,8 +239,7 @@ TEST(SensorsImu, SensorAndPluginConfig) {
       "<topicName>imu/data</topicName><updateRate>50</updateRate><gaussianNoise>0.01</gaussianNoise>"
       "<rpyOffset>0 0 0.5</rpyOffset></plugin></gazebo>");
   const SensorSpec plugin = modelPluginSensor(ext.model_plugins.at(0));
-  ASSERT_NE(findSensorKind(plugin), nullptr);
-  EXPECT_EQ(findSensorKind(plugin)->id, "imu_plugin");
+  EXPECT_EQ(test::kindOf(plugin), "imu_plugin");
   const ImuConfig m = parseImuPluginConfig(plugin, "car");
   EXPECT_EQ(m.link, "base");
   EXPECT_EQ(m.frame_name, "base");  // frameName defaults to bodyName

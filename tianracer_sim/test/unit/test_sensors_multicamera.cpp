@@ -17,39 +17,18 @@
 #include "tianracer_sim/scene/materials.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
 
+#include "common_test_support.h"
+#include "sensor_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
-std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using test::readFile;
 
 // What the model loader makes of a <sensor> element (name, type, rate, pose, xml, plugins).
 SensorSpec specFromXml(const std::string& xml) {
-  tinyxml2::XMLDocument doc;
-  EXPECT_EQ(doc.Parse(xml.c_str()), tinyxml2::XML_SUCCESS) << xml;
-  const tinyxml2::XMLElement* root = doc.RootElement();
-  SensorSpec spec;
-  spec.name = root->Attribute("name");
-  spec.type = root->Attribute("type");
-  spec.link = "stereo_link";
-  spec.xml = xml;
-  spec.source = "car.urdf";
-  spec.line = 12;
-  spec.update_rate = std::stod(root->FirstChildElement("update_rate")->GetText());
+  SensorSpec spec = test::specFromXml(xml, "stereo_link", "car.urdf", 12);
   spec.X_LS.translation() = Eigen::Vector3d(0.1, 0, 0.05);  // the file's sensor <pose>
-  for (const auto* c = root->FirstChildElement("plugin"); c; c = c->NextSiblingElement("plugin")) {
-    PluginSpec p;
-    p.name = c->Attribute("name");
-    p.filename = c->Attribute("filename");
-    for (const auto* param = c->FirstChildElement(); param; param = param->NextSiblingElement()) {
-      p.params[param->Name()] = param->GetText() ? param->GetText() : "";
-    }
-    spec.plugins.push_back(p);
-  }
   return spec;
 }
 
@@ -59,20 +38,11 @@ SensorSpec stereo() { return specFromXml(kStereoXml); }
 
 // The stereo sensor with the first occurrence of `from` replaced by `to`.
 SensorSpec edited(const std::string& from, const std::string& to) {
-  std::string xml = kStereoXml;
-  const auto at = xml.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  xml.replace(at, from.size(), to);
-  return specFromXml(xml);
+  return specFromXml(test::replaced(kStereoXml, from, to));
 }
 
 std::string errorOf(const SensorSpec& spec) {
-  try {
-    parseMultiCameraConfig(spec, "car_a");
-  } catch (const CameraError& e) {
-    return e.what();
-  }
-  return "";
+  return test::errorText<CameraError>([&] { parseMultiCameraConfig(spec, "car_a"); });
 }
 
 TEST(SensorsMultiCamera, StereoPairConfiguration) {

@@ -10,6 +10,8 @@
 #include "tianracer_sim/sensors/p3d/p3d.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
 
+#include "sensor_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
@@ -34,8 +36,7 @@ TEST(SensorsP3d, ConfigAndTopics) {
   const SensorSpec spec = p3dSpec(
       "<robotNamespace>/car</robotNamespace><bodyName>base</bodyName><topicName>ground_truth</topicName>"
       "<updateRate>30</updateRate><gaussianNoise>0.01</gaussianNoise><xyzOffsets>1 0 0</xyzOffsets>");
-  ASSERT_NE(findSensorKind(spec), nullptr);
-  EXPECT_EQ(findSensorKind(spec)->id, "p3d");
+  EXPECT_EQ(test::kindOf(spec), "p3d");
   const P3dConfig c = parseP3dConfig(spec, "car");
   EXPECT_EQ(c.topic(), "/car/ground_truth");
   EXPECT_EQ(c.frame_name, "world");

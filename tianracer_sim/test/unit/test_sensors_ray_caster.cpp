@@ -12,25 +12,22 @@
 #include "tianracer_sim/lidar/ray_caster.h"
 #include "tianracer_sim/sensors/ray/ray_sensor.h"
 
+#include "lidar_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 const std::string kCube = std::string(TEST_DATA_DIR) + "/worlds/meshes/unit_cube.stl";
 
-/// The seed's hokuyo: 1081 beams over +-135 deg, 0.1 - 10 m; noise off unless a test sets it.
-RaySensorConfig seedConfig() {
-  RaySensorConfig c;
-  c.name = "hokuyo_sensor";
-  c.link = "lidar";
-  c.update_rate = 40;
-  c.samples = 1081;
-  c.min_angle = -2.3561944902;
-  c.max_angle = 2.3561944902;
-  c.range_min = 0.1;
-  c.range_max = 10.0;
-  c.range_resolution = 0.01;
-  c.frame_name = "lidar";
+using test::seedHokuyo;
+
+// The seed hokuyo with gaussian range noise N(mean, stddev).
+RaySensorConfig noisyHokuyo(double mean, double stddev) {
+  RaySensorConfig c = seedHokuyo();
+  c.noise.type = "gaussian";
+  c.noise.mean = mean;
+  c.noise.stddev = stddev;
   return c;
 }
 
@@ -208,6 +205,12 @@ class RayCasterModes : public ::testing::TestWithParam<Modes> {
     o.query = std::get<1>(GetParam());
     return o;
   }
+  // The seed hokuyo's scan of `scene` from X_WS, by a fresh caster in this mode.
+  std::vector<float> seedScan(const Scene& scene, const Eigen::Isometry3d& X_WS) const {
+    RayCaster caster(options());
+    std::mt19937_64 rng(1);
+    return scanRays(caster, scene, X_WS, seedHokuyo(), rng);
+  }
 };
 
 // Square room 4 x 4 m around the sensor: beams 0, 360, 720 and 1080 point exactly at the
@@ -215,10 +218,8 @@ class RayCasterModes : public ::testing::TestWithParam<Modes> {
 TEST_P(RayCasterModes, SquareRoomEveryBeamIncludingCorners) {
   Scene scene;
   addRoom(scene, -2, 2, -2, 2);
-  RayCaster caster(options());
-  const RaySensorConfig c = seedConfig();
-  std::mt19937_64 rng(1);
-  const std::vector<float> r = scanRays(caster, scene, pose(0, 0, 0.3), c, rng);
+  const RaySensorConfig c = seedHokuyo();
+  const std::vector<float> r = seedScan(scene, pose(0, 0, 0.3));
   ASSERT_EQ(r.size(), 1081u);
   for (int i = 0; i < c.samples; ++i) {
     const double a = c.angle(i);
@@ -237,14 +238,12 @@ TEST_P(RayCasterModes, SquareRoomEveryBeamIncludingCorners) {
 TEST_P(RayCasterModes, LevelSensorWithRoundingInItsRotationSeesEveryWall) {
   Scene scene;
   addRoom(scene, -3, 3, -2, 2);
-  RayCaster caster(options());
-  const RaySensorConfig c = seedConfig();
+  const RaySensorConfig c = seedHokuyo();
   Eigen::Isometry3d X_WS = pose(0.0936, -8.3e-5, 0.1457);
   X_WS.linear() << 1, 4.79421e-19, -1.73472e-18,  //
       5.64124e-19, 1, -1.69136e-17,               //
       3.46945e-18, -1.65087e-17, 1;
-  std::mt19937_64 rng(1);
-  const std::vector<float> r = scanRays(caster, scene, X_WS, c, rng);
+  const std::vector<float> r = seedScan(scene, X_WS);
   expectScanMatchesReference(scene, X_WS, c, r, tolerance());
 }
 
@@ -269,7 +268,7 @@ TEST_P(RayCasterModes, ClutteredRoomMatchesExactGeometry) {
   scene.items.push_back(visual_only);  // rays must pass through it
 
   RayCaster caster(options());
-  const RaySensorConfig c = seedConfig();
+  const RaySensorConfig c = seedHokuyo();
   std::mt19937_64 rng(1);
   for (const Eigen::Isometry3d& X_WS :
        {pose(0.13, -0.07, 0.3, 0.37), pose(-1.4, 1.5, 0.6, -2.2), pose(1.8, -1.2, 0.2, 2.9)}) {
@@ -287,11 +286,9 @@ TEST_P(RayCasterModes, GrazingConvexCorners) {
   const double delta = 1e-4;
   scene.items.push_back(boxItem(b, pose(1.2, delta + 0.25, 0.5), {0.4, 0.5, 1.0}));
   scene.items.push_back(boxItem(b, pose(1.2, -delta - 0.25, 0.5), {0.4, 0.5, 1.0}));
-  RayCaster caster(options());
-  const RaySensorConfig c = seedConfig();
-  std::mt19937_64 rng(1);
+  const RaySensorConfig c = seedHokuyo();
   const Eigen::Isometry3d X_WS = pose(0, 0, 0.5);
-  const std::vector<float> r = scanRays(caster, scene, X_WS, c, rng);
+  const std::vector<float> r = seedScan(scene, X_WS);
   EXPECT_NEAR(r[540], 3.0, 1e-5);
   EXPECT_NEAR(r[541], 1.0 / std::cos(c.angle(541)), 1e-5);
   EXPECT_NEAR(r[539], 1.0 / std::cos(c.angle(539)), 1e-5);
@@ -303,7 +300,7 @@ TEST_P(RayCasterModes, GrazingConvexCorners) {
 // housing smaller than range_min (0.1 m) -- an 8 cm box, a cylinder of radius 6 cm, a sphere of
 // radius 7 cm, a 9 cm mesh cube, on a robot's link or static -- sees the room's walls through it.
 TEST_P(RayCasterModes, RaysStartAtRangeMinThroughAHousing) {
-  const RaySensorConfig c = seedConfig();
+  const RaySensorConfig c = seedHokuyo();
   const Eigen::Isometry3d X_WS = pose(0.3, -0.2, 0.5, 0.4);
   for (int kind = 0; kind < 4; ++kind) {
     for (bool moving : {true, false}) {
@@ -346,7 +343,7 @@ TEST_P(RayCasterModes, RaysStartAtRangeMinThroughAHousing) {
 // one across it is seen from inside, at its far face (ODE's ray-box collider: a ray that starts
 // inside a box hits the face it leaves by).
 TEST_P(RayCasterModes, ObjectJustInsideRangeMinIsNotSeenJustOutsideIs) {
-  const RaySensorConfig c = seedConfig();  // range_min 0.1
+  const RaySensorConfig c = seedHokuyo();  // range_min 0.1
   for (const auto& [near_face, far_face, want] :
        {std::tuple<double, double, double>{0.097, 0.099, 3.0}, {0.101, 0.103, 0.101},
         {0.095, 0.105, 0.105}}) {
@@ -370,10 +367,8 @@ TEST_P(RayCasterModes, HousingBeyondRangeMinIsSeenFromInside) {
   addRoom(scene, -2, 2, -2, 2);
   const int b = addStatic(scene, "box");
   scene.items.push_back(boxItem(b, pose(0, 0, 0.5), {0.3, 0.3, 0.3}));
-  RayCaster caster(options());
-  const RaySensorConfig c = seedConfig();
-  std::mt19937_64 rng(1);
-  const std::vector<float> r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
+  const RaySensorConfig c = seedHokuyo();
+  const std::vector<float> r = seedScan(scene, pose(0, 0, 0.5));
   for (int i = 0; i < c.samples; ++i) {
     const double a = c.angle(i);
     ASSERT_NEAR(r[i], 0.15 / std::max(std::abs(std::cos(a)), std::abs(std::sin(a))), 1e-5)
@@ -401,7 +396,7 @@ TEST(RayCaster, RangeLimitsMapToInfinity) {
   Scene scene;
   addRoom(scene, -2, 2, -2, 2);
   RayCaster caster;
-  RaySensorConfig c = seedConfig();
+  RaySensorConfig c = seedHokuyo();
   std::mt19937_64 rng(1);
   // 5 cm from the east wall (10 cm thick): beam 540 (0 deg) starts at range_min inside the
   // wall and reads its outer face, 15 cm away (what Gazebo's rays do).
@@ -420,7 +415,7 @@ TEST(RayCaster, RangeLimitsMapToInfinity) {
   // An empty scene: nothing to hit.
   Scene empty;
   RayCaster empty_caster;
-  r = scanRays(empty_caster, empty, pose(0, 0, 0.5), seedConfig(), rng);
+  r = scanRays(empty_caster, empty, pose(0, 0, 0.5), seedHokuyo(), rng);
   for (float v : r) EXPECT_EQ(v, std::numeric_limits<float>::infinity());
 }
 
@@ -430,7 +425,7 @@ TEST(RayCaster, SensorFarOutsideTheWorldSeesNothing) {
   Scene scene;
   addRoom(scene, -2, 2, -2, 2);
   RayCaster caster;
-  const RaySensorConfig c = seedConfig();
+  const RaySensorConfig c = seedHokuyo();
   std::mt19937_64 rng(1);
   for (double x : {1e30, -1e30, 1e19, std::numeric_limits<double>::quiet_NaN(), kInf}) {
     const std::vector<float> r = scanRays(caster, scene, pose(x, 0, 0.5), c, rng);
@@ -442,7 +437,7 @@ TEST(RayCaster, SensorFarOutsideTheWorldSeesNothing) {
 // REP 117's masks, as Gazebo's RaySensor applies them to min + the distance along the ray:
 // at or below range_min -inf, at or beyond range_max (no hit) +inf.
 TEST(RayCaster, RangeModelMasksTheLimitsToInfinity) {
-  const RaySensorConfig c = seedConfig();
+  const RaySensorConfig c = seedHokuyo();
   std::mt19937_64 rng(3);
   const float inf = std::numeric_limits<float>::infinity();
   std::vector<float> r = {0.0f, 0.0999f, 0.1001f, 5.0f, 9.999f, 10.0f, inf};
@@ -451,10 +446,7 @@ TEST(RayCaster, RangeModelMasksTheLimitsToInfinity) {
 }
 
 TEST(RayCaster, RangeModelClampsNoise) {
-  RaySensorConfig c = seedConfig();
-  c.noise.type = "gaussian";
-  c.noise.mean = 0.0;
-  c.noise.stddev = 1.0;  // huge: values near the limits get clamped
+  const RaySensorConfig c = noisyHokuyo(0.0, 1.0);  // huge: values near the limits get clamped
   std::mt19937_64 rng(3);
   std::vector<float> r(2000);
   for (size_t i = 0; i < r.size(); ++i) r[i] = i % 2 ? 0.15f : 9.9f;
@@ -474,10 +466,7 @@ TEST(RayCaster, NoiseMeanAndStddevOver1000Scans) {
   Scene scene;
   addRoom(scene, -2, 2, -2, 2);
   RayCaster caster;
-  RaySensorConfig c = seedConfig();
-  c.noise.type = "gaussian";
-  c.noise.mean = 0.02;
-  c.noise.stddev = 0.01;
+  RaySensorConfig c = noisyHokuyo(0.02, 0.01);
   c.seed = 42;
   RaySensor sensor(c);
   double sum = 0, sum2 = 0;
@@ -501,9 +490,7 @@ TEST(RayCaster, SameSeedSameScansDifferentSeedDifferent) {
   Scene scene;
   addRoom(scene, -2, 2, -2, 2);
   RayCaster caster;
-  RaySensorConfig c = seedConfig();
-  c.noise.type = "gaussian";
-  c.noise.stddev = 0.01;
+  RaySensorConfig c = noisyHokuyo(0.0, 0.01);
   auto scans = [&](std::uint64_t seed) {
     c.seed = seed;
     RaySensor sensor(c);
@@ -530,7 +517,7 @@ TEST(RayCaster, MovingBodyIsSeenByTheNextScan) {
   scene.items.push_back(boxItem(b, pose(0.1, 0, 0), {0.4, 0.5, 1.0}));  // offset in the body
 
   RayCaster caster;
-  const RaySensorConfig c = seedConfig();
+  const RaySensorConfig c = seedHokuyo();
   std::mt19937_64 rng(1);
   std::vector<float> r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
   EXPECT_EQ(caster.movingBodyCount(), 1u);
@@ -565,7 +552,7 @@ TEST(RayCaster, SensorSeesPastItsOwnHousingAndSeesAnotherOne) {
     scene.items.push_back(boxItem(housing[k], pose(0, 0, 0), {0.1, 0.1, 0.1}));
   }
   RayCaster caster;
-  const RaySensorConfig c = seedConfig();  // beam 540 along +x, 180 at -90 deg
+  const RaySensorConfig c = seedHokuyo();  // beam 540 along +x, 180 at -90 deg
   std::mt19937_64 rng(1);
   std::vector<float> r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
   EXPECT_NEAR(r[540], expected(c, 0.95), 1e-5);  // the other housing's near face
@@ -583,7 +570,7 @@ TEST(RayCaster, SceneChangesAreRebuiltAndStaticBodiesRead) {
   Scene scene;
   addRoom(scene, -3, 3, -3, 3);
   RayCaster caster;
-  const RaySensorConfig c = seedConfig();
+  const RaySensorConfig c = seedHokuyo();
   std::mt19937_64 rng(1);
   EXPECT_NEAR(scanRays(caster, scene, pose(0, 0, 0.5), c, rng)[540], 3.0, 1e-5);
   const int b = addStatic(scene, "late");
@@ -611,7 +598,7 @@ TEST(RayCaster, GroundPlaneSphereAndTiltedSensor) {
     RayCasterOptions o;
     o.primitives = mode;
     RayCaster caster(o);
-    const RaySensorConfig c = seedConfig();
+    const RaySensorConfig c = seedHokuyo();
     std::mt19937_64 rng(1);
     // Pitched down 0.2 rad at 0.5 m: beam 540 meets the ground at 0.5 / sin(0.2).
     std::vector<float> r = scanRays(caster, scene, pose(0, 0, 0.5, 0.0, 0.2), c, rng);
@@ -659,7 +646,7 @@ TEST(RaySensor, ScansFromLinkPoseTimesSensorPose) {
   Scene scene;
   addRoom(scene, -2, 2, -2, 2);
   RayCaster caster;
-  RaySensorConfig c = seedConfig();
+  RaySensorConfig c = seedHokuyo();
   c.X_LS = pose(0, 0, 0.0124);
   RaySensor sensor(c);
   // Link at (1, 0) yawed 90 deg: beam 540 looks along +y, 2 m to the wall; beam 0 (-135 deg

@@ -1,13 +1,18 @@
 // <sensor type="ray"> -> RaySensorConfig: the seed's hokuyo, plugin defaults, and every bad value.
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "tianracer_sim/sensors/ray/ray_sensor.h"
 
+#include "common_test_support.h"
+
 namespace tianracer_sim {
 namespace {
+
+using test::replaced;
 
 // The seed's block (tianracer.gazebo), as the model loader hands it over.
 const char* kSeedSensor = R"(<sensor type="ray" name="hokuyo_sensor">
@@ -59,20 +64,8 @@ SensorSpec spec(const std::string& xml, bool with_plugin = true) {
   return s;
 }
 
-std::string replaced(std::string s, const std::string& from, const std::string& to) {
-  const auto at = s.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) s.replace(at, from.size(), to);
-  return s;
-}
-
 std::string errorOf(const SensorSpec& s) {
-  try {
-    parseRaySensorConfig(s);
-  } catch (const SensorError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::errorText<SensorError>([&] { parseRaySensorConfig(s); }, "(no error)");
 }
 
 TEST(RaySensorConfig, SeedHokuyo) {
@@ -158,20 +151,19 @@ TEST(RaySensorConfig, BadValuesNameSensorAndValue) {
             "sensor 'hokuyo_sensor': range <min> 12 must be < range <max> 10");
   EXPECT_EQ(with("<min>0.1</min>", "<min>-1</min>"),
             "sensor 'hokuyo_sensor': range <min> must be >= 0 (got -1)");
-  EXPECT_NE(with("<max>10.0</max>", "<max>inf</max>").find("<max> 'inf' is not a finite number"),
-            std::string::npos);
-  EXPECT_NE(with("<max_angle>2.3561944902</max_angle>", "<max_angle>nan</max_angle>")
-                .find("<max_angle> 'nan' is not a finite number"),
-            std::string::npos);
-  EXPECT_NE(with("<stddev>0.01</stddev>", "<stddev>-0.01</stddev>")
-                .find("noise <stddev> must be >= 0"),
-            std::string::npos);
-  EXPECT_NE(with("<mean>0.0</mean>", "<type>uniform</type><mean>0.0</mean>")
-                .find("noise <type> 'uniform' is not supported"),
-            std::string::npos);
-  EXPECT_NE(with("<resolution>1</resolution>", "<resolution>0</resolution>")
-                .find("<horizontal><resolution> must be > 0"),
-            std::string::npos);
+  // An element edited from -> to, and what the error says.
+  const std::tuple<const char*, const char*, const char*> edits[] = {
+      {"<max>10.0</max>", "<max>inf</max>", "<max> 'inf' is not a finite number"},
+      {"<max_angle>2.3561944902</max_angle>", "<max_angle>nan</max_angle>",
+       "<max_angle> 'nan' is not a finite number"},
+      {"<stddev>0.01</stddev>", "<stddev>-0.01</stddev>", "noise <stddev> must be >= 0"},
+      {"<mean>0.0</mean>", "<type>uniform</type><mean>0.0</mean>",
+       "noise <type> 'uniform' is not supported"},
+      {"<resolution>1</resolution>", "<resolution>0</resolution>",
+       "<horizontal><resolution> must be > 0"}};
+  for (const auto& [from, to, message] : edits) {
+    EXPECT_NE(with(from, to).find(message), std::string::npos) << to;
+  }
   EXPECT_NE(errorOf(spec("<sensor name='x'><ray>")).find("malformed sensor XML"),
             std::string::npos);
   EXPECT_NE(errorOf(spec("<sensor name='x'/>")).find("no <ray> element"), std::string::npos);

@@ -14,6 +14,8 @@
 #include "tianracer_sim/sensors/ray/ray_plugins.h"
 #include "tianracer_sim/scene/scene.h"
 
+#include "common_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
@@ -57,12 +59,7 @@ SensorSpec sonar(std::map<std::string, std::string> params) {
 
 template <typename F>
 std::string errorOf(F f) {
-  try {
-    f();
-  } catch (const SensorError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::errorText<SensorError>([&] { f(); }, "(no error)");
 }
 
 TEST(RangeConfig, ParametersAsGazeboRosRangeReadsThem) {

@@ -7,6 +7,8 @@
 
 #include "tianracer_sim/sensors/sensor_registry.h"
 
+#include "sensor_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
@@ -40,8 +42,7 @@ TEST(SensorsRegistry, GazeboPluginsOfTheUpstreamSuite) {
   const SensorSpec range = sensorFrom("<sensor type='ray' name='s'><update_rate>5</update_rate>" +
                                       grid + "<plugin name='p' filename='libgazebo_ros_range.so'>"
                                       "<topicName>sonar</topicName></plugin></sensor>");
-  ASSERT_NE(findSensorKind(range), nullptr);
-  EXPECT_EQ(findSensorKind(range)->id, "range");
+  EXPECT_EQ(test::kindOf(range), "range");
   std::vector<SensorTopic> t = sensorTopics(range, "r");
   ASSERT_EQ(t.size(), 1u);
   EXPECT_EQ(t[0].topic, "/sonar");
@@ -49,8 +50,7 @@ TEST(SensorsRegistry, GazeboPluginsOfTheUpstreamSuite) {
   const SensorSpec block = sensorFrom("<sensor type='ray' name='b'><update_rate>5</update_rate>" +
                                       grid + "<plugin name='p' filename='libgazebo_ros_block_laser.so'>"
                                       "<topicName>cloud</topicName></plugin></sensor>");
-  ASSERT_NE(findSensorKind(block), nullptr);
-  EXPECT_EQ(findSensorKind(block)->id, "block_laser");
+  EXPECT_EQ(test::kindOf(block), "block_laser");
   t = sensorTopics(block, "r");
   ASSERT_EQ(t.size(), 1u);
   EXPECT_EQ(t[0].topic, "/cloud");
@@ -58,8 +58,7 @@ TEST(SensorsRegistry, GazeboPluginsOfTheUpstreamSuite) {
   const SensorSpec trig = sensorFrom(std::string("<sensor type='camera' name='c'>") + kCameraBody +
                                      "<plugin name='p' filename='libgazebo_ros_triggered_camera.so'>"
                                      "<cameraName>camera1</cameraName></plugin></sensor>");
-  ASSERT_NE(findSensorKind(trig), nullptr);
-  EXPECT_EQ(findSensorKind(trig)->id, "camera");
+  EXPECT_EQ(test::kindOf(trig), "camera");
   t = sensorTopics(trig, "r");
   ASSERT_EQ(t.size(), 2u);
   EXPECT_EQ(t[0].topic, "/camera1/image_raw");
@@ -81,15 +80,13 @@ TEST(SensorsRegistry, KindsByTypeAndPlugin) {
                                     ray_body +
                                     "<plugin name='p' filename='libgazebo_ros_laser.so'>"
                                     "<topicName>/scan</topicName></plugin></sensor>");
-  ASSERT_NE(findSensorKind(ray), nullptr);
-  EXPECT_EQ(findSensorKind(ray)->id, "lidar");
+  EXPECT_EQ(test::kindOf(ray), "lidar");
   // gpu_ray with gazebo_ros_gpu_laser is simulated as ray.
   const SensorSpec gpu = sensorFrom("<sensor type='gpu_ray' name='l'>" + ray_body +
                                     "<plugin name='p' filename='libgazebo_ros_gpu_laser.so'>"
                                     "<topicName>scan</topicName><robotNamespace>car</robotNamespace>"
                                     "</plugin></sensor>");
-  ASSERT_NE(findSensorKind(gpu), nullptr);
-  EXPECT_EQ(findSensorKind(gpu)->id, "lidar");
+  EXPECT_EQ(test::kindOf(gpu), "lidar");
   const std::vector<SensorTopic> t = sensorTopics(gpu, "r");
   ASSERT_EQ(t.size(), 1u);
   EXPECT_EQ(t[0].topic, "/car/scan");
@@ -103,8 +100,7 @@ TEST(SensorsRegistry, KindsByTypeAndPlugin) {
 TEST(SensorsRegistry, OpenniDefaultsAreTheSimulatorsTopics) {
   // Without imageTopicName openni_kinect publishes <cameraName>/ir/image_raw.
   const SensorSpec s = sensorFrom(depthSensor("libgazebo_ros_openni_kinect.so", ""));
-  ASSERT_NE(findSensorKind(s), nullptr);
-  EXPECT_EQ(findSensorKind(s)->id, "depth_camera");
+  EXPECT_EQ(test::kindOf(s), "depth_camera");
   const std::vector<SensorTopic> t = sensorTopics(s, "r");
   ASSERT_EQ(t.size(), 5u);
   EXPECT_EQ(t[0].topic, "/rs/ir/image_raw");
@@ -120,8 +116,7 @@ TEST(SensorsRegistry, OpenniDefaultsAreTheSimulatorsTopics) {
 TEST(SensorsRegistry, DepthCameraPluginAsOpenni) {
   const SensorSpec s = sensorFrom(depthSensor("/opt/x/libgazebo_ros_depth_camera.so",
                                               "<imageTopicName>rgb/image_raw</imageTopicName>"));
-  ASSERT_NE(findSensorKind(s), nullptr);
-  EXPECT_EQ(findSensorKind(s)->id, "depth_camera");
+  EXPECT_EQ(test::kindOf(s), "depth_camera");
   const std::vector<SensorTopic> t = sensorTopics(s, "r");
   ASSERT_EQ(t.size(), 5u);
   EXPECT_EQ(t[0].topic, "/rs/rgb/image_raw");
@@ -133,8 +128,7 @@ TEST(SensorsRegistry, CameraTopicsAndNoPlugin) {
                                     "<plugin name='p' filename='libgazebo_ros_camera.so'>"
                                     "<cameraName>cam</cameraName><robotNamespace>/r</robotNamespace>"
                                     "</plugin></sensor>");
-  ASSERT_NE(findSensorKind(cam), nullptr);
-  EXPECT_EQ(findSensorKind(cam)->id, "camera");
+  EXPECT_EQ(test::kindOf(cam), "camera");
   const std::vector<SensorTopic> t = sensorTopics(cam, "r");
   ASSERT_EQ(t.size(), 2u);
   EXPECT_EQ(t[0].topic, "/r/cam/image_raw");

@@ -17,11 +17,8 @@ const char* kRightWheel = "right_rear_wheel_velocity_controller";
 class ControllerManagerSim : public ::testing::Test {
  protected:
   void SetUp() override {
-    RobotConfig config;
-    config.name = "tianracer";
-    config.model = test::loadTianracer();
-    config.X_WB_spawn.translation() = Eigen::Vector3d(0, 0, test::kSpawnZ + 0.001);
-    robot_ = &sim_.addRobot(std::move(config));  // no controller, as after spawn_model
+    // No controller, as after spawn_model.
+    robot_ = &sim_.addRobot(test::tianracerAt(Eigen::Vector3d(0, 0, test::kSpawnZ + 0.001)));
   }
   PhysicsRobot& physics() { return sim_.physics().robot(robot_->id); }
   void run(double seconds) {

@@ -102,10 +102,7 @@ TEST(Spawn, RemovedFreeBodyLeavesTheWorldAndTheOthersKeepTheirIndex) {
 TEST(Spawn, RemovedRobotLeavesThePhysicsAndItsNameCanBeSpawnedAgain) {
   SpawnWorld w;
   auto add = [&](const std::string& name, double y) -> SimRobot& {
-    RobotConfig config;
-    config.name = name;
-    config.model = test::loadTianracer();
-    config.X_WB_spawn.translation() = Eigen::Vector3d(0.0, y, test::kSpawnZ);
+    RobotConfig config = test::tianracerAt(Eigen::Vector3d(0.0, y, test::kSpawnZ), name);
     config.controllers = test::shippedControllers();
     return w.sim.addRobot(std::move(config));
   };

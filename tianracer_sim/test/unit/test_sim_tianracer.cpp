@@ -15,10 +15,7 @@ namespace tc = tianracer_control;
 class TianracerSim : public ::testing::Test {
  protected:
   void SetUp() override {
-    RobotConfig config;
-    config.name = "tianracer";
-    config.model = test::loadTianracer();
-    config.X_WB_spawn.translation() = Eigen::Vector3d(0, 0, test::kSpawnZ + 0.001);
+    RobotConfig config = test::tianracerAt(Eigen::Vector3d(0, 0, test::kSpawnZ + 0.001));
     config.controllers = test::shippedControllers();
     robot_ = &sim_.addRobot(std::move(config));
   }
@@ -186,10 +183,7 @@ TEST_F(TianracerSim, NonFiniteCommandsAreRejectedAndNeverReachThePhysics) {
 
 TEST(SimulationErrors, ControllerOnAJointWithoutTransmissionNamesTheController) {
   Simulation sim;
-  RobotConfig config;
-  config.name = "tianracer";
-  config.model = test::loadTianracer();
-  config.X_WB_spawn.translation().z() = test::kSpawnZ;
+  RobotConfig config = test::tianracerAt(Eigen::Vector3d(0, 0, test::kSpawnZ));
   tc::ControllerSpec spec;
   spec.name = "front_wheel_controller";
   spec.type = "velocity_controllers/JointVelocityController";

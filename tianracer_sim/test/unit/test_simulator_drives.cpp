@@ -13,6 +13,8 @@
 #include "tianracer_sim/sensors/drives/sim_drive.h"
 #include "tianracer_sim/simulator/simulator.h"
 
+#include "common_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
@@ -261,12 +263,7 @@ TEST(Drives, PlanarMoveCommandsExpireAfterCmdTimeout) {
 }
 
 std::string withPlugin(const std::string& file, const std::string& from, const std::string& to) {
-  std::ifstream in(kData + "/urdf/" + file);
-  std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const auto at = urdf.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  urdf.replace(at, from.size(), to);
-  return urdf;
+  return test::replaced(test::readFile(kData + "/urdf/" + file), from, to);
 }
 
 TEST(Drives, BadPluginsAreLeftOutWithTheReasonAndTheRobotRunsOn) {

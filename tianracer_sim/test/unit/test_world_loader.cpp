@@ -11,6 +11,8 @@
 
 #include "tianracer_sim/world/world.h"
 
+#include "common_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
@@ -40,21 +42,12 @@ WorldLoadOptions strict() {
 }
 
 std::string errorOf(const std::string& file) {
-  try {
-    loadWorldFile(file, strict());
-  } catch (const WorldError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::errorText<WorldError>([&] { loadWorldFile(file, strict()); }, "(no error)");
 }
 
 std::string errorOfString(const std::string& xml) {
-  try {
-    loadWorldString(xml, "inline.world", kData, strict());
-  } catch (const WorldError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::errorText<WorldError>(
+      [&] { loadWorldString(xml, "inline.world", kData, strict()); }, "(no error)");
 }
 
 TEST(WorldLoader, FeaturesWorld) {
@@ -212,46 +205,41 @@ TEST(WorldLoader, NonexistentFile) {
 }
 
 TEST(WorldLoader, OtherBadValues) {
-  EXPECT_NE(errorOf(kData + "invalid_pose.world").find(":5: model 'm': <pose> '1 2 3 0 0' is not 6 numbers"),
-            std::string::npos)
-      << errorOf(kData + "invalid_pose.world");
-  EXPECT_NE(errorOf(kData + "invalid_box_size.world").find("<box> <size> must be > 0"),
-            std::string::npos);
-  EXPECT_NE(errorOf(kData + "invalid_no_world.world").find("no <world> element"),
-            std::string::npos);
-  EXPECT_NE(errorOf(kData + "invalid_duplicate_model.world").find("duplicate model name 'twin'"),
-            std::string::npos);
-  EXPECT_NE(errorOf(kData + "invalid_number.world").find("<max_step_size> 'nan' is not finite"),
-            std::string::npos)
-      << errorOf(kData + "invalid_number.world");
-  EXPECT_NE(errorOfString("<robot name='r'/>").find("inline.world:1: root element is <robot>"),
-            std::string::npos);
-  EXPECT_NE(errorOfString("").find("inline.world:"), std::string::npos);
-  EXPECT_NE(errorOfString("<sdf><world><model name='m'><link name='l'><collision name='c'>"
-                          "<geometry/></collision></link></model></world></sdf>")
-                .find("<geometry> is empty"),
-            std::string::npos);
-  EXPECT_NE(errorOfString("<sdf><world><model name='m'><link name='l'><collision name='c'>"
-                          "<geometry><cylinder><radius>-1</radius><length>1</length></cylinder>"
-                          "</geometry></collision></link></model></world></sdf>")
-                .find("<radius> must be > 0 (got -1)"),
-            std::string::npos);
+  // Test world files and what their error says.
+  const std::pair<const char*, const char*> files[] = {
+      {"invalid_pose.world", ":5: model 'm': <pose> '1 2 3 0 0' is not 6 numbers"},
+      {"invalid_box_size.world", "<box> <size> must be > 0"},
+      {"invalid_no_world.world", "no <world> element"},
+      {"invalid_duplicate_model.world", "duplicate model name 'twin'"},
+      {"invalid_number.world", "<max_step_size> 'nan' is not finite"}};
+  for (const auto& [file, message] : files) {
+    const std::string e = errorOf(kData + file);
+    EXPECT_NE(e.find(message), std::string::npos) << e;
+  }
+  // Worlds given as text, and what their error says.
+  const std::string kLink = "<sdf><world><model name='m'><link name='l'><collision name='c'>";
+  const std::pair<std::string, const char*> texts[] = {
+      {"<robot name='r'/>", "inline.world:1: root element is <robot>"},
+      {"", "inline.world:"},
+      {kLink + "<geometry/></collision></link></model></world></sdf>", "<geometry> is empty"},
+      {kLink + "<geometry><cylinder><radius>-1</radius><length>1</length></cylinder>"
+               "</geometry></collision></link></model></world></sdf>",
+       "<radius> must be > 0 (got -1)"},
+      {"<sdf><world><model><static>1</static></model></world></sdf>", "<model> has no name"},
+      {"<sdf><world><model name='m'><static>maybe</static></model></world></sdf>",
+       "'maybe' is not a boolean"},
+      {kLink + "<geometry><mesh><uri>ftp://x/y.stl</uri></mesh></geometry></collision>"
+               "</link></model></world></sdf>",
+       "unsupported scheme"}};
+  for (const auto& [xml, message] : texts) {
+    const std::string e = errorOfString(xml);
+    EXPECT_NE(e.find(message), std::string::npos) << e;
+  }
   // A mass <= 0 is read as it is: it matters only for a link that moves, which the physics
   // reports (test_sim_world_models.cpp) while the rest of the world loads.
   EXPECT_EQ(errorOfString("<sdf><world><model name='m'><link name='l'><inertial><mass>0</mass>"
                           "</inertial></link></model></world></sdf>"),
             "(no error)");
-  EXPECT_NE(errorOfString("<sdf><world><model><static>1</static></model></world></sdf>")
-                .find("<model> has no name"),
-            std::string::npos);
-  EXPECT_NE(errorOfString("<sdf><world><model name='m'><static>maybe</static></model></world></sdf>")
-                .find("'maybe' is not a boolean"),
-            std::string::npos);
-  EXPECT_NE(errorOfString("<sdf><world><model name='m'><link name='l'><collision name='c'>"
-                          "<geometry><mesh><uri>ftp://x/y.stl</uri></mesh></geometry></collision>"
-                          "</link></model></world></sdf>")
-                .find("unsupported scheme"),
-            std::string::npos);
 }
 
 TEST(WorldLoader, AbsoluteAndFileUris) {

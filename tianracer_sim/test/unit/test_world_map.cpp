@@ -7,6 +7,8 @@
 
 #include "tianracer_sim/world/map_world.h"
 
+#include "common_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
@@ -90,12 +92,7 @@ TEST(MapWorld, MergedRectanglesCoverExactlyTheOccupiedCells) {
 }
 
 std::string errorOf(const std::string& yaml) {
-  try {
-    loadWorldFile(kMaps + yaml);
-  } catch (const WorldError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::errorText<WorldError>([&] { loadWorldFile(kMaps + yaml); }, "(no error)");
 }
 
 TEST(MapWorld, BadInputNamesFileAndValue) {

@@ -13,27 +13,16 @@
 
 #include "tianracer_sim/world/world.h"
 
+#include "common_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::string tmpl = (fs::temp_directory_path() / "tianracer_material_XXXXXX").string();
-    path = mkdtemp(tmpl.data());
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string write(const std::string& rel, const std::string& text) const {
-    const fs::path p = path / rel;
-    fs::create_directories(p.parent_path());
-    std::ofstream(p) << text;
-    return p.string();
-  }
+// A fresh folder per test, <tmp>/tianracer_material_XXXXXX, removed at its end.
+struct TempDir : test::TempDir {
+  TempDir() : test::TempDir("material") {}
 };
 
 const char* kScript = R"(// a model's own material
@@ -82,6 +71,21 @@ std::string world(const std::string& material) {
 // By value: callers pass temporaries (a reference into one would dangle after the statement).
 Material visualMaterial(const WorldDescription& w) { return w.models.at(0).links.at(0).visuals.at(0).material; }
 
+// The board world with `material`, loaded from `folder` with its warnings collected.
+struct BoardLoader {
+  std::string folder;
+  std::vector<std::string> warnings;
+  WorldLoadOptions options;
+  explicit BoardLoader(std::string world_folder) : folder(std::move(world_folder)) {
+    options.warn = [this](const std::string& w) { warnings.push_back(w); };
+  }
+  BoardLoader(const BoardLoader&) = delete;
+  BoardLoader& operator=(const BoardLoader&) = delete;
+  WorldDescription load(const std::string& material) {
+    return loadWorldString(world(material), "test.world", folder, options);
+  }
+};
+
 std::string scriptFor(const std::string& name) {
   return "<script><uri>model://board/materials/scripts</uri><uri>model://board/materials/textures</uri>"
          "<name>" + name + "</name></script>";
@@ -91,10 +95,9 @@ TEST(WorldMaterial, OgreScriptWithTextureUnitResolvesThroughTheWorldsFolder) {
   TempDir dir;
   dir.write("models/board/materials/scripts/board.material", kScript);
   const std::string png = dir.write("models/board/materials/textures/checker.png", "png bytes");
-  std::vector<std::string> warnings;
-  WorldLoadOptions options;
-  options.warn = [&](const std::string& w) { warnings.push_back(w); };
-  const WorldDescription w = loadWorldString(world(scriptFor("Board/Checker")), "test.world", dir.path.string(), options);
+  BoardLoader board(dir.path.string());
+  std::vector<std::string>& warnings = board.warnings;
+  const WorldDescription w = board.load(scriptFor("Board/Checker"));
   EXPECT_TRUE(warnings.empty()) << warnings.front();
   const Material& m = visualMaterial(w);
   EXPECT_EQ(m.name, "Board/Checker");
@@ -108,13 +111,11 @@ TEST(WorldMaterial, OgreScriptWithTextureUnitResolvesThroughTheWorldsFolder) {
   EXPECT_FLOAT_EQ(m.texture_scale.x(), 0.5f);
   EXPECT_FLOAT_EQ(m.texture_scale.y(), 0.25f);
   // Explicit colours override the script's, as in Gazebo; the texture stays.
-  const WorldDescription w2 = loadWorldString(
-      world(scriptFor("Board/Checker") + "<diffuse>1 0 0 1</diffuse>"), "test.world", dir.path.string(), options);
+  const WorldDescription w2 = board.load(scriptFor("Board/Checker") + "<diffuse>1 0 0 1</diffuse>");
   EXPECT_FLOAT_EQ(visualMaterial(w2).diffuse[0], 1.0f);
   EXPECT_EQ(fs::path(visualMaterial(w2).texture), fs::path(png));
   // A material without texture: colours only.
-  const Material& plain =
-      visualMaterial(loadWorldString(world(scriptFor("Board/NoTexture")), "test.world", dir.path.string(), options));
+  const Material& plain = visualMaterial(board.load(scriptFor("Board/NoTexture")));
   EXPECT_FLOAT_EQ(plain.diffuse[2], 0.3f);
   EXPECT_FLOAT_EQ(plain.ambient[0], 1.0f);  // Ogre's default ambient
   EXPECT_TRUE(plain.texture.empty());
@@ -125,11 +126,9 @@ TEST(WorldMaterial, ModelUrisResolveThroughGazeboModelPath) {
   models.write("board/materials/scripts/board.material", kScript);
   const std::string png = models.write("board/materials/textures/checker.png", "png bytes");
   setenv("GAZEBO_MODEL_PATH", ("/nonexistent:" + models.path.string()).c_str(), 1);
-  std::vector<std::string> warnings;
-  WorldLoadOptions options;
-  options.warn = [&](const std::string& w) { warnings.push_back(w); };
-  const WorldDescription w =
-      loadWorldString(world(scriptFor("Board/Checker")), "test.world", world_dir.path.string(), options);
+  BoardLoader board(world_dir.path.string());
+  std::vector<std::string>& warnings = board.warnings;
+  const WorldDescription w = board.load(scriptFor("Board/Checker"));
   unsetenv("GAZEBO_MODEL_PATH");
   EXPECT_TRUE(warnings.empty()) << warnings.front();
   EXPECT_EQ(fs::path(visualMaterial(w).texture), fs::path(png));
@@ -138,11 +137,9 @@ TEST(WorldMaterial, ModelUrisResolveThroughGazeboModelPath) {
 TEST(WorldMaterial, MissingTextureWarnsNamingFileLineAndValueAndKeepsTheColour) {
   TempDir dir;
   const std::string script = dir.write("models/board/materials/scripts/board.material", kScript);
-  std::vector<std::string> warnings;
-  WorldLoadOptions options;
-  options.warn = [&](const std::string& w) { warnings.push_back(w); };
-  const WorldDescription w =
-      loadWorldString(world(scriptFor("Board/MissingTexture")), "test.world", dir.path.string(), options);
+  BoardLoader board(dir.path.string());
+  std::vector<std::string>& warnings = board.warnings;
+  const WorldDescription w = board.load(scriptFor("Board/MissingTexture"));
   const Material& m = visualMaterial(w);
   EXPECT_TRUE(m.texture.empty());
   EXPECT_FLOAT_EQ(m.diffuse[0], 0.3f);
@@ -159,40 +156,36 @@ TEST(WorldMaterial, UnknownNamesAndAlbedoMaps) {
   TempDir dir;
   dir.write("models/board/materials/scripts/board.material", kScript);
   const std::string albedo = dir.write("textures/albedo.png", "png bytes");
-  std::vector<std::string> warnings;
-  WorldLoadOptions options;
-  options.warn = [&](const std::string& w) { warnings.push_back(w); };
-  const Material& unknown =
-      visualMaterial(loadWorldString(world(scriptFor("Board/Nope")), "test.world", dir.path.string(), options));
+  BoardLoader board(dir.path.string());
+  std::vector<std::string>& warnings = board.warnings;
+  const Material& unknown = visualMaterial(board.load(scriptFor("Board/Nope")));
   EXPECT_EQ(unknown.name, "Board/Nope");
   EXPECT_TRUE(unknown.texture.empty());
   ASSERT_FALSE(warnings.empty());
   EXPECT_NE(warnings.back().find("unknown material 'Board/Nope'"), std::string::npos) << warnings.back();
   warnings.clear();
   // Stock names keep working, with Gazebo's media URI.
-  const Material& stock = visualMaterial(loadWorldString(
-      world("<script><uri>file://media/materials/scripts/gazebo.material</uri><name>Gazebo/Red</name></script>"),
-      "test.world", dir.path.string(), options));
+  const Material& stock = visualMaterial(board.load(
+      "<script><uri>file://media/materials/scripts/gazebo.material</uri><name>Gazebo/Red</name>"
+      "</script>"));
   EXPECT_EQ(stock.name, "Gazebo/Red");
   EXPECT_TRUE(warnings.empty()) << warnings.front();
   // PBR albedo map, relative to the world's folder.
-  const Material& pbr = visualMaterial(loadWorldString(
-      world("<diffuse>0.5 0.5 0.5 1</diffuse><pbr><metal><albedo_map>textures/albedo.png</albedo_map>"
-            "<roughness>0.5</roughness></metal></pbr>"),
-      "test.world", dir.path.string(), options));
+  const Material& pbr = visualMaterial(
+      board.load("<diffuse>0.5 0.5 0.5 1</diffuse><pbr><metal><albedo_map>textures/albedo.png"
+                 "</albedo_map><roughness>0.5</roughness></metal></pbr>"));
   EXPECT_EQ(fs::path(pbr.texture), fs::path(albedo));
   ASSERT_EQ(warnings.size(), 1u);  // <roughness> is not used
   EXPECT_NE(warnings[0].find("<roughness>"), std::string::npos) << warnings[0];
   warnings.clear();
-  const Material& missing = visualMaterial(loadWorldString(
-      world("<pbr><metal><albedo_map>textures/none.png</albedo_map></metal></pbr>"), "test.world",
-      dir.path.string(), options));
+  const Material& missing = visualMaterial(
+      board.load("<pbr><metal><albedo_map>textures/none.png</albedo_map></metal></pbr>"));
   EXPECT_TRUE(missing.texture.empty());
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("test.world:1"), std::string::npos) << warnings[0];
   EXPECT_NE(warnings[0].find("'textures/none.png' not found"), std::string::npos) << warnings[0];
   // A colour that is not one is an error naming file and value.
-  EXPECT_THROW(loadWorldString(world("<diffuse>red</diffuse>"), "test.world", dir.path.string(), options), WorldError);
+  EXPECT_THROW(board.load("<diffuse>red</diffuse>"), WorldError);
 }
 
 }  // namespace

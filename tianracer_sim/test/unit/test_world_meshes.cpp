@@ -8,6 +8,8 @@
 
 #include "tianracer_sim/world/world.h"
 
+#include "common_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
@@ -25,12 +27,16 @@ std::string meshModel(const std::string& name, const std::string& mesh_xml) {
          "<geometry><mesh>" + mesh_xml + "</mesh></geometry></collision></link></model>";
 }
 
+// The Shape of a world whose one model has the <mesh> `mesh_xml` as its collision.
+Shape meshShape(const std::string& mesh_xml) {
+  const WorldDescription w =
+      loadWorldString(worldWith(meshModel("m", mesh_xml)), "test.world", kData);
+  return w.models.at(0).links.at(0).collisions.at(0).shape;
+}
+
 TEST(WorldMeshes, SubmeshNameAndCenterAndScaleReachTheShape) {
-  const WorldDescription w = loadWorldString(
-      worldWith(meshModel("m", "<uri>meshes/collada_submeshes.dae</uri><scale>2 3 4</scale>"
-                                "<submesh><name>left</name><center>true</center></submesh>")),
-      "test.world", kData);
-  const Shape& s = w.models.at(0).links.at(0).collisions.at(0).shape;
+  const Shape s = meshShape("<uri>meshes/collada_submeshes.dae</uri><scale>2 3 4</scale>"
+                            "<submesh><name>left</name><center>true</center></submesh>");
   EXPECT_EQ(s.mesh_path, kData + "meshes/collada_submeshes.dae");
   EXPECT_EQ(s.scale, Eigen::Vector3d(2, 3, 4));
   EXPECT_EQ(s.submesh, "left");
@@ -38,11 +44,8 @@ TEST(WorldMeshes, SubmeshNameAndCenterAndScaleReachTheShape) {
 }
 
 TEST(WorldMeshes, SubmeshWithoutCenterIsNotCentred) {
-  const WorldDescription w = loadWorldString(
-      worldWith(meshModel("m", "<uri>meshes/collada_submeshes.dae</uri>"
-                                "<submesh><name>right</name></submesh>")),
-      "test.world", kData);
-  const Shape& s = w.models.at(0).links.at(0).collisions.at(0).shape;
+  const Shape s =
+      meshShape("<uri>meshes/collada_submeshes.dae</uri><submesh><name>right</name></submesh>");
   EXPECT_EQ(s.submesh, "right");
   EXPECT_FALSE(s.center_submesh);
 }
@@ -67,12 +70,7 @@ Loaded load(const std::string& models, bool strict = false) {
 }
 
 std::string strictError(const std::string& models) {
-  try {
-    load(models, true);
-  } catch (const WorldError& e) {
-    return e.what();
-  }
-  return "";
+  return test::errorText<WorldError>([&] { load(models, true); });
 }
 
 const ModelDescription* model(const WorldDescription& w, const std::string& name) {

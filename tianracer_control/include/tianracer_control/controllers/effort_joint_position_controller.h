@@ -5,29 +5,20 @@
 #ifndef TIANRACER_CONTROL_CONTROLLERS_EFFORT_JOINT_POSITION_CONTROLLER_H
 #define TIANRACER_CONTROL_CONTROLLERS_EFFORT_JOINT_POSITION_CONTROLLER_H
 
-#include <memory>
-#include <string>
-
-#include "tianracer_control/controller.h"
-#include "tianracer_control/pid.h"
+#include "tianracer_control/controllers/effort_pid_controller.h"
 
 namespace tianracer_control {
 
-class EffortJointPositionController : public SingleJointController {
+class EffortJointPositionController
+    : public EffortPidController<EffortJointPositionController> {
  public:
   static constexpr const char* kType = "effort_controllers/JointPositionController";
-  /// Reads joint (an effort joint) and pid/{p,i,d,i_clamp,i_clamp_min,i_clamp_max,antiwindup}.
-  static std::unique_ptr<Controller> create(ControllerContext& context);
+  using EffortPidController::EffortPidController;
 
-  EffortJointPositionController(std::string name, JointHandle* joint, const PidGains& gains);
-  void starting(double time) override;
-  void update(double dt) override;
-  void reset() override { pid_.reset(); }
-  bool setCommand(double value) override;
-  const Pid& pid() const { return pid_; }
-
- private:
-  Pid pid_;
+  /// The current position, clamped to the limits.
+  double startTarget() const { return clampTarget(joint_->position); }
+  double clampTarget(double target) const { return clampToPositionLimits(*joint_, target); }
+  double pidOutput(double dt);
 };
 
 }  // namespace tianracer_control

@@ -4,29 +4,20 @@
 #ifndef TIANRACER_CONTROL_CONTROLLERS_EFFORT_JOINT_VELOCITY_CONTROLLER_H
 #define TIANRACER_CONTROL_CONTROLLERS_EFFORT_JOINT_VELOCITY_CONTROLLER_H
 
-#include <memory>
-#include <string>
-
-#include "tianracer_control/controller.h"
-#include "tianracer_control/pid.h"
+#include "tianracer_control/controllers/effort_pid_controller.h"
 
 namespace tianracer_control {
 
-class EffortJointVelocityController : public SingleJointController {
+class EffortJointVelocityController
+    : public EffortPidController<EffortJointVelocityController> {
  public:
   static constexpr const char* kType = "effort_controllers/JointVelocityController";
-  /// Reads joint (an effort joint) and pid/{p,i,d,i_clamp,i_clamp_min,i_clamp_max,antiwindup}.
-  static std::unique_ptr<Controller> create(ControllerContext& context);
+  using EffortPidController::EffortPidController;
 
-  EffortJointVelocityController(std::string name, JointHandle* joint, const PidGains& gains);
-  void starting(double time) override;
-  void update(double dt) override;
-  void reset() override { pid_.reset(); }
-  bool setCommand(double value) override;
-  const Pid& pid() const { return pid_; }
-
- private:
-  Pid pid_;
+  /// Starts at rest.
+  double startTarget() const { return 0.0; }
+  double clampTarget(double target) const { return clampSymmetric(target, joint_->velocity_limit); }
+  double pidOutput(double dt) { return pid_.computeCommand(command_ - joint_->velocity, dt); }
 };
 
 }  // namespace tianracer_control
