@@ -1,3 +1,6 @@
+#include <string>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "tianracer_control/naming.h"
@@ -21,21 +24,22 @@ TEST(ResolveFrame, AbsoluteFrameKeepsNoPrefix) {
 }
 
 // ros::names::resolve's joining, as gazebo_ros plugins name their topics (robotNamespace +
-// cameraName + imageTopicName).
-TEST(ResolveTopic, RelativeNamesJoinTheNamespace) {
-  EXPECT_EQ(resolveTopic("rrbot/camera1", "image_raw"), "/rrbot/camera1/image_raw");
-  EXPECT_EQ(resolveTopic("/rrbot/", "camera1/camera_info"), "/rrbot/camera1/camera_info");
-  EXPECT_EQ(resolveTopic("", "scan"), "/scan");
-}
-
-TEST(ResolveTopic, AbsoluteNamesAreKept) {
-  EXPECT_EQ(resolveTopic("tianracer", "/clock"), "/clock");
-  EXPECT_EQ(resolveTopic("", "/"), "/");
-}
-
-TEST(ResolveTopic, DoubleAndTrailingSlashesCollapse) {
-  EXPECT_EQ(resolveTopic("a//b/", "c/"), "/a/b/c");
-  EXPECT_EQ(resolveTopic("", ""), "/");
+// cameraName + imageTopicName): (namespace, name, resolved).
+TEST(ResolveTopic, JoinsRelativeNamesKeepsAbsoluteOnesCollapsesSlashes) {
+  struct Case {
+    std::string ns, name, resolved;
+  };
+  const std::vector<Case> cases = {
+      {"rrbot/camera1", "image_raw", "/rrbot/camera1/image_raw"},  // relative: joined
+      {"/rrbot/", "camera1/camera_info", "/rrbot/camera1/camera_info"},
+      {"", "scan", "/scan"},
+      {"tianracer", "/clock", "/clock"},  // absolute: kept
+      {"", "/", "/"},
+      {"a//b/", "c/", "/a/b/c"},  // double and trailing slashes collapse
+      {"", "", "/"},
+  };
+  for (const Case& c : cases)
+    EXPECT_EQ(resolveTopic(c.ns, c.name), c.resolved) << "'" << c.ns << "', '" << c.name << "'";
 }
 
 }  // namespace tianracer_control
