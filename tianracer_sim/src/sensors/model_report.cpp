@@ -9,6 +9,7 @@
 #include "tianracer_sim/common/text.h"
 #include "tianracer_sim/sensors/sensor_topics.h"
 #include "tianracer_sim/render/camera_intrinsics.h"
+#include "tianracer_sim/sensors/camera/camera_config.h"
 #include "tianracer_sim/sensors/camera/optical_frame.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
 
@@ -23,15 +24,17 @@ std::vector<std::string> typeDifferences(const RobotModel& model, const SensorSp
   std::vector<std::string> out;
   if (s.type == "gpu_ray") out.push_back("ray-cast on the CPU (Embree), exactly as type ray");
   if (s.type == "camera" || s.type == "depth" || s.type == "multicamera") {
-    std::string frame = s.link;  // the plugin's default
-    if (s.plugins.size() == 1) {
-      const auto it = s.plugins.front().params.find("frameName");
-      if (it != s.plugins.front().params.end() && !trimText(it->second).empty())
-        frame = trimText(it->second);
+    // The simulator's own decision (sim_camera.cpp), from the settings as it parses them; a
+    // camera that does not parse is left out below, with its error.
+    bool own = false;
+    try {
+      if (s.type != "multicamera") {
+        const CameraConfig c =
+            s.type == "depth" ? parseDepthCameraConfig(s).camera : parseCameraConfig(s);
+        own = usesOwnOpticalFrame(model.urdf.get(), c);
+      }
+    } catch (const std::exception&) {
     }
-    const bool own = s.type != "multicamera" && model.urdf &&
-                     usesOwnOpticalFrame(*model.urdf, s.link,
-                                         s.X_LS * opticalFromLinkRotation(), frame);
     if (!own) {
       out.push_back("images are stamped in <frameName>_optical_frame (z forward), not the plain "
                     "frame");

@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "tianracer_sim/model/robot_model.h"
+#include "tianracer_sim/sensors/camera/camera_config.h"
 
 namespace tianracer_sim {
 
@@ -12,6 +13,10 @@ bool usesOwnOpticalFrame(const urdf::ModelInterface& model, const std::string& l
   if (!X_LF) return false;
   const Eigen::AngleAxisd turn(X_LF->linear().transpose() * X_LO.linear());
   return turn.angle() < 0.01;
+}
+
+bool usesOwnOpticalFrame(const urdf::ModelInterface* model, const CameraConfig& camera) {
+  return model && usesOwnOpticalFrame(*model, camera.link, camera.X_LO(), camera.frame_name);
 }
 
 }  // namespace tianracer_sim

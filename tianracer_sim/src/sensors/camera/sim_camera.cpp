@@ -42,9 +42,7 @@ std::vector<SensorTopic> depthCameraTopics(const SensorSpec& sensor, const std::
 
 // Before the tf_prefix: the URDF's link names are the robot's own.
 void useOwnOpticalFrame(const SimSensorSetup& setup, CameraConfig& camera) {
-  if (setup.urdf)
-    camera.frame_is_optical =
-        usesOwnOpticalFrame(*setup.urdf, camera.link, camera.X_LO(), camera.frame_name);
+  camera.frame_is_optical = usesOwnOpticalFrame(setup.urdf, camera);
 }
 
 // The renderer for a camera or depth camera with its gazebo_ros plugin, its frame and noise

@@ -21,6 +21,13 @@ namespace tianracer_sim {
 bool usesOwnOpticalFrame(const urdf::ModelInterface& model, const std::string& link,
                          const Eigen::Isometry3d& X_LO, const std::string& frame);
 
+struct CameraConfig;
+
+/// The decision for a camera as parsed (its link, optical frame and <frameName>, before any
+/// tf_prefix), on a robot's URDF; false without one (world models). The simulator stamps its
+/// images by it and model_info reports it: one rule for both.
+bool usesOwnOpticalFrame(const urdf::ModelInterface* model, const CameraConfig& camera);
+
 }  // namespace tianracer_sim
 
 #endif  // TIANRACER_SIM_SENSORS_CAMERA_OPTICAL_FRAME_H
