@@ -79,6 +79,22 @@ class PluginReader {
   std::vector<std::string> used_;
 };
 
+// What gazebo_ros_range and gazebo_ros_block_laser share: the ray sensor they sit on, their
+// plugin (lib<stem>.so), and the names both read: robotNamespace, topicName and frameName (the
+// sensor's link by default). The reader goes on with the plugin's own parameters.
+template <class Config>
+PluginReader readRayPlugin(const SensorSpec& spec, const std::string& stem,
+                           const WarningSink& warn, Config* c) {
+  c->ray = parseRaySensorConfig(spec, warn);
+  const PluginSpec* p = findPlugin(spec, stem);
+  if (!p) throw SensorError("sensor '" + spec.name + "': no lib" + stem + " plugin");
+  PluginReader r(spec, *p, warn);
+  r.text("robotNamespace", &c->robot_namespace);
+  r.text("topicName", &c->topic_name);
+  c->frame_name = r.frame("frameName", c->ray.link);
+  return r;
+}
+
 }  // namespace
 
 double RangeConfig::publishRate() const {
@@ -89,16 +105,9 @@ double RangeConfig::publishRate() const {
 
 RangeConfig parseRangeConfig(const SensorSpec& spec, const WarningSink& warn) {
   RangeConfig c;
-  c.ray = parseRaySensorConfig(spec, warn);
-  c.frame_name = c.ray.link;
+  PluginReader r = readRayPlugin(spec, "gazebo_ros_range", warn, &c);
   c.fov = c.ray.max_angle - c.ray.min_angle;
-  const PluginSpec* p = findPlugin(spec, "gazebo_ros_range");
-  if (!p) throw SensorError("sensor '" + spec.name + "': no libgazebo_ros_range plugin");
-  PluginReader r(spec, *p, warn);
   std::string ignored;
-  r.text("robotNamespace", &c.robot_namespace);
-  r.text("topicName", &c.topic_name);
-  c.frame_name = r.frame("frameName", c.frame_name);
   std::string radiation;
   if (r.text("radiation", &radiation)) {
     if (radiation == "ultrasound") {
@@ -152,15 +161,8 @@ int BlockLaserConfig::rows() const {
 
 BlockLaserConfig parseBlockLaserConfig(const SensorSpec& spec, const WarningSink& warn) {
   BlockLaserConfig c;
-  c.ray = parseRaySensorConfig(spec, warn);
-  c.frame_name = c.ray.link;
-  const PluginSpec* p = findPlugin(spec, "gazebo_ros_block_laser");
-  if (!p) throw SensorError("sensor '" + spec.name + "': no libgazebo_ros_block_laser plugin");
-  PluginReader r(spec, *p, warn);
+  PluginReader r = readRayPlugin(spec, "gazebo_ros_block_laser", warn, &c);
   std::string ignored;
-  r.text("robotNamespace", &c.robot_namespace);
-  r.text("topicName", &c.topic_name);
-  c.frame_name = r.frame("frameName", c.frame_name);
   r.number("gaussianNoise", &c.gaussian_noise);
   r.number("hokuyoMinIntensity", &c.hokuyo_min_intensity, false);
   r.number("updateRate", &c.update_rate);

@@ -71,42 +71,4 @@ void SimLidar::sample(SensorOutputs, SensorWorld& world) {
   ranges_ = &sensor_.scan(world.caster(), scene, world.linkPose(link()));
 }
 
-SimRange::SimRange(const SimSensorSetup& setup, RangeConfig config)
-    : SimSensor("range", config.ray.name, setup.linkRef(config.ray.link), setup.model_name),
-      config_(std::move(config)), rng_(config_.seed) {
-  setup.check_link(config_.ray.link);
-  schedule_.period = periodOf(config_.publishRate());
-  stat().name = config_.ray.name;
-  stat().target = config_.publishRate();
-}
-
-SensorOutputs SimRange::update(double t, SensorWorld&) { return schedule_.due(t) ? kRange : 0; }
-
-void SimRange::sample(SensorOutputs, SensorWorld& world) {
-  const Scene& scene = world.scene();
-  shapeRanges(config_.ray, world.caster(), scene, world.linkPose(link()) * config_.ray.X_LS,
-              &buffers_, &ranges_);
-  reading_ = rangeReading(config_, ranges_, rng_);
-}
-
-SimBlockLaser::SimBlockLaser(const SimSensorSetup& setup, BlockLaserConfig config)
-    : SimSensor("block_laser", config.ray.name, setup.linkRef(config.ray.link), setup.model_name),
-      config_(std::move(config)), rng_(config_.seed) {
-  setup.check_link(config_.ray.link);
-  schedule_.period = periodOf(config_.ray.update_rate);
-  stat().name = config_.ray.name;
-  stat().target = config_.ray.update_rate;
-}
-
-SensorOutputs SimBlockLaser::update(double t, SensorWorld&) {
-  return schedule_.due(t) ? kCloud : 0;
-}
-
-void SimBlockLaser::sample(SensorOutputs, SensorWorld& world) {
-  const Scene& scene = world.scene();
-  shapeRanges(config_.ray, world.caster(), scene, world.linkPose(link()) * config_.ray.X_LS,
-              &buffers_, &ranges_);
-  blockLaserCloud(config_, ranges_, rng_, &cloud_);
-}
-
 }  // namespace tianracer_sim

@@ -4,6 +4,7 @@
 #define TIANRACER_SIM_SENSORS_RAY_SIM_RAY_H
 
 #include <random>
+#include <string>
 #include <vector>
 
 #include "tianracer_sim/sensors/ray/ray_plugins.h"
@@ -33,46 +34,68 @@ class SimLidar : public SimSensor {
   std::vector<float> empty_;
 };
 
-/// ray with gazebo_ros_range: the nearest of the grid's rays (sensor_msgs/Range).
-class SimRange : public SimSensor {
+/// The gazebo_ros plugins over a ray sensor's grid (gazebo_ros_range, gazebo_ros_block_laser):
+/// at the plugin's rate the grid is cast, its ranges shaped by the ray sensor's settings, and
+/// the plugin's output measured from them with its own noise stream.
+template <class Config, class Output,
+          void (*Measure)(const Config&, const std::vector<float>&, std::mt19937_64&, Output*)>
+class SimRayGrid : public SimSensor {
  public:
-  static constexpr SensorOutputs kRange = 1;
-  SimRange(const SimSensorSetup& setup, RangeConfig config);
-  const RangeConfig& config() const { return config_; }
-  const RangeReading& reading() const { return reading_; }
+  static constexpr SensorOutputs kOutput = 1;
+  SimRayGrid(const std::string& kind, const SimSensorSetup& setup, Config config, double rate)
+      : SimSensor(kind, config.ray.name, setup.linkRef(config.ray.link), setup.model_name),
+        config_(std::move(config)), rng_(config_.seed) {
+    setup.check_link(config_.ray.link);
+    schedule_.period = periodOf(rate);
+    stat().name = config_.ray.name;
+    stat().target = rate;
+  }
+  const Config& config() const { return config_; }
 
-  SensorOutputs update(double t, SensorWorld& world) override;
-  void sample(SensorOutputs outputs, SensorWorld& world) override;
+  SensorOutputs update(double t, SensorWorld&) override { return schedule_.due(t) ? kOutput : 0; }
+  void sample(SensorOutputs, SensorWorld& world) override {
+    const Scene& scene = world.scene();
+    shapeRanges(config_.ray, world.caster(), scene, world.linkPose(link()) * config_.ray.X_LS,
+                &buffers_, &ranges_);
+    Measure(config_, ranges_, rng_, &output_);
+  }
   void restart(double t) override { schedule_.restart(t); }
 
+ protected:
+  const Output& output() const { return output_; }
+
  private:
-  RangeConfig config_;
+  Config config_;
   std::mt19937_64 rng_;
   Schedule schedule_;
   RayScanBuffers buffers_;
   std::vector<float> ranges_;
-  RangeReading reading_;
+  Output output_;
 };
 
-/// ray with gazebo_ros_block_laser: a point cloud over the grid (sensor_msgs/PointCloud).
-class SimBlockLaser : public SimSensor {
+inline void measureRange(const RangeConfig& config, const std::vector<float>& shape_ranges,
+                         std::mt19937_64& rng, RangeReading* out) {
+  *out = rangeReading(config, shape_ranges, rng);
+}
+
+/// ray with gazebo_ros_range: the nearest of the grid's rays (sensor_msgs/Range), at the
+/// plugin's updateRate or the sensor's, whichever is lower.
+class SimRange : public SimRayGrid<RangeConfig, RangeReading, &measureRange> {
  public:
-  static constexpr SensorOutputs kCloud = 1;
-  SimBlockLaser(const SimSensorSetup& setup, BlockLaserConfig config);
-  const BlockLaserConfig& config() const { return config_; }
-  const BlockCloud& cloud() const { return cloud_; }
+  static constexpr SensorOutputs kRange = kOutput;
+  SimRange(const SimSensorSetup& setup, const RangeConfig& config)
+      : SimRayGrid("range", setup, config, config.publishRate()) {}
+  const RangeReading& reading() const { return output(); }
+};
 
-  SensorOutputs update(double t, SensorWorld& world) override;
-  void sample(SensorOutputs outputs, SensorWorld& world) override;
-  void restart(double t) override { schedule_.restart(t); }
-
- private:
-  BlockLaserConfig config_;
-  std::mt19937_64 rng_;
-  Schedule schedule_;
-  RayScanBuffers buffers_;
-  std::vector<float> ranges_;
-  BlockCloud cloud_;
+/// ray with gazebo_ros_block_laser: a point cloud over the grid (sensor_msgs/PointCloud), at the
+/// sensor's rate.
+class SimBlockLaser : public SimRayGrid<BlockLaserConfig, BlockCloud, &blockLaserCloud> {
+ public:
+  static constexpr SensorOutputs kCloud = kOutput;
+  SimBlockLaser(const SimSensorSetup& setup, const BlockLaserConfig& config)
+      : SimRayGrid("block_laser", setup, config, config.ray.update_rate) {}
+  const BlockCloud& cloud() const { return output(); }
 };
 
 }  // namespace tianracer_sim
