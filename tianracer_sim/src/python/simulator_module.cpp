@@ -16,6 +16,7 @@
 #include <tianracer_control/joint_controllers.h>
 
 #include "tianracer_sim/env/centreline.h"
+#include "tianracer_sim/common/sdf_pose.h"
 #include "tianracer_sim/env/parallel.h"
 #include "tianracer_sim/env/sim_env.h"
 #include "tianracer_sim/sensors/ray/ray_sensor.h"
@@ -49,8 +50,8 @@ Warnings& warnings() {
   return w;
 }
 
+// Gazebo's pose convention, as SDF's <pose> (common/sdf_pose.h).
 Eigen::Isometry3d poseFrom(const std::vector<double>& p, const char* what) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   double x = 0, y = 0, z = 0, roll = 0, pitch = 0, yaw = 0;
   if (p.size() == 3) {
     x = p[0], y = p[1], yaw = p[2];
@@ -60,12 +61,7 @@ Eigen::Isometry3d poseFrom(const std::vector<double>& p, const char* what) {
     throw EnvError(std::string(what) + " must be (x, y, yaw) or (x, y, z, roll, pitch, yaw), got " +
                    std::to_string(p.size()) + " values");
   }
-  X.translation() = Eigen::Vector3d(x, y, z);
-  X.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-                Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
-                   .toRotationMatrix();
-  return X;
+  return sdfPose(x, y, z, roll, pitch, yaw);
 }
 
 std::string dtypeName(char c) {
