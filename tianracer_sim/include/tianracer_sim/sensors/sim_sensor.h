@@ -115,6 +115,9 @@ class SensorListener {
   virtual void onOutputs(const SimSensor& sensor, SensorOutputs outputs, double t) = 0;
 };
 
+/// The period of a rate for a Schedule: 1/rate, 0 (every step) for a rate of 0.
+inline double periodOf(double rate) { return rate > 0.0 ? 1.0 / rate : 0.0; }
+
 class SimSensor {
  public:
   SimSensor(std::string kind, std::string name, LinkRef link, std::string model_name)
@@ -160,6 +163,15 @@ class SimSensor {
   const ProfileRows& profileRows() const { return profile_rows_; }
   void setProfileRows(const ProfileRows& rows) { profile_rows_ = rows; }
 
+ protected:
+  /// Samples on `schedule` at `rate` (Hz; 0 = every step); the status counts it as `name`
+  /// against that rate.
+  void sampleAt(Schedule& schedule, const std::string& name, double rate) {
+    schedule.period = periodOf(rate);
+    stat_.name = name;
+    stat_.target = rate;
+  }
+
  private:
   std::string kind_, name_;
   LinkRef link_;
@@ -168,9 +180,6 @@ class SimSensor {
   SensorStat stat_;
   ProfileRows profile_rows_;
 };
-
-/// The period of a rate for a Schedule: 1/rate, 0 (every step) for a rate of 0.
-inline double periodOf(double rate) { return rate > 0.0 ? 1.0 / rate : 0.0; }
 
 /// Everything a sensor kind needs to set a sensor up.
 struct SimSensorSetup {

@@ -45,9 +45,7 @@ SimBumper::SimBumper(const SimSensorSetup& setup, BumperConfig config)
     frame_link_ = config_.frame_name;
   }
   frame_id_ = world ? config_.frame_name : resolveFrame(setup.tf_prefix, config_.frame_name);
-  schedule_.period = periodOf(config_.update_rate);
-  stat().name = config_.name;
-  stat().target = config_.update_rate;
+  sampleAt(schedule_, config_.name, config_.update_rate);
 }
 
 SensorOutputs SimBumper::update(double t, SensorWorld&) { return schedule_.due(t) ? kStates : 0; }

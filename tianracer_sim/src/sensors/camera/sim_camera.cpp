@@ -129,9 +129,7 @@ const SensorKind& multiCameraKind() {
 SimCamera::SimCamera(const SimSensorSetup& setup, const CameraConfig& config, Renderer& renderer)
     : SimSensor("camera", setup.spec->name, setup.linkRef(config.link), setup.model_name),
       sensor_(config, renderer) {
-  schedule_.period = periodOf(config.publishRate());
-  stat().name = config.name;
-  stat().target = config.publishRate();
+  sampleAt(schedule_, config.name, config.publishRate());
 }
 
 SensorOutputs SimCamera::update(double t, SensorWorld&) {
@@ -159,10 +157,8 @@ SimDepthCamera::SimDepthCamera(const SimSensorSetup& setup, const DepthCameraCon
     : SimSensor("depth_camera", setup.spec->name, setup.linkRef(config.camera.link),
                 setup.model_name),
       sensor_(config, renderer) {
-  schedule_.period = periodOf(config.camera.update_rate);
+  sampleAt(schedule_, config.camera.name, config.camera.update_rate);
   info_schedule_.period = periodOf(config.camera.publishRate());
-  stat().name = config.camera.name;
-  stat().target = config.camera.update_rate;
 }
 
 SensorOutputs SimDepthCamera::update(double t, SensorWorld&) {
@@ -200,9 +196,7 @@ SimMultiCamera::SimMultiCamera(const SimSensorSetup& setup, MultiCameraConfig co
     images_ |= image(i);
     all_ |= image(i) | info(i);
   }
-  schedule_.period = periodOf(config_.publishRate());
-  stat().name = config_.name;
-  stat().target = config_.publishRate();
+  sampleAt(schedule_, config_.name, config_.publishRate());
 }
 
 SensorOutputs SimMultiCamera::update(double t, SensorWorld&) {

@@ -43,9 +43,7 @@ SimImu::SimImu(const SimSensorSetup& setup, ImuConfig config)
                config.frame_name = resolveFrame(setup.tf_prefix, config.frame_name),
                setup.check_link(config.link), config),
               setup.gravity) {
-  schedule_.period = periodOf(sensor_.config().publishRate());
-  stat().name = sensor_.config().name;
-  stat().target = sensor_.config().publishRate();
+  sampleAt(schedule_, sensor_.config().name, sensor_.config().publishRate());
 }
 
 SensorOutputs SimImu::update(double t, SensorWorld& world) {

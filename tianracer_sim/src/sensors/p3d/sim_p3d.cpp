@@ -29,9 +29,7 @@ SimP3d::SimP3d(const SimSensorSetup& setup, P3dConfig config)
   // Frames as the sim's others: tf_prefix on links, world as it is.
   frame_ = c.reference_link.empty() ? c.frame_name : resolveFrame(setup.tf_prefix, c.reference_link);
   child_ = resolveFrame(setup.tf_prefix, c.link);
-  schedule_.period = periodOf(c.update_rate);
-  stat().name = c.name;
-  stat().target = c.update_rate;
+  sampleAt(schedule_, c.name, c.update_rate);
 }
 
 void SimP3d::track(double t, SensorWorld& world, const std::string& link, LinkMotion* motion) {

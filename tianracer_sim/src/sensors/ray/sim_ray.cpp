@@ -56,9 +56,7 @@ SimLidar::SimLidar(const SimSensorSetup& setup, RaySensorConfig config)
     : SimSensor("lidar", config.name, setup.linkRef(config.link), setup.model_name),
       sensor_(config) {
   setup.check_link(config.link);
-  schedule_.period = periodOf(config.update_rate);
-  stat().name = config.name;
-  stat().target = config.update_rate;
+  sampleAt(schedule_, config.name, config.update_rate);
 }
 
 SensorOutputs SimLidar::update(double t, SensorWorld&) {

@@ -46,9 +46,7 @@ class SimRayGrid : public SimSensor {
       : SimSensor(kind, config.ray.name, setup.linkRef(config.ray.link), setup.model_name),
         config_(std::move(config)), rng_(config_.seed) {
     setup.check_link(config_.ray.link);
-    schedule_.period = periodOf(rate);
-    stat().name = config_.ray.name;
-    stat().target = rate;
+    sampleAt(schedule_, config_.ray.name, rate);
   }
   const Config& config() const { return config_; }
 
