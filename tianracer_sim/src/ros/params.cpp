@@ -1,11 +1,51 @@
 #include "tianracer_sim/ros/params.h"
 
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
 #include "tianracer_sim/sim/simulation.h"
 
 namespace tianracer_sim {
+
+namespace {
+
+std::optional<double> optionalDouble(const ros::NodeHandle& pnh, const std::string& key) {
+  if (!pnh.hasParam(key)) return std::nullopt;
+  return getDouble(pnh, key, 0.0);
+}
+
+}  // namespace
+
+NodeParams readNodeParams(const ros::NodeHandle& pnh) {
+  NodeParams p;
+  pnh.param<std::string>("world", p.world, p.world);
+  pnh.param("strict_world", p.strict_world, p.strict_world);
+  p.max_step_size = optionalDouble(pnh, "max_step_size");
+  p.real_time_factor = optionalDouble(pnh, "real_time_factor");
+  pnh.param("paused", p.paused, p.paused);
+  p.clock_rate = getDouble(pnh, "clock_rate", p.clock_rate);
+  p.ground_truth_rate = getDouble(pnh, "ground_truth_rate", p.ground_truth_rate);
+  pnh.param("seed", p.seed, p.seed);
+  p.status_period = getDouble(pnh, "status_period", p.status_period);
+  pnh.param("diagnostics", p.diagnostics, p.diagnostics);
+  p.gazebo_states_rate = optionalDouble(pnh, "gazebo_states_rate");
+  // gazebo_ros's ~enable_ros_network (its node is /gazebo: the gzserver stand-in's name).
+  pnh.param("enable_ros_network", p.enable_ros_network, p.enable_ros_network);
+  pnh.param("step_services", p.step_services, p.step_services);
+  return p;
+}
+
+void checkPace(double max_step_size, double real_time_factor) {
+  if (!(max_step_size > 0.0 && max_step_size <= 0.1)) {
+    throw std::runtime_error("parameter ~max_step_size must be in (0, 0.1] s, got " +
+                             std::to_string(max_step_size));
+  }
+  if (!(real_time_factor >= 0.0) || !std::isfinite(real_time_factor)) {
+    throw std::runtime_error("parameter ~real_time_factor must be >= 0 (0 = as fast as possible), got " +
+                             std::to_string(real_time_factor));
+  }
+}
 
 std::string trimSlashes(std::string s) {
   while (!s.empty() && s.front() == '/') s.erase(s.begin());

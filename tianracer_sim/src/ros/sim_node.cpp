@@ -1,6 +1,5 @@
 #include "tianracer_sim/ros/sim_node.h"
 
-#include <cmath>
 #include <cstdio>
 #include <set>
 
@@ -13,53 +12,52 @@
 
 namespace tianracer_sim {
 
+namespace {
+
+/// The pace's waits serve the node's commands and services.
+Pacer::Hooks servingQueue(ros::CallbackQueue* queue) {
+  Pacer::Hooks hooks;
+  hooks.serve = [queue](double s) { queue->callAvailable(ros::WallDuration(s)); };
+  hooks.sleep = [](double s) { ros::WallDuration(s).sleep(); };
+  return hooks;
+}
+
+}  // namespace
+
 void SimNode::warnOnce(const std::string& text) {
   static WarnOnce once([](const std::string& w) { ROS_WARN_STREAM(w); });
   once(text);
 }
 
 SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
-    : nh_(nh), pnh_(pnh), root_("/") {
+    : nh_(nh), pnh_(pnh), root_("/"), pacer_(servingQueue(&queue_)) {
   nh_.setCallbackQueue(&queue_);
   pnh_.setCallbackQueue(&queue_);
   root_.setCallbackQueue(&queue_);
   setUpProfile();
 
+  const NodeParams params = readNodeParams(pnh_);
   // The world: a shipped name or a .world path. Its <physics> gives the step and gravity.
-  std::string world_arg;
-  pnh_.param<std::string>("world", world_arg, "empty");
   world_options_.warn = [](const std::string& w) { warnOnce(w); };
   // A model or mesh that cannot be used is an error and the rest loads, as in Gazebo;
   // ~strict_world:=true stops instead (CI).
   world_options_.error = [](const std::string& e) { ROS_ERROR_STREAM(e); };
-  pnh_.param("strict_world", world_options_.strict, false);
+  world_options_.strict = params.strict_world;
   world_options_.find_package = [](const std::string& pkg) { return ros::package::getPath(pkg); };
   WorldDescription world = loadWorldFile(
-      resolveWorld(world_arg, ros::package::getPath("tianracer_sim") + "/worlds"), world_options_);
+      resolveWorld(params.world, ros::package::getPath("tianracer_sim") + "/worlds"), world_options_);
   startupMark("world file and its meshes");
 
   SimulatorOptions options;
-  options.max_step_size = getDouble(pnh_, "max_step_size", physicsOptionsFor(world).dt);
-  if (!(options.max_step_size > 0.0 && options.max_step_size <= 0.1)) {
-    throw std::runtime_error("parameter ~max_step_size must be in (0, 0.1] s, got " +
-                             std::to_string(options.max_step_size));
-  }
-  real_time_factor_ = getDouble(pnh_, "real_time_factor", world.physics.real_time_factor);
-  if (!(real_time_factor_ >= 0.0) || !std::isfinite(real_time_factor_)) {
-    throw std::runtime_error("parameter ~real_time_factor must be >= 0 (0 = as fast as possible), got " +
-                             std::to_string(real_time_factor_));
-  }
-  bool paused = false;
-  pnh_.param("paused", paused, false);
+  options.max_step_size = params.max_step_size.value_or(physicsOptionsFor(world).dt);
+  real_time_factor_ = params.real_time_factor.value_or(world.physics.real_time_factor);
+  checkPace(options.max_step_size, real_time_factor_);
   // /clock every 5 ms of sim time by default: running 10x faster than real time, 1 kHz would
   // be 10,000 messages a second to every node, more than a rospy node can read.
-  const double clock_rate = getDouble(pnh_, "clock_rate", 200.0);
-  clock_schedule_.period = clock_rate > 0.0 ? 1.0 / clock_rate : 0.0;
-  ground_truth_rate_ = getDouble(pnh_, "ground_truth_rate", 50.0);
-  int seed = 0;
-  pnh_.param("seed", seed, 0);
-  options.seed = static_cast<std::uint64_t>(seed);
-  status_period_ = getDouble(pnh_, "status_period", 5.0);
+  clock_schedule_.period = params.clock_rate > 0.0 ? 1.0 / params.clock_rate : 0.0;
+  ground_truth_rate_ = params.ground_truth_rate;
+  options.seed = static_cast<std::uint64_t>(params.seed);
+  status_period_ = params.status_period;
   options.log.info = [](const std::string& m) { ROS_INFO_STREAM(m); };
   options.log.warn = [](const std::string& w) { warnOnce(w); };
   options.log.error = [](const std::string& m) { ROS_ERROR_STREAM(m); };
@@ -69,7 +67,7 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   options.profile = profile_.get();
   sim_ = std::make_unique<Simulator>(std::move(world), std::move(options));
   startupMark("simulator (the world's physics, scene, sensors)");
-  sim_->setPaused(paused);
+  sim_->setPaused(params.paused);
   {
     // The pace as Gazebo holds it (set_physics_properties' max_update_rate changes it).
     PhysicsProperties physics = sim_->physicsProperties();
@@ -81,9 +79,7 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   nh_.setParam("/use_sim_time", true);
   clock_pub_ = root_.advertise<rosgraph_msgs::Clock>("/clock", 10);
   // Not gazebo_ros's: gazebo_ros's gzserver stand-in turns it off (~diagnostics false).
-  bool diagnostics = true;
-  pnh_.param("diagnostics", diagnostics, true);
-  if (diagnostics) {
+  if (params.diagnostics) {
     // Its contact counts need the contacts tracked while someone reads /diagnostics.
     diagnostics_pub_ = root_.advertise<diagnostic_msgs::DiagnosticArray>(
         "/diagnostics", 10, [this](const ros::SingleSubscriberPublisher&) { ++diagnostics_readers_; },
@@ -118,9 +114,8 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   ros::NodeHandle gazebo("/gazebo");
   gazebo.setCallbackQueue(&queue_);
   GazeboInterface::Options gazebo_options;
-  gazebo_options.states_rate = getDouble(pnh_, "gazebo_states_rate", gazebo_options.states_rate);
-  // gazebo_ros's ~enable_ros_network (its node is /gazebo: the gzserver stand-in's name).
-  pnh_.param("enable_ros_network", gazebo_options.enable_ros_network, true);
+  gazebo_options.states_rate = params.gazebo_states_rate.value_or(gazebo_options.states_rate);
+  gazebo_options.enable_ros_network = params.enable_ros_network;
   gazebo_ = std::make_unique<GazeboInterface>(gazebo, *sim_, gazebo_options,
                                              static_cast<ModelSpawner*>(this),
                                              [this] { afterReset(); });
@@ -137,9 +132,7 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   };
   // ~step and ~step_and_wait are not gazebo_ros's: gazebo_ros's gzserver stand-in turns them
   // off (~step_services false) so that /gazebo offers exactly gazebo_ros's interface.
-  bool step_services = true;
-  pnh_.param("step_services", step_services, true);
-  if (step_services) step_ = std::make_unique<StepBridge>(pnh_, *sim_, &queue_, step_hooks);
+  if (params.step_services) step_ = std::make_unique<StepBridge>(pnh_, *sim_, &queue_, step_hooks);
 
   startupMark("Gazebo interface, lockstep, services");
   logStartup();
@@ -251,8 +244,6 @@ void SimNode::run() {
   bool first_step = true;  // its time is logged
   status_wall_ = ros::WallTime::now();
   status_sim_ = sim_->time();
-  ros::WallTime wall0 = ros::WallTime::now();
-  double sim0 = sim_->time();
   bool paused_clock = false;  // the paused time went out on /clock
   while (ros::ok()) {
     {
@@ -273,47 +264,26 @@ void SimNode::run() {
       paused_clock = true;
       queue_.callAvailable(ros::WallDuration(0.01));
       publishStatus();
-      pacing_reset_ = true;
+      pacer_.restart();
       continue;
     }
     paused_clock = false;
     if (!initial_published_) publishInitial();
-    if (pacing_reset_) {
-      wall0 = ros::WallTime::now();
-      sim0 = sim_->time();
-      pacing_reset_ = false;
-    }
+    pacer_.beginStep(sim_->time());
+    const auto t0 = std::chrono::steady_clock::now();
+    stepOnce();
     if (first_step) {
-      const auto t0 = std::chrono::steady_clock::now();
-      stepOnce();
       ROS_INFO("first step: %.1f ms",
                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       first_step = false;
-    } else {
-      stepOnce();
     }
     if ((sim_->stepCount() & 255) == 0) {
       StepProfile::Scope timed(profile_.get(), rows_.status);
       publishStatus();
     }
     // set_physics_properties may have changed the pace (max_update_rate or the step).
-    if (const double rtf = sim_->maxUpdateRate() * sim_->dt(); rtf != real_time_factor_) {
-      real_time_factor_ = rtf;
-      wall0 = ros::WallTime::now();
-      sim0 = sim_->time();
-    }
-    if (real_time_factor_ > 0.0) {
-      const ros::WallTime target = wall0 + ros::WallDuration((sim_->time() - sim0) / real_time_factor_);
-      const ros::WallTime now = ros::WallTime::now();
-      if (now < target) {
-        // Wait for wall time, serving commands and services meanwhile.
-        queue_.callAvailable(target - now);
-        const ros::WallTime after = ros::WallTime::now();
-        if (after < target) (target - after).sleep();
-      } else if ((now - target).toSec() > 0.5) {
-        pacing_reset_ = true;  // far behind: do not race to catch up
-      }
-    }
+    real_time_factor_ = sim_->maxUpdateRate() * sim_->dt();
+    pacer_.endStep(sim_->time(), real_time_factor_);
   }
 }
 
@@ -329,7 +299,7 @@ void SimNode::afterReset() {
     robot->restart(t);
   }
   clock_schedule_.restart(t);
-  pacing_reset_ = true;
+  pacer_.restart();
   publishClock();
 }
 

@@ -3,6 +3,7 @@
 #ifndef TIANRACER_SIM_ROS_PARAMS_H
 #define TIANRACER_SIM_ROS_PARAMS_H
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,30 @@
 #include <ros/node_handle.h>
 
 namespace tianracer_sim {
+
+/// The node's own parameters (sim_node.h lists them), read in one place. Unset optionals take
+/// the world's <physics> values.
+struct NodeParams {
+  std::string world = "empty";
+  bool strict_world = false;
+  std::optional<double> max_step_size, real_time_factor;
+  bool paused = false;
+  double clock_rate = 200.0;
+  double ground_truth_rate = 50.0;
+  double status_period = 5.0;
+  int seed = 0;
+  bool diagnostics = true;
+  bool step_services = true;
+  bool enable_ros_network = true;
+  std::optional<double> gazebo_states_rate;
+};
+
+/// Reads ~world ... ~step_services from `pnh`. Throws naming a parameter that is not a number.
+NodeParams readNodeParams(const ros::NodeHandle& pnh);
+
+/// The step and the real-time factor in force (the parameters' or the world's). Throws naming
+/// the parameter for a step outside (0, 0.1] s or a factor below 0.
+void checkPace(double max_step_size, double real_time_factor);
 
 /// "/a/b/" -> "a/b".
 std::string trimSlashes(std::string s);

@@ -62,6 +62,7 @@
 #include <ros/ros.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
+#include "tianracer_sim/common/pacer.h"
 #include "tianracer_sim/ros/contact_publisher.h"
 #include "tianracer_sim/ros/gazebo_interface.h"
 #include "tianracer_sim/ros/lockstep.h"
@@ -157,7 +158,7 @@ class SimNode : private ModelSpawner {
   Schedule clock_schedule_;
   double ground_truth_rate_ = 50.0;
   double real_time_factor_ = 1.0;
-  bool pacing_reset_ = true;
+  Pacer pacer_;  // real_time_factor_ x real time
   double status_period_ = 5.0;  // wall seconds between status reports
   ros::WallTime status_wall_;
   double status_sim_ = 0.0;
