@@ -49,6 +49,8 @@ SensorSpec sensor(const std::string& plugin, std::map<std::string, std::string> 
   p.name = "p";
   p.filename = plugin;
   p.params = std::move(params);
+  p.source = "range.world";
+  p.line = 52;  // the <plugin> inside the <sensor>
   s.plugins.push_back(p);
   return s;
 }
@@ -110,11 +112,14 @@ TEST(RangeConfig, BadInputNamesSensorElementAndValue) {
                                          [&](const std::string& w) { warnings.push_back(w); });
   EXPECT_EQ(c.radiation, Radiation::kInfrared);  // as upstream: anything else is infrared
   ASSERT_EQ(warnings.size(), 2u);
-  EXPECT_NE(warnings[0].find("sensor 'sonar' (range.world:40), plugin libgazebo_ros_range.so: "
+  // Placed at the <plugin>'s line, as every plugin parameter's message (PluginReader).
+  EXPECT_NE(warnings[0].find("range.world:52: sensor 'sonar', plugin libgazebo_ros_range.so: "
                              "<radiation> 'laser'"),
             std::string::npos)
       << warnings[0];
-  EXPECT_NE(warnings[1].find("unknown parameter <colour>"), std::string::npos) << warnings[1];
+  EXPECT_NE(warnings[1].find("<colour> is not a parameter of libgazebo_ros_range.so, ignored"),
+            std::string::npos)
+      << warnings[1];
   std::string e = errorOf([] { parseRangeConfig(sonar({{"fov", "wide"}})); });
   EXPECT_NE(e.find("sensor 'sonar'"), std::string::npos) << e;
   EXPECT_NE(e.find("<fov> 'wide' is not a number"), std::string::npos) << e;
@@ -123,7 +128,7 @@ TEST(RangeConfig, BadInputNamesSensorElementAndValue) {
   e = errorOf([] { parseRangeConfig(sonar({{"gaussianNoise", "-0.1"}})); });
   EXPECT_NE(e.find("<gaussianNoise> -0.1 must be >= 0"), std::string::npos) << e;
   e = errorOf([] { parseRangeConfig(sonar({{"updateRate", "nan"}})); });
-  EXPECT_NE(e.find("<updateRate> 'nan' is not a number"), std::string::npos) << e;
+  EXPECT_NE(e.find("<updateRate> nan is not finite"), std::string::npos) << e;
   // The <ray> is the lidar's: its errors too.
   SensorSpec bad = sonar({});
   bad.xml.replace(bad.xml.find("<max>0.75"), 9, "<max>0.001");

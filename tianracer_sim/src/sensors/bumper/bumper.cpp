@@ -1,6 +1,7 @@
 #include "tianracer_sim/sensors/bumper/bumper.h"
 
 #include "tianracer_sim/common/text.h"
+#include "tianracer_sim/model/plugin_reader.h"
 
 namespace tianracer_sim {
 
@@ -17,23 +18,22 @@ BumperConfig parseBumperConfig(const SensorSpec& spec, const std::string& model_
     if (file == "libgazebo_ros_bumper.so") {
       plugin = &p;
     } else if (warn) {
-      warn(what + ": plugin " + p.filename + " is not simulated, ignored");
+      warn(formatLocation(p.source, p.line) + what + ": plugin " + p.filename +
+           " is not simulated, ignored");
     }
   }
   if (!plugin) {
     c.topic_name.clear();
     return c;
   }
-  for (const auto& [key, value] : plugin->params) {
-    const std::string v = trimText(value);
-    if (key == "bumperTopicName") c.topic_name = v;
-    else if (key == "frameName") c.frame_name = v;
-    else if (key == "robotNamespace") c.robot_namespace = v;
-    else if (key == "alwaysOn" || key == "updateRate") {}  // the sensor's own tags rule
-    else if (warn) warn(what + ": <" + key + "> is not a parameter of libgazebo_ros_bumper, ignored");
-  }
-  if (c.topic_name.empty()) throw SensorError(what + ": <bumperTopicName> is empty");
-  if (c.frame_name.empty()) throw SensorError(what + ": <frameName> is empty");
+  PluginReader r(*plugin, what, warn);
+  r.text("bumperTopicName", &c.topic_name);
+  r.text("frameName", &c.frame_name);
+  r.text("robotNamespace", &c.robot_namespace);
+  r.ignore({"alwaysOn", "updateRate"});  // the sensor's own tags rule
+  r.finish();
+  if (c.topic_name.empty()) r.fail("<bumperTopicName> is empty");
+  if (c.frame_name.empty()) r.fail("<frameName> is empty");
   return c;
 }
 

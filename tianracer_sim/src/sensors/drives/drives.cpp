@@ -6,6 +6,7 @@
 
 #include "tianracer_sim/common/text.h"
 #include "tianracer_sim/common/xml_reader.h"
+#include "tianracer_sim/model/plugin_reader.h"
 
 namespace tianracer_sim {
 namespace {
@@ -16,74 +17,42 @@ double elapsed(double t, double last) { return std::round((t - last) * 1e9) / 1e
 
 constexpr double kUnknownVariance = 1000000000000.0;  // upstream's "not measured" (z, roll, pitch)
 
-// Reads a plugin's parameters as gazebo_plugins' getParameter does: the value, or the default
-// with a "missing" note; stricter about bad values (SensorError).
-class ParamReader {
+// gazebo_plugins' getParameter (gazebo_ros_utils.h): the value, or the default with a
+// "missing" note in DriveConfig::defaulted. Values are read by the one PluginReader.
+class ParamReader : public PluginReader {
  public:
-  ParamReader(const PluginSpec& p, std::string what, DriveConfig* c)
-      : p_(p), what_(std::move(what)), c_(c) {}
+  ParamReader(const PluginSpec& p, std::string what, const WarningSink& warn, DriveConfig* c)
+      : PluginReader(p, std::move(what), warn), c_(c) {}
 
-  bool has(const std::string& key) {
-    read_.insert(key);
-    return p_.params.count(key) > 0;
-  }
-  std::string value(const std::string& key) { return trimText(p_.params.at(key)); }
+  std::string value(const std::string& key) { return text(key).value_or(""); }
 
-  std::string text(const std::string& key, const std::string& def, bool note = true) {
-    if (has(key)) return value(key);
+  std::string textOr(const std::string& key, const std::string& def, bool note = true) {
+    if (const auto v = text(key)) return *v;
     if (note) c_->defaulted.push_back("missing <" + key + ">, defaults to \"" + def + "\"");
     return def;
   }
 
-  double number(const std::string& key, double def, bool note = true) {
-    if (!has(key)) {
-      if (note) c_->defaulted.push_back("missing <" + key + ">, defaults to " + formatNumber(def));
-      return def;
-    }
-    const std::string t = value(key);
-    const auto v = parseNumber(t);
-    if (!v) throw SensorError(what_ + ": <" + key + "> '" + t + "' is not a number");
-    if (!std::isfinite(*v)) throw SensorError(what_ + ": <" + key + "> " + t + " is not finite");
-    return *v;
+  double numberOr(const std::string& key, double def, bool note = true) {
+    double v = def;
+    if (!number(key, &v) && note)
+      c_->defaulted.push_back("missing <" + key + ">, defaults to " + formatNumber(def));
+    return v;
   }
 
-  bool boolean(const std::string& key, bool def, bool note = true) {
-    if (!has(key)) {
-      if (note)
-        c_->defaulted.push_back("missing <" + key + ">, defaults to " + (def ? "true" : "false"));
-      return def;
-    }
-    std::string t = value(key);
-    std::transform(t.begin(), t.end(), t.begin(), [](unsigned char ch) { return std::tolower(ch); });
-    if (t == "true" || t == "1") return true;
-    if (t == "false" || t == "0") return false;
-    throw SensorError(what_ + ": <" + key + "> '" + value(key) +
-                      "' is not a boolean (true, false, 1 or 0)");
+  bool booleanOr(const std::string& key, bool def, bool note = true) {
+    bool v = def;
+    if (!boolean(key, &v) && note)
+      c_->defaulted.push_back("missing <" + key + ">, defaults to " + (def ? "true" : "false"));
+    return v;
   }
 
-  /// Parameters the plugin does not read (upstream ignores them silently).
-  void warnUnknown(const WarningSink& warn, const std::string& plugin) {
-    if (!warn) return;
-    for (const auto& [key, v] : p_.params) {
-      (void)v;
-      // Read by no noetic plugin, written by many models: alwaysOn (old gazebo_ros),
-      // legacyMode (melodic's diff drive); noetic ignores them as we do.
-      if (read_.count(key) || key == "alwaysOn" || key == "legacyMode") continue;
-      warn(what_ + ": <" + key + "> is not a parameter of " + plugin + ", ignored");
-    }
+  void require(bool ok, const std::string& key, double v, const std::string& rule) const {
+    if (!ok) fail("<" + key + "> " + formatNumber(v) + " " + rule);
   }
 
  private:
-  const PluginSpec& p_;
-  std::string what_;
   DriveConfig* c_;
-  std::set<std::string> read_;
 };
-
-void require(bool ok, const std::string& what, const std::string& key, double v,
-             const std::string& rule) {
-  if (!ok) throw SensorError(what + ": <" + key + "> " + formatNumber(v) + " " + rule);
-}
 
 void covariances(double cx, double cy, double cyaw, std::array<double, 36>* cov) {
   cov->fill(0.0);
@@ -93,72 +62,71 @@ void covariances(double cx, double cy, double cyaw, std::array<double, 36>* cov)
   (*cov)[35] = cyaw;
 }
 
-void parseDiffDrive(ParamReader& r, const std::string& what, const std::string& model_name,
-                    DriveConfig* c) {
+void parseDiffDrive(ParamReader& r, const std::string& model_name, DriveConfig* c) {
   // GazeboRos (gazebo_ros_utils.h): the model's name unless <robotNamespace> is given and not
   // empty; then readCommonParameter's <rosDebugLevel>.
   c->robot_namespace = model_name;
   if (r.has("robotNamespace") && !r.value("robotNamespace").empty())
     c->robot_namespace = r.value("robotNamespace");
-  c->ros_debug_level = r.text("rosDebugLevel", "na");
-  c->command_topic = r.text("commandTopic", "cmd_vel");
-  c->odometry_topic = r.text("odometryTopic", "odom");
-  c->odometry_frame = r.text("odometryFrame", "odom");
-  c->robot_base_frame = r.text("robotBaseFrame", "base_footprint");
-  c->publish_wheel_tf = r.boolean("publishWheelTF", false);
-  c->publish_odom_tf = r.boolean("publishOdomTF", true);
-  c->publish_wheel_joint_state = r.boolean("publishWheelJointState", false);
-  c->wheel_separation = r.number("wheelSeparation", 0.34);
-  c->wheel_diameter = r.number("wheelDiameter", 0.15);
-  c->wheel_acceleration = r.number("wheelAcceleration", 0.0);
-  c->wheel_torque = r.number("wheelTorque", 5.0);
-  c->update_rate = r.number("updateRate", 100.0);
-  const std::string source = r.text("odometrySource", "world");
+  c->ros_debug_level = r.textOr("rosDebugLevel", "na");
+  c->command_topic = r.textOr("commandTopic", "cmd_vel");
+  c->odometry_topic = r.textOr("odometryTopic", "odom");
+  c->odometry_frame = r.textOr("odometryFrame", "odom");
+  c->robot_base_frame = r.textOr("robotBaseFrame", "base_footprint");
+  c->publish_wheel_tf = r.booleanOr("publishWheelTF", false);
+  c->publish_odom_tf = r.booleanOr("publishOdomTF", true);
+  c->publish_wheel_joint_state = r.booleanOr("publishWheelJointState", false);
+  c->wheel_separation = r.numberOr("wheelSeparation", 0.34);
+  c->wheel_diameter = r.numberOr("wheelDiameter", 0.15);
+  c->wheel_acceleration = r.numberOr("wheelAcceleration", 0.0);
+  c->wheel_torque = r.numberOr("wheelTorque", 5.0);
+  c->update_rate = r.numberOr("updateRate", 100.0);
+  const std::string source = r.textOr("odometrySource", "world");
   if (source == "world") {
     c->odometry_source = OdomSource::kWorld;
   } else if (source == "encoder") {
     c->odometry_source = OdomSource::kEncoder;
   } else {
-    throw SensorError(what + ": <odometrySource> '" + source + "' is neither encoder nor world");
+    r.fail("<odometrySource> '" + source + "' is neither encoder nor world");
   }
-  c->joints = {r.text("leftJoint", "left_joint"), r.text("rightJoint", "right_joint")};
-  c->publish_odometry = r.boolean("publishTf", true);
-  require(c->wheel_acceleration >= 0.0, what, "wheelAcceleration", c->wheel_acceleration,
-          "must be >= 0");
+  c->joints = {r.textOr("leftJoint", "left_joint"), r.textOr("rightJoint", "right_joint")};
+  c->publish_odometry = r.booleanOr("publishTf", true);
+  r.require(c->wheel_acceleration >= 0.0, "wheelAcceleration", c->wheel_acceleration,
+            "must be >= 0");
   covariances(0.00001, 0.00001, 0.001, &c->pose_covariance);
 }
 
 void parseSkidSteer(ParamReader& r, DriveConfig* c) {
   // Its own node handle: <robotNamespace> + "/", else "" (no model-name default).
   if (r.has("robotNamespace")) c->robot_namespace = r.value("robotNamespace") + "/";
-  c->publish_odom_tf = r.boolean("broadcastTF", false, /*note=*/false);  // upstream: ROS_INFO
-  c->joints = {r.text("leftFrontJoint", "left_front_joint"),
-               r.text("rightFrontJoint", "right_front_joint"),
-               r.text("leftRearJoint", "left_rear_joint"),
-               r.text("rightRearJoint", "right_rear_joint")};
-  c->wheel_separation = r.number("wheelSeparation", 0.4);
-  c->wheel_diameter = r.number("wheelDiameter", 0.15);
-  c->wheel_torque = r.number("torque", 5.0);
-  c->command_topic = r.text("commandTopic", "cmd_vel");
-  c->odometry_topic = r.text("odometryTopic", "odom");
-  c->odometry_frame = r.text("odometryFrame", "odom");
-  c->robot_base_frame = r.text("robotBaseFrame", "base_footprint");
-  c->update_rate = r.number("updateRate", 100.0);
-  const double cx = r.number("covariance_x", 0.0001);
-  const double cy = r.number("covariance_y", 0.0001);
-  const double cyaw = r.number("covariance_yaw", 0.01);
+  c->publish_odom_tf = r.booleanOr("broadcastTF", false, /*note=*/false);  // upstream: ROS_INFO
+  c->joints = {r.textOr("leftFrontJoint", "left_front_joint"),
+               r.textOr("rightFrontJoint", "right_front_joint"),
+               r.textOr("leftRearJoint", "left_rear_joint"),
+               r.textOr("rightRearJoint", "right_rear_joint")};
+  c->wheel_separation = r.numberOr("wheelSeparation", 0.4);
+  c->wheel_diameter = r.numberOr("wheelDiameter", 0.15);
+  c->wheel_torque = r.numberOr("torque", 5.0);
+  c->command_topic = r.textOr("commandTopic", "cmd_vel");
+  c->odometry_topic = r.textOr("odometryTopic", "odom");
+  c->odometry_frame = r.textOr("odometryFrame", "odom");
+  c->robot_base_frame = r.textOr("robotBaseFrame", "base_footprint");
+  c->update_rate = r.numberOr("updateRate", 100.0);
+  const double cx = r.numberOr("covariance_x", 0.0001);
+  const double cy = r.numberOr("covariance_y", 0.0001);
+  const double cyaw = r.numberOr("covariance_yaw", 0.01);
   covariances(cx, cy, cyaw, &c->pose_covariance);
   covariances(cx, cy, cyaw, &c->twist_covariance);
 }
 
 void parsePlanarMove(ParamReader& r, DriveConfig* c) {
   if (r.has("robotNamespace")) c->robot_namespace = r.value("robotNamespace");
-  c->command_topic = r.text("commandTopic", "cmd_vel");
-  c->odometry_topic = r.text("odometryTopic", "odom");
-  c->odometry_frame = r.text("odometryFrame", "odom");
-  c->robot_base_frame = r.text("robotBaseFrame", "base_footprint");
-  c->update_rate = r.number("odometryRate", 20.0);
-  c->cmd_timeout = r.number("cmdTimeout", -1.0);
+  c->command_topic = r.textOr("commandTopic", "cmd_vel");
+  c->odometry_topic = r.textOr("odometryTopic", "odom");
+  c->odometry_frame = r.textOr("odometryFrame", "odom");
+  c->robot_base_frame = r.textOr("robotBaseFrame", "base_footprint");
+  c->update_rate = r.numberOr("odometryRate", 20.0);
+  c->cmd_timeout = r.numberOr("cmdTimeout", -1.0);
   c->publish_odom_tf = true;
   covariances(0.00001, 0.00001, 0.001, &c->pose_covariance);
 }
@@ -186,26 +154,29 @@ DriveConfig parseDriveConfig(const SensorSpec& spec, const std::string& model_na
     throw SensorError("plugin '" + spec.name + "' (" + p.filename + ") is not a drive plugin");
   }
   const std::string what = kind_name + " plugin '" + spec.name + "' of model '" + model_name + "'";
-  ParamReader r(p, what, &c);
+  ParamReader r(p, what, warn, &c);
   switch (c.kind) {
-    case DriveKind::kDiffDrive: parseDiffDrive(r, what, model_name, &c); break;
+    case DriveKind::kDiffDrive: parseDiffDrive(r, model_name, &c); break;
     case DriveKind::kSkidSteer: parseSkidSteer(r, &c); break;
     case DriveKind::kPlanarMove: parsePlanarMove(r, &c); break;
   }
   if (c.drivesJoints()) {
-    require(c.wheel_diameter > 0.0, what, "wheelDiameter", c.wheel_diameter,
-            "must be > 0 (wheel rates are rim speeds / (wheelDiameter / 2))");
-    require(c.wheel_separation > 0.0, what, "wheelSeparation", c.wheel_separation, "must be > 0");
-    require(c.wheel_torque >= 0.0, what, c.kind == DriveKind::kSkidSteer ? "torque" : "wheelTorque",
-            c.wheel_torque, "must be >= 0");
-    require(c.update_rate >= 0.0, what, "updateRate", c.update_rate, "must be >= 0");
+    r.require(c.wheel_diameter > 0.0, "wheelDiameter", c.wheel_diameter,
+              "must be > 0 (wheel rates are rim speeds / (wheelDiameter / 2))");
+    r.require(c.wheel_separation > 0.0, "wheelSeparation", c.wheel_separation, "must be > 0");
+    r.require(c.wheel_torque >= 0.0, c.kind == DriveKind::kSkidSteer ? "torque" : "wheelTorque",
+              c.wheel_torque, "must be >= 0");
+    r.require(c.update_rate >= 0.0, "updateRate", c.update_rate, "must be >= 0");
     for (const std::string& j : c.joints) {
-      if (j.empty()) throw SensorError(what + ": a wheel joint's name is empty");
+      if (j.empty()) r.fail("a wheel joint's name is empty");
     }
   } else {
-    require(c.update_rate >= 0.0, what, "odometryRate", c.update_rate, "must be >= 0");
+    r.require(c.update_rate >= 0.0, "odometryRate", c.update_rate, "must be >= 0");
   }
-  r.warnUnknown(warn, c.filename);
+  // Read by no noetic plugin, written by many models: alwaysOn (old gazebo_ros), legacyMode
+  // (melodic's diff drive); noetic ignores them as we do.
+  r.ignore({"alwaysOn", "legacyMode"});
+  r.finish();
   return c;
 }
 

@@ -13,10 +13,9 @@
 #include "tianracer_sim/sensors/imu/imu_sensor.h"
 
 #include "tianracer_sim/common/xml_reader.h"
+#include "tianracer_sim/model/plugin_reader.h"
 
 #include <cmath>
-#include <cstdlib>
-#include <sstream>
 
 #include <tinyxml2.h>
 
@@ -30,8 +29,8 @@ std::string fmt(double v) { return formatNumber(v); }
 
 // The reader reads a printed copy of the <sensor> (SensorSpec::xml), so its messages are placed
 // at the sensor's line of the model file (nullptr: no element of its own).
-// Numbers from text (plugin parameters, elements): NaN and inf are kept (validate() names
-// them), garbage is an error.
+// Numbers of elements: NaN and inf are kept (validate() names them), garbage is an error.
+// The plugins' parameters are read by the PluginReader, which refuses NaN and inf at once.
 double number(const XmlReader& r, const std::string& name, const std::string& text,
               const XMLElement* e = nullptr) {
   const auto v = parseNumber(text);
@@ -41,19 +40,6 @@ double number(const XmlReader& r, const std::string& name, const std::string& te
 double number(const XmlReader& r, const XMLElement* e) {
   return number(r, "<" + std::string(e->Name()) + ">", e->GetText() ? e->GetText() : "", e);
 }
-Eigen::Vector3d vector3(const XmlReader& r, const std::string& name, const std::string& text) {
-  std::istringstream in(text);
-  std::vector<double> v;
-  for (std::string tok; in >> tok;) v.push_back(number(r, name, tok));
-  if (v.size() != 3) r.fail(nullptr, name + " '" + trimText(text) + "' is not 3 numbers");
-  return Eigen::Vector3d(v[0], v[1], v[2]);
-}
-bool boolean(const XmlReader& r, const std::string& name, const std::string& text) {
-  const auto b = parseBool(text);
-  if (!b) r.fail(nullptr, name + " '" + trimText(text) + "' is not a boolean (true/false/1/0)");
-  return *b;
-}
-
 void readNoise(XmlReader& r, const XMLElement* noise, ImuAxisNoise* n, const std::string& where) {
   n->type = "gaussian";  // SDF's default
   if (const char* type = noise->Attribute("type")) n->type = trimText(type);
@@ -115,31 +101,28 @@ void readImu(XmlReader& r, const XMLElement* imu, ImuConfig& c) {
   }
 }
 
-void readSensorPlugin(XmlReader& r, const PluginSpec& p, const std::string& model_name,
-                      ImuConfig& c) {
+void readSensorPlugin(const PluginSpec& p, const std::string& context, const WarningSink& warn,
+                      const std::string& model_name, ImuConfig& c) {
+  PluginReader r(p, context, warn);
   c.has_plugin = true;
   c.plugin_filename = p.filename;
   c.robot_namespace = "/" + model_name;  // Gazebo: the model's name
   c.topic_name = "imu_data";
   c.frame_name.clear();
   c.plugin_rate = 1.0;  // libgazebo_ros_imu_sensor's default updateRateHZ
-  for (const auto& [key, value] : p.params) {
-    const std::string name = "<" + key + "> of " + baseName(p.filename);
-    if (key == "robotNamespace") c.robot_namespace = trimText(value);
-    else if (key == "topicName") c.topic_name = trimText(value);
-    else if (key == "frameName") c.frame_name = trimText(value);
-    else if (key == "bodyName") {}  // not read by the plugin either
-    else if (key == "updateRateHZ") c.plugin_rate = number(r, name, value);
-    else if (key == "gaussianNoise") c.gaussian_noise = number(r, name, value);
-    else if (key == "xyzOffset") c.xyz_offset = vector3(r, name, value);
-    else if (key == "rpyOffset") c.rpy_offset = vector3(r, name, value);
-    else if (key == "initialOrientationAsReference")
-      c.initial_orientation_as_reference = boolean(r, name, value);
-    else r.warn(nullptr, name + " is not a parameter of the plugin, ignored");
-  }
+  r.text("robotNamespace", &c.robot_namespace);
+  r.text("topicName", &c.topic_name);
+  r.text("frameName", &c.frame_name);
+  r.number("updateRateHZ", &c.plugin_rate);
+  r.number("gaussianNoise", &c.gaussian_noise);
+  r.vector3("xyzOffset", &c.xyz_offset);
+  r.vector3("rpyOffset", &c.rpy_offset);
+  r.boolean("initialOrientationAsReference", &c.initial_orientation_as_reference);
+  r.ignore({"bodyName"});  // not read by the plugin either
+  r.finish();
   if (c.frame_name.empty()) {
-    r.warn(nullptr, baseName(p.filename) + " has no <frameName> (Gazebo does not load it): " +
-                        "frame '" + c.link + "' used");
+    r.warn(r.fileName() + " has no <frameName> (Gazebo does not load it): frame '" + c.link +
+           "' used");
     c.frame_name = c.link;
   }
 }
@@ -153,10 +136,9 @@ double ImuConfig::publishRate() const {
 
 ImuConfig parseImuSensorConfig(const SensorSpec& spec, const std::string& model_name,
                                const WarningSink& warn) {
-  XmlReader r = XmlReader::copyOf(spec.source, spec.line,
-                                  "IMU sensor '" + spec.name + "' on link '" + spec.link +
-                                      "' of model '" + model_name + "': ",
-                                  warn);
+  const std::string context =
+      "IMU sensor '" + spec.name + "' on link '" + spec.link + "' of model '" + model_name + "'";
+  XmlReader r = XmlReader::copyOf(spec.source, spec.line, context + ": ", warn);
   if (spec.type != "imu") r.fail(nullptr, "type '" + spec.type + "' is not an IMU");
   ImuConfig c;
   c.name = spec.name;
@@ -183,7 +165,7 @@ ImuConfig parseImuSensorConfig(const SensorSpec& spec, const std::string& model_
   }
   for (const PluginSpec& p : spec.plugins) {
     if (baseName(p.filename) == "libgazebo_ros_imu_sensor.so") {
-      readSensorPlugin(r, p, model_name, c);
+      readSensorPlugin(p, context, warn, model_name, c);
     } else {
       r.warn(nullptr, "plugin '" + p.filename + "' is not supported on an IMU sensor, ignored");
     }
@@ -194,11 +176,11 @@ ImuConfig parseImuSensorConfig(const SensorSpec& spec, const std::string& model_
 
 ImuConfig parseImuPluginConfig(const SensorSpec& spec, const std::string& model_name,
                                const WarningSink& warn) {
-  XmlReader r = XmlReader::copyOf(spec.source, spec.line,
-                                  "IMU plugin '" + spec.name + "' of model '" + model_name + "': ",
-                                  warn);
-  if (spec.plugins.size() != 1) r.fail(nullptr, "expected one plugin");
+  const std::string context = "IMU plugin '" + spec.name + "' of model '" + model_name + "'";
+  if (spec.plugins.size() != 1)
+    throw InputError(SourceLocation{spec.source, spec.line, "plugin"}, context + ": expected one plugin");
   const PluginSpec& p = spec.plugins.front();
+  PluginReader r(p, context, warn);
   ImuConfig c;
   c.name = spec.name;
   c.model_plugin = true;
@@ -206,22 +188,18 @@ ImuConfig parseImuPluginConfig(const SensorSpec& spec, const std::string& model_
   c.plugin_filename = p.filename;
   c.topic_name = "/default_imu";
   c.service_name = "/default_imu";
-  for (const auto& [key, value] : p.params) {
-    const std::string name = "<" + key + ">";
-    if (key == "robotNamespace") c.robot_namespace = trimText(value);
-    else if (key == "topicName") c.topic_name = trimText(value);
-    else if (key == "serviceName") c.service_name = trimText(value);
-    else if (key == "bodyName") c.link = trimText(value);
-    else if (key == "frameName") c.frame_name = trimText(value);
-    else if (key == "updateRate") c.plugin_rate = number(r, name, value);
-    else if (key == "gaussianNoise") c.gaussian_noise = number(r, name, value);
-    else if (key == "xyzOffset") c.xyz_offset = vector3(r, name, value);
-    else if (key == "rpyOffset") c.rpy_offset = vector3(r, name, value);
-    else if (key == "alwaysOn") {}
-    else r.warn(nullptr, name + " is not a parameter of libgazebo_ros_imu, ignored");
-  }
-  if (c.link.empty())
-    r.fail(nullptr, "<bodyName> is missing (Gazebo does not load the plugin without it)");
+  r.text("robotNamespace", &c.robot_namespace);
+  r.text("topicName", &c.topic_name);
+  r.text("serviceName", &c.service_name);
+  r.text("bodyName", &c.link);
+  r.text("frameName", &c.frame_name);
+  r.number("updateRate", &c.plugin_rate);
+  r.number("gaussianNoise", &c.gaussian_noise);
+  r.vector3("xyzOffset", &c.xyz_offset);
+  r.vector3("rpyOffset", &c.rpy_offset);
+  r.ignore({"alwaysOn"});
+  r.finish();
+  if (c.link.empty()) r.fail("<bodyName> is missing (Gazebo does not load the plugin without it)");
   if (c.frame_name.empty()) c.frame_name = c.link;
   validate(c);
   return c;

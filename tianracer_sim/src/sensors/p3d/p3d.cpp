@@ -1,11 +1,6 @@
 #include "tianracer_sim/sensors/p3d/p3d.h"
 
-#include "tianracer_sim/common/xml_reader.h"
-
-#include <cmath>
-#include <cstdlib>
-#include <sstream>
-
+#include "tianracer_sim/model/plugin_reader.h"
 
 namespace tianracer_sim {
 
@@ -14,45 +9,24 @@ P3dConfig parseP3dConfig(const SensorSpec& spec, const std::string& model_name,
   const std::string what = "p3d plugin '" + spec.name + "' of model '" + model_name + "'";
   if (spec.plugins.size() != 1) throw SensorError(what + ": expected one plugin");
   const PluginSpec& p = spec.plugins.front();
-  auto number = [&](const std::string& key, const std::string& text) {
-    const std::string t = trimText(text);
-    const auto v = parseNumber(t);
-    if (!v) throw SensorError(what + ": <" + key + "> '" + t + "' is not a number");
-    if (!std::isfinite(*v)) throw SensorError(what + ": <" + key + "> " + t + " is not finite");
-    return *v;
-  };
-  auto vector3 = [&](const std::string& key, const std::string& text) {
-    std::istringstream in(text);
-    std::vector<double> v;
-    for (std::string tok; in >> tok;) v.push_back(number(key, tok));
-    if (v.size() != 3) throw SensorError(what + ": <" + key + "> '" + trimText(text) + "' is not 3 numbers");
-    return Eigen::Vector3d(v[0], v[1], v[2]);
-  };
+  PluginReader r(p, what, warn);
   P3dConfig c;
   c.name = spec.name;
-  for (const auto& [key, value] : p.params) {
-    if (key == "robotNamespace") c.robot_namespace = trimText(value);
-    else if (key == "bodyName") c.link = trimText(value);
-    else if (key == "topicName") c.topic_name = trimText(value);
-    else if (key == "frameName") c.frame_name = trimText(value);
-    else if (key == "updateRate") c.update_rate = number(key, value);
-    else if (key == "gaussianNoise") c.gaussian_noise = number(key, value);
-    else if (key == "xyzOffsets" || key == "xyzOffset") c.xyz_offsets = vector3(key, value);
-    else if (key == "rpyOffsets" || key == "rpyOffset") c.rpy_offsets = vector3(key, value);
-    else if (key == "alwaysOn") {}
-    else if (warn) warn(what + ": <" + key + "> is not a parameter of libgazebo_ros_p3d, ignored");
-  }
-  if (c.link.empty())
-    throw SensorError(what + ": <bodyName> is missing (Gazebo does not load the plugin without it)");
+  r.text("robotNamespace", &c.robot_namespace);
+  r.text("bodyName", &c.link);
+  r.text("topicName", &c.topic_name);
+  c.frame_name = r.frame("frameName", "world");
+  r.number("updateRate", &c.update_rate, true);
+  r.number("gaussianNoise", &c.gaussian_noise, true);
+  // gazebo_ros_p3d reads xyzOffsets/rpyOffsets; models often write the IMU plugin's singular
+  // (the plural wins when both are given).
+  for (const char* key : {"xyzOffset", "xyzOffsets"}) r.vector3(key, &c.xyz_offsets);
+  for (const char* key : {"rpyOffset", "rpyOffsets"}) r.vector3(key, &c.rpy_offsets);
+  r.ignore({"alwaysOn"});
+  r.finish();
+  if (c.link.empty()) r.fail("<bodyName> is missing (Gazebo does not load the plugin without it)");
   if (c.topic_name.empty())
-    throw SensorError(what + ": <topicName> is missing (Gazebo does not load the plugin without it)");
-  if (c.update_rate < 0.0)
-    throw SensorError(what + ": <updateRate> " + trimText(p.params.at("updateRate")) + " must be >= 0");
-  if (c.gaussian_noise < 0.0)
-    throw SensorError(what + ": <gaussianNoise> must be >= 0");
-  std::string frame = c.frame_name;
-  while (!frame.empty() && frame.front() == '/') frame.erase(frame.begin());
-  c.frame_name = frame.empty() ? "world" : frame;
+    r.fail("<topicName> is missing (Gazebo does not load the plugin without it)");
   if (c.frame_name != "world" && c.frame_name != "map") c.reference_link = c.frame_name;
   return c;
 }

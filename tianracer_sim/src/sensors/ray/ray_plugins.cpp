@@ -18,6 +18,7 @@
 
 #include "tianracer_sim/common/text.h"
 #include "tianracer_sim/common/xml_reader.h"
+#include "tianracer_sim/model/plugin_reader.h"
 
 namespace tianracer_sim {
 namespace {
@@ -29,56 +30,6 @@ const PluginSpec* findPlugin(const SensorSpec& spec, const std::string& stem) {
   return nullptr;
 }
 
-/// Reads one plugin's parameters, each by name; what is left is reported as unknown.
-class PluginReader {
- public:
-  PluginReader(const SensorSpec& spec, const PluginSpec& plugin, const WarningSink& warn)
-      : what_("sensor '" + spec.name + "'" + (spec.source.empty() ? "" : " (" + spec.source +
-                                                 (spec.line ? ":" + std::to_string(spec.line) : "") + ")") +
-              ", plugin " + plugin.filename),
-        plugin_(plugin), warn_(warn) {}
-
-  bool text(const std::string& key, std::string* out) {
-    const auto it = plugin_.params.find(key);
-    if (it == plugin_.params.end()) return false;
-    used_.push_back(key);
-    *out = trimText(it->second);
-    return true;
-  }
-  void number(const std::string& key, double* out, bool non_negative = true) {
-    std::string t;
-    if (!text(key, &t)) return;
-    const auto v = parseNumber(t);
-    if (!v || !std::isfinite(*v)) fail("<" + key + "> '" + t + "' is not a number");
-    if (non_negative && *v < 0.0) fail("<" + key + "> " + t + " must be >= 0");
-    *out = *v;
-  }
-  std::string frame(const std::string& key, const std::string& fallback) {
-    std::string f;
-    if (!text(key, &f) || f.empty()) return fallback;
-    while (!f.empty() && f.front() == '/') f.erase(f.begin());
-    return f.empty() ? fallback : f;
-  }
-  void warn(const std::string& message) const {
-    if (warn_) warn_(what_ + ": " + message);
-  }
-  [[noreturn]] void fail(const std::string& message) const {
-    throw SensorError(what_ + ": " + message);
-  }
-  void finish() const {
-    for (const auto& kv : plugin_.params) {
-      if (std::find(used_.begin(), used_.end(), kv.first) == used_.end())
-        warn("unknown parameter <" + kv.first + "> ignored");
-    }
-  }
-
- private:
-  std::string what_;
-  const PluginSpec& plugin_;
-  const WarningSink& warn_;
-  std::vector<std::string> used_;
-};
-
 // What gazebo_ros_range and gazebo_ros_block_laser share: the ray sensor they sit on, their
 // plugin (lib<stem>.so), and the names both read: robotNamespace, topicName and frameName (the
 // sensor's link by default). The reader goes on with the plugin's own parameters.
@@ -88,7 +39,7 @@ PluginReader readRayPlugin(const SensorSpec& spec, const std::string& stem,
   c->ray = parseRaySensorConfig(spec, warn);
   const PluginSpec* p = findPlugin(spec, stem);
   if (!p) throw SensorError("sensor '" + spec.name + "': no lib" + stem + " plugin");
-  PluginReader r(spec, *p, warn);
+  PluginReader r(*p, "sensor '" + spec.name + "', plugin " + p->filename, warn);
   r.text("robotNamespace", &c->robot_namespace);
   r.text("topicName", &c->topic_name);
   c->frame_name = r.frame("frameName", c->ray.link);
@@ -107,7 +58,6 @@ RangeConfig parseRangeConfig(const SensorSpec& spec, const WarningSink& warn) {
   RangeConfig c;
   PluginReader r = readRayPlugin(spec, "gazebo_ros_range", warn, &c);
   c.fov = c.ray.max_angle - c.ray.min_angle;
-  std::string ignored;
   std::string radiation;
   if (r.text("radiation", &radiation)) {
     if (radiation == "ultrasound") {
@@ -119,11 +69,11 @@ RangeConfig parseRangeConfig(const SensorSpec& spec, const WarningSink& warn) {
                "gazebo_ros_range");
     }
   }
-  r.number("fov", &c.fov);
+  r.number("fov", &c.fov, true);
   if (c.fov > 2.0 * M_PI) r.fail("<fov> " + formatNumber(c.fov) + " rad is more than 2 pi");
-  r.number("gaussianNoise", &c.gaussian_noise);
-  r.number("updateRate", &c.update_rate);
-  r.text("alwaysOn", &ignored);
+  r.number("gaussianNoise", &c.gaussian_noise, true);
+  r.number("updateRate", &c.update_rate, true);
+  r.ignore({"alwaysOn"});
   r.finish();
   return c;
 }
@@ -162,11 +112,10 @@ int BlockLaserConfig::rows() const {
 BlockLaserConfig parseBlockLaserConfig(const SensorSpec& spec, const WarningSink& warn) {
   BlockLaserConfig c;
   PluginReader r = readRayPlugin(spec, "gazebo_ros_block_laser", warn, &c);
-  std::string ignored;
-  r.number("gaussianNoise", &c.gaussian_noise);
-  r.number("hokuyoMinIntensity", &c.hokuyo_min_intensity, false);
-  r.number("updateRate", &c.update_rate);
-  r.text("alwaysOn", &ignored);
+  r.number("gaussianNoise", &c.gaussian_noise, true);
+  r.number("hokuyoMinIntensity", &c.hokuyo_min_intensity);
+  r.number("updateRate", &c.update_rate, true);
+  r.ignore({"alwaysOn"});
   r.finish();
   if (!(c.ray.vertical_resolution > 0.0) || !std::isfinite(c.ray.vertical_resolution))
     throw SensorError("sensor '" + spec.name + "': <vertical><resolution> " +

@@ -38,6 +38,7 @@
 #include <tinyxml2.h>
 
 #include "tianracer_sim/lidar/ray_caster.h"
+#include "tianracer_sim/model/plugin_reader.h"
 
 namespace tianracer_sim {
 
@@ -116,27 +117,14 @@ RaySensorConfig ConfigReader::read() {
       c.has_ros_plugin = true;
       c.velodyne = true;
       c.topic_name = "/world";  // the plugin's defaults
-      for (const auto& kv : p.params) {
-        const std::string v = trimText(kv.second);
-        auto num = [&] {
-          const auto d = parseNumber(v);
-          if (!d)
-            throw SensorError(what_ + ": <" + kv.first + "> '" + v + "' of plugin '" + p.filename +
-                              "' is not a number");
-          return *d;
-        };
-        if (kv.first == "topicName") c.topic_name = v;
-        else if (kv.first == "frameName") {
-          std::string f = v;
-          while (!f.empty() && f.front() == '/') f.erase(f.begin());
-          c.frame_name = f;
-        } else if (kv.first == "robotNamespace") c.robot_namespace = v;
-        else if (kv.first == "min_range") c.cloud_min_range = num();
-        else if (kv.first == "max_range") c.cloud_max_range = num();
-        else if (kv.first == "gaussianNoise") c.cloud_noise = num();
-        else if (warn_)
-          warn_(what_ + ": <" + kv.first + "> of plugin '" + p.filename + "' is not supported, ignored");
-      }
+      PluginReader r(p, what_, warn_);
+      r.text("topicName", &c.topic_name);
+      c.frame_name = r.frame("frameName", c.frame_name);
+      r.text("robotNamespace", &c.robot_namespace);
+      r.number("min_range", &c.cloud_min_range);
+      r.number("max_range", &c.cloud_max_range);
+      r.number("gaussianNoise", &c.cloud_noise);
+      r.finish();
       continue;
     }
     // gazebo_ros_range and gazebo_ros_block_laser read the same <ray>; their own parsers
@@ -147,24 +135,16 @@ RaySensorConfig ConfigReader::read() {
     }
     if (!laser) {
       if (warn_)
-        warn_(what_ + ": plugin '" + p.filename + "' is not supported on a ray sensor, ignored");
+        warn_(formatLocation(p.source, p.line) + what_ + ": plugin '" + p.filename +
+              "' is not supported on a ray sensor, ignored");
       continue;
     }
     c.has_ros_plugin = true;
-    for (const auto& kv : p.params) {
-      if (kv.first == "topicName") {
-        c.topic_name = kv.second;
-      } else if (kv.first == "frameName") {
-        std::string f = kv.second;
-        while (!f.empty() && f.front() == '/') f.erase(f.begin());
-        c.frame_name = f;
-      } else if (kv.first == "robotNamespace") {
-        c.robot_namespace = kv.second;
-      } else if (warn_) {
-        warn_(what_ + ": <" + kv.first + "> of plugin '" + p.filename +
-              "' is not used by gazebo_ros_laser, ignored");
-      }
-    }
+    PluginReader r(p, what_, warn_);
+    r.text("topicName", &c.topic_name);
+    c.frame_name = r.frame("frameName", c.frame_name);
+    r.text("robotNamespace", &c.robot_namespace);
+    r.finish();
   }
   if (c.vertical_samples == 1 && (c.vertical_min_angle != 0.0 || c.vertical_max_angle != 0.0) &&
       warn_)

@@ -1,0 +1,111 @@
+// The one reader of a <plugin>'s parameters: values by name, errors placed at the <plugin>,
+// one warning for each parameter nothing read.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "tianracer_sim/model/plugin_reader.h"
+
+namespace tianracer_sim {
+namespace {
+
+using ::testing::ElementsAre;
+
+PluginSpec plugin(std::map<std::string, std::string> params) {
+  PluginSpec p;
+  p.name = "drive";
+  p.filename = "libgazebo_ros_diff_drive.so";
+  p.params = std::move(params);
+  p.source = "car.urdf";
+  p.line = 12;
+  return p;
+}
+
+std::string failure(const PluginSpec& p, void (*read)(PluginReader&)) {
+  PluginReader r(p, "plugin 'drive' of model 'car'", {});
+  try {
+    read(r);
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().file, "car.urdf");
+    EXPECT_EQ(e.where().line, 12);
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(PluginReader, ReadsValuesByName) {
+  const PluginSpec p = plugin({{"topicName", "  odom "},
+                               {"frameName", "//base"},
+                               {"rate", "2.5"},
+                               {"offset", "1 2 3"},
+                               {"publishTf", "True"}});
+  PluginReader r(p, "x", {});
+  EXPECT_EQ(r.fileName(), "libgazebo_ros_diff_drive.so");
+  EXPECT_EQ(r.text("topicName"), std::optional<std::string>("odom"));
+  EXPECT_EQ(r.text("missing"), std::nullopt);
+  std::string kept = "default";
+  EXPECT_FALSE(r.text("missing", &kept));
+  EXPECT_EQ(kept, "default");
+  EXPECT_EQ(r.frame("frameName", "link"), "base");
+  EXPECT_EQ(r.frame("noFrame", "link"), "link");
+  double rate = 0.0;
+  EXPECT_TRUE(r.number("rate", &rate, true));
+  EXPECT_DOUBLE_EQ(rate, 2.5);
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  EXPECT_TRUE(r.vector3("offset", &offset));
+  EXPECT_EQ(offset, Eigen::Vector3d(1, 2, 3));
+  bool tf = false;
+  EXPECT_TRUE(r.boolean("publishTf", &tf));
+  EXPECT_TRUE(tf);
+}
+
+TEST(PluginReader, BadValuesArePlacedAtThePluginAndNameTheValue) {
+  const std::string where = "car.urdf:12: plugin 'drive' of model 'car': ";
+  EXPECT_EQ(failure(plugin({{"rate", "fast"}}), [](PluginReader& r) {
+              double v;
+              r.number("rate", &v);
+            }),
+            where + "<rate> 'fast' is not a number");
+  EXPECT_EQ(failure(plugin({{"rate", "inf"}}), [](PluginReader& r) {
+              double v;
+              r.number("rate", &v);
+            }),
+            where + "<rate> inf is not finite");
+  EXPECT_EQ(failure(plugin({{"rate", "-1"}}), [](PluginReader& r) {
+              double v;
+              r.number("rate", &v, true);
+            }),
+            where + "<rate> -1 must be >= 0");
+  EXPECT_EQ(failure(plugin({{"offset", "1 2"}}), [](PluginReader& r) {
+              Eigen::Vector3d v;
+              r.vector3("offset", &v);
+            }),
+            where + "<offset> '1 2' is not 3 numbers");
+  EXPECT_EQ(failure(plugin({{"publishTf", "yes"}}), [](PluginReader& r) {
+              bool b;
+              r.boolean("publishTf", &b);
+            }),
+            where + "<publishTf> 'yes' is not a boolean (true, false, 1 or 0)");
+  EXPECT_EQ(failure(plugin({}), [](PluginReader& r) { r.fail("<leftJoint> is empty"); }),
+            where + "<leftJoint> is empty");
+}
+
+TEST(PluginReader, WarnsOnceAboutEachParameterNothingRead) {
+  std::vector<std::string> warnings;
+  const PluginSpec p = plugin({{"topicName", "odom"}, {"alwaysOn", "true"}, {"colour", "red"}});
+  PluginReader r(p, "plugin 'drive'", [&](const std::string& w) { warnings.push_back(w); });
+  r.text("topicName");
+  r.ignore({"alwaysOn"});
+  r.finish();
+  r.finish();
+  r.warn("<odometrySource> 'gps' read as world");
+  EXPECT_THAT(warnings,
+              ElementsAre("car.urdf:12: plugin 'drive': <colour> is not a parameter of "
+                          "libgazebo_ros_diff_drive.so, ignored",
+                          "car.urdf:12: plugin 'drive': <odometrySource> 'gps' read as world"));
+}
+
+}  // namespace
+}  // namespace tianracer_sim
