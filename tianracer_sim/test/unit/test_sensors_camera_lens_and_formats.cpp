@@ -190,7 +190,7 @@ TEST(LensDistortionConfig, DistortionElementAutoDistortionAndBorderCrop) {
   e = errorOf(cameraXml("R8G8B8", "<distortion><center>0.5</center></distortion>", ""));
   EXPECT_NE(e.find("<distortion><center> '0.5' is not two numbers"), std::string::npos) << e;
   e = errorOf(cameraXml("R8G8B8", kBarrel, "<borderCrop>maybe</borderCrop>"));
-  EXPECT_NE(e.find("plugin <borderCrop> 'maybe' is not a boolean"), std::string::npos) << e;
+  EXPECT_NE(e.find("<borderCrop> 'maybe' is not a boolean"), std::string::npos) << e;
 }
 
 // A small red cube off the axis of a camera at the origin looking along x, on grey.

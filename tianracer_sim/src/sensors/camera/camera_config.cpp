@@ -10,6 +10,7 @@
 
 #include "tianracer_sim/common/text.h"
 #include "tianracer_sim/common/xml_reader.h"
+#include "tianracer_sim/model/plugin_reader.h"
 
 namespace tianracer_sim {
 
@@ -94,7 +95,7 @@ class Parser {
   // The <sensor> is read from its printed copy (SensorSpec::xml): every message is placed at the
   // sensor's line of the model file, then names the sensor.
   Parser(const SensorSpec& sensor, const WarningSink& warn)
-      : sensor_(sensor),
+      : sensor_(sensor), warn_(warn),
         xml_(XmlReader::copyOf(sensor.source, sensor.line, context(sensor), warn)) {}
 
   static std::string context(const SensorSpec& sensor) {
@@ -253,8 +254,7 @@ class Parser {
     c->frame_name = sensor_.link;
   }
 
-  // Reads the plugin's parameters. `extra` are the keys only this plugin type knows; returns
-  // the plugin (or nullptr).
+  // The sensor's plugin of one of `filenames` (or nullptr).
   const PluginSpec* findPlugin(const std::vector<std::string>& filenames) const {
     for (const PluginSpec& p : sensor_.plugins) {
       for (const auto& f : filenames) {
@@ -264,52 +264,42 @@ class Parser {
     return nullptr;
   }
 
-  void parseCameraPlugin(const PluginSpec& p, CameraConfig* c, std::set<std::string>* used) {
+  /// The plugin's parameters, placed at the <plugin> and naming the sensor.
+  PluginReader pluginReader(const PluginSpec& p) const {
+    std::string c = context(sensor_);
+    c.resize(c.size() - 2);  // without ": "
+    return PluginReader(p, c, warn_);
+  }
+
+  void parseCameraPlugin(PluginReader& r, CameraConfig* c) {
+    const PluginSpec& p = r.plugin();
     c->has_plugin = true;
     c->plugin_filename = p.filename;
     c->triggered = endsWith(p.filename, "libgazebo_ros_triggered_camera.so");
-    auto get = [&](const std::string& key, std::string* out) {
-      const auto it = p.params.find(key);
-      if (it == p.params.end()) return false;
-      used->insert(key);
-      *out = trimText(it->second);
-      return true;
-    };
-    auto num = [&](const std::string& key, double* out) {
-      std::string text;
-      if (get(key, &text)) *out = number("plugin <" + key + ">", text);
-    };
     // An empty <robotNamespace/> is the root here. gazebo_ros's GetRobotNamespace
     // (gazebo_ros_utils.h) makes it the model's name; tianracer.gazebo's default
     // sensor_namespace "" relies on the root (the seed's /rrbot/camera1/...), and none of
     // gazebo_ros_pkgs' registered tests depends on it (docs/model_and_sensors.md).
-    get("robotNamespace", &c->robot_namespace);
-    get("cameraName", &c->camera_name);
-    get("imageTopicName", &c->image_topic);
-    get("cameraInfoTopicName", &c->camera_info_topic);
-    get("triggerTopicName", &c->trigger_topic);
-    if (c->triggered && c->trigger_topic.empty()) fail("plugin <triggerTopicName> is empty");
+    r.text("robotNamespace", &c->robot_namespace);
+    r.text("cameraName", &c->camera_name);
+    r.text("imageTopicName", &c->image_topic);
+    r.text("cameraInfoTopicName", &c->camera_info_topic);
+    r.text("triggerTopicName", &c->trigger_topic);
+    if (c->triggered && c->trigger_topic.empty()) r.fail("<triggerTopicName> is empty");
     std::string frame;
-    if (get("frameName", &frame) && !frame.empty()) c->frame_name = frame;
-    num("updateRate", &c->plugin_update_rate);
-    num("hackBaseline", &c->hack_baseline);
+    if (r.text("frameName", &frame) && !frame.empty()) c->frame_name = frame;
+    r.number("updateRate", &c->plugin_update_rate);
+    r.number("hackBaseline", &c->hack_baseline);
     // gazebo_ros reads the camel-case names; openni examples write distortion_k1: take both.
     for (const auto& k : {std::make_pair("distortionK1", &c->k1), std::make_pair("distortion_k1", &c->k1),
                           std::make_pair("distortionK2", &c->k2), std::make_pair("distortion_k2", &c->k2),
                           std::make_pair("distortionK3", &c->k3), std::make_pair("distortion_k3", &c->k3),
                           std::make_pair("distortionT1", &c->t1), std::make_pair("distortion_t1", &c->t1),
                           std::make_pair("distortionT2", &c->t2), std::make_pair("distortion_t2", &c->t2)}) {
-      num(k.first, k.second);
+      r.number(k.first, k.second);
     }
-    std::string flag;
-    auto boolean = [&](const std::string& key, bool* out) {
-      if (!get(key, &flag)) return;
-      if (flag == "true" || flag == "1") *out = true;
-      else if (flag == "false" || flag == "0") *out = false;
-      else fail("plugin <" + key + "> '" + flag + "' is not a boolean (true, false, 1, 0)");
-    };
-    boolean("autoDistortion", &c->auto_distortion);
-    boolean("borderCrop", &c->border_crop);
+    r.boolean("autoDistortion", &c->auto_distortion);
+    r.boolean("borderCrop", &c->border_crop);
     if (c->auto_distortion) {
       // gazebo_ros_camera_utils Init: D from the sensor's <distortion>.
       c->k1 = c->distortion.k1;
@@ -319,36 +309,27 @@ class Parser {
       c->t2 = c->distortion.p2;
     }
     c->distortion.crop = c->border_crop && c->distortion.k1 < 0.0;
-    num("Cx", &c->cx_override);
-    num("Cy", &c->cy_override);
-    num("focalLength", &c->focal_length_override);
+    r.number("Cx", &c->cx_override);
+    r.number("Cy", &c->cy_override);
+    r.number("focalLength", &c->focal_length_override);
     double unused = 0.0;
-    num("CxPrime", &unused);
-    std::string ignored;
-    get("alwaysOn", &ignored);
-    if (c->plugin_update_rate < 0.0) fail("plugin <updateRate> must be >= 0");
+    r.number("CxPrime", &unused);
+    r.ignore({"alwaysOn"});
+    if (c->plugin_update_rate < 0.0) r.fail("<updateRate> must be >= 0");
     const LensDistortion& d = c->distortion;
     if (c->k1 != d.k1 || c->k2 != d.k2 || c->k3 != d.k3 || c->t1 != d.p1 || c->t2 != d.p2) {
-      warn("camera_info D [" + formatShort(c->k1) + " " + formatShort(c->k2) + " " +
-           formatShort(c->t1) + " " + formatShort(c->t2) + " " + formatShort(c->k3) +
-           "] differs from the <distortion> applied to the images (k1 k2 p1 p2 k3 = " +
-           formatShort(d.k1) + " " + formatShort(d.k2) + " " + formatShort(d.p1) + " " +
-           formatShort(d.p2) + " " + formatShort(d.k3) + "): as gazebo_ros, D is the plugin's "
-           "distortionK1.. unless <autoDistortion> is true");
+      r.warn("camera_info D [" + formatShort(c->k1) + " " + formatShort(c->k2) + " " +
+             formatShort(c->t1) + " " + formatShort(c->t2) + " " + formatShort(c->k3) +
+             "] differs from the <distortion> applied to the images (k1 k2 p1 p2 k3 = " +
+             formatShort(d.k1) + " " + formatShort(d.k2) + " " + formatShort(d.p1) + " " +
+             formatShort(d.p2) + " " + formatShort(d.k3) + "): as gazebo_ros, D is the plugin's "
+             "distortionK1.. unless <autoDistortion> is true");
     }
     if (c->focal_length_override > 0.0 &&
         std::fabs(c->focal_length_override - c->focalLength()) > 1e-6 * c->focalLength()) {
-      warn("plugin <focalLength> " + std::to_string(c->focal_length_override) +
-           " disagrees with width and hfov (f = " + std::to_string(c->focalLength()) +
-           "); camera_info reports it and the images are rendered with it");
-    }
-  }
-
-  void warnUnused(const PluginSpec& p, const std::set<std::string>& used) {
-    for (const auto& kv : p.params) {
-      if (!used.count(kv.first)) {
-        warn("plugin " + p.filename + ": unknown parameter <" + kv.first + "> ignored");
-      }
+      r.warn("<focalLength> " + std::to_string(c->focal_length_override) +
+             " disagrees with width and hfov (f = " + std::to_string(c->focalLength()) +
+             "); camera_info reports it and the images are rendered with it");
     }
   }
 
@@ -356,6 +337,7 @@ class Parser {
 
  private:
   const SensorSpec& sensor_;
+  WarningSink warn_;
   XmlReader xml_;
 };
 
@@ -371,9 +353,9 @@ CameraConfig parseCameraConfig(const SensorSpec& sensor, const WarningSink& warn
   CameraConfig c;
   parser.parseCamera(&c);
   if (const PluginSpec* p = parser.findPlugin(kCameraPlugins)) {
-    std::set<std::string> used;
-    parser.parseCameraPlugin(*p, &c, &used);
-    parser.warnUnused(*p, used);
+    PluginReader r = parser.pluginReader(*p);
+    parser.parseCameraPlugin(r, &c);
+    r.finish();
   }
   return c;
 }
@@ -390,31 +372,19 @@ DepthCameraConfig parseDepthCameraConfig(const SensorSpec& sensor, const Warning
     d.camera.distortion = LensDistortion();
   }
   if (const PluginSpec* p = parser.findPlugin(kDepthPlugins)) {
-    std::set<std::string> used;
-    parser.parseCameraPlugin(*p, &d.camera, &used);
-    auto get = [&](const std::string& key, std::string* out) {
-      const auto it = p->params.find(key);
-      if (it == p->params.end()) return false;
-      used.insert(key);
-      *out = trimText(it->second);
-      return true;
-    };
-    auto num = [&](const std::string& key, double* out) {
-      std::string text;
-      if (get(key, &text)) *out = parser.number("plugin <" + key + ">", text);
-    };
-    get("depthImageTopicName", &d.depth_image_topic);
-    get("depthImageCameraInfoTopicName", &d.depth_camera_info_topic);
-    get("pointCloudTopicName", &d.point_cloud_topic);
-    num("baseline", &d.baseline);
-    num("pointCloudCutoff", &d.point_cloud_cutoff);
-    num("pointCloudCutoffMax", &d.point_cloud_cutoff_max);
+    PluginReader r = parser.pluginReader(*p);
+    parser.parseCameraPlugin(r, &d.camera);
+    r.text("depthImageTopicName", &d.depth_image_topic);
+    r.text("depthImageCameraInfoTopicName", &d.depth_camera_info_topic);
+    r.text("pointCloudTopicName", &d.point_cloud_topic);
+    r.number("baseline", &d.baseline);
+    r.number("pointCloudCutoff", &d.point_cloud_cutoff);
+    r.number("pointCloudCutoffMax", &d.point_cloud_cutoff_max);
     if (!(d.point_cloud_cutoff < d.point_cloud_cutoff_max)) {
-      parser.fail("plugin <pointCloudCutoff> " + std::to_string(d.point_cloud_cutoff) +
-                  " must be less than <pointCloudCutoffMax> " +
-                  std::to_string(d.point_cloud_cutoff_max));
+      r.fail("<pointCloudCutoff> " + std::to_string(d.point_cloud_cutoff) +
+             " must be less than <pointCloudCutoffMax> " + std::to_string(d.point_cloud_cutoff_max));
     }
-    parser.warnUnused(*p, used);
+    r.finish();
   }
   return d;
 }

@@ -10,6 +10,7 @@
 
 #include "tianracer_sim/common/text.h"
 #include "tianracer_sim/common/xml_reader.h"
+#include "tianracer_sim/model/plugin_reader.h"
 
 namespace tianracer_sim {
 namespace {
@@ -186,26 +187,17 @@ class MultiCameraParser {
                   std::vector<std::string>* suffixes, std::vector<std::string>* frames,
                   double* hack_baseline) {
     const std::size_t n = names.size();
-    const auto get = [&](const std::string& key, std::string* out) {
-      const auto it = p.params.find(key);
-      if (it == p.params.end()) return false;
-      *out = trimText(it->second);
-      return true;
-    };
+    std::string where = context(sensor_, model_name_);
+    where.resize(where.size() - 2);  // without ": "
+    PluginReader r(p, where, warn_);
+    r.number("hackBaseline", hack_baseline);
     std::string text;
-    if (get("hackBaseline", &text)) {
-      char* end = nullptr;
-      *hack_baseline = std::strtod(text.c_str(), &end);
-      if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(*hack_baseline)) {
-        fail("plugin <hackBaseline> '" + text + "' is not a number");
-      }
-    }
     // Topic suffixes: the list, else the left/right pair, else each camera's name.
-    if (get("cameraSuffixes", &text) && !text.empty()) {
+    if (r.text("cameraSuffixes", &text) && !text.empty()) {
       *suffixes = splitList(text);
       if (suffixes->size() != n) {
-        fail("plugin <cameraSuffixes> '" + text + "' has " + std::to_string(suffixes->size()) +
-             " entries for " + std::to_string(n) + " cameras");
+        r.fail("<cameraSuffixes> '" + text + "' has " + std::to_string(suffixes->size()) +
+               " entries for " + std::to_string(n) + " cameras");
       }
     } else if (n == 2 && names[0].find("left") != std::string::npos &&
                names[1].find("right") != std::string::npos) {
@@ -216,21 +208,17 @@ class MultiCameraParser {
     } else {
       for (const std::string& name : names) suffixes->push_back("/" + name);
     }
-    if (get("frameName", &text) && !text.empty()) {
+    if (r.text("frameName", &text) && !text.empty()) {
       *frames = splitList(text);
       if (frames->size() == 1) frames->resize(n, frames->front());
       if (frames->size() != n) {
-        fail("plugin <frameName> '" + text + "' lists " + std::to_string(frames->size()) +
-             " frames for " + std::to_string(n) + " cameras (give one, or one per camera)");
+        r.fail("<frameName> '" + text + "' lists " + std::to_string(frames->size()) +
+               " frames for " + std::to_string(n) + " cameras (give one, or one per camera)");
       }
     }
-    for (const auto& kv : p.params) {
-      if (!kSharedCameraParams.count(kv.first) && kv.first != "hackBaseline" &&
-          kv.first != "cameraSuffixes" && kv.first != "frameName") {
-        warn(std::string("plugin ") + kMultiCameraPlugin + ": unknown parameter <" + kv.first +
-             "> ignored");
-      }
-    }
+    // The shared ones are read by each camera's own parser (cameraPlugin()).
+    for (const std::string& key : kSharedCameraParams) r.has(key);
+    r.finish();
   }
 
   const SensorSpec& sensor_;
