@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "model_internal.h"
+#include "tianracer_sim/model/plugin_reader.h"
 
 namespace tianracer_sim {
 
@@ -200,62 +201,44 @@ void parseLinkExtension(const XMLElement* g, const std::string& link, LinkExtens
   }
 }
 
-void checkKnownParams(const PluginSpec& p, const std::set<std::string>& known,
-                      const std::string& source, XmlReader& warner) {
-  for (const auto& kv : p.params) {
-    if (known.count(kv.first)) continue;
-    warner.warnOnce("plugin-param:" + p.filename + ":" + kv.first,
-                    formatLocation(source, p.line) + "plugin '" + p.name + "' (" + p.filename +
-                        "): unknown parameter <" + kv.first + "> ignored");
-  }
+/// The reader of a model plugin's parameters: "<file>:<line>: plugin 'name' (file): ...".
+PluginReader modelPluginReader(const PluginSpec& p, XmlReader& warner) {
+  return PluginReader(p, "plugin '" + p.name + "' (" + p.filename + ")",
+                      [&warner](const std::string& m) { warner.warn(m); });
 }
 
-RosControlSpec rosControl(const PluginSpec& p, const std::string& source, XmlReader& warner) {
-  checkKnownParams(p,
-                   {"robotNamespace", "robotParam", "controlPeriod", "robotSimType",
-                    "legacyModeNS", "eStopTopic"},
-                   source, warner);
-  const std::string where =
-      formatLocation(source, p.line) + "plugin '" + p.name + "' (" + p.filename + "): ";
-  RosControlSpec r;
-  auto it = p.params.find("robotNamespace");
-  if (it != p.params.end()) r.robot_namespace = it->second;
-  it = p.params.find("robotParam");
-  if (it != p.params.end() && !it->second.empty()) r.robot_param = it->second;
-  it = p.params.find("controlPeriod");
-  if (it != p.params.end()) {
-    const auto d = parseNumber(it->second);
-    if (!d || !std::isfinite(*d) || *d < 0.0)
-      throw ModelError(where + "controlPeriod '" + it->second +
-                       "' must be a finite number of seconds >= 0");
-    r.control_period = *d;
-  }
-  it = p.params.find("robotSimType");
-  if (it != p.params.end() && it->second != "gazebo_ros_control/DefaultRobotHWSim")
-    warner.warn(where + "robotSimType '" + it->second +
-                "' is not supported; the built-in DefaultRobotHWSim behaviour is used");
-  return r;
+RosControlSpec rosControl(const PluginSpec& p, XmlReader& warner) {
+  PluginReader r = modelPluginReader(p, warner);
+  RosControlSpec s;
+  r.text("robotNamespace", &s.robot_namespace);
+  if (const auto param = r.text("robotParam"); param && !param->empty()) s.robot_param = *param;
+  r.number("controlPeriod", &s.control_period, true);
+  if (const auto type = r.text("robotSimType");
+      type && *type != "gazebo_ros_control/DefaultRobotHWSim")
+    r.warn("robotSimType '" + *type +
+           "' is not supported; the built-in DefaultRobotHWSim behaviour is used");
+  r.ignore({"legacyModeNS", "eStopTopic"});
+  r.finish();
+  return s;
 }
 
-JointStatePublisherSpec jointStatePublisher(const PluginSpec& p, const std::string& source,
+JointStatePublisherSpec jointStatePublisher(const PluginSpec& p,
                                             const std::map<std::string, int>& joints,
                                             XmlReader& warner) {
-  checkKnownParams(p, {"jointName", "updateRate", "robotNamespace", "alwaysOn"}, source, warner);
-  const std::string where =
-      formatLocation(source, p.line) + "plugin '" + p.name + "' (" + p.filename + "): ";
+  PluginReader r = modelPluginReader(p, warner);
   JointStatePublisherSpec s;
-  auto it = p.params.find("jointName");
-  if (it == p.params.end()) throw ModelError(where + "no <jointName>");
+  const auto list = r.text("jointName");
+  if (!list) r.fail("no <jointName>");
   // Comma separated; whitespace anywhere inside a name is dropped (the seed writes
   // "left_ front_wheel_joint" for left_front_wheel_joint).
   std::string name;
   auto flush = [&]() {
     if (name.empty()) return;
-    if (!joints.count(name)) throw ModelError(where + "unknown joint '" + name + "'");
+    if (!joints.count(name)) r.fail("unknown joint '" + name + "'");
     s.joint_names.push_back(name);
     name.clear();
   };
-  for (char ch : it->second) {
+  for (char ch : *list) {
     if (ch == ',') {
       flush();
     } else if (!std::isspace(static_cast<unsigned char>(ch))) {
@@ -263,16 +246,11 @@ JointStatePublisherSpec jointStatePublisher(const PluginSpec& p, const std::stri
     }
   }
   flush();
-  if (s.joint_names.empty()) throw ModelError(where + "<jointName> lists no joints");
-  it = p.params.find("updateRate");
-  if (it != p.params.end()) {
-    const auto d = parseNumber(it->second);
-    if (!d || !std::isfinite(*d) || *d < 0.0)
-      throw ModelError(where + "updateRate '" + it->second + "' must be a finite number >= 0");
-    s.update_rate = *d;
-  }
-  it = p.params.find("robotNamespace");
-  if (it != p.params.end()) s.robot_namespace = it->second;
+  if (s.joint_names.empty()) r.fail("<jointName> lists no joints");
+  r.number("updateRate", &s.update_rate, true);
+  r.text("robotNamespace", &s.robot_namespace);
+  r.ignore({"alwaysOn"});
+  r.finish();
   return s;
 }
 
@@ -457,14 +435,14 @@ RobotExtensions parseExtensionsXml(const XMLElement* robot, const std::string& s
           throw ModelError(at(source, c) + "second " + kRosControl + " plugin (the first is at line " +
                            std::to_string(ros_control_element->GetLineNum()) + ")");
         ros_control_element = c;
-        ext.ros_control = rosControl(p, source, warner);
+        ext.ros_control = rosControl(p, warner);
       } else if (p.filename == kJointStatePublisher) {
         if (jsp_element)
           throw ModelError(at(source, c) + "second " + kJointStatePublisher +
                            " plugin (the first is at line " +
                            std::to_string(jsp_element->GetLineNum()) + ")");
         jsp_element = c;
-        ext.joint_state_publisher = jointStatePublisher(p, source, joints, warner);
+        ext.joint_state_publisher = jointStatePublisher(p, joints, warner);
       }
       // Other plugins (IMU, p3d, ...) are the sensor registry's to judge, which this layer
       // cannot see: the start-up table names each one simulated or left out.

@@ -175,12 +175,14 @@ TEST(Extensions, RosControlPlugin) {
                       "</gazebo>"));
   EXPECT_EQ(ext.ros_control->control_period, 0.01);
   EXPECT_EQ(ext.ros_control->robot_param, "desc");
-  EXPECT_THAT(p.warnings, ElementsAre(HasSubstr("unknown parameter <colour> ignored"),
-                                      HasSubstr("robotSimType 'my/Sim' is not supported")));
+  EXPECT_THAT(p.warnings,
+              ElementsAre(HasSubstr("robotSimType 'my/Sim' is not supported"),
+                          HasSubstr("<colour> is not a parameter of libgazebo_ros_control.so")));
 
   EXPECT_THAT(p.error(robot("<gazebo><plugin name='rc' filename='libgazebo_ros_control.so'>"
                             "<controlPeriod>fast</controlPeriod></plugin></gazebo>")),
-              HasSubstr("plugin 'rc' (libgazebo_ros_control.so): controlPeriod 'fast'"));
+              HasSubstr("plugin 'rc' (libgazebo_ros_control.so): <controlPeriod> 'fast' is not a "
+                        "number"));
   EXPECT_THAT(p.error(robot("<gazebo><plugin name='a' filename='libgazebo_ros_control.so'/>"
                             "<plugin name='b' filename='libgazebo_ros_control.so'/></gazebo>")),
               HasSubstr("second libgazebo_ros_control.so plugin"));
@@ -210,7 +212,7 @@ TEST(Extensions, JointStatePublisherStripsWhitespaceInsideNames) {
                             "filename='libgazebo_ros_joint_state_publisher.so'>"
                             "<jointName>wheel_joint</jointName><updateRate>nan</updateRate>"
                             "</plugin></gazebo>")),
-              HasSubstr("updateRate 'nan'"));
+              HasSubstr("<updateRate> nan is not finite"));
 }
 
 // Other model plugins are kept for the sensor registry and the start-up table to judge
