@@ -96,6 +96,15 @@ XmlReader XmlReader::copyOf(std::string source, int line, std::string context, W
   return r;
 }
 
+XMLElement* XmlReader::parseCopy(const std::string& xml, tinyxml2::XMLDocument* doc) const {
+  if (trimText(xml).empty()) fail(nullptr, "no XML to read");
+  if (doc->Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS || !doc->RootElement()) {
+    fail(nullptr, "its XML does not parse (line " + std::to_string(doc->ErrorLineNum()) +
+                      " of the copy): " + (doc->ErrorStr() ? doc->ErrorStr() : "no element"));
+  }
+  return doc->RootElement();
+}
+
 SourceLocation XmlReader::where(const XMLElement* e) const {
   return {source_, copy_line_ >= 0 ? copy_line_ : lineOf(e), e ? e->Name() : ""};
 }

@@ -224,6 +224,20 @@ TEST_F(XmlReaderTest, AnEmptySinkDropsWarningsAndACopyIsPlacedWhereItsElementSta
   EXPECT_EQ(XmlReader::copyOf("", 0, "sensor 'lidar': ", {}).at(el("samples")), "sensor 'lidar': ");
 }
 
+TEST_F(XmlReaderTest, AKeptCopyIsParsedInOnePlaceWithItsErrorsAtTheElementsLine) {
+  const XmlReader r = XmlReader::copyOf("car.urdf", 40, "sensor 'lidar': ", {});
+  tinyxml2::XMLDocument doc;
+  const tinyxml2::XMLElement* root = r.parseCopy("<sensor name='lidar'><ray/></sensor>", &doc);
+  ASSERT_NE(root, nullptr);
+  EXPECT_STREQ(root->Name(), "sensor");
+  EXPECT_NE(root->FirstChildElement("ray"), nullptr);
+  tinyxml2::XMLDocument blank;
+  EXPECT_EQ(error([&] { r.parseCopy(" \n", &blank); }), "car.urdf:40: sensor 'lidar': no XML to read");
+  tinyxml2::XMLDocument broken;
+  EXPECT_THAT(error([&] { r.parseCopy("<sensor>\n<ray></sensor>", &broken); }),
+              HasSubstr("car.urdf:40: sensor 'lidar': its XML does not parse (line 2 of the copy): "));
+}
+
 TEST_F(XmlReaderTest, FailuresRaiseTheOneErrorTypeWithFileLineAndElement) {
   load("<a>\n<b>x</b></a>");
   try {

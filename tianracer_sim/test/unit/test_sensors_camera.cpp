@@ -193,7 +193,7 @@ TEST(RenderCameraConfig, ValidationErrors) {
   expectError(edited(seed, "<stddev>0.007", "<stddev>-0.1"), {"<noise><stddev>"});
   SensorSpec broken = seed;  // mismatched tags
   broken.xml.replace(broken.xml.find("<camera name=\"head\">"), 20, "<kamera>");
-  expectError(broken, {"its XML does not parse (line 4)", "MISMATCHED_ELEMENT", "kamera"});
+  expectError(broken, {"its XML does not parse (line 4 of the copy)", "MISMATCHED_ELEMENT", "kamera"});
   expectError(edited(seedRealSense(), "<pointCloudCutoff>0.4", "<pointCloudCutoff>6"),
               {"<pointCloudCutoff> 6", "<pointCloudCutoffMax> 5"}, true);
   SensorSpec no_camera = specFromXml("<sensor name='nocam' type='camera'><update_rate>1</update_rate></sensor>", "l");

@@ -164,7 +164,7 @@ TEST(RaySensorConfig, BadValuesNameSensorAndValue) {
   for (const auto& [from, to, message] : edits) {
     EXPECT_NE(with(from, to).find(message), std::string::npos) << to;
   }
-  EXPECT_NE(errorOf(spec("<sensor name='x'><ray>")).find("malformed sensor XML"),
+  EXPECT_NE(errorOf(spec("<sensor name='x'><ray>")).find("its XML does not parse"),
             std::string::npos);
   EXPECT_NE(errorOf(spec("<sensor name='x'/>")).find("no <ray> element"), std::string::npos);
   SensorSpec camera = spec(kSeedSensor);

@@ -53,6 +53,10 @@ class XmlReader {
   /// <sensor> blocks a SensorSpec keeps): the copy's line numbers are not the file's, so every
   /// place is that line, and every message goes on with `context` ("sensor 'lidar': ").
   static XmlReader copyOf(std::string source, int line, std::string context, WarningSink warn);
+  /// Parses such a printed copy (`xml`, e.g. SensorSpec::xml) into `doc` and returns its root
+  /// element; fails "no XML to read" when it is blank, "its XML does not parse (line <n> of the
+  /// copy): <tinyxml2's error>" when it does not parse. The one place a kept copy is parsed.
+  tinyxml2::XMLElement* parseCopy(const std::string& xml, tinyxml2::XMLDocument* doc) const;
 
   const std::string& source() const { return source_; }
   /// The file, line and name of `e` (line 0 and no name for nullptr).

@@ -129,13 +129,8 @@ class Parser {
     if (!(c->update_rate >= 0.0) || !std::isfinite(c->update_rate)) {
       fail("<update_rate> " + std::to_string(c->update_rate) + " must be >= 0");
     }
-    if (trimText(sensor_.xml).empty()) fail("no <sensor> XML to read the <camera> element from");
     tinyxml2::XMLDocument doc;
-    if (doc.Parse(sensor_.xml.c_str()) != tinyxml2::XML_SUCCESS || !doc.RootElement()) {
-      fail(std::string("its XML does not parse (line ") + std::to_string(doc.ErrorLineNum()) +
-           "): " + (doc.ErrorStr() ? doc.ErrorStr() : "no element"));
-    }
-    const XMLElement* root = doc.RootElement();
+    const XMLElement* root = xml_.parseCopy(sensor_.xml, &doc);
     const XMLElement* cam =
         std::string(root->Name()) == "camera" ? root : root->FirstChildElement("camera");
     if (cam == nullptr) fail("has no <camera> element");

@@ -64,11 +64,8 @@ class MultiCameraParser {
     m.name = sensor_.name;
     m.link = sensor_.link;
     m.update_rate = sensor_.update_rate;
-    if (trimText(sensor_.xml).empty()) fail("no <sensor> XML to read the <camera> elements from");
     tinyxml2::XMLDocument doc;
-    if (doc.Parse(sensor_.xml.c_str()) != tinyxml2::XML_SUCCESS || !doc.RootElement()) {
-      fail("its XML does not parse (line " + std::to_string(doc.ErrorLineNum()) + ")");
-    }
+    XMLElement* root = xml_.parseCopy(sensor_.xml, &doc);
     const PluginSpec* plugin = findPlugin();
     m.has_plugin = plugin != nullptr;
 
@@ -76,7 +73,7 @@ class MultiCameraParser {
     std::vector<std::string> names;
     std::vector<Eigen::Isometry3d> poses;
     std::vector<SensorSpec> specs;
-    for (XMLElement* cam = doc.RootElement()->FirstChildElement("camera"); cam;
+    for (XMLElement* cam = root->FirstChildElement("camera"); cam;
          cam = cam->NextSiblingElement("camera")) {
       const std::string name = trimText(cam->Attribute("name") ? cam->Attribute("name") : "");
       if (name.empty()) {
@@ -102,7 +99,7 @@ class MultiCameraParser {
       if (plugin) spec.plugins.push_back(cameraPlugin(*plugin));
       specs.push_back(spec);
     }
-    for (const XMLElement* c = doc.RootElement()->FirstChildElement(); c;
+    for (const XMLElement* c = root->FirstChildElement(); c;
          c = c->NextSiblingElement()) {
       const std::string tag = c->Name();
       if (tag != "camera" && tag != "plugin" && tag != "pose" && tag != "update_rate" &&

@@ -146,10 +146,7 @@ ImuConfig parseImuSensorConfig(const SensorSpec& spec, const std::string& model_
   c.X_LS = spec.X_LS;
   c.update_rate = spec.update_rate;
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(spec.xml.data(), spec.xml.size()) != tinyxml2::XML_SUCCESS)
-    r.fail(nullptr, "malformed sensor XML: " + std::string(doc.ErrorStr() ? doc.ErrorStr() : ""));
-  const XMLElement* sensor = doc.RootElement();
-  if (!sensor) r.fail(nullptr, "empty sensor XML");
+  const XMLElement* sensor = r.parseCopy(spec.xml, &doc);
   for (const XMLElement* e = sensor->FirstChildElement(); e; e = e->NextSiblingElement()) {
     const std::string tag = e->Name();
     if (tag == "imu") {

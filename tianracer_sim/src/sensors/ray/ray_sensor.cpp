@@ -88,11 +88,7 @@ RaySensorConfig ConfigReader::read() {
   c.frame_name = spec_.link;
 
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(spec_.xml.data(), spec_.xml.size()) != tinyxml2::XML_SUCCESS)
-    throw SensorError(what_ + ": malformed sensor XML: " +
-                      std::string(doc.ErrorStr() ? doc.ErrorStr() : ""));
-  const XMLElement* sensor = doc.RootElement();
-  if (!sensor) throw SensorError(what_ + ": empty sensor XML");
+  const XMLElement* sensor = xml_.parseCopy(spec_.xml, &doc);
   bool have_ray = false;
   for (const XMLElement* e = sensor->FirstChildElement(); e; e = e->NextSiblingElement()) {
     const std::string tag = e->Name();
