@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,18 +22,6 @@ PluginSpec plugin(std::map<std::string, std::string> params) {
   p.source = "car.urdf";
   p.line = 12;
   return p;
-}
-
-std::string failure(const PluginSpec& p, void (*read)(PluginReader&)) {
-  PluginReader r(p, "plugin 'drive' of model 'car'", {});
-  try {
-    read(r);
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.where().file, "car.urdf");
-    EXPECT_EQ(e.where().line, 12);
-    return e.what();
-  }
-  return "(no error)";
 }
 
 TEST(PluginReader, ReadsValuesByName) {
@@ -62,34 +51,35 @@ TEST(PluginReader, ReadsValuesByName) {
 }
 
 TEST(PluginReader, BadValuesArePlacedAtThePluginAndNameTheValue) {
-  const std::string where = "car.urdf:12: plugin 'drive' of model 'car': ";
-  EXPECT_EQ(failure(plugin({{"rate", "fast"}}), [](PluginReader& r) {
-              double v;
-              r.number("rate", &v);
-            }),
-            where + "<rate> 'fast' is not a number");
-  EXPECT_EQ(failure(plugin({{"rate", "inf"}}), [](PluginReader& r) {
-              double v;
-              r.number("rate", &v);
-            }),
-            where + "<rate> inf is not finite");
-  EXPECT_EQ(failure(plugin({{"rate", "-1"}}), [](PluginReader& r) {
-              double v;
-              r.number("rate", &v, true);
-            }),
-            where + "<rate> -1 must be >= 0");
-  EXPECT_EQ(failure(plugin({{"offset", "1 2"}}), [](PluginReader& r) {
-              Eigen::Vector3d v;
-              r.vector3("offset", &v);
-            }),
-            where + "<offset> '1 2' is not 3 numbers");
-  EXPECT_EQ(failure(plugin({{"publishTf", "yes"}}), [](PluginReader& r) {
-              bool b;
-              r.boolean("publishTf", &b);
-            }),
-            where + "<publishTf> 'yes' is not a boolean (true, false, 1 or 0)");
-  EXPECT_EQ(failure(plugin({}), [](PluginReader& r) { r.fail("<leftJoint> is empty"); }),
-            where + "<leftJoint> is empty");
+  double number = 0.0;
+  Eigen::Vector3d vector;
+  bool flag = false;
+  const struct {
+    std::string key, value;
+    std::function<void(PluginReader&)> read;
+    std::string message;
+  } cases[] = {
+      {"rate", "fast", [&](PluginReader& r) { r.number("rate", &number); }, "<rate> 'fast' is not a number"},
+      {"rate", "inf", [&](PluginReader& r) { r.number("rate", &number); }, "<rate> inf is not finite"},
+      {"rate", "-1", [&](PluginReader& r) { r.number("rate", &number, true); }, "<rate> -1 must be >= 0"},
+      {"offset", "1 2", [&](PluginReader& r) { r.vector3("offset", &vector); },
+       "<offset> '1 2' is not 3 numbers"},
+      {"publishTf", "yes", [&](PluginReader& r) { r.boolean("publishTf", &flag); },
+       "<publishTf> 'yes' is not a boolean (true, false, 1 or 0)"},
+      {"leftJoint", "", [&](PluginReader& r) { r.fail("<leftJoint> is empty"); }, "<leftJoint> is empty"},
+  };
+  for (const auto& c : cases) {
+    const PluginSpec p = plugin({{c.key, c.value}});
+    PluginReader r(p, "plugin 'drive' of model 'car'", {});
+    try {
+      c.read(r);
+      ADD_FAILURE() << c.key << " '" << c.value << "': no error";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where().file, "car.urdf");
+      EXPECT_EQ(e.where().line, 12);
+      EXPECT_EQ(std::string(e.what()), "car.urdf:12: plugin 'drive' of model 'car': " + c.message);
+    }
+  }
 }
 
 TEST(PluginReader, WarnsOnceAboutEachParameterNothingRead) {

@@ -92,31 +92,33 @@ void readImu(XmlReader& r, const XMLElement* imu, ImuConfig& c) {
                  "' is not supported (none, gaussian, gaussian_quantized)");
         (key == "rate" ? c.rate_noise : c.accel_noise).fill(n);
       }
-    } else if (tag == "orientation_reference_frame" || tag == "enable_orientation" ||
-               tag == "topic") {
-      r.warn(nullptr, "<imu><" + tag + "> is not supported, ignored");
-    } else {
+    } else {  // orientation_reference_frame, enable_orientation, topic and the unknown
       r.warn(nullptr, "<imu><" + tag + "> is not supported, ignored");
     }
   }
 }
 
+// What libgazebo_ros_imu_sensor and libgazebo_ros_imu both read, the rate under each one's name.
+void readImuPlugin(PluginReader& r, const char* rate_key, ImuConfig& c) {
+  c.has_plugin = true;
+  c.plugin_filename = r.plugin().filename;
+  r.text("robotNamespace", &c.robot_namespace);
+  r.text("topicName", &c.topic_name);
+  r.text("frameName", &c.frame_name);
+  r.number(rate_key, &c.plugin_rate);
+  r.number("gaussianNoise", &c.gaussian_noise);
+  r.vector3("xyzOffset", &c.xyz_offset);
+  r.vector3("rpyOffset", &c.rpy_offset);
+}
+
 void readSensorPlugin(const PluginSpec& p, const std::string& context, const WarningSink& warn,
                       const std::string& model_name, ImuConfig& c) {
   PluginReader r(p, context, warn);
-  c.has_plugin = true;
-  c.plugin_filename = p.filename;
   c.robot_namespace = "/" + model_name;  // Gazebo: the model's name
   c.topic_name = "imu_data";
   c.frame_name.clear();
   c.plugin_rate = 1.0;  // libgazebo_ros_imu_sensor's default updateRateHZ
-  r.text("robotNamespace", &c.robot_namespace);
-  r.text("topicName", &c.topic_name);
-  r.text("frameName", &c.frame_name);
-  r.number("updateRateHZ", &c.plugin_rate);
-  r.number("gaussianNoise", &c.gaussian_noise);
-  r.vector3("xyzOffset", &c.xyz_offset);
-  r.vector3("rpyOffset", &c.rpy_offset);
+  readImuPlugin(r, "updateRateHZ", c);
   r.boolean("initialOrientationAsReference", &c.initial_orientation_as_reference);
   r.ignore({"bodyName"});  // not read by the plugin either
   r.finish();
@@ -181,19 +183,11 @@ ImuConfig parseImuPluginConfig(const SensorSpec& spec, const std::string& model_
   ImuConfig c;
   c.name = spec.name;
   c.model_plugin = true;
-  c.has_plugin = true;
-  c.plugin_filename = p.filename;
   c.topic_name = "/default_imu";
   c.service_name = "/default_imu";
-  r.text("robotNamespace", &c.robot_namespace);
-  r.text("topicName", &c.topic_name);
+  readImuPlugin(r, "updateRate", c);
   r.text("serviceName", &c.service_name);
   r.text("bodyName", &c.link);
-  r.text("frameName", &c.frame_name);
-  r.number("updateRate", &c.plugin_rate);
-  r.number("gaussianNoise", &c.gaussian_noise);
-  r.vector3("xyzOffset", &c.xyz_offset);
-  r.vector3("rpyOffset", &c.rpy_offset);
   r.ignore({"alwaysOn"});
   r.finish();
   if (c.link.empty()) r.fail("<bodyName> is missing (Gazebo does not load the plugin without it)");
