@@ -349,10 +349,7 @@ TriangleMesh loadMesh(const MeshSource& source) {
 }
 
 TriangleMesh loadMeshFile(const std::string& path, const Eigen::Vector3d& scale) {
-  MeshSource source;
-  source.path = path;
-  source.scale = scale;
-  return loadMesh(source);
+  return loadMesh(MeshSource{path, scale, "", false});
 }
 
 TriangleMesh loadMeshWithMaterials(const MeshSource& source) {
@@ -401,10 +398,7 @@ TriangleMesh loadMeshWithMaterials(const MeshSource& source) {
 }
 
 TriangleMesh loadMeshFileWithMaterials(const std::string& path, const Eigen::Vector3d& scale) {
-  MeshSource source;
-  source.path = path;
-  source.scale = scale;
-  return loadMeshWithMaterials(source);
+  return loadMeshWithMaterials(MeshSource{path, scale, "", false});
 }
 
 namespace {

@@ -216,28 +216,7 @@ struct Renderer::Impl {
     const std::string defines = "#version 330 core\n#define NUM_LIGHTS " + std::to_string(num_lights) +
                                 "\n#define GRID " + (grid ? "1" : "0") + "\n#define TEXTURE " +
                                 (texture ? "1" : "0") + "\n";
-    const GLuint vs = ri::compile(GL_VERTEX_SHADER, defines + ri::kVertexShader);
-    GLuint fs = 0;
-    try {
-      fs = ri::compile(GL_FRAGMENT_SHADER, defines + ri::kFragmentShader);
-    } catch (...) {
-      glDeleteShader(vs);
-      throw;
-    }
-    const GLuint id = glCreateProgram();
-    glAttachShader(id, vs);
-    glAttachShader(id, fs);
-    glLinkProgram(id);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = 0;
-    glGetProgramiv(id, GL_LINK_STATUS, &ok);
-    if (!ok) {
-      char log[4096];
-      glGetProgramInfoLog(id, sizeof(log), nullptr, log);
-      glDeleteProgram(id);
-      throw RenderError(std::string("shader link failed: ") + log);
-    }
+    const GLuint id = ri::linkProgram(defines);
     auto loc = [&](const char* name) { return glGetUniformLocation(id, name); };
     p.u.model_view = loc("u_model_view");
     p.u.projection = loc("u_projection");

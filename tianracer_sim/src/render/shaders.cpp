@@ -112,20 +112,52 @@ void main() {
 }
 )";
 
+namespace {
+
+// A shader's or a program's status (compile / link): on failure the object is deleted and
+// RenderError carries GL's log.
+template <class GetIv, class GetLog, class Delete>
+void check(GLuint id, GLenum status, GetIv get_iv, GetLog get_log, Delete destroy,
+           const char* failed) {
+  GLint ok = 0;
+  get_iv(id, status, &ok);
+  if (ok) return;
+  char log[4096];
+  get_log(id, sizeof(log), nullptr, log);
+  destroy(id);
+  throw RenderError(std::string(failed) + log);
+}
+
+}  // namespace
+
 GLuint compile(GLenum type, const std::string& src) {
   GLuint s = glCreateShader(type);
   const char* text = src.c_str();
   glShaderSource(s, 1, &text, nullptr);
   glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[4096];
-    glGetShaderInfoLog(s, sizeof(log), nullptr, log);
-    glDeleteShader(s);
-    throw RenderError(std::string("shader compilation failed: ") + log);
-  }
+  check(s, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog, glDeleteShader,
+        "shader compilation failed: ");
   return s;
+}
+
+GLuint linkProgram(const std::string& defines) {
+  const GLuint vs = compile(GL_VERTEX_SHADER, defines + kVertexShader);
+  GLuint fs = 0;
+  try {
+    fs = compile(GL_FRAGMENT_SHADER, defines + kFragmentShader);
+  } catch (...) {
+    glDeleteShader(vs);
+    throw;
+  }
+  const GLuint id = glCreateProgram();
+  glAttachShader(id, vs);
+  glAttachShader(id, fs);
+  glLinkProgram(id);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  check(id, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog, glDeleteProgram,
+        "shader link failed: ");
+  return id;
 }
 
 }  // namespace render_internal

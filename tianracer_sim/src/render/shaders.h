@@ -19,6 +19,10 @@ extern const char* const kFragmentShader;
 /// Compiles one shader stage. Throws RenderError with the compiler's log.
 GLuint compile(GLenum type, const std::string& src);
 
+/// Compiles both stages with `defines` in front and links them into a program. Throws
+/// RenderError with the compiler's or linker's log (nothing is left allocated then).
+GLuint linkProgram(const std::string& defines);
+
 }  // namespace render_internal
 }  // namespace tianracer_sim
 
