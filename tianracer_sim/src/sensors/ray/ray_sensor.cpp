@@ -213,26 +213,27 @@ RaySensorConfig parseRaySensorConfig(const SensorSpec& spec, const WarningSink& 
 
 void validate(const RaySensorConfig& c) {
   const std::string what = "sensor '" + c.name + "'";
-  auto finite = [&](double v, const std::string& name) {
+  const std::pair<double, const char*> numbers[] = {
+      {c.update_rate, "<update_rate>"},
+      {c.resolution, "<horizontal><resolution>"},
+      {c.min_angle, "<min_angle>"},
+      {c.max_angle, "<max_angle>"},
+      {c.vertical_min_angle, "<vertical><min_angle>"},
+      {c.vertical_max_angle, "<vertical><max_angle>"},
+      {c.range_min, "range <min>"},
+      {c.range_max, "range <max>"},
+      {c.range_resolution, "range <resolution>"},
+      {c.noise.mean, "noise <mean>"},
+      {c.noise.stddev, "noise <stddev>"}};
+  for (const auto& [v, name] : numbers) {
     if (!std::isfinite(v)) throw SensorError(what + ": " + name + " " + fmt(v) + " is not finite");
-  };
-  finite(c.update_rate, "<update_rate>");
-  finite(c.resolution, "<horizontal><resolution>");
-  finite(c.min_angle, "<min_angle>");
-  finite(c.max_angle, "<max_angle>");
-  finite(c.range_min, "range <min>");
-  finite(c.range_max, "range <max>");
-  finite(c.range_resolution, "range <resolution>");
-  finite(c.noise.mean, "noise <mean>");
-  finite(c.noise.stddev, "noise <stddev>");
+  }
   if (!c.X_LS.matrix().allFinite()) throw SensorError(what + ": <pose> is not finite");
   if (c.samples <= 0)
     throw SensorError(what + ": <samples> must be > 0 (got " + std::to_string(c.samples) + ")");
   if (c.vertical_samples < 1 || c.vertical_samples > kMaxVerticalSamples)
     throw SensorError(what + ": <vertical><samples> " + std::to_string(c.vertical_samples) +
                       " out of range 1.." + std::to_string(kMaxVerticalSamples));
-  finite(c.vertical_min_angle, "<vertical><min_angle>");
-  finite(c.vertical_max_angle, "<vertical><max_angle>");
   if (c.vertical_min_angle > c.vertical_max_angle)
     throw SensorError(what + ": <vertical><min_angle> " + fmt(c.vertical_min_angle) +
                       " > <vertical><max_angle> " + fmt(c.vertical_max_angle));
