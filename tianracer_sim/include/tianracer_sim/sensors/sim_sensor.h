@@ -145,8 +145,12 @@ class SimSensor {
   virtual void render(const Scene& /*scene*/, const FrameRequest& /*request*/) {}
   /// The outputs that render() produces (delivered from the frame worker).
   virtual SensorOutputs rendered() const { return 0; }
-  /// The outputs whose samples the status counts (a camera's image, not its camera_info).
-  virtual SensorOutputs counted() const { return ~SensorOutputs(0); }
+  /// The outputs whose samples the status counts: the rendered ones of a sensor that renders
+  /// (a camera's image, not its camera_info), else all.
+  virtual SensorOutputs counted() const {
+    const SensorOutputs r = rendered();
+    return r ? r : ~SensorOutputs(0);
+  }
   /// Time went back (reset_simulation): schedules restart at t, histories are forgotten.
   virtual void restart(double t) = 0;
 

@@ -26,7 +26,6 @@ class SimCamera : public SimSensor {
   void sample(SensorOutputs outputs, SensorWorld& world) override;
   void render(const Scene& scene, const FrameRequest& request) override;
   SensorOutputs rendered() const override { return kImage; }
-  SensorOutputs counted() const override { return kImage; }
   void restart(double t) override { schedule_.restart(t); }
   /// libgazebo_ros_triggered_camera: one more frame to render (any thread). Frames go out one
   /// a step while triggers are pending; without, none.
@@ -52,7 +51,6 @@ class SimDepthCamera : public SimSensor {
   void sample(SensorOutputs outputs, SensorWorld& world) override;
   void render(const Scene& scene, const FrameRequest& request) override;
   SensorOutputs rendered() const override { return kImage | kDepth | kCloud; }
-  SensorOutputs counted() const override { return kImage | kDepth | kCloud; }
   void restart(double t) override;
 
  private:
@@ -76,7 +74,6 @@ class SimMultiCamera : public SimSensor {
   void sample(SensorOutputs outputs, SensorWorld& world) override;
   void render(const Scene& scene, const FrameRequest& request) override;
   SensorOutputs rendered() const override { return images_; }
-  SensorOutputs counted() const override { return images_; }
   void restart(double t) override { schedule_.restart(t); }
 
  private:
