@@ -8,7 +8,7 @@ from gazebo_msgs.srv import (ApplyBodyWrench, BodyRequest, GetLinkState, GetMode
                              GetModelState, GetWorldProperties, SetLinkState, SetModelState)
 from geometry_msgs.msg import Point, Vector3, Wrench
 from std_srvs.srv import Empty
-from tianracer_sim.sim_time import Paused, sim_sleep
+from tianracer_sim.sim_time import Paused, connect_gazebo, sim_sleep
 
 SERVICES = {'pause_physics': Empty, 'unpause_physics': Empty, 'reset_world': Empty,
             'get_model_state': GetModelState, 'set_model_state': SetModelState,
@@ -26,10 +26,7 @@ class GazeboCase(unittest.TestCase):
     @classmethod
     def connect(cls, names):
         """Each /gazebo service of `names` (keys of SERVICES), once it is there, as an attribute."""
-        for n in names:
-            rospy.wait_for_service('/gazebo/' + n, timeout=60)
-        for n in names:
-            setattr(cls, n, rospy.ServiceProxy('/gazebo/' + n, SERVICES[n]))
+        connect_gazebo(cls, {n: SERVICES[n] for n in names}, 60)
 
     def wait_sim(self, seconds):
         sim_sleep(seconds)
