@@ -1,6 +1,8 @@
 """What the rostests of the Gazebo interface share (test_gazebo_interface.py,
-test_gazebo_free_body.py): /gazebo's services as attributes of the test case, sim-time waits,
-and a push by apply_body_wrench."""
+test_gazebo_free_body.py; test_bad_input_matrix.py for moved_in_plane): /gazebo's services as
+attributes of the test case, sim-time waits, a push by apply_body_wrench, and how far a model
+moved."""
+import math
 import unittest
 
 import rospy
@@ -20,6 +22,13 @@ SERVICES = {'pause_physics': Empty, 'unpause_physics': Empty, 'reset_world': Emp
 
 def no_stamp(msg):
     return 0.0  # ModelStates and LinkStates carry no header
+
+
+def moved_in_plane(before, after):
+    """How far a model moved in x and y from one of its states (get_model_state's answers)
+    to another."""
+    return math.hypot(after.pose.position.x - before.pose.position.x,
+                      after.pose.position.y - before.pose.position.y)
 
 
 class GazeboCase(unittest.TestCase):
