@@ -21,8 +21,8 @@ from rosgraph_msgs.msg import Log
 from std_msgs.msg import Float64
 from std_srvs.srv import Empty
 from tianracer_sim.rotation import yaw_from_quaternion as yaw_of
-from tianracer_sim.sim_time import (Paused, lossless, messages_received, sim_sleep,
-                                    wait_connected, wait_for)
+from tianracer_sim.sim_time import (Paused, connect_gazebo, lossless, messages_received,
+                                    sim_sleep, wait_connected, wait_for)
 
 CMD_NODE = '/cmd_vel_node'
 WHEEL_TOPIC = '/tianracer/left_rear_wheel_velocity_controller/command'
@@ -381,10 +381,7 @@ class AckermannTestCase(unittest.TestCase):
         cls.geometry = ackermann_geometry(rospy.get_param('/robot_description'))
         cls.wheel_radius = 0.032  # what cmd_vel_node uses for the seed's mesh wheels (docs/bringup.md)
         cls.max_speed = float(rospy.get_param(CMD_NODE + '/max_speed', 3.0))
-        for srv in ('pause_physics', 'unpause_physics'):
-            rospy.wait_for_service('/gazebo/' + srv, timeout=30)
-        cls.pause = rospy.ServiceProxy('/gazebo/pause_physics', Empty)
-        cls.unpause = rospy.ServiceProxy('/gazebo/unpause_physics', Empty)
+        connect_gazebo(cls, {'pause_physics': Empty, 'unpause_physics': Empty}, 30)
         rospy.loginfo('geometry from robot_description: %s', cls.geometry)
 
     def report(self, fmt, *args):

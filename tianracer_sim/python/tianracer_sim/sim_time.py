@@ -311,6 +311,19 @@ def messages_sent(node, topic, subscriber=None):
     return total
 
 
+# ---- gazebo_ros's services -----------------------------------------------------------------
+
+def connect_gazebo(owner, kinds, wall_timeout=WALL_TIMEOUT):
+    """Each /gazebo service of `kinds` ({service name: service class}), once every one is
+    there, as a ServiceProxy in the attribute of `owner` (a test case's class, say) that bears
+    the service's name. rospy.ROSException after `wall_timeout` s without one of them."""
+    for name in kinds:
+        rospy.wait_for_service('/gazebo/' + name, timeout=wall_timeout)
+    for name, kind in kinds.items():
+        setattr(owner, name, rospy.ServiceProxy('/gazebo/' + name, kind))
+    return owner
+
+
 # ---- pause ---------------------------------------------------------------------------------
 
 class Paused(object):
@@ -320,16 +333,15 @@ class Paused(object):
     def __init__(self, wall_timeout=WALL_TIMEOUT):
         from gazebo_msgs.srv import GetWorldProperties
         from std_srvs.srv import Empty
-        for name in ('pause_physics', 'unpause_physics', 'get_world_properties'):
-            rospy.wait_for_service('/gazebo/' + name, timeout=wall_timeout)
-        rospy.ServiceProxy('/gazebo/pause_physics', Empty)()
-        self.t = rospy.ServiceProxy('/gazebo/get_world_properties', GetWorldProperties)().sim_time
-        self._unpause = rospy.ServiceProxy('/gazebo/unpause_physics', Empty)
+        connect_gazebo(self, {'pause_physics': Empty, 'unpause_physics': Empty,
+                              'get_world_properties': GetWorldProperties}, wall_timeout)
+        self.pause_physics()
+        self.t = self.get_world_properties().sim_time
         wait_for(lambda: abs(rospy.get_time() - self.t) < 1e-6,
                  'our clock at the paused time %.3f' % self.t, wall_timeout)
 
     def unpause(self):
-        self._unpause()
+        self.unpause_physics()
 
     def __enter__(self):
         return self

@@ -1,6 +1,8 @@
 """What the rostests of the Gazebo interface share (test_gazebo_interface.py,
-test_gazebo_free_body.py): /gazebo's services as attributes of the test case, sim-time waits,
-and a push by apply_body_wrench."""
+test_gazebo_free_body.py; test_bad_input_matrix.py for moved_in_plane): /gazebo's services as
+attributes of the test case, sim-time waits, a push by apply_body_wrench, and how far a model
+moved."""
+import math
 import unittest
 
 import rospy
@@ -8,7 +10,7 @@ from gazebo_msgs.srv import (ApplyBodyWrench, BodyRequest, GetLinkState, GetMode
                              GetModelState, GetWorldProperties, SetLinkState, SetModelState)
 from geometry_msgs.msg import Point, Vector3, Wrench
 from std_srvs.srv import Empty
-from tianracer_sim.sim_time import Paused, sim_sleep
+from tianracer_sim.sim_time import Paused, connect_gazebo, sim_sleep
 
 SERVICES = {'pause_physics': Empty, 'unpause_physics': Empty, 'reset_world': Empty,
             'get_model_state': GetModelState, 'set_model_state': SetModelState,
@@ -22,14 +24,18 @@ def no_stamp(msg):
     return 0.0  # ModelStates and LinkStates carry no header
 
 
+def moved_in_plane(before, after):
+    """How far a model moved in x and y from one of its states (get_model_state's answers)
+    to another."""
+    return math.hypot(after.pose.position.x - before.pose.position.x,
+                      after.pose.position.y - before.pose.position.y)
+
+
 class GazeboCase(unittest.TestCase):
     @classmethod
     def connect(cls, names):
         """Each /gazebo service of `names` (keys of SERVICES), once it is there, as an attribute."""
-        for n in names:
-            rospy.wait_for_service('/gazebo/' + n, timeout=60)
-        for n in names:
-            setattr(cls, n, rospy.ServiceProxy('/gazebo/' + n, SERVICES[n]))
+        connect_gazebo(cls, {n: SERVICES[n] for n in names}, 60)
 
     def wait_sim(self, seconds):
         sim_sleep(seconds)

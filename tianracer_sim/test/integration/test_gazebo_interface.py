@@ -24,7 +24,7 @@ from std_msgs.msg import Float64
 from tianracer_sim.rotation import quaternion_from_rpy
 from tianracer_sim.sim_time import Stream, messages_sent, wait_connected, wait_for
 
-from gazebo_case import GazeboCase, no_stamp
+from gazebo_case import GazeboCase, moved_in_plane, no_stamp
 
 MODEL = 'tianracer'
 NS = '/tianracer'
@@ -333,10 +333,7 @@ class GazeboInterface(GazeboCase):
         self.assertFalse(r.success)
         self.assertIn('static', r.status_message)
         self.wait_sim(0.5)
-        after = self.model_state()
-        moved = math.hypot(after.pose.position.x - before.pose.position.x,
-                           after.pose.position.y - before.pose.position.y)
-        self.assertLess(moved, 0.005)
+        self.assertLess(moved_in_plane(before, self.model_state()), 0.005)
         self.assert_all_finite('bad input')
 
     def test_f_apply_body_wrench_moves_the_centre_of_mass(self):

@@ -12,7 +12,7 @@ import unittest
 
 import rospy
 import rostest
-from tianracer_sim.sim_time import Stream, clock_stamp, wait_for
+from tianracer_sim.sim_time import Stream, clock_stamp, connect_gazebo, wait_for
 from gazebo_msgs.srv import SpawnModel
 from geometry_msgs.msg import Pose
 from rosgraph_msgs.msg import Clock
@@ -54,10 +54,10 @@ class PeerSensorsTest(unittest.TestCase):
         barrel = Stream('/barrel/image_raw', Image, keep=1)
         barrel_info = Stream('/barrel/camera_info', CameraInfo, keep=1)
         trig = Stream('/trig/image_raw', Image, keep=10)
-        wait_for(lambda: clock.latest(), '/clock', WALL_TIMEOUT)
+        clock.wait_count(1, WALL_TIMEOUT)
 
         # Range: the nearest of the 25 rays, 0.475 - 0.25 m; fov the grid's span (no <fov>).
-        msg = wait_for(lambda: sonar.latest(), '/sonar', WALL_TIMEOUT)
+        msg = sonar.wait_count(1, WALL_TIMEOUT)
         self.assertEqual(msg.header.frame_id, 'sonar_link')
         self.assertEqual(msg.radiation_type, Range.INFRARED)
         self.assertAlmostEqual(msg.range, 0.225, delta=1e-3)
@@ -66,7 +66,7 @@ class PeerSensorsTest(unittest.TestCase):
         self.assertAlmostEqual(msg.field_of_view, 0.5, places=5)
 
         # Block laser: 8 x 10 points of the floor 0.8 m below, none clipped.
-        msg = wait_for(lambda: block.latest(), '/test_block_laser', WALL_TIMEOUT)
+        msg = block.wait_count(1, WALL_TIMEOUT)
         self.assertEqual(msg.header.frame_id, 'test_block_laser_frame')
         self.assertEqual(len(msg.points), 80)
         self.assertEqual(len(msg.channels), 1)
@@ -79,13 +79,13 @@ class PeerSensorsTest(unittest.TestCase):
         self.assertAlmostEqual(msg.points[-1].x, 0.8, delta=1e-3)
 
         # 16-bit colour and Bayer encodings with their steps.
-        msg = wait_for(lambda: cam16.latest(), '/cam16/image_raw', WALL_TIMEOUT)
+        msg = cam16.wait_count(1, WALL_TIMEOUT)
         self.assertEqual((msg.encoding, msg.width, msg.step, len(msg.data)),
                          ('rgb16', 64, 64 * 6, 64 * 48 * 6))
-        msg = wait_for(lambda: barrel.latest(), '/barrel/image_raw', WALL_TIMEOUT)
+        msg = barrel.wait_count(1, WALL_TIMEOUT)
         self.assertEqual((msg.encoding, msg.step), ('bayer_rggb8', 64))
         # autoDistortion: D is the <distortion> applied to the images.
-        msg = wait_for(lambda: barrel_info.latest(), '/barrel/camera_info', WALL_TIMEOUT)
+        msg = barrel_info.wait_count(1, WALL_TIMEOUT)
         self.assertEqual(msg.distortion_model, 'plumb_bob')
         self.assertEqual(list(msg.D), [-0.1, -0.1, 0.0, 0.0, -0.1])
         # The barrel's black corners (borderCrop false): nothing lands there.
@@ -114,16 +114,16 @@ class PeerSensorsTest(unittest.TestCase):
         self.assertEqual(trig.count(), 3)
 
         # On a robot: the same plugin, its sensor looking down at its own box from 0.2 m above.
-        rospy.wait_for_service('/gazebo/spawn_urdf_model', timeout=WALL_TIMEOUT)
-        spawn = rospy.ServiceProxy('/gazebo/spawn_urdf_model', SpawnModel)
+        connect_gazebo(self, {'spawn_urdf_model': SpawnModel}, WALL_TIMEOUT)
         pose = Pose()
         pose.position.x, pose.position.y, pose.position.z = 0.0, 3.0, 0.06
         pose.orientation.w = 1.0
         bot = Stream('/bot_sonar', Range, keep=1)
-        res = spawn(model_name='sonarbot', model_xml=SONARBOT, robot_namespace='',
-                    initial_pose=pose, reference_frame='world')
+        res = self.spawn_urdf_model(model_name='sonarbot', model_xml=SONARBOT,
+                                    robot_namespace='', initial_pose=pose,
+                                    reference_frame='world')
         self.assertTrue(res.success, res.status_message)
-        msg = wait_for(lambda: bot.latest(), '/bot_sonar', WALL_TIMEOUT)
+        msg = bot.wait_count(1, WALL_TIMEOUT)
         self.assertTrue(msg.header.frame_id.endswith('bot_sonar_link'), msg.header.frame_id)
         self.assertEqual(msg.radiation_type, Range.ULTRASOUND)
         self.assertAlmostEqual(msg.field_of_view, 0.1, places=5)

@@ -13,8 +13,9 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 from std_srvs.srv import Empty
-from tianracer_sim.sim_time import (Paused, Stream, clock_stamp, messages_received,
-                                    published_rate, sim_sleep, wait_connected, wait_for)
+from tianracer_sim.sim_time import (Paused, Stream, clock_stamp, connect_gazebo,
+                                    messages_received, published_rate, sim_sleep, wait_connected,
+                                    wait_for)
 
 SIM = '/tianracer_sim'
 
@@ -29,13 +30,9 @@ class SimBasics(unittest.TestCase):
         cls.clock = Stream('/clock', Clock, stamp=clock_stamp)
         cls.joint_states = Stream('/tianracer/joint_states', JointState)
         cls.truth = Stream('/tianracer/ground_truth/odom', Odometry)
-        for srv in ('pause_physics', 'unpause_physics', 'reset_simulation',
-                    'get_world_properties'):
-            rospy.wait_for_service('/gazebo/' + srv, timeout=30)
-        cls.pause = rospy.ServiceProxy('/gazebo/pause_physics', Empty)
-        cls.unpause = rospy.ServiceProxy('/gazebo/unpause_physics', Empty)
-        cls.reset = rospy.ServiceProxy('/gazebo/reset_simulation', Empty)
-        cls.world = rospy.ServiceProxy('/gazebo/get_world_properties', GetWorldProperties)
+        connect_gazebo(cls, {'pause_physics': Empty, 'unpause_physics': Empty,
+                             'reset_simulation': Empty,
+                             'get_world_properties': GetWorldProperties}, 30)
         cls.truth.wait_count(1)
 
     def truth_at(self, t):
@@ -97,13 +94,13 @@ class SimBasics(unittest.TestCase):
         n = self.clock.count()
         # Sim time cannot measure a pause: this wait is wall time on purpose.
         rospy.rostime.wallsleep(1.0)
-        self.assertEqual(self.world().sim_time, paused_at)
+        self.assertEqual(self.get_world_properties().sim_time, paused_at)
         self.assertTrue(all(t == paused_at for t in self.clock.stamps(n)), self.clock.stamps(n))
         paused.unpause()
         self.clock.first(lambda s, m: s > paused_at, '/clock after the unpause', n)
         self.assertGreater(abs(self.truth.latest().pose.pose.position.x), 0.3)  # moved by test 3
         n, n_truth = self.clock.count(), self.truth.count()
-        self.reset()
+        self.reset_simulation()
         # Sim time restarted near 0: the first /clock after the reset is below the paused time.
         _, t_after, _ = self.clock.first(lambda s, m: s < paused_at, '/clock after the reset', n)
         self.assertLess(t_after, 0.1)

@@ -15,7 +15,7 @@ import unittest
 
 import rospy
 import rostest
-from tianracer_sim.sim_time import Stream, clock_stamp, wait_for
+from tianracer_sim.sim_time import Stream, clock_stamp, connect_gazebo, wait_for
 from gazebo_msgs.msg import ContactsState
 from gazebo_msgs.srv import DeleteModel, SpawnModel
 from geometry_msgs.msg import Pose
@@ -53,23 +53,23 @@ class WorldModelSensorsTest(unittest.TestCase):
             for t in msg.transforms:
                 static_frames[t.child_frame_id] = t
         rospy.Subscriber('/tf_static', TFMessage, on_static)
-        wait_for(lambda: clock.latest(), '/clock', WALL_TIMEOUT)
+        clock.wait_count(1, WALL_TIMEOUT)
 
         # The post's lidar: the box's near face 2.5 m straight ahead.
-        msg = wait_for(lambda: scan.latest(), '/post/scan', WALL_TIMEOUT)
+        msg = scan.wait_count(1, WALL_TIMEOUT)
         self.assertEqual(msg.header.frame_id, 'post_laser')
         self.assertEqual(len(msg.ranges), 181)
         self.assertAlmostEqual(msg.ranges[90], 2.5, delta=0.05)
 
         # Its camera: the red box in the middle of the image.
-        msg = wait_for(lambda: image.latest(), '/post_camera/image_raw', WALL_TIMEOUT)
+        msg = image.wait_count(1, WALL_TIMEOUT)
         self.assertEqual(msg.header.frame_id, 'post_camera_frame_optical_frame')
         self.assertEqual((msg.width, msg.height, msg.encoding), (160, 120, 'rgb8'))
         mid = (msg.height // 2) * msg.step + (msg.width // 2) * 3
         r, g, b = bytearray(msg.data[mid:mid + 3])
         self.assertGreater(r, 2 * g, 'red box in the middle: %d %d %d' % (r, g, b))
         self.assertGreater(r, 2 * b, 'red box in the middle: %d %d %d' % (r, g, b))
-        msg = wait_for(lambda: info.latest(), '/post_camera/camera_info', WALL_TIMEOUT)
+        msg = info.wait_count(1, WALL_TIMEOUT)
         self.assertEqual(msg.header.frame_id, 'post_camera_frame_optical_frame')
         self.assertEqual((msg.width, msg.height), (160, 120))
 
@@ -83,7 +83,7 @@ class WorldModelSensorsTest(unittest.TestCase):
         self.assertAlmostEqual(t.transform.translation.x, 0.0, delta=1e-9)
 
         # Its depth camera: 2.5 m in the middle.
-        msg = wait_for(lambda: depth.latest(), '/post_depth/depth/image_raw', WALL_TIMEOUT)
+        msg = depth.wait_count(1, WALL_TIMEOUT)
         self.assertEqual(msg.header.frame_id, 'post_depth_frame_optical_frame')
         self.assertEqual(msg.encoding, '32FC1')
         mid = (msg.height // 2) * msg.step + (msg.width // 2) * 4
@@ -91,7 +91,7 @@ class WorldModelSensorsTest(unittest.TestCase):
         self.assertAlmostEqual(d, 2.5, delta=0.05)
 
         # The falling box's beam, under its robotNamespace, ends with the box at rest.
-        msg = wait_for(lambda: beam.latest(), '/faller/beam', WALL_TIMEOUT)
+        msg = beam.wait_count(1, WALL_TIMEOUT)
         self.assertEqual(msg.header.frame_id, 'faller_beam')
         wait_for(lambda: clock.latest().clock.to_sec() > 2.5, '2.5 s of sim time', WALL_TIMEOUT)
         t = clock.latest().clock.to_sec()
@@ -99,7 +99,7 @@ class WorldModelSensorsTest(unittest.TestCase):
                        'a beam after the fall', WALL_TIMEOUT)
         self.assertAlmostEqual(msg.ranges[0], 0.1, delta=0.02)
         # Its ground truth plugin (libgazebo_ros_p3d on the world model) agrees.
-        msg = wait_for(lambda: truth.latest(), '/faller/odom', WALL_TIMEOUT)
+        msg = truth.wait_count(1, WALL_TIMEOUT)
         self.assertEqual((msg.header.frame_id, msg.child_frame_id), ('world', 'body'))
         self.assertAlmostEqual(msg.pose.pose.position.z, 0.1, delta=0.02)
         # Its bumper: the ground holds the 1 kg box up with m g.
@@ -111,23 +111,23 @@ class WorldModelSensorsTest(unittest.TestCase):
         self.assertAlmostEqual(msg.states[0].total_wrench.force.z, 9.8, delta=0.3)
 
         # A spawned model's lidar: 1 m from the box's side; gone with the model, back with it.
-        rospy.wait_for_service('/gazebo/spawn_sdf_model', timeout=WALL_TIMEOUT)
-        spawn = rospy.ServiceProxy('/gazebo/spawn_sdf_model', SpawnModel)
-        delete = rospy.ServiceProxy('/gazebo/delete_model', DeleteModel)
+        connect_gazebo(self, {'spawn_sdf_model': SpawnModel, 'delete_model': DeleteModel},
+                       WALL_TIMEOUT)
         pose = Pose()
         pose.position.x, pose.position.y, pose.position.z = 3.0, -1.5, 0.5
         pose.orientation.z, pose.orientation.w = math.sin(math.pi / 4), math.cos(math.pi / 4)
         for attempt in range(2):
             spawned = Stream('/spawned/scan', LaserScan, keep=1)
-            res = spawn(model_name='spawned', model_xml=SPAWNED, robot_namespace='',
-                        initial_pose=pose, reference_frame='world')
+            res = self.spawn_sdf_model(model_name='spawned', model_xml=SPAWNED,
+                                       robot_namespace='', initial_pose=pose,
+                                       reference_frame='world')
             self.assertTrue(res.success, res.status_message)
             msg = wait_for(lambda: spawned.latest(),
                            '/spawned/scan (spawn %d)' % attempt, WALL_TIMEOUT)
             self.assertEqual(msg.header.frame_id, 'spawned_laser')
             self.assertAlmostEqual(msg.ranges[1], 1.0, delta=0.05)
             spawned.unregister()
-            res = delete(model_name='spawned')
+            res = self.delete_model(model_name='spawned')
             self.assertTrue(res.success, res.status_message)
 
 
