@@ -4,6 +4,8 @@
 // runs on.
 #include <gtest/gtest.h>
 
+#include <regex>
+
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -294,6 +296,8 @@ TEST(Drives, BadPluginsAreLeftOutWithTheReasonAndTheRobotRunsOn) {
     const std::string name = c.file == "diff_drive.urdf" ? "diff_drive" : "skid_steer";
     ASSERT_EQ(out.count(name), 1u) << c.to;
     EXPECT_NE(out.at(name).find(c.expect), std::string::npos) << out.at(name);
+    // Placed at the <plugin>, whether its parameters or the model refuse it.
+    EXPECT_TRUE(std::regex_search(out.at(name), std::regex(":[0-9]+: "))) << out.at(name);
     EXPECT_EQ(driveOf(sim, id, name), nullptr);
     // The robot and its other plugin run on.
     EXPECT_NE(sim.findSensor(id, "truth"), nullptr);

@@ -207,6 +207,12 @@ struct SimSensorSetup {
 
   /// The link `name` of the sensor's model.
   LinkRef linkRef(const std::string& name) const { return LinkRef{model, name}; }
+  /// Throws InputError placed at the sensor's element (its <sensor>, or a model plugin's
+  /// <plugin>): "<file>:<line>: <message>".
+  [[noreturn]] void fail(const std::string& message) const {
+    throw InputError(SourceLocation{spec ? spec->source : "", spec ? spec->line : 0, "sensor"},
+                     message);
+  }
 };
 
 }  // namespace tianracer_sim

@@ -38,9 +38,9 @@ SimBumper::SimBumper(const SimSensorSetup& setup, BumperConfig config)
     try {
       setup.check_link(config_.frame_name);
     } catch (const std::exception&) {
-      throw SensorError("contact sensor '" + config_.name + "' of model '" + setup.model_name +
-                        "': <frameName> '" + config_.frame_name +
-                        "' is neither world nor a link of the model");
+      setup.fail("contact sensor '" + config_.name + "' of model '" + setup.model_name +
+                 "': <frameName> '" + config_.frame_name +
+                 "' is neither world nor a link of the model");
     }
     frame_link_ = config_.frame_name;
   }

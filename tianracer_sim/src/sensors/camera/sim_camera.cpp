@@ -89,10 +89,9 @@ std::unique_ptr<SimSensor> makeMultiCamera(const SimSensorSetup& setup) {
     return nullptr;
   }
   if (config.cameras.size() > SimMultiCamera::kMaxCameras) {
-    throw CameraError("robot '" + setup.model_name + "': multicamera sensor '" +
-                      setup.spec->name + "' has " + std::to_string(config.cameras.size()) +
-                      " cameras; at most " + std::to_string(SimMultiCamera::kMaxCameras) +
-                      " are simulated");
+    setup.fail("robot '" + setup.model_name + "': multicamera sensor '" + setup.spec->name +
+               "' has " + std::to_string(config.cameras.size()) + " cameras; at most " +
+               std::to_string(SimMultiCamera::kMaxCameras) + " are simulated");
   }
   Renderer* renderer = setup.renderer();
   if (!renderer) return nullptr;

@@ -38,8 +38,8 @@ SimDrive::SimDrive(const SimSensorSetup& setup, DriveConfig config)
     const int i = setup.world->jointIndex(setup.model, c.joints[k], &parent, &child);
     if (i < 0) {
       const char* tag = c.kind == DriveKind::kDiffDrive ? kDiffTags[k] : kSkidTags[k];
-      throw SensorError(what + ": <" + tag + "> '" + c.joints[k] +
-                        "' is not a movable joint of the model (Gazebo does not load the plugin)");
+      setup.fail(what + ": <" + tag + "> '" + c.joints[k] +
+                 "' is not a movable joint of the model (Gazebo does not load the plugin)");
     }
     joints_.push_back(i);
     parent_links_.push_back(parent);
@@ -49,7 +49,7 @@ SimDrive::SimDrive(const SimSensorSetup& setup, DriveConfig config)
   }
   if (c.kind == DriveKind::kPlanarMove &&
       !setup.world->setModelVelocity(setup.model, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero())) {
-    throw SensorError(what + ": the model is static: there is nothing to move");
+    setup.fail(what + ": the model is static: there is nothing to move");
   }
   omega_.assign(joints_.size(), 0.0);
   positions_.assign(joints_.size(), 0.0);
