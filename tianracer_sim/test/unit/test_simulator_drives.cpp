@@ -14,18 +14,14 @@
 #include "tianracer_sim/simulator/simulator.h"
 
 #include "common_test_support.h"
+#include "sim_test_support.h"
 
 namespace tianracer_sim {
 namespace {
 
 const std::string kData = TEST_DATA_DIR;
 
-WorldDescription groundWorld(const std::string& models = "") {
-  return loadWorldString(
-      "<sdf version='1.6'><world name='w'><include><uri>model://ground_plane</uri></include>" +
-          models + "</world></sdf>",
-      "test.world", ".");
-}
+using test::groundWorld;
 
 RobotSpawn robot(const std::string& file, const std::string& name) {
   RobotSpawn spawn;
