@@ -374,11 +374,10 @@ TEST(ControllerRegistry, UnknownKeysAreWarned) {
   s.params["pid"]["pp"] = 2.0;
   s.params["joints"] = ParamValue::list({"a", "b"});
   s.line = 4;
-  const std::string where = "line 4: controller 'hinge': ";
-  const std::string type = "effort_controllers/JointPositionController";
   EXPECT_EQ(test::creationWarnings(s, car.joints),
-            (std::vector<std::string>{test::unusedKeyWarning(where, "joints", type),
-                                      test::unusedKeyWarning(where, "pid/pp", type)}));
+            test::unusedKeyWarnings("line 4: controller 'hinge': ",
+                                    "effort_controllers/JointPositionController",
+                                    {"joints", "pid/pp"}));
 }
 
 TEST(ControllerRegistry, KeysOfAnotherTypeAreWarnedOncePerSubtree) {
@@ -387,11 +386,10 @@ TEST(ControllerRegistry, KeysOfAnotherTypeAreWarnedOncePerSubtree) {
   s.params["publish_rate"] = 50;
   s.params["pid"]["p"] = 1.0;
   s.params["pid"]["d"] = 1.0;
-  const std::string where = "controller 'jsc': ";
-  const std::string type = "joint_state_controller/JointStateController";
   EXPECT_EQ(test::creationWarnings(s, car.joints),
-            (std::vector<std::string>{test::unusedKeyWarning(where, "joint", type),
-                                      test::unusedKeyWarning(where, "pid", type)}));
+            test::unusedKeyWarnings("controller 'jsc': ",
+                                    "joint_state_controller/JointStateController",
+                                    {"joint", "pid"}));
 }
 
 TEST(ControllerRegistry, EachClassChecksTheKindsOfItsKeys) {
