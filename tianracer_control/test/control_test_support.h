@@ -85,11 +85,17 @@ inline std::vector<std::string> creationWarnings(const ControllerSpec& s,
   return warnings;
 }
 
-/// The warning for a key the controller's class does not read, after `where` (location and
-/// controller): "<where>key '<key>' is not used by <type>, ignored".
-inline std::string unusedKeyWarning(const std::string& where, const std::string& key,
-                                    const std::string& type) {
-  return where + "key '" + key + "' is not used by " + type + ", ignored";
+/// The warnings, in order, for `keys` that the class of a controller of `type` does not read,
+/// each after `where` (location and controller): "<where>key '<key>' is not used by <type>,
+/// ignored".
+inline std::vector<std::string> unusedKeyWarnings(const std::string& where,
+                                                  const std::string& type,
+                                                  const std::vector<std::string>& keys) {
+  std::vector<std::string> warnings;
+  for (const std::string& key : keys) {
+    warnings.push_back(where + "key '" + key + "' is not used by " + type + ", ignored");
+  }
+  return warnings;
 }
 
 }  // namespace test

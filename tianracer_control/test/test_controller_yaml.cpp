@@ -97,11 +97,10 @@ TEST(ControllerYaml, SameTreeAsTheParameterServer) {
   hinge.name = "left_steering_hinge_joint";
   hinge.interface = JointHandle::Interface::kEffort;
   std::map<std::string, JointHandle*> joints{{hinge.name, &hinge}};
-  const std::string where = "test.yaml:3: controller 'hinge': ";
-  const std::string type = "effort_controllers/JointPositionController";
   EXPECT_EQ(test::creationWarnings(s, joints),
-            (std::vector<std::string>{test::unusedKeyWarning(where, "names", type),
-                                      test::unusedKeyWarning(where, "pid/pp", type)}));
+            test::unusedKeyWarnings("test.yaml:3: controller 'hinge': ",
+                                    "effort_controllers/JointPositionController",
+                                    {"names", "pid/pp"}));
 }
 
 TEST(ControllerYaml, NestedNamespaceTopLevelAndNamedControllers) {

@@ -21,9 +21,11 @@ using test::spec;
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// The seed's actuated joints, the rear wheels with limits, and a position joint.
+// The seed's actuated joints, the rear wheels with limits, and a position joint; and the
+// controllers loaded on them.
 struct Car : test::SeedJoints {
   JointHandle pos_joint;
+  ControllerSet controllers;
 
   Car() {
     for (JointHandle* h : {&left_rear, &right_rear}) {
@@ -37,6 +39,8 @@ struct Car : test::SeedJoints {
     pos_joint.name = "pos_joint";
     joints[pos_joint.name] = &pos_joint;
   }
+  Controller& load(const ControllerSpec& s) { return controllers.load(s, joints); }
+  void update(double dt) { controllers.update(dt); }
 };
 
 ControllerSpec hingeSpec(double p, double i = 0.0, double d = 0.0) {
@@ -80,48 +84,44 @@ TEST(ShortestAngularDistance, Wraps) {
 TEST(EffortJointPositionController, PidOnPositionErrorWithVelocityAsDerivative) {
   Car car;
   car.left_hinge.position = 0.1;
-  ControllerSet set;
-  auto& c = set.load(hingeSpec(2.0, 0.0, 0.1), car.joints);
+  auto& c = car.load(hingeSpec(2.0, 0.0, 0.1));
   // starting(): target = current position, so nothing moves.
   EXPECT_EQ(c.command(), 0.1);
-  set.update(0.001);
+  car.update(0.001);
   EXPECT_EQ(car.left_hinge.command, 0.0);
 
   ASSERT_TRUE(c.setCommand(0.5));
   car.left_hinge.velocity = 0.0;
-  set.update(0.001);
+  car.update(0.001);
   // error = 0.4 -> P = 0.8; derivative input = -velocity = 0 (no kick from the step)
   EXPECT_NEAR(car.left_hinge.command, 0.8, 1e-12);
 
   car.left_hinge.velocity = 1.0;
-  set.update(0.001);
+  car.update(0.001);
   // P = 0.8, D = 0.1 * (0 - 1) = -0.1
   EXPECT_NEAR(car.left_hinge.command, 0.7, 1e-12);
 }
 
 TEST(EffortJointPositionController, ClampsTargetToLimitsAndEffortToLimit) {
   Car car;
-  ControllerSet set;
-  auto& c = set.load(hingeSpec(2.0), car.joints);
+  auto& c = car.load(hingeSpec(2.0));
   ASSERT_TRUE(c.setCommand(5.0));
   EXPECT_EQ(c.command(), 0.6);
-  set.update(0.001);
+  car.update(0.001);
   EXPECT_NEAR(car.left_hinge.command, 1.2, 1e-12);
   ASSERT_TRUE(c.setCommand(-1e9));
   EXPECT_EQ(c.command(), -0.6);
 
-  ControllerSet strong;
-  Car car2;
-  auto& s = strong.load(hingeSpec(100.0), car2.joints);
+  Car strong;
+  auto& s = strong.load(hingeSpec(100.0));
   s.setCommand(0.5);
   strong.update(0.001);
-  EXPECT_EQ(car2.left_hinge.command, 10.0);  // 50 N m clamped to the effort limit
+  EXPECT_EQ(strong.left_hinge.command, 10.0);  // 50 N m clamped to the effort limit
 }
 
 TEST(EffortJointPositionController, RejectsNonFiniteCommands) {
   Car car;
-  ControllerSet set;
-  auto& c = set.load(hingeSpec(1.0), car.joints);
+  auto& c = car.load(hingeSpec(1.0));
   ASSERT_TRUE(c.setCommand(0.3));
   EXPECT_FALSE(c.setCommand(kNan));
   EXPECT_FALSE(c.setCommand(kInf));
@@ -136,10 +136,9 @@ TEST(EffortJointPositionController, ContinuousJointTakesTheShortWayRound) {
   ControllerSpec s = spec("wheel", "effort_controllers/JointPositionController",
                           "left_rear_wheel_joint");
   s.params["pid"]["p"] = 1.0;
-  ControllerSet set;
-  auto& c = set.load(s, car.joints);
+  auto& c = car.load(s);
   c.setCommand(-3.0);
-  set.update(0.01);
+  car.update(0.01);
   EXPECT_NEAR(car.left_rear.command, 2.0 * M_PI - 6.0, 1e-12);  // +0.283, not -6
 }
 
@@ -151,69 +150,63 @@ TEST(EffortJointVelocityController, PidOnVelocityError) {
   ControllerSpec s = spec("v", "effort_controllers/JointVelocityController", "left_rear_wheel_joint");
   s.params["pid"]["p"] = 1;  // an int, as YAML gives "p: 1"
   s.params["pid"]["d"] = 0.01;
-  ControllerSet set;
-  auto& c = set.load(s, car.joints);
+  auto& c = car.load(s);
   EXPECT_EQ(c.command(), 0.0);
   c.setCommand(10.0);
   EXPECT_EQ(c.command(), 5.0);  // velocity limit
   car.left_rear.velocity = 1.0;
-  set.update(0.01);
+  car.update(0.01);
   EXPECT_NEAR(car.left_rear.command, 4.0, 1e-12);  // P = 4, D = 0 (first update)
   car.left_rear.velocity = 2.0;
-  set.update(0.01);
+  car.update(0.01);
   // P = 3, D = 0.01 * (3 - 4) / 0.01 = -1
   EXPECT_NEAR(car.left_rear.command, 2.0, 1e-12);
 }
 
 TEST(ForwardCommandController, VelocityPassesThroughClamped) {
   Car car;
-  ControllerSet set;
-  auto& c = set.load(spec("w", "velocity_controllers/JointVelocityController",
-                          "left_rear_wheel_joint"), car.joints);
-  set.update(0.001);
+  auto& c = car.load(spec("w", "velocity_controllers/JointVelocityController",
+                          "left_rear_wheel_joint"));
+  car.update(0.001);
   EXPECT_EQ(car.left_rear.command, 0.0);
   ASSERT_TRUE(c.setCommand(31.25));
-  set.update(0.001);
+  car.update(0.001);
   EXPECT_EQ(car.left_rear.command, 31.25);
   ASSERT_TRUE(c.setCommand(1e9));
-  set.update(0.001);
+  car.update(0.001);
   EXPECT_EQ(car.left_rear.command, 100.0);
   EXPECT_FALSE(c.setCommand(kNan));
-  set.update(0.001);
+  car.update(0.001);
   EXPECT_EQ(car.left_rear.command, 100.0);
 }
 
 TEST(ForwardCommandController, VelocityWithNoLimitIsNotClamped) {
   Car car;
   car.left_rear.velocity_limit = 0.0;
-  ControllerSet set;
-  auto& c = set.load(spec("w", "velocity_controllers/JointVelocityController",
-                          "left_rear_wheel_joint"), car.joints);
+  auto& c = car.load(spec("w", "velocity_controllers/JointVelocityController",
+                          "left_rear_wheel_joint"));
   c.setCommand(1e6);
-  set.update(0.001);
+  car.update(0.001);
   EXPECT_EQ(car.left_rear.command, 1e6);
 }
 
 TEST(ForwardCommandController, PositionStartsAtCurrentPositionAndClamps) {
   Car car;
   car.pos_joint.position = 0.7;
-  ControllerSet set;
-  auto& c = set.load(spec("p", "position_controllers/JointPositionController", "pos_joint"),
-                     car.joints);
-  set.update(0.001);
+  auto& c = car.load(spec("p", "position_controllers/JointPositionController", "pos_joint"));
+  car.update(0.001);
   EXPECT_EQ(car.pos_joint.command, 0.7);
   c.setCommand(3.0);
-  set.update(0.001);
+  car.update(0.001);
   EXPECT_EQ(car.pos_joint.command, 2.0);
 }
 
 TEST(ForwardCommandController, EffortClampsToEffortLimit) {
   Car car;
-  ControllerSet set;
-  auto& c = set.load(spec("e", "effort_controllers/JointEffortController",
-                          "left_steering_hinge_joint"), car.joints);
+  auto& c = car.load(spec("e", "effort_controllers/JointEffortController",
+                          "left_steering_hinge_joint"));
   c.setCommand(-50.0);
-  set.update(0.001);
+  car.update(0.001);
   EXPECT_EQ(car.left_hinge.command, -10.0);
 }
 
@@ -223,9 +216,8 @@ TEST(JointStateController, DueAtPublishRateInSimTime) {
   s.type = "joint_state_controller/JointStateController";
   s.params["publish_rate"] = 50;
   Car car;
-  ControllerSet set;
-  set.load(s, car.joints);
-  auto* jsc = dynamic_cast<JointStateController*>(set.find("joint_state_controller"));
+  car.load(s);
+  auto* jsc = dynamic_cast<JointStateController*>(car.controllers.find("joint_state_controller"));
   ASSERT_NE(jsc, nullptr);
   EXPECT_EQ(jsc->publishRate(), 50.0);
   // 1 ms steps for 1 s: 50 messages, at t = 0, 0.02, 0.04, ...
@@ -374,11 +366,10 @@ TEST(ControllerRegistry, UnknownKeysAreWarned) {
   s.params["pid"]["pp"] = 2.0;
   s.params["joints"] = ParamValue::list({"a", "b"});
   s.line = 4;
-  const std::string where = "line 4: controller 'hinge': ";
-  const std::string type = "effort_controllers/JointPositionController";
   EXPECT_EQ(test::creationWarnings(s, car.joints),
-            (std::vector<std::string>{test::unusedKeyWarning(where, "joints", type),
-                                      test::unusedKeyWarning(where, "pid/pp", type)}));
+            test::unusedKeyWarnings("line 4: controller 'hinge': ",
+                                    "effort_controllers/JointPositionController",
+                                    {"joints", "pid/pp"}));
 }
 
 TEST(ControllerRegistry, KeysOfAnotherTypeAreWarnedOncePerSubtree) {
@@ -387,11 +378,10 @@ TEST(ControllerRegistry, KeysOfAnotherTypeAreWarnedOncePerSubtree) {
   s.params["publish_rate"] = 50;
   s.params["pid"]["p"] = 1.0;
   s.params["pid"]["d"] = 1.0;
-  const std::string where = "controller 'jsc': ";
-  const std::string type = "joint_state_controller/JointStateController";
   EXPECT_EQ(test::creationWarnings(s, car.joints),
-            (std::vector<std::string>{test::unusedKeyWarning(where, "joint", type),
-                                      test::unusedKeyWarning(where, "pid", type)}));
+            test::unusedKeyWarnings("controller 'jsc': ",
+                                    "joint_state_controller/JointStateController",
+                                    {"joint", "pid"}));
 }
 
 TEST(ControllerRegistry, EachClassChecksTheKindsOfItsKeys) {

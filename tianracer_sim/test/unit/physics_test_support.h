@@ -26,6 +26,36 @@ inline PhysicsOptions weightless() {
   return o;
 }
 
+/// The pose at (x, y, z) turned `yaw` about z.
+inline Eigen::Isometry3d at(double x, double y, double z, double yaw = 0.0) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  X.translation() = Eigen::Vector3d(x, y, z);
+  return X;
+}
+
+/// A URDF "arm": a 10 kg base_link and a 1 kg link "arm" (its COM 0.5 m out along x) on the
+/// revolute joint "hinge" about y, at `hinge_xyz` on the base and yawed 0.3 rad, limited to
+/// +-`limit` rad; `end` (the links and joints at the arm's end) follows.
+inline std::string armRobot(const std::string& hinge_xyz, const std::string& limit,
+                            const std::string& end) {
+  return R"(<robot name="arm">
+  <link name="base_link">
+    <inertial><mass value="10"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+  </link>
+  <link name="arm">
+    <inertial><origin xyz="0.5 0 0"/><mass value="1"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.02"/></inertial>
+  </link>
+  <joint name="hinge" type="revolute">
+    <parent link="base_link"/><child link="arm"/><origin xyz=")" +
+         hinge_xyz + R"(" rpy="0 0 0.3"/>
+    <axis xyz="0 1 0"/><limit lower="-)" + limit + R"(" upper=")" + limit +
+         R"(" effort="5" velocity="10"/>
+  </joint>
+)" + end + "</robot>";
+}
+
 inline TestRobot parseTestRobot(const std::string& xml) {
   TestRobot m;
   m.urdf = urdf::parseURDF(xml);

@@ -4,6 +4,7 @@
 #define TIANRACER_SIM_TEST_SENSOR_TEST_SUPPORT_H
 
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <tinyxml2.h>
@@ -42,6 +43,13 @@ inline SensorSpec specFromXml(const std::string& xml, const std::string& link,
     spec.plugins.push_back(p);
   }
   return spec;
+}
+
+/// The names of `topics` in order, to compare a sensor's whole list of topics at once.
+inline std::vector<std::string> topicNames(const std::vector<SensorTopic>& topics) {
+  std::vector<std::string> names;
+  for (const SensorTopic& t : topics) names.push_back(t.topic);
+  return names;
 }
 
 /// The id of the registered sensor kind that serves `spec` ("" when none does).

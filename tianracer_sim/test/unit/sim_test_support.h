@@ -21,15 +21,21 @@ constexpr double kWheelRadius = 0.032;
 inline std::string descriptionDir() { return TIANRACER_DESCRIPTION_DIR; }
 inline std::string repoDir() { return descriptionDir() + "/.."; }
 
+/// The ground plane and `models` (SDF <model> elements), loaded as test.world.
+inline WorldDescription groundWorld(const std::string& models = "") {
+  return loadWorldString(
+      "<sdf version='1.6'><world name='w'><include><uri>model://ground_plane</uri></include>" +
+          models + "</world></sdf>",
+      "test.world", ".");
+}
+
 /// The ground plane and a static wall 0.2 x 4 x 1 m at x = 2 (its near face at x = 1.9).
 inline WorldDescription groundWithWall() {
-  return loadWorldString(
-      "<sdf version='1.6'><world name='w'><include><uri>model://ground_plane</uri></include>"
+  return groundWorld(
       "<model name='wall'><static>true</static><pose>2 0 0.5 0 0 0</pose><link name='link'>"
       "<collision name='c'><geometry><box><size>0.2 4 1</size></box></geometry></collision>"
       "<visual name='v'><geometry><box><size>0.2 4 1</size></box></geometry></visual>"
-      "</link></model></world></sdf>",
-      "test.world", ".");
+      "</link></model>");
 }
 
 /// The tianracer as the sim loads it (xacro expanded, meshes resolved in the repo).

@@ -19,12 +19,6 @@ TestRobot cube() {
       "size='0.1 0.1 0.1'/></geometry></collision></link></robot>");
 }
 
-Eigen::Isometry3d at(double x, double y, double z) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.translation() = Eigen::Vector3d(x, y, z);
-  return X;
-}
-
 // A weightless cube sliding at 1 m/s into a 1 m static box: contact begins when its face
 // reaches the box's (0.45 s), against static shape 0, with the normal pushing it back.
 TEST(RobotContacts, SlidingIntoAStaticBox) {

@@ -9,32 +9,13 @@
 namespace tianracer_sim {
 namespace {
 
-Eigen::Isometry3d at(double x, double y, double z, double yaw = 0.0) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  X.translation() = Eigen::Vector3d(x, y, z);
-  return X;
-}
-
-// A base with an arm on a hinge about y, a spinner at the arm's end, and a sensor link fixed
-// to the arm (merged into its body): the COM of the arm is off its frame.
-const char* kArm = R"(<robot name="arm">
-  <link name="base_link">
-    <inertial><mass value="10"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
-  </link>
-  <link name="arm">
-    <inertial><origin xyz="0.5 0 0"/><mass value="1"/>
-      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.02"/></inertial>
-  </link>
-  <joint name="hinge" type="revolute">
-    <parent link="base_link"/><child link="arm"/><origin xyz="0.2 0 0" rpy="0 0 0.3"/>
-    <axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="5" velocity="10"/>
-  </joint>
-  <link name="tip"/>
+// The arm hinged 0.2 m ahead of the base's origin, +-3 rad, with a sensor link fixed at its end
+// (merged into its body): the COM of the arm is off its frame.
+const std::string kArm = armRobot("0.2 0 0", "3", R"(  <link name="tip"/>
   <joint name="tip_joint" type="fixed">
     <parent link="arm"/><child link="tip"/><origin xyz="1 0.1 0"/>
   </joint>
-</robot>)";
+)");
 
 const char* kBox = R"(<robot name="box"><link name="base_link">
     <inertial><origin xyz="0 0 0.1"/><mass value="2"/>

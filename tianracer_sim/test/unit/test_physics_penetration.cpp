@@ -27,12 +27,6 @@ TestRobot cube(double side = 0.1) {
   return model;
 }
 
-Eigen::Isometry3d at(double x, double y, double z) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.translation() = Eigen::Vector3d(x, y, z);
-  return X;
-}
-
 /// A 1 m static box at the origin.
 StaticShape block() {
   StaticShape s;

@@ -18,13 +18,6 @@ const std::string kCube = std::string(TEST_DATA_DIR) + "/physics/cube_10cm.stl";
 
 TestRobot modelFrom(const std::string& xml) { return parseTestRobot(xml); }
 
-Eigen::Isometry3d at(double x, double y, double z, double yaw = 0.0) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  X.translation() = Eigen::Vector3d(x, y, z);
-  return X;
-}
-
 std::string boxRobot(const std::string& collision) {
   return R"(<robot name="box"><link name="base_link">
     <inertial><origin xyz="0 0 0"/><mass value="2"/>
@@ -32,26 +25,15 @@ std::string boxRobot(const std::string& collision) {
     <collision>)" + collision + R"(</collision></link></robot>)";
 }
 
-// A base box with a pendulum arm on a revolute joint about y (and a continuous one about x).
-const char* kArm = R"(<robot name="arm">
-  <link name="base_link">
-    <inertial><mass value="10"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
-  </link>
-  <link name="arm">
-    <inertial><origin xyz="0.5 0 0"/><mass value="1"/>
-      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.02"/></inertial>
-  </link>
-  <joint name="hinge" type="revolute">
-    <parent link="base_link"/><child link="arm"/><origin xyz="0 0 0" rpy="0 0 0.3"/>
-    <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="5" velocity="10"/>
-  </joint>
-  <link name="spinner">
+// The arm as a pendulum hinged at the base's origin, +-1 rad, with a spinner on a continuous
+// joint about x at its end.
+const std::string kArm = armRobot("0 0 0", "1", R"(  <link name="spinner">
     <inertial><mass value="0.1"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial>
   </link>
   <joint name="spin" type="continuous">
     <parent link="arm"/><child link="spinner"/><origin xyz="1 0 0"/><axis xyz="1 0 0"/>
   </joint>
-</robot>)";
+)");
 
 TEST(PhysicsWorld, FreeFallMatchesSemiImplicitEuler) {
   PhysicsOptions o;

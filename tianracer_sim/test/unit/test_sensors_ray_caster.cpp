@@ -84,6 +84,17 @@ void addRoom(Scene& scene, double x0, double x1, double y0, double y1) {
   scene.items.push_back(boxItem(b, pose(x0 - 0.05, cy, 0.5), {0.1, h, 1.0}));
 }
 
+/// The seed hokuyo scanning with one default caster and one generator (seed 1) throughout, as
+/// a sensor that keeps its caster between scans does.
+struct SeedLidar {
+  RayCaster caster;
+  RaySensorConfig c = seedHokuyo();
+  std::mt19937_64 rng{1};
+  std::vector<float> scan(const Scene& scene, const Eigen::Isometry3d& X_WS) {
+    return scanRays(caster, scene, X_WS, c, rng);
+  }
+};
+
 // ---- Double-precision reference ---------------------------------------------------------------
 
 // Each gives the first surface point at t >= t_min (the ray's start, range_min): from inside a
@@ -395,27 +406,25 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(RayCaster, RangeLimitsMapToInfinity) {
   Scene scene;
   addRoom(scene, -2, 2, -2, 2);
-  RayCaster caster;
-  RaySensorConfig c = seedHokuyo();
-  std::mt19937_64 rng(1);
+  SeedLidar lidar;
   // 5 cm from the east wall (10 cm thick): beam 540 (0 deg) starts at range_min inside the
   // wall and reads its outer face, 15 cm away (what Gazebo's rays do).
-  std::vector<float> r = scanRays(caster, scene, pose(1.95, 0, 0.5), c, rng);
+  std::vector<float> r = lidar.scan(scene, pose(1.95, 0, 0.5));
   EXPECT_NEAR(r[540], 0.15, 1e-5);
   EXPECT_NEAR(r[1080], 2.0 * std::sqrt(2.0), 1.0);  // other beams are finite
   EXPECT_TRUE(std::isfinite(r[1080]));
   // range_max 1.5 in a 4 m room: every beam from the centre is out of range.
-  c.range_max = 1.5;
-  r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
+  lidar.c.range_max = 1.5;
+  r = lidar.scan(scene, pose(0, 0, 0.5));
   for (float v : r) EXPECT_EQ(v, std::numeric_limits<float>::infinity());
   // Just inside range_max is kept.
-  c.range_max = 2.001;
-  r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
+  lidar.c.range_max = 2.001;
+  r = lidar.scan(scene, pose(0, 0, 0.5));
   EXPECT_NEAR(r[540], 2.0, 1e-5);
   // An empty scene: nothing to hit.
   Scene empty;
   RayCaster empty_caster;
-  r = scanRays(empty_caster, empty, pose(0, 0, 0.5), seedHokuyo(), rng);
+  r = scanRays(empty_caster, empty, pose(0, 0, 0.5), seedHokuyo(), lidar.rng);
   for (float v : r) EXPECT_EQ(v, std::numeric_limits<float>::infinity());
 }
 
@@ -424,14 +433,12 @@ TEST(RayCaster, RangeLimitsMapToInfinity) {
 TEST(RayCaster, SensorFarOutsideTheWorldSeesNothing) {
   Scene scene;
   addRoom(scene, -2, 2, -2, 2);
-  RayCaster caster;
-  const RaySensorConfig c = seedHokuyo();
-  std::mt19937_64 rng(1);
+  SeedLidar lidar;
   for (double x : {1e30, -1e30, 1e19, std::numeric_limits<double>::quiet_NaN(), kInf}) {
-    const std::vector<float> r = scanRays(caster, scene, pose(x, 0, 0.5), c, rng);
+    const std::vector<float> r = lidar.scan(scene, pose(x, 0, 0.5));
     for (float v : r) EXPECT_EQ(v, std::numeric_limits<float>::infinity()) << x;
   }
-  EXPECT_NEAR(scanRays(caster, scene, pose(0, 0, 0.5), c, rng)[540], 2.0, 0.05);  // still works
+  EXPECT_NEAR(lidar.scan(scene, pose(0, 0, 0.5))[540], 2.0, 0.05);  // still works
 }
 
 // REP 117's masks, as Gazebo's RaySensor applies them to min + the distance along the ray:
@@ -516,22 +523,20 @@ TEST(RayCaster, MovingBodyIsSeenByTheNextScan) {
   const int b = scene.addBody(crate);
   scene.items.push_back(boxItem(b, pose(0.1, 0, 0), {0.4, 0.5, 1.0}));  // offset in the body
 
-  RayCaster caster;
-  const RaySensorConfig c = seedHokuyo();
-  std::mt19937_64 rng(1);
-  std::vector<float> r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
-  EXPECT_EQ(caster.movingBodyCount(), 1u);
+  SeedLidar lidar;
+  std::vector<float> r = lidar.scan(scene, pose(0, 0, 0.5));
+  EXPECT_EQ(lidar.caster.movingBodyCount(), 1u);
   EXPECT_NEAR(r[540], 0.9, 1e-5);
   scene.bodies[b].X_WB = pose(2.0, 0, 0.5);
-  r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
+  r = lidar.scan(scene, pose(0, 0, 0.5));
   EXPECT_NEAR(r[540], 1.9, 1e-5);
   scene.bodies[b].X_WB = pose(1.0, 0, 0.5, M_PI / 2);  // turned: 0.5 deep, centre (1.0, 0.1)
-  r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
+  r = lidar.scan(scene, pose(0, 0, 0.5));
   EXPECT_NEAR(r[540], 0.75, 1e-5);
   scene.bodies[b].X_WB = pose(1.0, 2.0, 0.5);  // out of the beam: the wall again
-  r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
+  r = lidar.scan(scene, pose(0, 0, 0.5));
   EXPECT_NEAR(r[540], 3.0, 1e-5);
-  expectScanMatchesReference(scene, pose(0, 0, 0.5), c, r, 1e-3);
+  expectScanMatchesReference(scene, pose(0, 0, 0.5), lidar.c, r, 1e-3);
 }
 
 TEST(RayCaster, SensorSeesPastItsOwnHousingAndSeesAnotherOne) {
@@ -551,17 +556,16 @@ TEST(RayCaster, SensorSeesPastItsOwnHousingAndSeesAnotherOne) {
     housing[k] = scene.addBody(b);
     scene.items.push_back(boxItem(housing[k], pose(0, 0, 0), {0.1, 0.1, 0.1}));
   }
-  RayCaster caster;
-  const RaySensorConfig c = seedHokuyo();  // beam 540 along +x, 180 at -90 deg
-  std::mt19937_64 rng(1);
-  std::vector<float> r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
+  SeedLidar lidar;  // beam 540 along +x, 180 at -90 deg
+  const RaySensorConfig& c = lidar.c;
+  std::vector<float> r = lidar.scan(scene, pose(0, 0, 0.5));
   EXPECT_NEAR(r[540], expected(c, 0.95), 1e-5);  // the other housing's near face
   EXPECT_NEAR(r[180], expected(c, 3.0), 1e-5);   // -90 deg: the room's wall
-  r = scanRays(caster, scene, pose(1, 0, 0.5, M_PI), c, rng);
+  r = lidar.scan(scene, pose(1, 0, 0.5, M_PI));
   EXPECT_NEAR(r[540], expected(c, 0.95), 1e-5);
   // A bracket of car 0's own lidar link, 0.4 m to its right: seen.
   scene.items.push_back(boxItem(housing[0], pose(0, -0.45, 0), {0.1, 0.1, 0.1}));
-  r = scanRays(caster, scene, pose(0, 0, 0.5), c, rng);
+  r = lidar.scan(scene, pose(0, 0, 0.5));
   EXPECT_NEAR(r[180], expected(c, 0.4), 1e-5);
   EXPECT_NEAR(r[540], expected(c, 0.95), 1e-5);
 }
@@ -569,15 +573,13 @@ TEST(RayCaster, SensorSeesPastItsOwnHousingAndSeesAnotherOne) {
 TEST(RayCaster, SceneChangesAreRebuiltAndStaticBodiesRead) {
   Scene scene;
   addRoom(scene, -3, 3, -3, 3);
-  RayCaster caster;
-  const RaySensorConfig c = seedHokuyo();
-  std::mt19937_64 rng(1);
-  EXPECT_NEAR(scanRays(caster, scene, pose(0, 0, 0.5), c, rng)[540], 3.0, 1e-5);
+  SeedLidar lidar;
+  EXPECT_NEAR(lidar.scan(scene, pose(0, 0, 0.5))[540], 3.0, 1e-5);
   const int b = addStatic(scene, "late");
   scene.items.push_back(boxItem(b, pose(1.5, 0, 0.5), {1.0, 1.0, 1.0}));
-  EXPECT_NEAR(scanRays(caster, scene, pose(0, 0, 0.5), c, rng)[540], 1.0, 1e-5);
+  EXPECT_NEAR(lidar.scan(scene, pose(0, 0, 0.5))[540], 1.0, 1e-5);
   scene.bodies[b].X_WB = pose(0.5, 0, 0);  // a static body moved (e.g. set_model_state)
-  EXPECT_NEAR(scanRays(caster, scene, pose(0, 0, 0.5), c, rng)[540], 1.5, 1e-5);
+  EXPECT_NEAR(lidar.scan(scene, pose(0, 0, 0.5))[540], 1.5, 1e-5);
 }
 
 TEST(RayCaster, GroundPlaneSphereAndTiltedSensor) {

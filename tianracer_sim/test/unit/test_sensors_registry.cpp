@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "tianracer_sim/sensors/sensor_registry.h"
@@ -11,6 +12,9 @@
 
 namespace tianracer_sim {
 namespace {
+
+using ::testing::ElementsAre;
+using test::topicNames;
 
 /// One link with the given <gazebo reference> body, parsed as the model loader does.
 SensorSpec sensorFrom(const std::string& gazebo_body) {
@@ -44,16 +48,14 @@ TEST(SensorsRegistry, GazeboPluginsOfTheUpstreamSuite) {
                                       "<topicName>sonar</topicName></plugin></sensor>");
   EXPECT_EQ(test::kindOf(range), "range");
   std::vector<SensorTopic> t = sensorTopics(range, "r");
-  ASSERT_EQ(t.size(), 1u);
-  EXPECT_EQ(t[0].topic, "/sonar");
+  ASSERT_THAT(topicNames(t), ElementsAre("/sonar"));
   EXPECT_EQ(t[0].msg_type, "sensor_msgs/Range");
   const SensorSpec block = sensorFrom("<sensor type='ray' name='b'><update_rate>5</update_rate>" +
                                       grid + "<plugin name='p' filename='libgazebo_ros_block_laser.so'>"
                                       "<topicName>cloud</topicName></plugin></sensor>");
   EXPECT_EQ(test::kindOf(block), "block_laser");
   t = sensorTopics(block, "r");
-  ASSERT_EQ(t.size(), 1u);
-  EXPECT_EQ(t[0].topic, "/cloud");
+  ASSERT_THAT(topicNames(t), ElementsAre("/cloud"));
   EXPECT_EQ(t[0].msg_type, "sensor_msgs/PointCloud");
   const SensorSpec trig = sensorFrom(std::string("<sensor type='camera' name='c'>") + kCameraBody +
                                      "<plugin name='p' filename='libgazebo_ros_triggered_camera.so'>"
@@ -88,8 +90,7 @@ TEST(SensorsRegistry, KindsByTypeAndPlugin) {
                                     "</plugin></sensor>");
   EXPECT_EQ(test::kindOf(gpu), "lidar");
   const std::vector<SensorTopic> t = sensorTopics(gpu, "r");
-  ASSERT_EQ(t.size(), 1u);
-  EXPECT_EQ(t[0].topic, "/car/scan");
+  ASSERT_THAT(topicNames(t), ElementsAre("/car/scan"));
   EXPECT_EQ(t[0].msg_type, "sensor_msgs/LaserScan");
 
   const SensorSpec unknown = sensorFrom("<sensor type='sonar' name='s'/>");
@@ -102,15 +103,11 @@ TEST(SensorsRegistry, OpenniDefaultsAreTheSimulatorsTopics) {
   const SensorSpec s = sensorFrom(depthSensor("libgazebo_ros_openni_kinect.so", ""));
   EXPECT_EQ(test::kindOf(s), "depth_camera");
   const std::vector<SensorTopic> t = sensorTopics(s, "r");
-  ASSERT_EQ(t.size(), 5u);
-  EXPECT_EQ(t[0].topic, "/rs/ir/image_raw");
+  ASSERT_THAT(topicNames(t), ElementsAre("/rs/ir/image_raw", "/rs/depth/image_raw", "/rs/points",
+                                         "/rs/ir/camera_info", "/rs/depth/camera_info"));
   EXPECT_DOUBLE_EQ(t[0].rate, 20.0);
-  EXPECT_EQ(t[1].topic, "/rs/depth/image_raw");
-  EXPECT_EQ(t[2].topic, "/rs/points");
   EXPECT_EQ(t[2].msg_type, "sensor_msgs/PointCloud2");
-  EXPECT_EQ(t[3].topic, "/rs/ir/camera_info");
   EXPECT_DOUBLE_EQ(t[3].rate, 10.0);
-  EXPECT_EQ(t[4].topic, "/rs/depth/camera_info");
 }
 
 TEST(SensorsRegistry, DepthCameraPluginAsOpenni) {
@@ -130,9 +127,7 @@ TEST(SensorsRegistry, CameraTopicsAndNoPlugin) {
                                     "</plugin></sensor>");
   EXPECT_EQ(test::kindOf(cam), "camera");
   const std::vector<SensorTopic> t = sensorTopics(cam, "r");
-  ASSERT_EQ(t.size(), 2u);
-  EXPECT_EQ(t[0].topic, "/r/cam/image_raw");
-  EXPECT_EQ(t[1].topic, "/r/cam/camera_info");
+  ASSERT_THAT(topicNames(t), ElementsAre("/r/cam/image_raw", "/r/cam/camera_info"));
   EXPECT_DOUBLE_EQ(t[1].rate, 30.0);
   // Gazebo renders a camera without a gazebo_ros plugin but publishes nothing.
   const SensorSpec bare =

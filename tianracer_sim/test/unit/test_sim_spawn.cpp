@@ -29,10 +29,7 @@ std::string boxSdf(const std::string& name, double a, bool is_static, double z) 
 }
 
 struct SpawnWorld {
-  WorldDescription desc = loadWorldString(
-      "<sdf version='1.6'><world name='w'><include><uri>model://ground_plane</uri></include>"
-      "</world></sdf>",
-      "test.world", ".");
+  WorldDescription desc = test::groundWorld();
   Simulation sim{physicsOptionsFor(desc)};
   Scene scene;
   SpawnWorld() {

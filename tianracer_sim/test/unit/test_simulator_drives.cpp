@@ -16,18 +16,14 @@
 #include "tianracer_sim/simulator/simulator.h"
 
 #include "common_test_support.h"
+#include "sim_test_support.h"
 
 namespace tianracer_sim {
 namespace {
 
 const std::string kData = TEST_DATA_DIR;
 
-WorldDescription groundWorld(const std::string& models = "") {
-  return loadWorldString(
-      "<sdf version='1.6'><world name='w'><include><uri>model://ground_plane</uri></include>" +
-          models + "</world></sdf>",
-      "test.world", ".");
-}
+using test::groundWorld;
 
 RobotSpawn robot(const std::string& file, const std::string& name) {
   RobotSpawn spawn;
@@ -78,6 +74,37 @@ Motion measure(Simulator& sim, ModelId id, double settle, double seconds) {
 
 SimDrive* driveOf(Simulator& sim, ModelId id, const std::string& name) {
   return dynamic_cast<SimDrive*>(sim.findSensor(id, name));
+}
+
+/// A world of `models` on the ground, its model `model` and that model's drive plugin `plugin`
+/// (kNoModel and null where missing).
+struct WorldModelDrive {
+  Simulator sim;
+  ModelId id;
+  SimDrive* drive;
+  WorldModelDrive(const std::string& models, const std::string& model, const std::string& plugin)
+      : sim(groundWorld(models), {}),
+        id(sim.findModel(model)),
+        drive(id == kNoModel ? nullptr : driveOf(sim, id, plugin)) {}
+  /// Whether both are there; if not, why not (the plugins left out of the model and why).
+  ::testing::AssertionResult found() const {
+    if (id == kNoModel) return ::testing::AssertionFailure() << "no such model";
+    if (drive == nullptr) {
+      return ::testing::AssertionFailure() << ::testing::PrintToString(sim.leftOut(id));
+    }
+    return ::testing::AssertionSuccess();
+  }
+};
+
+/// After `rest` steps at rest, commands v = 0.5 m/s and w = 0.5 rad/s: over 2 s, from `settle`
+/// s on, the model moves at them and the odometry reports the speed.
+void expectDrivesTheArc(WorldModelDrive& w, int rest, double settle) {
+  w.sim.step(rest);
+  w.drive->setCommand(0.5, 0.0, 0.5);
+  const Motion m = measure(w.sim, w.id, settle, 2.0);
+  EXPECT_NEAR(m.v, 0.5, 0.015);
+  EXPECT_NEAR(m.w, 0.5, 0.015);
+  EXPECT_NEAR(w.drive->odometry().linear.x(), 0.5, 0.015);
 }
 
 TEST(Drives, DiffDriveMovesAtTheCommandedSpeedAndYawRate) {
@@ -182,24 +209,16 @@ const char kPlanarBox[] =
     "<robotBaseFrame>mover</robotBaseFrame></plugin></model>";
 
 TEST(Drives, PlanarMoveSetsAWorldModelsVelocity) {
-  Simulator sim(groundWorld(kPlanarBox), {});
-  const ModelId id = sim.findModel("mover");
-  ASSERT_NE(id, kNoModel);
-  SimDrive* drive = driveOf(sim, id, "planar");
-  ASSERT_NE(drive, nullptr) << ::testing::PrintToString(sim.leftOut(id));
-  EXPECT_EQ(drive->config().commandTopic(), "/cmd_vel");
-  sim.step(200);
-  drive->setCommand(0.5, 0.0, 0.5);
-  const Motion m = measure(sim, id, 0.5, 2.0);
-  EXPECT_NEAR(m.v, 0.5, 0.015);
-  EXPECT_NEAR(m.w, 0.5, 0.015);
-  EXPECT_NEAR(drive->odometry().linear.x(), 0.5, 0.015);
-  EXPECT_NEAR(drive->odometry().angular.z(), 0.5, 0.015);
+  WorldModelDrive w(kPlanarBox, "mover", "planar");
+  ASSERT_TRUE(w.found());
+  EXPECT_EQ(w.drive->config().commandTopic(), "/cmd_vel");
+  expectDrivesTheArc(w, 200, 0.5);
+  EXPECT_NEAR(w.drive->odometry().angular.z(), 0.5, 0.015);
   // Sideways in the model's frame.
-  drive->setCommand(0.0, 0.3, 0.0);
-  sim.step(500);
-  EXPECT_NEAR(drive->odometry().linear.y(), 0.3, 0.01);
-  EXPECT_NEAR(drive->odometry().linear.x(), 0.0, 0.01);
+  w.drive->setCommand(0.0, 0.3, 0.0);
+  w.sim.step(500);
+  EXPECT_NEAR(w.drive->odometry().linear.y(), 0.3, 0.01);
+  EXPECT_NEAR(w.drive->odometry().linear.x(), 0.0, 0.01);
 }
 
 // A world model with wheels on revolute joints and a frictionless caster ball: the diff drive
@@ -235,33 +254,23 @@ const char kWheeledModel[] =
     "<updateRate>100</updateRate><publishTf>true</publishTf></plugin></model>";
 
 TEST(Drives, DiffDriveDrivesAWorldModelsJoints) {
-  Simulator sim(groundWorld(kWheeledModel), {});
-  const ModelId id = sim.findModel("cart");
-  ASSERT_NE(id, kNoModel);
-  SimDrive* drive = driveOf(sim, id, "drive");
-  ASSERT_NE(drive, nullptr) << ::testing::PrintToString(sim.leftOut(id));
-  EXPECT_EQ(drive->config().commandTopic(), "/cart/cmd_vel");
-  sim.step(300);
-  drive->setCommand(0.5, 0.0, 0.5);
-  const Motion m = measure(sim, id, 1.0, 2.0);
-  EXPECT_NEAR(m.v, 0.5, 0.015);
-  EXPECT_NEAR(m.w, 0.5, 0.015);
-  EXPECT_NEAR(drive->odometry().linear.x(), 0.5, 0.015);
+  WorldModelDrive w(kWheeledModel, "cart", "drive");
+  ASSERT_TRUE(w.found());
+  EXPECT_EQ(w.drive->config().commandTopic(), "/cart/cmd_vel");
+  expectDrivesTheArc(w, 300, 1.0);
 }
 
 TEST(Drives, PlanarMoveCommandsExpireAfterCmdTimeout) {
   std::string box = kPlanarBox;
   box.replace(box.find("</plugin>"), 9, "<cmdTimeout>0.2</cmdTimeout></plugin>");
-  Simulator sim(groundWorld(box), {});
-  const ModelId id = sim.findModel("mover");
-  SimDrive* drive = driveOf(sim, id, "planar");
-  ASSERT_NE(drive, nullptr);
-  sim.step(100);
-  drive->setCommand(0.5, 0.0, 0.0);
-  sim.step(150);
-  EXPECT_NEAR(sim.modelState(id).V_WE.linear.x(), 0.5, 0.01);
-  sim.step(200);  // 0.35 s after the command
-  EXPECT_NEAR(sim.modelState(id).V_WE.linear.x(), 0.0, 0.01);
+  WorldModelDrive w(box, "mover", "planar");
+  ASSERT_TRUE(w.found());
+  w.sim.step(100);
+  w.drive->setCommand(0.5, 0.0, 0.0);
+  w.sim.step(150);
+  EXPECT_NEAR(w.sim.modelState(w.id).V_WE.linear.x(), 0.5, 0.01);
+  w.sim.step(200);  // 0.35 s after the command
+  EXPECT_NEAR(w.sim.modelState(w.id).V_WE.linear.x(), 0.0, 0.01);
 }
 
 std::string withPlugin(const std::string& file, const std::string& from, const std::string& to) {

@@ -14,23 +14,16 @@
 #include "tianracer_sim/sensors/ray/sim_ray.h"
 #include "tianracer_sim/simulator/simulator.h"
 
+#include "sim_test_support.h"
+
 namespace tianracer_sim {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// A wall 2 m ahead: x 1.9 .. 2.1, y -2 .. 2, z 0 .. 1 on the ground plane.
-WorldDescription wallWorld() {
-  return loadWorldString(
-      "<sdf version='1.6'><world name='w'><include><uri>model://ground_plane</uri></include>"
-      "<model name='wall'><static>true</static><pose>2 0 0.5 0 0 0</pose><link name='link'>"
-      "<collision name='c'><geometry><box><size>0.2 4 1</size></box></geometry></collision>"
-      "</link></model></world></sdf>",
-      "test.world", ".");
-}
-
-// The first surface of the wall or the ground at t >= t_min along o + t d (a ray starting inside
-// the wall would see its far side; none does here).
+// The first surface of test::groundWithWall()'s wall (x 1.9 .. 2.1, y -2 .. 2, z 0 .. 1) or the
+// ground at t >= t_min along o + t d (a ray starting inside the wall would see its far side;
+// none does here). Rays hit collisions only: the wall's visual is not seen.
 double exactRange(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_min) {
   const Eigen::Vector3d lo(1.9, -2.0, 0.0), hi(2.1, 2.0, 1.0);
   double t0 = -kInf, t1 = kInf;
@@ -88,7 +81,7 @@ Checked checkScan(const Simulator& sim, const SimLidar& lidar) {
 }
 
 TEST(SimulatorLidarHousings, LidarsInsideTheirHousingsSeeTheWorld) {
-  Simulator sim(wallWorld(), {});
+  Simulator sim(test::groundWithWall(), {});
   RobotSpawn spawn;
   spawn.name = "housings";
   spawn.model = loadRobotModelFile(TEST_DATA_DIR "/urdf/lidar_housings.urdf", {});

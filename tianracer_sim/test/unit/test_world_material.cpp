@@ -86,16 +86,21 @@ struct BoardLoader {
   }
 };
 
+// A fresh world folder whose model 'board' has kScript (models/board/materials/scripts), and
+// the board world loaded from it.
+struct BoardFolder : TempDir, BoardLoader {
+  const std::string script = write("models/board/materials/scripts/board.material", kScript);
+  BoardFolder() : BoardLoader(path.string()) {}
+};
+
 std::string scriptFor(const std::string& name) {
   return "<script><uri>model://board/materials/scripts</uri><uri>model://board/materials/textures</uri>"
          "<name>" + name + "</name></script>";
 }
 
 TEST(WorldMaterial, OgreScriptWithTextureUnitResolvesThroughTheWorldsFolder) {
-  TempDir dir;
-  dir.write("models/board/materials/scripts/board.material", kScript);
-  const std::string png = dir.write("models/board/materials/textures/checker.png", "png bytes");
-  BoardLoader board(dir.path.string());
+  BoardFolder board;
+  const std::string png = board.write("models/board/materials/textures/checker.png", "png bytes");
   std::vector<std::string>& warnings = board.warnings;
   const WorldDescription w = board.load(scriptFor("Board/Checker"));
   EXPECT_TRUE(warnings.empty()) << warnings.front();
@@ -135,9 +140,7 @@ TEST(WorldMaterial, ModelUrisResolveThroughGazeboModelPath) {
 }
 
 TEST(WorldMaterial, MissingTextureWarnsNamingFileLineAndValueAndKeepsTheColour) {
-  TempDir dir;
-  const std::string script = dir.write("models/board/materials/scripts/board.material", kScript);
-  BoardLoader board(dir.path.string());
+  BoardFolder board;
   std::vector<std::string>& warnings = board.warnings;
   const WorldDescription w = board.load(scriptFor("Board/MissingTexture"));
   const Material& m = visualMaterial(w);
@@ -145,7 +148,7 @@ TEST(WorldMaterial, MissingTextureWarnsNamingFileLineAndValueAndKeepsTheColour) 
   EXPECT_FLOAT_EQ(m.diffuse[0], 0.3f);
   ASSERT_EQ(warnings.size(), 2u);  // the textures folder <uri> is missing too
   const std::string& t = warnings[1];
-  EXPECT_NE(t.find(script + ":25"), std::string::npos) << t;  // the material's line
+  EXPECT_NE(t.find(board.script + ":25"), std::string::npos) << t;  // the material's line
   EXPECT_NE(t.find("'gone.png' not found"), std::string::npos) << t;
   EXPECT_NE(t.find("test.world:1"), std::string::npos) << t;
   EXPECT_NE(t.find("diffuse colour"), std::string::npos) << t;
@@ -153,10 +156,8 @@ TEST(WorldMaterial, MissingTextureWarnsNamingFileLineAndValueAndKeepsTheColour) 
 }
 
 TEST(WorldMaterial, UnknownNamesAndAlbedoMaps) {
-  TempDir dir;
-  dir.write("models/board/materials/scripts/board.material", kScript);
-  const std::string albedo = dir.write("textures/albedo.png", "png bytes");
-  BoardLoader board(dir.path.string());
+  BoardFolder board;
+  const std::string albedo = board.write("textures/albedo.png", "png bytes");
   std::vector<std::string>& warnings = board.warnings;
   const Material& unknown = visualMaterial(board.load(scriptFor("Board/Nope")));
   EXPECT_EQ(unknown.name, "Board/Nope");
