@@ -42,7 +42,6 @@ TEST(PhysicsExternal, LinkTwistIsTheDerivativeOfTheLinkPose) {
   for (const char* link : {"arm", "tip"}) {
     const Eigen::Isometry3d X0 = r.linkPose(link);
     w.step();
-    const Eigen::Isometry3d X1 = r.linkPose(link);
     const Twist v1 = r.linkTwist(link);
     w.step();
     const Eigen::Isometry3d X2 = r.linkPose(link);

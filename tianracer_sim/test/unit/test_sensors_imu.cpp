@@ -145,7 +145,9 @@ TEST(SensorsImu, LinearAccelerationIsTheMeanOverTheSampleInterval) {
     imu.record(k * kDt, X);
     if (k % 20 == 0 && k > 0) {
       const ImuReading& r = imu.read();
-      if (k > 20) EXPECT_NEAR(r.linear_acceleration.x(), a, 1e-6);
+      if (k > 20) {
+        EXPECT_NEAR(r.linear_acceleration.x(), a, 1e-6);
+      }
     }
   }
 }

@@ -50,7 +50,7 @@ DriveResult drive(bool track_static, double v, double seconds) {
   bool first = true;
   const PhysicsRobot* track = track_static ? nullptr : &world.freeBody(world.freeBodyIndex("track"));
   DriveResult run;
-  Eigen::Vector3d floor0, walls0;
+  Eigen::Vector3d floor0 = Eigen::Vector3d::Zero(), walls0 = Eigen::Vector3d::Zero();
   double speed_sum = 0.0;
   int speed_n = 0;
   const long settle = 500, n = std::lround(seconds / world.dt());
