@@ -9,12 +9,17 @@ controller_manager's spawner and managed through <ns>/controller_manager/*, as i
 - bad input: each gets controller_manager's error text, ok = false, and the sim goes on;
 - the controller_manager command line lists them;
 - shutting the spawner down unloads them;
-- a spawner for a robot that does not exist gives up after its timeout and exits.
+- a spawner for a robot that does not exist gives up after its timeout and exits;
+- a spawner interrupted (SIGINT, as roslaunch ending) while it logs exits at once, wherever the
+  signal lands (it once hung for a minute when the signal came during a log line's call to the
+  master).
 
 Everything is timed in sim time; wall time only bounds the waits.
 """
 import math
 import os
+import random
+import signal
 import subprocess
 import sys
 
@@ -142,6 +147,34 @@ class ControllerManagerTest(ControllerTestCase):
         t0 = rospy.get_time()
         sim_sleep(0.5)
         self.assertGreater(rospy.get_time(), t0)
+
+    def test_i_an_interrupted_spawner_exits_at_once(self):
+        # The signal lands 0-12 ms after the spawner's error line, while it logs its next lines
+        # (each reads /rosout_disable_topics_generation from the master). Ten places, the same
+        # every run.
+        place = random.Random(0)
+        env = dict(os.environ, ROS_NAMESPACE=NS, PYTHONUNBUFFERED='1')
+        for k in range(10):
+            spawner = subprocess.Popen(['rosrun', 'controller_manager', 'spawner',
+                                        'no_such_controller', '__name:=interrupted_spawner'],
+                                       env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                       universal_newlines=True)
+            said = []
+            for line in spawner.stdout:
+                said.append(line)
+                if 'Failed to load no_such_controller' in line:
+                    break
+            delay = place.uniform(0.0, 0.012)
+            rospy.rostime.wallsleep(delay)
+            spawner.send_signal(signal.SIGINT)
+            try:
+                spawner.wait(10.0)
+            except subprocess.TimeoutExpired:
+                spawner.kill()
+                self.fail('spawner %d, interrupted %.1f ms after its error, still runs 10 s later:'
+                          ' %s' % (k, 1e3 * delay, ''.join(said)))
+            spawner.stdout.close()
+
 
 if __name__ == '__main__':
     rostest.rosrun('tianracer_tests', 'controller_manager', ControllerManagerTest, sys.argv)

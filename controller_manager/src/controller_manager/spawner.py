@@ -13,6 +13,7 @@ services are waited for up to --timeout s (default 30; <= 0 or --no-timeout: for
 and left out; the others are still started."""
 import argparse
 import os
+import threading
 import time
 
 import rosparam
@@ -147,13 +148,35 @@ def main(argv=None):
     if args.shutdown_timeout is not None:
         rospy.logwarn('DEPRECATION warning: --shutdown-timeout has no effect.')
     spawner = Spawner(args)
-    if not spawner.wait_for_services():
-        return 0
-    if args.wait_for and not spawner.wait_for_topic():
-        return 0
-    rospy.on_shutdown(spawner.shutdown)
-    ns = rospy.get_namespace()
-    names = controller_names(args.controllers, lambda params: rosparam.upload_params(ns, params))
-    spawner.load_and_start(names)
+    failure = []
+
+    def work():
+        try:
+            if not spawner.wait_for_services():
+                rospy.signal_shutdown('no controller_manager')  # exits, as ros_control's
+                return
+            if args.wait_for and not spawner.wait_for_topic():
+                return
+            rospy.on_shutdown(spawner.shutdown)
+            ns = rospy.get_namespace()
+            names = controller_names(args.controllers,
+                                     lambda params: rosparam.upload_params(ns, params))
+            spawner.load_and_start(names)
+        except (rospy.ROSInterruptException, rospy.ServiceException) as e:
+            if not rospy.is_shutdown():
+                failure.append(e)
+                rospy.signal_shutdown(str(e))
+        except Exception as e:  # a bad YAML file: reported as the error it is, exit code 1
+            failure.append(e)
+            rospy.signal_shutdown(str(e))
+
+    # The work runs off the main thread, which only waits. rospy's SIGINT handler (Ctrl-C, or
+    # roslaunch ending) runs the node's shutdown in the main thread, inside whatever that thread
+    # was doing. When it was an XML-RPC call to the master (every log line reads a cached
+    # parameter that way), the shutdown's own call to the master waited on the same lock
+    # (rospy/core.py, _LockedServerProxy) and the spawner hung for a minute.
+    threading.Thread(target=work, name='spawner', daemon=True).start()
     rospy.spin()
+    if failure:
+        raise failure[0]
     return 0
