@@ -270,12 +270,14 @@ void SimNode::run() {
     paused_clock = false;
     if (!initial_published_) publishInitial();
     pacer_.beginStep(sim_->time());
-    const auto t0 = std::chrono::steady_clock::now();
-    stepOnce();
     if (first_step) {
+      const auto t0 = std::chrono::steady_clock::now();
+      stepOnce();
       ROS_INFO("first step: %.1f ms",
                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       first_step = false;
+    } else {
+      stepOnce();
     }
     if ((sim_->stepCount() & 255) == 0) {
       StepProfile::Scope timed(profile_.get(), rows_.status);

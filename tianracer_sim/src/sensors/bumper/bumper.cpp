@@ -14,8 +14,7 @@ BumperConfig parseBumperConfig(const SensorSpec& spec, const std::string& model_
   c.update_rate = spec.update_rate;
   const PluginSpec* plugin = nullptr;
   for (const PluginSpec& p : spec.plugins) {
-    const std::string file = p.filename.substr(p.filename.find_last_of('/') + 1);
-    if (file == "libgazebo_ros_bumper.so") {
+    if (baseName(p.filename) == "libgazebo_ros_bumper.so") {
       plugin = &p;
     } else if (warn) {
       warn(formatLocation(p.source, p.line) + what + ": plugin " + p.filename +

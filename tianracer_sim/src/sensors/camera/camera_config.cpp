@@ -96,12 +96,13 @@ class Parser {
   // sensor's line of the model file, then names the sensor.
   Parser(const SensorSpec& sensor, const WarningSink& warn)
       : sensor_(sensor), warn_(warn),
-        xml_(XmlReader::copyOf(sensor.source, sensor.line, context(sensor), warn)) {}
+        xml_(XmlReader::copyOf(sensor.source, sensor.line, context(sensor) + ": ", warn)) {}
 
+  /// What every message names: "camera sensor 'c' on link 'l'".
   static std::string context(const SensorSpec& sensor) {
     std::string c = sensor.type + " sensor '" + sensor.name + "'";
     if (!sensor.link.empty()) c += " on link '" + sensor.link + "'";
-    return c + ": ";
+    return c;
   }
 
   [[noreturn]] void fail(const std::string& what) const { xml_.fail(nullptr, what); }
@@ -261,9 +262,7 @@ class Parser {
 
   /// The plugin's parameters, placed at the <plugin> and naming the sensor.
   PluginReader pluginReader(const PluginSpec& p) const {
-    std::string c = context(sensor_);
-    c.resize(c.size() - 2);  // without ": "
-    return PluginReader(p, c, warn_);
+    return PluginReader(p, context(sensor_), warn_);
   }
 
   void parseCameraPlugin(PluginReader& r, CameraConfig* c) {

@@ -46,14 +46,15 @@ class MultiCameraParser {
   MultiCameraParser(const SensorSpec& sensor, const std::string& model_name,
                     const WarningSink& warn)
       : sensor_(sensor), model_name_(model_name), warn_(warn),
-        xml_(XmlReader::copyOf(sensor.source, sensor.line, context(sensor, model_name), warn)) {}
+        xml_(XmlReader::copyOf(sensor.source, sensor.line, context(sensor, model_name) + ": ",
+                               warn)) {}
 
   // Read from the <sensor>'s printed copy (SensorSpec::xml): every message is placed at the
   // sensor's line of the model file, then names the robot and the sensor.
   static std::string context(const SensorSpec& sensor, const std::string& model_name) {
     std::string c = "robot '" + model_name + "': multicamera sensor '" + sensor.name + "'";
     if (!sensor.link.empty()) c += " on link '" + sensor.link + "'";
-    return c + ": ";
+    return c;
   }
 
   [[noreturn]] void fail(const std::string& what) const { xml_.fail(nullptr, what); }
@@ -184,9 +185,7 @@ class MultiCameraParser {
                   std::vector<std::string>* suffixes, std::vector<std::string>* frames,
                   double* hack_baseline) {
     const std::size_t n = names.size();
-    std::string where = context(sensor_, model_name_);
-    where.resize(where.size() - 2);  // without ": "
-    PluginReader r(p, where, warn_);
+    PluginReader r(p, context(sensor_, model_name_), warn_);
     r.number("hackBaseline", hack_baseline);
     std::string text;
     // Topic suffixes: the list, else the left/right pair, else each camera's name.

@@ -1,8 +1,6 @@
 #include "tianracer_sim/sensors/drives/drives.h"
 
-#include <algorithm>
 #include <cmath>
-#include <set>
 
 #include "tianracer_sim/common/text.h"
 #include "tianracer_sim/common/xml_reader.h"
