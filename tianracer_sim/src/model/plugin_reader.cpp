@@ -60,9 +60,7 @@ bool PluginReader::vector3(const std::string& key, Eigen::Vector3d* out) {
 bool PluginReader::boolean(const std::string& key, bool* out) {
   const auto t = text(key);
   if (!t) return false;
-  std::string lower = *t;
-  for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  const auto b = parseBool(lower);
+  const auto b = parseBool(lowerCase(*t));
   if (!b) fail("<" + key + "> '" + *t + "' is not a boolean (true, false, 1 or 0)");
   *out = *b;
   return true;

@@ -19,6 +19,7 @@
 #include "geometry.h"
 #include "gl_context.h"
 #include "shaders.h"
+#include "tianracer_sim/common/text.h"
 #include "tianracer_sim/mesh/mesh_loader.h"
 #include "tianracer_sim/render/image_file.h"
 #include "tianracer_sim/scene/materials.h"
@@ -36,9 +37,7 @@ Eigen::Matrix4f toFloat(const Eigen::Matrix4d& m) { return m.cast<float>(); }
 // physics shares (and exactly the geometry they had before materials were read).
 bool mayHaveMaterials(const std::string& path) {
   if (path.size() < 4) return true;
-  std::string ext = path.substr(path.size() - 4);
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext != ".stl";
+  return lowerCase(path.substr(path.size() - 4)) != ".stl";
 }
 
 std::string shapeKey(const Shape& shape) {

@@ -3,6 +3,7 @@
 #ifndef TIANRACER_SIM_COMMON_TEXT_H
 #define TIANRACER_SIM_COMMON_TEXT_H
 
+#include <cctype>
 #include <cstdint>
 #include <cstdio>
 #include <sstream>
@@ -16,6 +17,12 @@ inline std::string trimText(const std::string& s) {
   if (b == std::string::npos) return "";
   const auto e = s.find_last_not_of(" \t\r\n");
   return s.substr(b, e - b + 1);
+}
+
+/// `s` in lower case (ASCII letters).
+inline std::string lowerCase(std::string s) {
+  for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return s;
 }
 
 /// A number as messages quote it: up to 10 significant digits.

@@ -10,6 +10,7 @@
 #include <tf2_ros/transform_broadcaster.h>
 
 #include "factories.h"
+#include "tianracer_sim/common/text.h"
 #include "tianracer_sim/ros/state_msgs.h"
 
 namespace tianracer_sim {
@@ -18,8 +19,7 @@ namespace {
 // GazeboRos::readCommonParameter: <rosDebugLevel> sets the level of the process's default
 // logger (upstream: all of gzserver; here: the sim node). "na" (the default) changes nothing.
 void applyDebugLevel(const std::string& level_name, const std::string& who) {
-  std::string l = level_name;
-  for (char& ch : l) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  const std::string l = lowerCase(level_name);
   ros::console::levels::Level level;
   if (l == "debug") level = ros::console::levels::Debug;
   else if (l == "info") level = ros::console::levels::Info;
