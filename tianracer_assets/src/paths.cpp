@@ -84,28 +84,80 @@ std::vector<std::string> rosExportedModelPaths() {
   return out;
 }
 
+std::vector<std::string> modelSearchPath(const std::vector<std::string>& extra) {
+  std::vector<std::string> dirs;
+  const std::string user = userModelDir();
+  if (!user.empty()) dirs.push_back(user);
+  for (const std::string& d : gazeboModelPath()) dirs.push_back(d);
+  for (const std::string& d : rosExportedModelPaths()) dirs.push_back(d);
+  dirs.insert(dirs.end(), extra.begin(), extra.end());
+  // Each folder once, at its first place (SystemPaths::InsertUnique; messages list each once).
+  std::vector<std::string> unique;
+  for (const std::string& d : dirs) {
+    if (std::find(unique.begin(), unique.end(), d) == unique.end()) unique.push_back(d);
+  }
+  return unique;
+}
+
+namespace {
+
+bool existsAs(const std::string& path, UriResolver::Want want) {
+  std::error_code ec;
+  switch (want) {
+    case UriResolver::Want::kFolder:
+      return std::filesystem::is_directory(path, ec);
+    case UriResolver::Want::kAny:
+      return std::filesystem::exists(path, ec);
+    default:  // a file of any kind but a folder: a device is found, and refused by its reader
+      return std::filesystem::exists(path, ec) && !std::filesystem::is_directory(path, ec);
+  }
+}
+
+/// model://<model>/<path> -> "<model>/<path>"; throws for a URI without both parts.
+std::string modelRest(const std::string& uri, UriResolver::Want want) {
+  const std::string rest = uri.substr(8);
+  const auto slash = rest.find('/');
+  const bool folder = want != UriResolver::Want::kFile;
+  if (rest.empty() || slash == 0 ||
+      (!folder && (slash == std::string::npos || slash + 1 >= rest.size())))
+    throw ResourceError("mesh URI '" + uri + "' is not model://<model>/<path>");
+  return rest;
+}
+
+}  // namespace
+
+UriResolver::Found UriResolver::find(const std::string& uri, Want want) const {
+  if (uri.empty()) throw ResourceError("empty mesh URI");
+  Found found;
+  if (startsWith(uri, "model://")) {
+    const std::string rest = modelRest(uri, want);
+    for (const std::string& dir : modelSearchPath(model_paths)) {
+      found.tried.push_back(join(dir, rest));
+      if (existsAs(found.tried.back(), want)) {
+        found.path = found.tried.back();
+        break;
+      }
+    }
+    return found;
+  }
+  found.tried.push_back(direct(uri));
+  if (existsAs(found.tried.back(), want)) found.path = found.tried.back();
+  return found;
+}
+
 std::string UriResolver::resolve(const std::string& uri) const {
   if (uri.empty()) throw ResourceError("empty mesh URI");
-  if (startsWith(uri, "model://")) {
-    const std::string rest = uri.substr(8);
-    const auto slash = rest.find('/');
-    if (rest.empty() || slash == 0 || slash == std::string::npos || slash + 1 >= rest.size())
-      throw ResourceError("mesh URI '" + uri + "' is not model://<model>/<path>");
-    std::vector<std::string> dirs = model_paths;
-    if (dirs.empty()) {
-      dirs = gazeboModelPath();
-      const std::string user = userModelDir();
-      if (!user.empty()) dirs.push_back(user);
-    }
-    std::string searched;
-    for (const std::string& dir : dirs) {
-      const std::string candidate = join(dir, rest);
-      if (std::ifstream(candidate).good()) return candidate;
-      searched += (searched.empty() ? "" : ", ") + dir;
-    }
-    throw ResourceError("mesh URI '" + uri + "' not found in the model path (GAZEBO_MODEL_PATH): " +
-                        (searched.empty() ? std::string("no folder to search") : "searched " + searched));
-  }
+  if (!startsWith(uri, "model://")) return direct(uri);
+  const Found found = find(uri, Want::kFile);
+  if (!found.path.empty()) return found.path;
+  std::string searched;
+  for (const std::string& dir : modelSearchPath(model_paths))
+    searched += (searched.empty() ? "" : ", ") + dir;
+  throw ResourceError("mesh URI '" + uri + "' not found in the model path (GAZEBO_MODEL_PATH): " +
+                      (searched.empty() ? std::string("no folder to search") : "searched " + searched));
+}
+
+std::string UriResolver::direct(const std::string& uri) const {
   if (startsWith(uri, "package://")) {
     const std::string rest = uri.substr(10);
     const auto slash = rest.find('/');

@@ -92,19 +92,21 @@ TEST(UriResolver, ModelPath) {
   // A miss names the URI and every folder searched.
   EXPECT_THAT(error(r, "model://no_such_model/meshes/x.dae"),
               HasSubstr("mesh URI 'model://no_such_model/meshes/x.dae' not found in the model path"));
+  // The given folders come after Gazebo's own model path (modelSearchPath).
   EXPECT_THAT(error(r, "model://no_such_model/meshes/x.dae"),
-              HasSubstr("searched /nonexistent/models, " + data));
+              HasSubstr("/nonexistent/models, " + data));
   EXPECT_THAT(error(r, "model://"), HasSubstr("is not model://<model>/<path>"));
 }
 
-TEST(UriResolver, ModelPathFromTheEnvironmentWhenNoneIsGiven) {
+TEST(UriResolver, ModelPathFromTheEnvironmentInGazebosOrder) {
   const std::string data = modelRoot();
   setenv("GAZEBO_MODEL_PATH", ("/nonexistent/a::" + data).c_str(), 1);
   setenv("HOME", "/nonexistent/home", 1);
   UriResolver r;
   EXPECT_EQ(r.resolve("model://meshes_model/meshes/cube.stl"), data + "/meshes_model/meshes/cube.stl");
+  // gazebo/common/SystemPaths.cc: ~/.gazebo/models first, then GAZEBO_MODEL_PATH.
   EXPECT_THAT(error(r, "model://nope/x.stl"),
-              HasSubstr("searched /nonexistent/a, " + data + ", /nonexistent/home/.gazebo/models"));
+              HasSubstr("searched /nonexistent/home/.gazebo/models, /nonexistent/a, " + data));
   unsetenv("GAZEBO_MODEL_PATH");
 }
 

@@ -157,23 +157,14 @@ class MaterialParser {
 
 std::string resolveMaterialUri(const std::string& uri, const SdfMaterialContext& ctx,
                                std::vector<std::string>* tried) {
-  std::vector<std::string> candidates;
-  if (uri.rfind("model://", 0) == 0) {
-    const std::string rest = uri.substr(8);
-    std::vector<std::string> dirs = tianracer_assets::gazeboModelPath();
-    dirs.insert(dirs.end(), ctx.model_paths.begin(), ctx.model_paths.end());
-    dirs.push_back(ctx.base_dir);
-    dirs.push_back(joinPath(ctx.base_dir, "models"));
-    for (const auto& d : dirs) candidates.push_back(joinPath(d, rest));
-  } else {
-    std::string p = uri.rfind("file://", 0) == 0 ? uri.substr(7) : uri;
-    candidates.push_back(!p.empty() && p[0] == '/' ? p : joinPath(ctx.base_dir, p));
+  tianracer_assets::UriResolver::Found found;
+  try {
+    found = ctx.resolver.find(uri, tianracer_assets::UriResolver::Want::kAny);
+  } catch (const InputError&) {
+    return "";  // a malformed URI is not found: the caller warns with the URI
   }
-  for (const auto& c : candidates) {
-    if (tried) tried->push_back(c);
-    if (exists(c)) return c;
-  }
-  return "";
+  if (tried) tried->insert(tried->end(), found.tried.begin(), found.tried.end());
+  return found.path;
 }
 
 Material parseSdfMaterial(const XMLElement* e, const SdfMaterialContext& ctx) {

@@ -321,7 +321,7 @@ LinkDescription Parser::parseLink(const XMLElement* e, const std::string& model)
         } else if (gtag == "surface" && tag == "collision") {
           friction = parseSurface(g, cwhat, &contact);
         } else if (gtag == "material" && tag == "visual") {
-          material = parseSdfMaterial(g, {source_, base_dir_, options_.model_paths, cwhat, options_.warn});
+          material = parseSdfMaterial(g, {source_, uriResolver(), cwhat, options_.warn});
         } else {
           unsupported(g);
         }
@@ -508,31 +508,15 @@ void Parser::leftOutError(const InputError& error, const std::string& consequenc
 
 std::optional<std::string> Parser::resolveMesh(const XMLElement* e, const std::string& uri,
                                                const std::string& what, const std::string& kind) {
-  std::string path;
-  std::vector<std::string> tried;
-  if (startsWith(uri, "model://")) {
-    const std::string rest = uri.substr(8);
-    for (const std::string& d : modelDirs()) {
-      const std::string p = join(d, rest);
-      tried.push_back(p);
-      if (isFile(p)) {
-        path = p;
-        break;
-      }
-    }
-    if (path.empty()) path = tried.front();
-  } else {
-    MeshResolver resolver;
-    resolver.find_package = options_.find_package;
-    resolver.base_dir = base_dir_;
-    try {
-      path = resolver.resolve(uri);
-    } catch (const ModelError& err) {
-      leftOut(e, what + ": " + err.what(), "the " + kind + " is left out");
-      return std::nullopt;
-    }
-    tried.push_back(path);
+  tianracer_assets::UriResolver::Found found;
+  try {
+    found = uriResolver().find(uri);
+  } catch (const InputError& err) {
+    leftOut(e, what + ": " + err.what(), "the " + kind + " is left out");
+    return std::nullopt;
   }
+  const std::vector<std::string>& tried = found.tried;
+  const std::string path = found.path.empty() ? tried.front() : found.path;
   if (options_.require_meshes && !isFile(path)) {
     std::string msg = what + ": mesh '" + uri + "' not found (";
     for (std::size_t i = 0; i < tried.size(); ++i) msg += (i ? ", " : "tried ") + tried[i];

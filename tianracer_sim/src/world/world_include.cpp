@@ -187,41 +187,37 @@ void Parser::parseInclude(const XMLElement* e, WorldDescription& world) {
 }
 
 std::vector<std::string> Parser::modelDirs() const {
-  std::vector<std::string> dirs = tianracer_assets::gazeboModelPath();
-  dirs.insert(dirs.end(), options_.model_paths.begin(), options_.model_paths.end());
-  dirs.insert(dirs.end(), model_roots_.begin(), model_roots_.end());
-  const std::string user = tianracer_assets::userModelDir();
-  if (!user.empty()) dirs.push_back(user);
-  for (const std::string& d : tianracer_assets::rosExportedModelPaths()) dirs.push_back(d);
-  dirs.push_back(base_dir_);
-  dirs.push_back(join(base_dir_, "models"));
-  // Each folder once, at its first place (the messages list every folder searched).
-  std::vector<std::string> unique;
-  for (const std::string& d : dirs) {
-    if (std::find(unique.begin(), unique.end(), d) == unique.end()) unique.push_back(d);
-  }
-  return unique;
+  std::vector<std::string> extra = options_.model_paths;
+  extra.insert(extra.end(), model_roots_.begin(), model_roots_.end());
+  extra.push_back(base_dir_);
+  extra.push_back(join(base_dir_, "models"));
+  return tianracer_assets::modelSearchPath(extra);
+}
+
+tianracer_assets::UriResolver Parser::uriResolver() const {
+  tianracer_assets::UriResolver resolver;
+  resolver.find_package = options_.find_package;
+  resolver.base_dir = base_dir_;
+  resolver.model_paths = options_.model_paths;
+  resolver.model_paths.insert(resolver.model_paths.end(), model_roots_.begin(), model_roots_.end());
+  resolver.model_paths.push_back(base_dir_);
+  resolver.model_paths.push_back(join(base_dir_, "models"));
+  return resolver;
 }
 
 std::optional<ModelDescription> Parser::includeModel(const XMLElement* e, const IncludeSpec& spec) {
   // The model's folder: model://NAME in the model folders, or a file:// / plain path.
   std::string dir;
   std::vector<std::string> tried;
-  if (startsWith(spec.uri, "model://")) {
-    const std::string rest = spec.uri.substr(8);
-    for (const std::string& d : modelDirs()) {
-      const std::string p = join(d, rest);
-      tried.push_back(d);
-      if (isDir(p)) {
-        dir = p;
-        break;
-      }
-    }
-  } else {
-    std::string p = startsWith(spec.uri, "file://") ? spec.uri.substr(7) : spec.uri;
-    if (!p.empty() && p[0] != '/') p = join(base_dir_, p);
-    tried.push_back(p);
-    if (isDir(p)) dir = p;
+  try {
+    tianracer_assets::UriResolver::Found found =
+        uriResolver().find(spec.uri, tianracer_assets::UriResolver::Want::kFolder);
+    dir = found.path;
+    // For model://, the message lists the folders searched; otherwise the path tried.
+    tried = startsWith(spec.uri, "model://") ? modelDirs() : found.tried;
+  } catch (const InputError& err) {
+    leftOut(e, "<include> of '" + spec.uri + "': " + err.what(), "the model is left out");
+    return std::nullopt;
   }
   if (dir.empty()) {
     std::string msg = "<include> of '" + spec.uri + "': model not found; searched:";

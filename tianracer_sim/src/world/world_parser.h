@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <tinyxml2.h>
+#include <tianracer_assets/paths.h>
 
 #include "tianracer_sim/common/xml_reader.h"
 #include "tianracer_sim/world/world.h"
@@ -63,10 +64,13 @@ class Parser : public XmlReader {
   /// Resolves and parses the model an <include> names, with its <name>/<pose>/<static>;
   /// nullopt when its model is not found (left out, leftOut()).
   std::optional<ModelDescription> includeModel(const XMLElement* e, const IncludeSpec& spec);
-  /// Folders searched for model://NAME: GAZEBO_MODEL_PATH, the load options' model_paths, the
-  /// folders of enclosing includes, ~/.gazebo/models, ROS packages' exported
-  /// gazebo_model_path, the world file's folder and its models/ subfolder.
+  /// Folders searched for model://NAME: Gazebo's model path (tianracer_assets::modelSearchPath:
+  /// ~/.gazebo/models, GAZEBO_MODEL_PATH, ROS packages' exported gazebo_model_path), then the
+  /// load options' model_paths, the folders of enclosing includes, the world file's folder and
+  /// its models/ subfolder.
   std::vector<std::string> modelDirs() const;
+  /// The one resolver (tianracer_assets/paths.h) with this file's folder and the folders above.
+  tianracer_assets::UriResolver uriResolver() const;
   void applyState(const XMLElement* e, WorldDescription& world, std::set<std::string>& names);
   static void mergeSubModel(ModelDescription* m, const ModelDescription& sub,
                             const Eigen::Isometry3d& X_MS);

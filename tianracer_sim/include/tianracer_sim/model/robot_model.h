@@ -15,6 +15,8 @@
 // <urdf_model/model.h> itself (66k lines, 0.6 s in each of 68 sources that included it here).
 #include <urdf_world/types.h>
 
+#include <tianracer_assets/paths.h>
+
 #include "tianracer_sim/common/diagnostic.h"
 
 namespace tinyxml2 {
@@ -105,17 +107,10 @@ struct RobotExtensions {
   std::vector<TransmissionSpec> transmissions;
 };
 
-/// Resolves mesh URIs: package:// through find_package, file:// and absolute paths as given,
-/// relative paths against base_dir (the model file's folder).
-struct MeshResolver {
-  std::function<std::string(const std::string& package)> find_package;  // "" when unknown
-  std::string base_dir;
-  /// Folders searched for model://<name>/<path>, in order (Gazebo's GAZEBO_MODEL_PATH);
-  /// empty: GAZEBO_MODEL_PATH from the environment, then ~/.gazebo/models.
-  std::vector<std::string> model_paths;
-  /// Returns the absolute path, or throws ModelError naming the URI.
-  std::string resolve(const std::string& uri) const;
-};
+/// Resolves mesh URIs: the one resolver (tianracer_assets/paths.h): package:// through
+/// find_package, model:// in Gazebo's model path, file:// and absolute paths as given, relative
+/// paths against base_dir (the model file's folder). Its errors are ModelErrors (InputError).
+using MeshResolver = tianracer_assets::UriResolver;
 
 struct RobotModel {
   urdf::ModelInterfaceSharedPtr urdf;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <tinyxml2.h>
+#include <tianracer_assets/paths.h>
 
 #include "tianracer_sim/common/warning.h"
 #include "tianracer_sim/scene/scene.h"
@@ -17,8 +18,9 @@ namespace tianracer_sim {
 /// Where a <material> is read: for messages ("<source>:<line>: <what>: ...") and for URIs.
 struct SdfMaterialContext {
   std::string source;    // the world file
-  std::string base_dir;  // its folder: relative and file:// URIs, and model:// after the paths
-  std::vector<std::string> model_paths;  // searched for model:// after $GAZEBO_MODEL_PATH
+  /// Resolves its URIs: the world file's folder for relative ones, and the parser's model
+  /// search path for model:// (tianracer_assets/paths.h, the one resolver).
+  tianracer_assets::UriResolver resolver;
   std::string what;      // "model 'm' link 'l' visual 'v'"
   WarningSink warn;
 };
@@ -29,14 +31,13 @@ struct SdfMaterialContext {
 ///    looked for in the <uri> folders, the script's folder and its ../textures);
 ///  - <ambient>, <diffuse>, <specular> (override the script's colours, as in Gazebo);
 ///  - <pbr><metal><albedo_map> (a texture URI).
-/// model:// URIs are searched in $GAZEBO_MODEL_PATH, `model_paths`, the world's folder and
-/// its models/ subfolder. A script, material or texture that is not found is warned (naming
+/// URIs resolve through ctx.resolver, as the meshes beside them do. A script, material or texture that is not found is warned (naming
 /// the file, line and value) and the colours are used; a colour that is not 3-4 numbers
 /// throws WorldError.
 Material parseSdfMaterial(const tinyxml2::XMLElement* e, const SdfMaterialContext& ctx);
 
-/// The file a material URI names (model://, file://, absolute, or relative to base_dir);
-/// "" when none exists. `tried` (may be null) receives every path looked at.
+/// The file or folder a material URI names (model://, package://, file://, absolute, or
+/// relative to the world file's folder); "" when none exists or the URI is malformed. `tried` (may be null) receives every path looked at.
 std::string resolveMaterialUri(const std::string& uri, const SdfMaterialContext& ctx,
                                std::vector<std::string>* tried = nullptr);
 
