@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include <yaml-cpp/yaml.h>
@@ -149,39 +150,62 @@ std::vector<std::string> splitNamespace(const std::string& ns) {
   return parts;
 }
 
+YAML::Node parseYaml(const std::string& yaml, const std::string& source) {
+  try {
+    return YAML::Load(yaml);
+  } catch (const YAML::Exception& e) {
+    throw ControllerError({source, e.mark.line + 1, ""}, "not valid YAML: " + e.msg);
+  }
+}
+
+/// The node at key path `ns` ("" = the root); a null node when a key is missing. *path receives
+/// the path walked ("/a/b").
+YAML::Node findNamespace(const YAML::Node& root, const std::string& ns, std::string* path) {
+  YAML::Node at = root;
+  for (const std::string& part : splitNamespace(ns)) {
+    *path += "/" + part;
+    const YAML::Node& here = at;  // const: operator[] must not add the key
+    if (!here.IsMap() || !here[part]) return YAML::Node(YAML::NodeType::Undefined);
+    at.reset(here[part]);
+  }
+  return at;
+}
+
+/// Every dictionary with a `type` key under `at`, sorted by name (as the node lists them).
+std::vector<std::string> controllerNames(const YAML::Node& at) {
+  std::vector<std::string> names;
+  for (const auto& kv : at) {
+    if (kv.second.IsMap() && kv.second["type"]) names.push_back(kv.first.as<std::string>());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 }  // namespace
+
+std::optional<std::vector<std::string>> listControllerYaml(const std::string& yaml,
+                                                           const std::string& source,
+                                                           const std::string& ns) {
+  std::string path;
+  const YAML::Node at = findNamespace(parseYaml(yaml, source), ns, &path);
+  if (!at.IsDefined()) return std::nullopt;
+  return at.IsMap() ? controllerNames(at) : std::vector<std::string>{};
+}
 
 std::vector<ControllerSpec> loadControllerYaml(const std::string& yaml, const std::string& source,
                                                const std::string& ns,
                                                const std::vector<std::string>& names) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml);
-  } catch (const YAML::Exception& e) {
-    throw ControllerError({source, e.mark.line + 1, ""}, "not valid YAML: " + e.msg);
-  }
-  YAML::Node at = root;
   std::string path;
-  for (const std::string& part : splitNamespace(ns)) {
-    path += "/" + part;
-    const YAML::Node& here = at;  // const: operator[] must not add the key
-    if (!here.IsMap() || !here[part]) {
-      throw ControllerError(source + ": no controllers under " + path +
-                            " (the YAML's top key is the controllers' namespace, e.g. tianracer:)");
-    }
-    at.reset(here[part]);
+  const YAML::Node at = findNamespace(parseYaml(yaml, source), ns, &path);
+  if (!at.IsDefined()) {
+    throw ControllerError(source + ": no controllers under " + path +
+                          " (the YAML's top key is the controllers' namespace, e.g. tianracer:)");
   }
   if (!at.IsMap()) {
     throw ControllerError(source + ": " + (path.empty() ? std::string("the top level") : path) +
                           " is not a dictionary of controllers");
   }
-  std::vector<std::string> wanted = names;
-  if (wanted.empty()) {
-    for (const auto& kv : at) {
-      if (kv.second.IsMap() && kv.second["type"]) wanted.push_back(kv.first.as<std::string>());
-    }
-    std::sort(wanted.begin(), wanted.end());
-  }
+  const std::vector<std::string> wanted = names.empty() ? controllerNames(at) : names;
   std::vector<ControllerSpec> specs;
   for (const std::string& name : wanted) {
     const YAML::Node& dict = at;
@@ -195,13 +219,41 @@ std::vector<ControllerSpec> loadControllerYaml(const std::string& yaml, const st
   return specs;
 }
 
-std::vector<ControllerSpec> loadControllerYamlFile(const std::string& path, const std::string& ns,
-                                                   const std::vector<std::string>& names) {
+ControlConfigKeys readControlConfigKeys(const std::string& file) {
+  ControlConfigKeys out;
+  out.file = file;
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file);
+  } catch (const YAML::Exception& e) {
+    out.error = e.what();
+    return out;
+  }
+  if (!root.IsMap()) {
+    out.error = "its top level is not a dictionary";
+    return out;
+  }
+  for (const auto& entry : root) {
+    const std::string key = entry.first.as<std::string>();
+    out.keys.push_back(key);
+    if (entry.second.IsMap() && !controllerNames(entry.second).empty()) {
+      out.with_controllers.push_back(key);
+    }
+  }
+  return out;
+}
+
+std::string readTextFile(const std::string& path, const std::string& what) {
   std::ifstream in(path);
-  if (!in) throw ControllerError("controller YAML " + path + ": cannot be read");
+  if (!in) throw ControllerError(what + " " + path + ": cannot be read");
   std::stringstream text;
   text << in.rdbuf();
-  return loadControllerYaml(text.str(), path, ns, names);
+  return text.str();
+}
+
+std::vector<ControllerSpec> loadControllerYamlFile(const std::string& path, const std::string& ns,
+                                                   const std::vector<std::string>& names) {
+  return loadControllerYaml(readTextFile(path, "controller YAML"), path, ns, names);
 }
 
 }  // namespace tianracer_control

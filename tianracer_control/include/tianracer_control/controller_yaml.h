@@ -4,6 +4,7 @@
 #ifndef TIANRACER_CONTROL_CONTROLLER_YAML_H
 #define TIANRACER_CONTROL_CONTROLLER_YAML_H
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,27 @@ std::vector<ControllerSpec> loadControllerYamlFile(const std::string& path, cons
 std::vector<ControllerSpec> loadControllerYaml(const std::string& yaml, const std::string& source,
                                                const std::string& ns,
                                                const std::vector<std::string>& names = {});
+
+/// The names of the controllers under `ns` (sorted, as loadControllerYaml takes them when given
+/// none); nullopt when the YAML has no key path `ns`. Throws ControllerError for YAML that does
+/// not parse.
+std::optional<std::vector<std::string>> listControllerYaml(const std::string& yaml,
+                                                           const std::string& source,
+                                                           const std::string& ns);
+
+/// The text of a file; throws ControllerError "<what> <path>: cannot be read".
+std::string readTextFile(const std::string& path, const std::string& what);
+
+/// The top-level keys of a ros_control YAML file (~control_config: what `rosparam load` put at
+/// the launch file's namespace), and those that define controllers (a dictionary with at least
+/// one member that has a `type`).
+struct ControlConfigKeys {
+  std::string file;
+  std::vector<std::string> keys;
+  std::vector<std::string> with_controllers;
+  std::string error;  // the file could not be read or is no YAML dictionary ("" = fine)
+};
+ControlConfigKeys readControlConfigKeys(const std::string& file);
 
 }  // namespace tianracer_control
 

@@ -11,9 +11,9 @@
 #include <sstream>
 
 #include <tianracer_assets/paths.h>
-#include <tianracer_control/controller_yaml.h>
 
 #include "tianracer_sim/sensors/camera/sim_camera.h"
+#include "tianracer_sim/simulator/robot_setup.h"
 #include "tianracer_sim/sensors/imu/sim_imu.h"
 #include "tianracer_sim/sensors/p3d/sim_p3d.h"
 #include "tianracer_sim/sensors/ray/sim_ray.h"
@@ -37,12 +37,6 @@ std::string dirName(const std::string& path) {
 
 bool endsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-std::string trimSlashes(std::string s) {
-  while (!s.empty() && s.front() == '/') s.erase(s.begin());
-  while (!s.empty() && s.back() == '/') s.pop_back();
-  return s;
 }
 
 std::string join(const std::vector<std::string>& items) {
@@ -117,18 +111,24 @@ SimEnv::SimEnv(EnvConfig config) : config_(std::move(config)) {
     load.resolver.base_dir = dirName(config_.model);
   }
   model_ = loadRobotModel(urdf_, source, load);
-  const std::string ns = model_.ext.ros_control ? trimSlashes(model_.ext.ros_control->robot_namespace) : "";
-  robot_name_ = !config_.robot_name.empty() ? config_.robot_name
-                                            : (!ns.empty() ? ns : model_.urdf->getName());
-
-  // Its controllers, from the YAML as the node reads them from the parameter server.
-  if (!config_.control_config.empty()) {
-    const std::string key = !config_.control_namespace.empty() ? config_.control_namespace
-                                                                : (!ns.empty() ? ns : robot_name_);
-    controller_specs_ = tc::loadControllerYamlFile(config_.control_config, key, config_.controllers);
-  } else if (!config_.controllers.empty()) {
+  // Its name and controllers: the one robot set-up (the node's too), on the YAML as `rosparam
+  // load` puts it on the parameter server.
+  if (config_.control_config.empty() && !config_.controllers.empty()) {
     throw EnvError("controllers " + join(config_.controllers) + " asked for, but no control_config");
   }
+  RobotSetupRequest request;
+  request.robot_name = config_.robot_name;
+  if (!config_.control_namespace.empty()) request.control_namespace = config_.control_namespace;
+  if (!config_.controllers.empty()) request.controllers = config_.controllers;
+  request.control_config = config_.control_config;
+  const RobotSetup setup = setUpRobot(model_, request, YamlControlParams(config_.control_config));
+  if (warn) {
+    for (const std::string& w : setup.warnings) warn(w);
+  }
+  robot_name_ = setup.name;
+  setup_ns_ = setup.ns;
+  control_ns_ = setup.control_ns;
+  controller_specs_ = setup.controllers;
 
   // The world.
   std::string worlds_dir = config_.worlds_dir;
@@ -227,6 +227,14 @@ void SimEnv::build(std::uint64_t seed) {
   }
   if (drive_) drive_->reset();
   initial_ = false;
+}
+
+std::vector<std::pair<std::string, std::string>> SimEnv::controllers() const {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& c : sim_->robot(robot_)->controllers.controllers()) {
+    out.emplace_back(c->name(), c->type());
+  }
+  return out;
 }
 
 void SimEnv::senseInitial() {

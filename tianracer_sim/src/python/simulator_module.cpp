@@ -344,6 +344,12 @@ PYBIND11_MODULE(simulator, m) {
       .def_property_readonly("dt", &SimEnv::dt)
       .def_property_readonly("urdf", &SimEnv::urdf)
       .def_property_readonly("robot_name", &SimEnv::robotName)
+      .def_property_readonly("robot_namespace", &SimEnv::robotNamespace,
+                             "its ros_control namespace, as the node has it")
+      .def_property_readonly("control_namespace", &SimEnv::controlNamespace,
+                             "where its controllers were read, as the node reads them")
+      .def_property_readonly("controllers", &SimEnv::controllers,
+                             "(name, type) of every controller, in load order")
       .def_property_readonly("sensors", &SimEnv::sensors, "(name, kind) of every sensor")
       .def_property_readonly("commands",
                              [](const SimEnv& e) {

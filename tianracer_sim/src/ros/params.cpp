@@ -47,12 +47,6 @@ void checkPace(double max_step_size, double real_time_factor) {
   }
 }
 
-std::string trimSlashes(std::string s) {
-  while (!s.empty() && s.front() == '/') s.erase(s.begin());
-  while (!s.empty() && s.back() == '/') s.pop_back();
-  return s;
-}
-
 double getDouble(const ros::NodeHandle& pnh, const std::string& key, double fallback) {
   XmlRpc::XmlRpcValue v;
   if (!pnh.getParam(key, v)) return fallback;

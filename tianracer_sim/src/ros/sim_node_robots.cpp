@@ -1,5 +1,6 @@
 // The sim node's robots and models: from the node's parameters at start-up and from
-// spawn_urdf_model / spawn_sdf_model at run time, both through addRobot() (the Simulator's
+// spawn_urdf_model / spawn_sdf_model at run time, both through setUpRobot() (the one robot
+// set-up, simulator/robot_setup.h, on the parameter server) and addRobot() (the Simulator's
 // addRobot plus the robot's bridges); delete_model takes everything back out. The spawner calls
 // come from GazeboInterface on the node's callback thread, between steps.
 #include <algorithm>
@@ -50,37 +51,41 @@ void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name
     model = loadRobotModel(urdf, nh_.resolveName(param), options);
   }
 
-  std::string name = fixed_name;
-  const std::string model_ns =
-      trimSlashes(model.ext.ros_control ? model.ext.ros_control->robot_namespace : "");
-  if (name.empty()) {
-    rp.param<std::string>("robot_name", name, model_ns);
-    if (!model_ns.empty() && name != model_ns) {
-      // robot_state_publisher and the control nodes of the launch files follow robot_name.
-      ROS_WARN_STREAM("robot '" << name << "': ~robot_name is '" << name << "' but the model's "
-                      << "gazebo_ros_control robotNamespace is '/" << model_ns << "': its "
-                      << "controllers and joint_states are under /" << model_ns << ", not /"
-                      << name << " (give the model its namespace, e.g. model_args:=robot_namespace=/"
-                      << name << ", or robot_name:=" << model_ns << ")");
-    }
-  }
-  if (name.empty()) name = model.urdf->getName();
+  const RobotSetup setup = setUpRobot(model, fixed_name, false, rp);
   bool auto_z = true;
   const Eigen::Isometry3d X_WB = getSpawnPose(rp, &auto_z);
-  startupMark("robot '" + name + "': URDF and meshes");
-  addRobot(std::move(model), name, X_WB, auto_z, rp, false);
-  startupMark("robot '" + name + "': physics, controllers, sensors (GL context), topics");
+  startupMark("robot '" + setup.name + "': URDF and meshes");
+  addRobot(std::move(model), setup, X_WB, auto_z, rp);
+  startupMark("robot '" + setup.name + "': physics, controllers, sensors (GL context), topics");
 }
 
-void SimNode::addRobot(RobotModel model, const std::string& name, const Eigen::Isometry3d& X_WB,
-                       bool auto_z, const ros::NodeHandle& rp, bool spawned) {
+RobotSetup SimNode::setUpRobot(const RobotModel& model, const std::string& spawn_name,
+                               bool spawned, const ros::NodeHandle& rp) {
+  RobotSetupRequest request;
+  request.spawn_name = spawn_name;
+  rp.param<std::string>("robot_name", request.robot_name, "");
+  std::string control_ns;
+  if (rp.getParam("control_namespace", control_ns)) request.control_namespace = control_ns;
+  bool given = false;
+  const std::vector<std::string> listed = getNameList(rp, "controllers", &given);
+  if (given) request.controllers = listed;
+  rp.param<std::string>("control_config", request.control_config, "");
+  request.waits_for_spawner = spawned && !request.control_namespace;
+  RobotSetup setup = tianracer_sim::setUpRobot(model, request, RosControlParams());
+  for (const std::string& note : setup.notes) ROS_INFO_STREAM(note);
+  for (const std::string& warning : setup.warnings) ROS_WARN_STREAM(warning);
+  return setup;
+}
+
+void SimNode::addRobot(RobotModel model, const RobotSetup& setup, const Eigen::Isometry3d& X_WB,
+                       bool auto_z, const ros::NodeHandle& rp) {
+  const std::string& name = setup.name;
+
   if (sim_->simulation().findRobot(name)) {
     throw ModelError("robot '" + name + "' exists already: robot names must be unique");
   }
   RobotBridge::Options bridge;
-  bridge.ns = model.ext.ros_control ? model.ext.ros_control->robot_namespace : "";
-  if (bridge.ns.empty()) bridge.ns = "/" + name;
-  bridge.ns = "/" + trimSlashes(bridge.ns);
+  bridge.ns = setup.ns;
   for (const auto& other : robots_) {
     if (other->ns() == bridge.ns) {
       throw ModelError("robot '" + name + "' (" + model.source + "): its ros_control namespace " +
@@ -94,33 +99,17 @@ void SimNode::addRobot(RobotModel model, const std::string& name, const Eigen::I
   bridge.tf_prefix = trimSlashes(bridge.tf_prefix);
   rp.param<std::string>("odom_frame", bridge.odom_frame, "odom");
   bridge.ground_truth_rate = ground_truth_rate_;
+  bridge.control_ns = setup.control_ns;
+  bridge.controller_manager = model.ext.ros_control.has_value();
+  bridge.controllers_changed = [this] { updateCommandTopics(); };
 
   RobotSpawn spawn;
   spawn.name = name;
   spawn.X_WB = X_WB;
   spawn.drop_to_ground = auto_z;
   spawn.tf_prefix = bridge.tf_prefix;
-  // Controllers: the list given, else every controller defined under the namespace, except for
-  // a robot spawned through spawn_urdf_model with neither given: as in Gazebo, it runs none
-  // until a spawner starts them through <ns>/controller_manager/.
-  std::string control_ns;
-  ControlConfigKeys control_config;
-  const bool configured = rp.getParam("control_namespace", control_ns);
-  if (!configured) control_ns = defaultControlNamespace(rp, bridge.ns, &control_config);
-  ros::NodeHandle control_nh(control_ns);
-  bridge.control_ns = control_nh.getNamespace();
-  bridge.controller_manager = model.ext.ros_control.has_value();
-  bridge.controllers_changed = [this] { updateCommandTopics(); };
+  spawn.controllers = setup.controllers;
   bool given = false;
-  std::vector<std::string> names = getNameList(rp, "controllers", &given);
-  const bool waits_for_spawner = spawned && !configured;
-  if (!given && !waits_for_spawner) {
-    names = listControllers(control_nh);
-    if (names.empty() && model.ext.ros_control) {
-      ROS_WARN_STREAM(noControllersWarning(name, control_nh.getNamespace(), control_config));
-    }
-  }
-  spawn.controllers = tianracer_control::loadControllerSpecs(control_nh, names);
   spawn.disabled_sensors = getNameList(rp, "disable_sensors", &given);
   if (!given) spawn.disabled_sensors = getNameList(pnh_, "disable_sensors", &given);
   spawn.model = std::move(model);
@@ -211,8 +200,9 @@ void SimNode::spawnRobot(const std::string& name, const std::string& urdf,
   const ros::NodeHandle rp(pnh_, name);
   LoadOptions options = loadOptions(rp);
   options.warn = [](const std::string& w) { warnOnce(w); };
-  addRobot(loadRobotModel(urdf, "spawn_urdf_model '" + name + "'", options), name, X_WB, false, rp,
-           true);
+  RobotModel model = loadRobotModel(urdf, "spawn_urdf_model '" + name + "'", options);
+  const RobotSetup setup = setUpRobot(model, name, true, rp);
+  addRobot(std::move(model), setup, X_WB, false, rp);
 }
 
 void SimNode::spawnWorldModel(const std::string& name, const std::string& sdf,

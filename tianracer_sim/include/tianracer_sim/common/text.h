@@ -46,6 +46,13 @@ inline std::string baseName(const std::string& path) {
   return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
+/// "/a/b/" -> "a/b" (a ROS name without its leading and trailing slashes).
+inline std::string trimSlashes(std::string s) {
+  while (!s.empty() && s.front() == '/') s.erase(s.begin());
+  while (!s.empty() && s.back() == '/') s.pop_back();
+  return s;
+}
+
 /// A stable hash of a name (32-bit FNV-1a), never 0: the default noise seed of a sensor, so
 /// that two sensors of one model draw different noise and every run draws the same.
 inline std::uint32_t nameHash(const std::string& s) {

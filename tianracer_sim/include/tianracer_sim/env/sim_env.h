@@ -36,8 +36,9 @@ struct EnvConfig {
   std::string urdf;
   std::string model_dir;   // relative mesh paths of `urdf` resolve here
   std::string robot_name;  // "" = the gazebo_ros_control namespace, else the URDF's name
-  // Its controllers: a ros_control YAML ("" = none), the key they are under ("" = the model's
-  // ros_control namespace, as the node reads them) and which ones ([] = all).
+  // Its controllers: a ros_control YAML ("" = none), the key they are under ("" = as the node
+  // chooses it: the model's ros_control namespace, else the YAML's one key that defines
+  // controllers) and which ones ([] = all). The node's rules (simulator/robot_setup.h).
   std::string control_config;
   std::string control_namespace;
   std::vector<std::string> controllers;
@@ -113,6 +114,12 @@ class SimEnv {
   const std::string& ackermannProblem() const { return drive_problem_; }
   const std::string& urdf() const { return urdf_; }
   const std::string& robotName() const { return robot_name_; }
+  /// The robot's ros_control namespace and where its controllers were read, as the node has
+  /// them (simulator/robot_setup.h): "/tianracer".
+  const std::string& robotNamespace() const { return setup_ns_; }
+  const std::string& controlNamespace() const { return control_ns_; }
+  /// (name, type) of every controller, in load order (controller_manager's list_controllers).
+  std::vector<std::pair<std::string, std::string>> controllers() const;
   /// Every sensor of the robot: name and kind (SensorKind id).
   std::vector<std::pair<std::string, std::string>> sensors() const;
   Simulator& simulator() { return *sim_; }
@@ -163,7 +170,7 @@ class SimEnv {
   void senseInitial();  // the samples at time 0
 
   EnvConfig config_;
-  std::string urdf_, robot_name_;
+  std::string urdf_, robot_name_, setup_ns_, control_ns_;
   RobotModel model_;
   std::vector<tianracer_control::ControllerSpec> controller_specs_;
   WorldDescription world_;

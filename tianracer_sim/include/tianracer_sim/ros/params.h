@@ -10,6 +10,8 @@
 #include <Eigen/Geometry>
 #include <ros/node_handle.h>
 
+#include "tianracer_sim/common/text.h"
+
 namespace tianracer_sim {
 
 /// The node's own parameters (sim_node.h lists them), read in one place. Unset optionals take
@@ -35,9 +37,6 @@ NodeParams readNodeParams(const ros::NodeHandle& pnh);
 /// The step and the real-time factor in force (the parameters' or the world's). Throws naming
 /// the parameter for a step outside (0, 0.1] s or a factor below 0.
 void checkPace(double max_step_size, double real_time_factor);
-
-/// "/a/b/" -> "a/b".
-std::string trimSlashes(std::string s);
 
 /// A number (int or double); `fallback` when unset. Throws naming the parameter otherwise.
 double getDouble(const ros::NodeHandle& nh, const std::string& key, double fallback);

@@ -68,6 +68,7 @@
 #include "tianracer_sim/ros/lockstep.h"
 #include "tianracer_sim/ros/robot_bridge.h"
 #include "tianracer_sim/ros/step_bridge.h"
+#include "tianracer_sim/simulator/robot_setup.h"
 #include "tianracer_sim/simulator/simulator.h"
 
 namespace tianracer_sim {
@@ -90,12 +91,16 @@ class SimNode : private ModelSpawner {
   // addRobot(); delete_model.
   /// Loads one robot from the parameters in `rp`; `name` fixes its name (else ~robot_name).
   void loadRobot(const ros::NodeHandle& rp, const std::string& name);
-  /// The robot into the simulator with its bridges (`rp`: its own parameters: controllers,
-  /// control_namespace, odom_frame, disable_sensors). Throws naming the robot; nothing of it
-  /// stays then.
-  /// `spawned`: through spawn_urdf_model (no controller unless `rp` names them).
-  void addRobot(RobotModel model, const std::string& name, const Eigen::Isometry3d& X_WB,
-                bool auto_z, const ros::NodeHandle& rp, bool spawned);
+  /// The one robot set-up (simulator/robot_setup.h) on the parameter server, from `rp`: the
+  /// robot's own parameters (robot_name, controllers, control_namespace, control_config); its
+  /// notes and warnings logged. `spawn_name`: spawn_urdf_model's name (`spawned`: no
+  /// controller unless `rp` names them), or a robot of ~robots.
+  RobotSetup setUpRobot(const RobotModel& model, const std::string& spawn_name, bool spawned,
+                        const ros::NodeHandle& rp);
+  /// The robot into the simulator with its bridges (`rp`: odom_frame, disable_sensors). Throws
+  /// naming the robot; nothing of it stays then.
+  void addRobot(RobotModel model, const RobotSetup& setup, const Eigen::Isometry3d& X_WB,
+                bool auto_z, const ros::NodeHandle& rp);
   // ModelSpawner: spawn_urdf_model, spawn_sdf_model and delete_model, between steps.
   void spawnRobot(const std::string& name, const std::string& urdf,
                   const Eigen::Isometry3d& X_WB) override;
