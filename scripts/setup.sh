@@ -4,8 +4,8 @@
 #   scripts/setup.sh --no-build install only
 #   scripts/setup.sh --release  build without debug info (-O2, the same machine code), a
 #                               third less compile time; what ./run.sh uses on a new workspace.
-#                               A workspace already built keeps its build type, so nothing is
-#                               compiled again (docs/performance.md, First build).
+#   A workspace already built keeps its build type either way, so nothing is compiled again
+#   (./test.sh after ./run.sh; docs/performance.md, First build).
 # Idempotent: installed packages are skipped; sudo is used when not root.
 # Build output: <repo>/.build/{build,devel} (hidden and git-ignored).
 set -euo pipefail
@@ -112,16 +112,14 @@ stand_ins="$("$REPO/scripts/stand_in_packages.sh" "$REPO")" \
 while read -r line; do say "stand-ins: $line"; done <<<"$stand_ins"
 # The build type: RelWithDebInfo (-O2 -g) for the tests and debugging. --release drops the
 # debug info (a third of the compile time) but keeps -O2, so the machine code and every result
-# are the same (Release's own default, -O3, would not be); it applies to a new workspace only:
-# one already built keeps its type rather than compiling everything again.
+# are the same (Release's own default, -O3, would not be); it applies to a new workspace only.
+# A workspace already built keeps its type, whichever command built it: ./test.sh after
+# ./run.sh builds only the test executables, not everything again with debug info.
 build_type=RelWithDebInfo
-if ((RELEASE)); then
-  if [[ -f "$WS/build/CMakeCache.txt" ]]; then
-    cached="$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$WS/build/CMakeCache.txt")"
-    build_type="${cached:-RelWithDebInfo}"  # none: the packages' own default
-  else
-    build_type=Release
-  fi
+((RELEASE)) && build_type=Release
+if [[ -f "$WS/build/CMakeCache.txt" ]]; then
+  cached="$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$WS/build/CMakeCache.txt")"
+  build_type="${cached:-RelWithDebInfo}"  # none: the packages' own default
 fi
 say "build: catkin_make ($build_type) in $WS (log: $LOG_DIR/build.log)"
 start=$(date +%s)
