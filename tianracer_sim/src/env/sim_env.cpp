@@ -457,7 +457,7 @@ void SimEnv::reset(const std::optional<Eigen::Isometry3d>& X_WB, bool rest_on_gr
     if (rest_on_ground) X.translation().z() = depthBelowBase(model_, X.linear());
     const std::string bad = checkModelState(X, Twist());
     if (!bad.empty()) throw EnvError("reset pose: " + bad);
-    PhysicsRobot& robot = sim_->simulation().physics().robot(sim_->robot(robot_)->id);
+    PhysicsRobot& robot = *sim_->physicsOf(robot_);
     robot.setBasePose(X);
     robot.setBaseTwist(Twist());
   }
@@ -556,7 +556,7 @@ void SimEnv::read(std::size_t i, void* out) const {
 
 std::vector<LinkContact> SimEnv::contacts() {
   std::vector<LinkContact> out, scratch;
-  const PhysicsRobot& pr = sim_->simulation().physics().robot(sim_->robot(robot_)->id);
+  const PhysicsRobot& pr = *sim_->physicsOf(robot_);
   for (const auto& body : pr.tree().bodies) {
     sim_->linkContacts(LinkRef{robot_, body.link}, &scratch);
     out.insert(out.end(), scratch.begin(), scratch.end());

@@ -25,15 +25,16 @@ void ContactPublisher::removeRobot(RobotId id) {
                 robots_.end());
 }
 
-void ContactPublisher::publish(const PhysicsWorld& world, double t) {
+void ContactPublisher::publish(double t) {
   for (const ContactTracker::Due& d : tracker_.due()) {
     const auto r = std::find_if(robots_.begin(), robots_.end(),
                                 [&](const Robot& x) { return x.id == d.robot; });
     if (r == robots_.end() || *r->subscribers == 0) continue;
     const RobotContact& c = d.contact;
     tianracer_sim::Contact msg;
-    toContact(c, ros::Time(t), r->name, world.robot(r->id).tree().bodies.at(c.body).link, &msg);
-    tracker_.otherOf(world, c, &msg.other_model, &msg.other_link);
+    std::string link;
+    sim_.contactNames(r->id, c, &link, &msg.other_model, &msg.other_link);
+    toContact(c, ros::Time(t), r->name, link, &msg);
     r->pub.publish(msg);
   }
 }

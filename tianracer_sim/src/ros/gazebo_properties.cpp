@@ -20,18 +20,6 @@ namespace tianracer_sim {
 
 namespace {
 
-std_msgs::ColorRGBA toColor(const Eigen::Vector4f& c) {
-  std_msgs::ColorRGBA m;
-  m.r = c[0];
-  m.g = c[1];
-  m.b = c[2];
-  m.a = c[3];
-  return m;
-}
-
-Eigen::Vector4f fromColor(const std_msgs::ColorRGBA& m) { return {m.r, m.g, m.b, m.a}; }
-
-/// What we answer in ODE's fields: the solver's settings in Bullet's terms (docs).
 gazebo_msgs::ODEPhysics odeConfig(const PhysicsProperties& p) {
   gazebo_msgs::ODEPhysics o;
   o.auto_disable_bodies = p.auto_disable_bodies;
@@ -249,8 +237,7 @@ bool GazeboInterface::setModelConfiguration(gazebo_msgs::SetModelConfiguration::
 bool GazeboInterface::applyJointEffort(gazebo_msgs::ApplyJointEffort::Request& req,
                                        gazebo_msgs::ApplyJointEffort::Response& res) {
   return answer(res, {"apply_joint_effort: "}, [&] {
-    int i = -1;
-    simulator_.jointPhysics(req.joint_name, &i);  // throws for an unknown joint
+    entities_.joint(req.joint_name);  // throws for an unknown joint
     if (!std::isfinite(req.effort) || std::fabs(req.effort) > 1e6) {
       throw InputError("joint '" + req.joint_name + "': effort " + std::to_string(req.effort) +
                        " is not finite or beyond 1e6 (N m or N)");
@@ -259,8 +246,8 @@ bool GazeboInterface::applyJointEffort(gazebo_msgs::ApplyJointEffort::Request& r
     JointEffortJob job;
     job.joint = req.joint_name;
     job.effort = req.effort;
-    job.start = std::max(req.start_time.toSec(), sim_.time());  // gazebo_ros: a past start is now
-    job.end = req.duration.toSec() < 0.0 ? -1.0 : job.start + std::max(req.duration.toSec(), sim_.dt());
+    job.start = std::max(req.start_time.toSec(), simulator_.time());  // gazebo_ros: a past start is now
+    job.end = req.duration.toSec() < 0.0 ? -1.0 : job.start + std::max(req.duration.toSec(), simulator_.dt());
     joint_efforts_.push_back(job);
     return "ApplyJointEffort: effort set";
   });
@@ -277,7 +264,7 @@ bool GazeboInterface::clearJointForces(gazebo_msgs::JointRequest::Request& req,
 
 void GazeboInterface::applyJointEfforts() {
   if (joint_efforts_.empty() && joints_pushed_.empty()) return;
-  const double t = sim_.time();
+  const double t = simulator_.time();
   // Sum per joint of the jobs due now (gazebo_ros's forceJointSchedulerSlot); a joint pushed in
   // the last step and not now goes back to 0.
   std::vector<std::pair<std::string, double>> due;
@@ -299,9 +286,8 @@ void GazeboInterface::applyJointEfforts() {
   joints_pushed_.clear();
   for (const auto& [name, effort] : due) {
     try {
-      int i = -1;
-      PhysicsRobot& p = simulator_.jointPhysics(name, &i);
-      p.setJointExternalEffort(i, effort);
+      const JointRef joint = entities_.joint(name);
+      joint.body->setJointExternalEffort(joint.index, effort);
       if (effort != 0.0) joints_pushed_.push_back(name);
     } catch (const InputError&) {
       // the model is gone since
@@ -375,84 +361,6 @@ bool GazeboInterface::setParameters(dynamic_reconfigure::Reconfigure::Request& r
   }
   res.config = physicsConfig(simulator_.physicsProperties());
   publishPhysicsConfig();
-  return true;
-}
-
-// --- lights -----------------------------------------------------------------------------------
-
-bool GazeboInterface::getLightProperties(gazebo_msgs::GetLightProperties::Request& req,
-                                         gazebo_msgs::GetLightProperties::Response& res) {
-  res.success = false;
-  for (const DirectionalLight& l : simulator_.lights()) {
-    if (l.name != req.light_name) continue;
-    res.diffuse = toColor(l.given_diffuse);
-    res.attenuation_constant = l.attenuation.constant;
-    res.attenuation_linear = l.attenuation.linear;
-    res.attenuation_quadratic = l.attenuation.quadratic;
-    return succeeded(res, "GetLightProperties: got properties");
-  }
-  res.status_message = "getLightProperties: Requested light " + req.light_name + " not found!";
-  return true;
-}
-
-bool GazeboInterface::setLightProperties(gazebo_msgs::SetLightProperties::Request& req,
-                                         gazebo_msgs::SetLightProperties::Response& res) {
-  LightChange c;
-  c.diffuse = fromColor(req.diffuse);
-  c.specular = fromColor(req.specular);
-  c.attenuation = {req.attenuation_constant, req.attenuation_linear, req.attenuation_quadratic};
-  c.direction = Eigen::Vector3d(req.direction.x, req.direction.y, req.direction.z);
-  return answer(res, {"set_light_properties: "}, [&] {
-    simulator_.setLight(req.light_name, c);
-    return "SetLightProperties: properties set";
-  });
-}
-
-bool GazeboInterface::deleteLight(gazebo_msgs::DeleteLight::Request& req,
-                                  gazebo_msgs::DeleteLight::Response& res) {
-  res.success = false;
-  try {
-    simulator_.deleteLight(req.light_name);
-    res.success = true;
-    res.status_message = "DeleteLight: " + req.light_name + " successfully deleted";
-  } catch (const InputError& e) {
-    res.status_message = "DeleteLight: Requested light " + req.light_name + " not found!";
-  }
-  return true;
-}
-
-// --- links ------------------------------------------------------------------------------------
-
-bool GazeboInterface::getLinkProperties(gazebo_msgs::GetLinkProperties::Request& req,
-                                        gazebo_msgs::GetLinkProperties::Response& res) {
-  return answer(res, {"get_link_properties: ", "", false}, [&] {
-    const LinkProperties l = simulator_.linkProperties(req.link_name);
-    tianracer_control::toXyzMsg(l.com, &res.com.position);
-    res.com.orientation.w = 1.0;  // as gazebo_ros: no rotated inertia
-    res.gravity_mode = l.gravity_mode;
-    res.mass = l.mass;
-    res.ixx = l.inertia(0, 0);
-    res.ixy = l.inertia(0, 1);
-    res.ixz = l.inertia(0, 2);
-    res.iyy = l.inertia(1, 1);
-    res.iyz = l.inertia(1, 2);
-    res.izz = l.inertia(2, 2);
-    return "GetLinkProperties: got properties";
-  });
-}
-
-bool GazeboInterface::setLinkProperties(gazebo_msgs::SetLinkProperties::Request& req,
-                                        gazebo_msgs::SetLinkProperties::Response& res) {
-  res.success = false;
-  try {
-    simulator_.linkProperties(req.link_name);  // names an unknown link first
-    res.status_message = "set_link_properties: link '" + req.link_name +
-                         "': mass, inertia, centre of mass and gravity mode are fixed once the "
-                         "model is built here (a Bullet multibody's); nothing changed";
-  } catch (const InputError& e) {
-    res.status_message = std::string("set_link_properties: ") + e.what();
-  }
-  ROS_WARN_STREAM(res.status_message);
   return true;
 }
 

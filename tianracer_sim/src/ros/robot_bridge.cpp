@@ -24,7 +24,7 @@ RobotBridge::RobotBridge(Simulator& sim, ModelId id, Options options, ros::NodeH
     : sim_(sim), id_(id), options_(std::move(options)), root_(root) {
   SimRobot& robot = *sim_.robot(id_);
   physics_id_ = robot.id;
-  const PhysicsRobot& pr = sim_.simulation().physics().robot(robot.id);
+  const PhysicsRobot& pr = *sim_.physicsOf(id_);
   base_frame_ = tc::resolveFrame(options_.tf_prefix, pr.tree().bodies.front().link);
 
   // world -> odom at the spawn pose: wheel odometry starts there, so rviz can show the
@@ -90,7 +90,7 @@ std::vector<RobotBridge::JointStateStream> RobotBridge::makeJointStates() {
   std::vector<Request> requests;
   const SimRobot& robot = *sim_.robot(id_);
   const RobotModel& model = robot.model;
-  const PhysicsRobot& pr = sim_.simulation().physics().robot(robot.id);
+  const PhysicsRobot& pr = *sim_.physicsOf(id_);
   if (const auto& jsp = model.ext.joint_state_publisher) {
     requests.push_back({resolveTopic(jsp->robot_namespace, "joint_states"), jsp->joint_names,
                         jsp->update_rate, "joint_state_publisher plugin"});
@@ -142,7 +142,7 @@ std::vector<RobotBridge::JointStateStream> RobotBridge::makeJointStates() {
 void RobotBridge::publish(double t) {
   StepProfile* const profile = sim_.profile();
   const ros::Time stamp(t);
-  const PhysicsRobot& pr = sim_.simulation().physics().robot(sim_.robot(id_)->id);
+  const PhysicsRobot& pr = *sim_.physicsOf(id_);
   {
     StepProfile::Scope timed(profile, rows_.joint_states);
     for (JointStateStream& s : joint_states_) {

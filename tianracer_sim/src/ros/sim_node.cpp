@@ -85,7 +85,7 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
         "/diagnostics", 10, [this](const ros::SingleSubscriberPublisher&) { ++diagnostics_readers_; },
         [this](const ros::SingleSubscriberPublisher&) { --diagnostics_readers_; });
   }
-  contacts_ = std::make_unique<ContactPublisher>(sim_->contacts());
+  contacts_ = std::make_unique<ContactPublisher>(*sim_);
 
   bool several = false;
   const std::vector<std::string> robot_names = getNameList(pnh_, "robots", &several);
@@ -206,7 +206,7 @@ void SimNode::stepOnce() {
   const StepWaits waits = sim_->advance();
   {
     StepProfile::Scope part(profile, rows_.contact_msgs);
-    contacts_->publish(sim_->simulation().physics(), sim_->time());
+    contacts_->publish(sim_->time());
   }
   const double t = sim_->time();
   // With tick topics /clock keeps to the tick grid (Lockstep::clockOnTicksOnly()).

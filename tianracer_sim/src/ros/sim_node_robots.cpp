@@ -81,7 +81,7 @@ void SimNode::addRobot(RobotModel model, const RobotSetup& setup, const Eigen::I
                        bool auto_z, const ros::NodeHandle& rp) {
   const std::string& name = setup.name;
 
-  if (sim_->simulation().findRobot(name)) {
+  if (sim_->robot(sim_->findModel(name))) {
     throw ModelError("robot '" + name + "' exists already: robot names must be unique");
   }
   RobotBridge::Options bridge;
@@ -132,7 +132,7 @@ void SimNode::addRobot(RobotModel model, const RobotSetup& setup, const Eigen::I
   // The robot's topics before its sensors' (as a subscriber of joint_states sees them at start).
   spawn.added = [&](ModelId id) {
     const SimRobot& robot = *sim_->robot(id);
-    const PhysicsRobot& pr = sim_->simulation().physics().robot(robot.id);
+    const PhysicsRobot& pr = *sim_->physicsOf(id);
     ROS_INFO_STREAM("robot '" << name << "' (" << robot.model.source << "): "
                     << pr.joints().size() << " movable joints, " << robot.handles.size()
                     << " transmissions, controllers [" << [&] {

@@ -163,6 +163,20 @@ const SimRobot* Simulator::robot(ModelId id) const {
   return m ? m->robot : nullptr;
 }
 
+std::vector<ModelId> Simulator::modelIds() const {
+  std::vector<ModelId> ids;
+  for (std::size_t i = 0; i < models_.size(); ++i) {
+    if (!models_[i].name.empty()) ids.push_back(static_cast<ModelId>(i));
+  }
+  return ids;
+}
+
+const std::string& Simulator::modelName(ModelId id) const {
+  static const std::string none;
+  const Model* m = model(id);
+  return m ? m->name : none;
+}
+
 std::vector<ModelId> Simulator::robotIds() const {
   std::vector<ModelId> ids;
   for (std::size_t i = 0; i < models_.size(); ++i) {
@@ -540,6 +554,18 @@ std::uint64_t Simulator::contactCount(ModelId id) const {
   return r ? contacts_.count(r->id) : 0;
 }
 
+void Simulator::robotContacts(ModelId id, std::vector<RobotContact>* out) const {
+  out->clear();
+  const SimRobot* r = robot(id);
+  if (r) tianracer_sim::robotContacts(const_cast<PhysicsWorld&>(sim_.physics()), r->id, out);
+}
+
+void Simulator::contactNames(RobotId robot, const RobotContact& contact, std::string* link,
+                             std::string* other_model, std::string* other_link) const {
+  *link = sim_.physics().robot(robot).tree().bodies.at(contact.body).link;
+  contacts_.otherOf(sim_.physics(), contact, other_model, other_link);
+}
+
 // --- SensorWorld ----------------------------------------------------------------------------------
 
 void Simulator::updateScene() {
@@ -619,7 +645,7 @@ void Simulator::linkContacts(const LinkRef& link, std::vector<LinkContact>* out)
   const auto it = pr->tree().links.find(link.link);
   if (it == pr->tree().links.end()) return;
   if (const SimRobot* r = robot(link.model)) {
-    robotContacts(world, r->id, &contact_scratch_);
+    tianracer_sim::robotContacts(world, r->id, &contact_scratch_);
   } else {
     freeBodyContacts(world, world.freeBodyIndex(model(link.model)->name), &contact_scratch_);
   }

@@ -83,33 +83,10 @@ void Simulator::setPhysicsProperties(const PhysicsProperties& p) {
 
 // --- joints -----------------------------------------------------------------------------------
 
-PhysicsRobot& Simulator::jointPhysics(const std::string& name, int* index) {
-  const ScopedName n = splitScopedName(name);
-  // "joint" alone: n.model holds it and n.link is empty.
-  const std::string joint = n.link.empty() ? n.model : n.link;
-  const std::string model = n.link.empty() ? "" : n.model;
-  if (joint.empty()) throw InputError("joint '" + name + "': no joint name given");
-  bool model_found = model.empty();
-  for (const Model& m : models_) {
-    if (m.name.empty() || (!model.empty() && m.name != model)) continue;
-    PhysicsRobot* p = const_cast<PhysicsRobot*>(physicsOf(static_cast<ModelId>(&m - models_.data())));
-    model_found = true;
-    if (!p) continue;  // a static model: its joints do not move
-    const int i = p->jointIndex(joint);
-    if (i >= 0) {
-      *index = i;
-      return *p;
-    }
-  }
-  if (!model_found) throw InputError("joint '" + name + "': no model named '" + model + "'");
-  throw InputError("joint '" + name + "' not found: no " +
-                   (model.empty() ? std::string("model") : "model '" + model + "'") +
-                   " has a movable joint of that name (fixed joints are merged into their parent)");
-}
-
 JointProperties Simulator::jointProperties(const std::string& name) const {
-  int i = -1;
-  const PhysicsRobot& p = const_cast<Simulator*>(this)->jointPhysics(name, &i);
+  const JointRef ref = entities().joint(name);
+  const PhysicsRobot& p = *ref.body;
+  const int i = ref.index;
   JointProperties j;
   j.model = p.name();
   j.info = p.joints()[i];
@@ -119,8 +96,9 @@ JointProperties Simulator::jointProperties(const std::string& name) const {
 }
 
 void Simulator::setJointProperties(const std::string& name, const JointPropertiesChange& c) {
-  int i = -1;
-  PhysicsRobot& p = jointPhysics(name, &i);
+  const JointRef ref = entities().joint(name);
+  PhysicsRobot& p = *ref.body;
+  const int i = ref.index;
   const JointInfo& j = p.joints()[i];
   const std::string what = "joint '" + name + "'";
   auto check = [&](const std::optional<double>& v, const char* field, bool non_negative) {
@@ -188,43 +166,41 @@ void Simulator::setModelConfiguration(const std::string& model,
 // --- links ------------------------------------------------------------------------------------
 
 LinkProperties Simulator::linkProperties(const std::string& name) const {
-  const ScopedName n = splitScopedName(name);
-  if (n.model.empty() || n.link.empty()) {
-    throw InputError("link '" + name + "': use gazebo's scoped name \"model::link\"");
+  Entity e;
+  try {
+    e = entities().find(name, false);
+  } catch (const InputError& err) {
+    throw InputError("link '" + name + "': " + err.what());
   }
-  const ModelId id = findModel(n.model);
-  if (id == kNoModel) throw InputError("link '" + name + "': no model named '" + n.model + "'");
   LinkProperties lp;
-  if (const SimRobot* r = robot(id)) {
-    const PhysicsRobot& p = sim_.physics().robot(r->id);
-    for (const TreeBody& b : p.tree().bodies) {
-      if (b.link == n.link) {
+  if (e.robot) {
+    for (const TreeBody& b : e.body->tree().bodies) {
+      if (b.link == e.link) {
         lp.mass = b.mass.mass;  // body frame B = the link's frame; lumped children included
         lp.com = b.mass.com;
         lp.inertia = b.mass.inertia;
         return lp;
       }
       for (const std::string& merged : b.merged_links) {
-        if (merged == n.link) {
+        if (merged == e.link) {
           throw InputError("link '" + name + "' is joined to '" + b.link +
                            "' by fixed joints and lumped into it (as Gazebo's URDF import does): ask for '" +
-                           n.model + "::" + b.link + "'");
+                           e.model_name + "::" + b.link + "'");
         }
       }
     }
-    throw InputError("link '" + name + "': model '" + n.model + "' has no link '" + n.link + "'");
-  }
-  for (const ModelDescription& m : world_->models) {
-    if (m.name != n.model) continue;
-    for (const LinkDescription& l : m.links) {
-      if (l.name != n.link) continue;
+  } else if (e.model) {
+    for (const LinkDescription& l : e.model->links) {
+      if (l.name != e.link) continue;
       lp.mass = l.inertial.mass;
       lp.com = l.inertial.X_LI.translation();
       lp.inertia = l.inertial.inertia;
       return lp;
     }
+  } else if (e.ground_plane) {
+    throw InputError("link '" + name + "': the ground plane is static and has no inertial");
   }
-  throw InputError("link '" + name + "': model '" + n.model + "' has no link '" + n.link + "'");
+  throw InputError("link '" + name + "': model '" + e.model_name + "' has no link '" + e.link + "'");
 }
 
 // --- lights -----------------------------------------------------------------------------------

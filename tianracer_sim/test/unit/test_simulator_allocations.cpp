@@ -75,7 +75,7 @@ ModelId addCar(Simulator& sim, std::vector<std::string> disabled, double speed) 
 
 bool touching(Simulator& sim, ModelId id) {
   std::vector<RobotContact> now;
-  robotContacts(sim.simulation().physics(), sim.robot(id)->id, &now);
+  sim.robotContacts(id, &now);
   return !now.empty();
 }
 

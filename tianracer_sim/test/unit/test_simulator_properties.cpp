@@ -61,8 +61,7 @@ TEST(SimulatorProperties, PhysicsStepAndGravityChangeTheSimulation) {
   // Without gravity, the box lifted 1 m stays where it is; with it, it falls.
   p.gravity = Eigen::Vector3d::Zero();
   sim.setPhysicsProperties(p);
-  PhysicsWorld& physics = sim.simulation().physics();
-  PhysicsRobot& box = physics.freeBody(physics.freeBodyIndex("box"));
+  PhysicsRobot& box = *sim.physicsOf(sim.findModel("box"));
   box.setBasePose(Eigen::Isometry3d(Eigen::Translation3d(2.0, 0.0, 1.1)));
   const double z0 = boxZ(sim);
   sim.step(300);
@@ -278,8 +277,9 @@ TEST(SimulatorProperties, JointExternalEffortPushesUntilReplaced) {
   PhysicsProperties p = sim.physicsProperties();
   p.gravity = Eigen::Vector3d::Zero();
   sim.setPhysicsProperties(p);
-  int i = -1;
-  PhysicsRobot& pendulum = sim.jointPhysics("pivot", &i);
+  const JointRef joint = sim.entities().joint("pivot");
+  PhysicsRobot& pendulum = *joint.body;
+  const int i = joint.index;
   pendulum.setJointExternalEffort(i, 0.1);
   sim.step(100);
   // About the pivot: I = m L^2 + ixx = 1.5 * 0.25 + 0.002 (the bob's inertial is 1 cm up).
@@ -291,7 +291,7 @@ TEST(SimulatorProperties, JointExternalEffortPushesUntilReplaced) {
   EXPECT_NEAR(sim.jointProperties("pivot").rate, rate, 1e-6 + 1e-3 * rate);
   pendulum.setJointExternalEffort(i, kNaN);  // rejected, counted
   EXPECT_EQ(pendulum.jointExternalEffort(i), 0.0);
-  EXPECT_THROW(sim.jointPhysics("nope", &i), InputError);
+  EXPECT_THROW(sim.entities().joint("nope"), InputError);
 }
 
 TEST(SimulatorProperties, BadJointInputIsRefusedAndChangesNothing) {

@@ -248,7 +248,7 @@ TEST(Simulator, TracksContactsOnlyWhileAskedAndCountsOneInProgressAsNewWhenResum
   const auto* robot = sim.robot(id);
   ASSERT_NE(robot, nullptr);
   std::vector<RobotContact> now;
-  robotContacts(sim.simulation().physics(), robot->id, &now);
+  sim.robotContacts(id, &now);
   ASSERT_FALSE(now.empty()) << "the car should touch the wall at x = "
                             << sim.modelState(id).X_WE.translation().x();
   EXPECT_EQ(sim.contactCount(id), 0u);

@@ -10,19 +10,19 @@
 
 #include <ros/ros.h>
 
-#include "tianracer_sim/sim/contact_tracker.h"
+#include "tianracer_sim/simulator/simulator.h"
 
 namespace tianracer_sim {
 
 class ContactPublisher {
  public:
-  explicit ContactPublisher(const ContactTracker& tracker) : tracker_(tracker) {}
+  explicit ContactPublisher(const Simulator& sim) : sim_(sim), tracker_(sim.contacts()) {}
 
   void addRobot(ros::NodeHandle& nh, RobotId id, const std::string& name, const std::string& ns);
   /// Stops publishing for a robot that was deleted (its topic shuts down).
   void removeRobot(RobotId id);
   /// After the tracker's update: publishes its due contacts.
-  void publish(const PhysicsWorld& world, double t);
+  void publish(double t);
   /// Whether any robot's contacts topic has a subscriber (kept by the publishers' connect and
   /// disconnect callbacks, which run on the node's queue between steps: no cost per step).
   bool subscribed() const {
@@ -40,6 +40,7 @@ class ContactPublisher {
     std::shared_ptr<int> subscribers;  // shared with the publisher's callbacks
   };
 
+  const Simulator& sim_;
   const ContactTracker& tracker_;
   std::vector<Robot> robots_;
 };

@@ -47,7 +47,6 @@
 
 #include "tianracer_sim/ros/service_advertiser.h"
 #include "tianracer_sim/sim/entity_state.h"
-#include "tianracer_sim/sim/simulation.h"
 #include "tianracer_sim/simulator/simulator.h"
 #include "tianracer_sim/world/world.h"
 
@@ -164,26 +163,8 @@ class GazeboInterface {
  private:
   /// Applies the joint efforts due in the coming step (and clears those that ended).
   void applyJointEfforts();
-  /// A model or link found by name.
-  struct Entity {
-    SimRobot* robot = nullptr;                // a robot, or
-    const ModelDescription* model = nullptr;  // a model of the world file, or
-    PhysicsRobot* free = nullptr;             //   (with its free body when it is dynamic)
-    bool ground_plane = false;                // model://ground_plane
-    std::string model_name;
-    std::string link;  // "" = the model itself (its canonical link)
-  };
-  /// Finds "model" (when allow_model) or "model::link"; a link of a robot may be any URDF link,
-  /// merged ones included. On failure *error says what is wrong.
-  bool resolve(const std::string& name, bool allow_model, Entity* e, std::string* error) const;
-  /// The world state of an entity (static models: their pose, zero twist).
-  EntityState stateOf(const Entity& e) const;
-  /// What moves an entity: a robot's or a free body's physics; null for static models.
-  PhysicsRobot* physicsOf(const Entity& e) const;
-  /// The frame named by reference_frame (world when isWorldFrame()).
-  bool frameState(const std::string& name, EntityState* frame, std::string* error) const;
-  /// The entity and the reference frame a request names (resolve(), then frameState()); when
-  /// either fails, !ok and `error` says what is wrong.
+  /// The entity and the reference frame a request names (Entities::find(), then frame());
+  /// when either fails, !ok and `error` says what is wrong.
   struct Target {
     Entity entity;
     EntityState frame;
@@ -192,10 +173,6 @@ class GazeboInterface {
   };
   Target target(const std::string& name, bool allow_model,
                 const std::string& reference_frame) const;
-  /// The model's base state; `stop_joints` as set_model_state (PhysicsRobot::setModelTwist),
-  /// otherwise the joint rates are kept (set_link_state).
-  bool setBase(PhysicsRobot* body, const EntityState& X_WB, bool stop_joints, std::string* error);
-  std::vector<std::string> modelNames() const;
   void rebuildStateMessages();
   void onModelStateTopic(const gazebo_msgs::ModelState::ConstPtr& msg);
   void onLinkStateTopic(const gazebo_msgs::LinkState::ConstPtr& msg);
@@ -221,7 +198,7 @@ class GazeboInterface {
   ros::Publisher reconfigure_descriptions_pub_, reconfigure_updates_pub_;
 
   Simulator& simulator_;
-  Simulation& sim_;
+  Entities entities_;  // the one name resolver (simulator/entities.h)
   const WorldDescription& world_;
   Options options_;
   ModelSpawner* spawner_ = nullptr;

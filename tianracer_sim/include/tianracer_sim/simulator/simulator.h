@@ -45,6 +45,7 @@
 #include "tianracer_sim/sim/simulation.h"
 #include "tianracer_sim/sim/world_physics.h"
 #include "tianracer_sim/sensors/sim_sensor.h"
+#include "tianracer_sim/simulator/entities.h"
 #include "tianracer_sim/world/world.h"
 
 namespace tianracer_sim {
@@ -178,6 +179,17 @@ class Simulator : public SensorWorld {
   const SimRobot* robot(ModelId id) const;
   /// Ids of the robots, in the order they were added.
   std::vector<ModelId> robotIds() const;
+  /// Ids of every model (world models and robots), in the order they were added.
+  std::vector<ModelId> modelIds() const;
+  /// The name of model `id` ("" when there is none).
+  const std::string& modelName(ModelId id) const;
+  /// The physics of model `id`: a robot's, or a world model's free body; nullptr for a static
+  /// model. Throws std::out_of_range for an id that names no model.
+  const PhysicsRobot* physicsOf(ModelId id) const;
+  PhysicsRobot* physicsOf(ModelId id);
+  /// Models, links and joints by Gazebo's names, and their states (simulator/entities.h): the
+  /// one name resolver of the state and property services.
+  Entities entities() const { return Entities(const_cast<Simulator&>(*this)); }
   /// The sensors of model `id` (a robot or a world model) left out, and why (the start-up table's "left out" rows).
   const LeftOut& leftOut(ModelId id) const;
 
@@ -233,8 +245,6 @@ class Simulator : public SensorWorld {
   /// positions of equal length, every name a movable joint of the model, positions finite.
   void setModelConfiguration(const std::string& model, const std::vector<std::string>& joints,
                              const std::vector<double>& positions);
-  /// The physics of a movable joint (for apply_joint_effort's schedule); throws as above.
-  PhysicsRobot& jointPhysics(const std::string& joint, int* index);
   /// "model::link": a robot's link that is a body of its own (a link lumped into its parent by
   /// a fixed joint is not found, as in Gazebo), or any link of a world model.
   LinkProperties linkProperties(const std::string& link) const;
@@ -268,6 +278,12 @@ class Simulator : public SensorWorld {
   void waitFrames();
   /// Contacts begun so far by robot `id` (a pair touching again after a gap counts again).
   std::uint64_t contactCount(ModelId id) const;
+  /// Robot `id`'s contacts in the last step (none for a model that is no robot).
+  void robotContacts(ModelId id, std::vector<RobotContact>* out) const;
+  /// The names a contact of robot `robot` (physics id) carries in a message: its own link, and
+  /// the model and link it touches ("ground_plane"/"link" for the ground).
+  void contactNames(RobotId robot, const RobotContact& contact, std::string* link,
+                    std::string* other_model, std::string* other_link) const;
   /// Whether each step's contacts are tracked (counted for contactCount(), queued in
   /// contacts().due()); on by default. The ROS node turns it on only while something reads
   /// them, as Gazebo's ContactManager::NewContact (physics/ContactManager.cc) makes contacts
@@ -294,8 +310,6 @@ class Simulator : public SensorWorld {
                         const Eigen::Vector3d& angular_W) override;
 
   // --- the parts, for the bridges -------------------------------------------------------------
-  Simulation& simulation() { return sim_; }
-  const Simulation& simulation() const { return sim_; }
   const WorldDescription& world() const { return *world_; }
   const ContactTracker& contacts() const { return contacts_; }
   const SimulatorOptions& options() const { return options_; }
@@ -319,9 +333,6 @@ class Simulator : public SensorWorld {
 
   const Model* model(ModelId id) const;
   SimRobot& robotOrThrow(ModelId id);
-  /// The physics of a model (a robot, or a world model's free body); nullptr for static ones.
-  const PhysicsRobot* physicsOf(ModelId id) const;
-  PhysicsRobot* physicsOf(ModelId id);
   void setUpSensors(ModelId id, const RobotSpawn& spawn);
   /// The sensors of world model `id`'s links, attached through options_.attach_world_sensor.
   void setUpWorldModelSensors(ModelId id);

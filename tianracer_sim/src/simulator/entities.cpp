@@ -1,0 +1,129 @@
+#include "tianracer_sim/simulator/entities.h"
+
+#include <algorithm>
+
+#include <urdf_model/model.h>
+
+#include "tianracer_sim/common/diagnostic.h"
+#include "tianracer_sim/simulator/simulator.h"
+
+namespace tianracer_sim {
+
+Entity Entities::find(const std::string& name, bool allow_model) const {
+  const ScopedName n = splitScopedName(name);
+  Entity e;
+  e.model_name = n.model;
+  e.link = n.link;
+  if (n.model.empty()) {
+    throw InputError("'" + name + "' names no model (use \"model\" or \"model::link\")");
+  }
+  if (n.link.empty() && !allow_model) {
+    throw InputError("'" + name + "' is not a link: use gazebo's scoped name \"model::link\"");
+  }
+  const WorldDescription& world = sim_.world();
+  e.id = sim_.findModel(n.model);
+  if (const SimRobot* robot = sim_.robot(e.id)) {
+    e.robot = robot;
+    e.body = sim_.physicsOf(e.id);
+    if (!n.link.empty() && !robot->model.urdf->getLink(n.link)) {
+      throw InputError("model '" + n.model + "' has no link '" + n.link + "'");
+    }
+    return e;
+  }
+  if (world.ground_plane && n.model == "ground_plane") {
+    e.ground_plane = true;
+    if (!n.link.empty() && n.link != "link") {
+      throw InputError("model 'ground_plane' has no link '" + n.link + "' (its one link is 'link')");
+    }
+    return e;
+  }
+  for (const ModelDescription& m : world.models) {
+    if (m.name != n.model) continue;
+    e.model = &m;
+    if (e.id != kNoModel) e.body = sim_.physicsOf(e.id);
+    if (!n.link.empty() &&
+        std::none_of(m.links.begin(), m.links.end(),
+                     [&](const LinkDescription& l) { return l.name == n.link; })) {
+      throw InputError("model '" + n.model + "' has no link '" + n.link + "'");
+    }
+    return e;
+  }
+  std::string known;
+  for (const std::string& m : modelNames()) known += (known.empty() ? "" : ", ") + m;
+  throw InputError("no model named '" + n.model + "' (models: " + known + ")");
+}
+
+EntityState Entities::state(const Entity& e) const {
+  EntityState s;
+  if (const PhysicsRobot* body = e.body) {
+    if (e.link.empty()) {
+      s.X_WE = body->basePose();
+      s.V_WE = body->baseTwist();
+    } else {
+      s.X_WE = body->linkPose(e.link);
+      s.V_WE = body->linkTwist(e.link);
+    }
+  } else if (e.ground_plane) {
+    s.X_WE = sim_.world().X_WG;
+  } else if (e.model) {
+    s.X_WE = e.model->X_WM;
+    for (const LinkDescription& l : e.model->links) {
+      if (!e.link.empty() && l.name == e.link) s.X_WE = e.model->X_WM * l.X_ML;
+    }
+  }
+  return s;
+}
+
+EntityState Entities::frame(const std::string& reference_frame) const {
+  if (isWorldFrame(reference_frame)) return EntityState();
+  try {
+    return state(find(reference_frame, true));
+  } catch (const InputError& e) {
+    throw InputError("reference_frame: " + std::string(e.what()));
+  }
+}
+
+void Entities::setBase(const Entity& e, const EntityState& base, bool stop_joints) const {
+  if (!e.body) throw InputError("model '" + e.model_name + "' is static and cannot be moved");
+  if (const std::string bad = checkModelState(base.X_WE, base.V_WE); !bad.empty()) {
+    throw InputError(bad);
+  }
+  e.body->setBasePose(base.X_WE);
+  if (stop_joints) {
+    e.body->setModelTwist(base.V_WE);
+  } else {
+    e.body->setBaseTwist(base.V_WE);
+  }
+}
+
+JointRef Entities::joint(const std::string& name) const {
+  const ScopedName n = splitScopedName(name);
+  // "joint" alone: n.model holds it and n.link is empty.
+  const std::string joint = n.link.empty() ? n.model : n.link;
+  const std::string model = n.link.empty() ? "" : n.model;
+  if (joint.empty()) throw InputError("joint '" + name + "': no joint name given");
+  bool model_found = model.empty();
+  for (const ModelId id : sim_.modelIds()) {
+    if (!model.empty() && sim_.modelName(id) != model) continue;
+    model_found = true;
+    PhysicsRobot* body = sim_.physicsOf(id);
+    if (!body) continue;  // a static model: its joints do not move
+    const int i = body->jointIndex(joint);
+    if (i >= 0) return {body, i};
+  }
+  if (!model_found) throw InputError("joint '" + name + "': no model named '" + model + "'");
+  throw InputError("joint '" + name + "' not found: no " +
+                   (model.empty() ? std::string("model") : "model '" + model + "'") +
+                   " has a movable joint of that name (fixed joints are merged into their parent)");
+}
+
+std::vector<std::string> Entities::modelNames() const {
+  std::vector<std::string> names;
+  const WorldDescription& world = sim_.world();
+  if (world.ground_plane) names.push_back("ground_plane");
+  for (const ModelDescription& m : world.models) names.push_back(m.name);
+  for (const ModelId id : sim_.robotIds()) names.push_back(sim_.modelName(id));
+  return names;
+}
+
+}  // namespace tianracer_sim
