@@ -45,6 +45,8 @@ APT_PACKAGES=(
   pybind11-dev python3-rospkg
   # the node's ~step_and_wait action
   libactionlib-dev python3-actionlib libactionlib-msgs-dev python3-actionlib-msgs
+  # our control_msgs stand-in's message dependencies (JointTrajectory), C++ and Python
+  libtrajectory-msgs-dev python3-trajectory-msgs python3-geometry-msgs
 )
 # xacro: the ROS 1 one (2.x is the ROS 2 one, TOOLCHAIN.md); ray: scenario batches (`batch`);
 # gymnasium: tianracer_gym's environments (docs/learning.md)
@@ -105,7 +107,8 @@ fi
 # ROS tools want the system Python first on PATH (TOOLCHAIN.md: python3 may be a pyenv).
 export PATH="/usr/bin:$PATH"
 mkdir -p "$LOG_DIR"
-# Our stand-ins (gazebo_msgs, ackermann_msgs, xacro, controller_manager(_msgs), gazebo_ros) only
+# Our stand-ins (gazebo_msgs, ackermann_msgs, xacro, controller_manager(_msgs), gazebo_ros,
+# control_msgs) only
 # where the system has none: never shadow the real ones.
 stand_ins="$("$REPO/scripts/stand_in_packages.sh" "$REPO")" \
   || fail "step 'build': scripts/stand_in_packages.sh failed"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Our stand-ins for ROS packages Debian 12 does not ship (gazebo_msgs, ackermann_msgs, xacro,
-# controller_manager_msgs, controller_manager, gazebo_ros) are built only where the system has
+# controller_manager_msgs, controller_manager, gazebo_ros, control_msgs) are built only where the system has
 # none. Where the system has one (a stock Noetic in /opt/ros, or any package that rospack finds
 # outside this workspace), ours gets a CATKIN_IGNORE so it never shadows it.
 #   scripts/stand_in_packages.sh [SOURCE_ROOT]    (default: the repo root)
@@ -40,7 +40,8 @@ system_package() {
   fi
 }
 
-STAND_INS=(gazebo_msgs ackermann_msgs xacro controller_manager_msgs controller_manager gazebo_ros)
+STAND_INS=(gazebo_msgs ackermann_msgs xacro controller_manager_msgs controller_manager gazebo_ros
+  control_msgs)
 for pkg in "${STAND_INS[@]}"; do
   dir="$ROOT/$pkg"
   [[ -f "$dir/package.xml" ]] || continue
