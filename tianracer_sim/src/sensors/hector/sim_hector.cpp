@@ -12,13 +12,21 @@ namespace {
 
 // Gazebo's Model::GetLink() without a name: the canonical link, which for a URDF robot is its
 // root link. A world model is not told its canonical link here: it must name <bodyName>.
+// A <bodyName> the model lacks: upstream's ROS_FATAL, here a message at the plugin's line.
 std::string bodyLink(const SimSensorSetup& setup, const std::string& link,
                      const std::string& what) {
-  if (!link.empty()) return link;
-  if (setup.urdf && setup.urdf->getRoot()) return setup.urdf->getRoot()->name;
-  setup.fail(what + " '" + setup.spec->name +
-             "': no <bodyName>, and a world model's canonical link is not known here; give "
-             "<bodyName>");
+  const std::string who = what + " '" + setup.spec->name + "' of model '" + setup.model_name + "'";
+  if (link.empty()) {
+    if (setup.urdf && setup.urdf->getRoot()) return setup.urdf->getRoot()->name;
+    setup.fail(who + ": no <bodyName>, and a world model's canonical link is not known here; "
+               "give <bodyName>");
+  }
+  try {
+    setup.check_link(link);
+  } catch (const std::exception&) {
+    setup.fail(who + ": <bodyName> '" + link + "' is not a link of the model");
+  }
+  return link;
 }
 
 // Frames as the sim's others: the tf_prefix on links, "world" as it is.
