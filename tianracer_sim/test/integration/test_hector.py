@@ -9,12 +9,15 @@ MagneticField): |B| 0.5 and 60 degrees of inclination (B_z = -0.5 sin 60). The s
 sensor at 20 Hz, the plugin's default 10 Hz): the wall 1.85 m ahead. Rates from header stamps
 and seq numbers, in sim time. hector_bad.urdf (started apart, on a private master): each bad
 plugin is left out with a message naming the file, line, plugin, element and value, and the
-good magnetometer is simulated.
+good magnetometer is simulated. Last, dynamic_reconfigure as upstream serves it: the
+magnetometer's model (a vector model shows the mean of its components, a change sets all three)
+and the GPS status.
 """
 import os
 import math
 import unittest
 
+import dynamic_reconfigure.client
 import rospy
 import rostest
 from geometry_msgs.msg import Vector3Stamped
@@ -142,6 +145,37 @@ class HectorTest(unittest.TestCase):
         self.assertTrue(any('magnetometer ' in l and l.rstrip().endswith('simulated')
                             for l in rows), out)
         self.assertIn('5 plugins and sensors: 1 simulated, 0 with differences, 4 left out', out)
+
+    def test_z_reconfigure(self):
+        """Last: it changes the sensors."""
+        client = dynamic_reconfigure.client.Client('/hector_bot/magnetic', timeout=30)
+        config = client.get_configuration(timeout=30)
+        self.assertAlmostEqual(config['gaussian_noise'], 0.001)
+        self.assertAlmostEqual(config['scale_error'], 1.0)
+        self.assertAlmostEqual(config['drift_frequency'], 1.0 / 3600.0)
+        self.assertEqual(rospy.get_param('/hector_bot/magnetic/gaussian_noise'), 0.001)
+        config = client.update_configuration({'offset': 0.1, 'gaussian_noise': 0.0})
+        self.assertAlmostEqual(config['offset'], 0.1)
+        t = rospy.get_time()
+        self.mag.first_stamped(t + 0.1)
+        msgs = [m for m in self.mag.messages() if m.header.stamp.to_sec() > t + 0.05]
+        m = msgs[-1].magnetic_field
+        self.assertAlmostEqual(m.x, 0.25 + 0.1, delta=1e-3)  # the offset on every component
+        self.assertAlmostEqual(m.y, 0.1, delta=1e-3)
+        self.assertAlmostEqual(m.z, -0.5 * math.sin(math.radians(60)) + 0.1, delta=1e-3)
+        # Out of the cfg's range: clamped (offset -10..10).
+        self.assertAlmostEqual(client.update_configuration({'offset': 50.0})['offset'], 10.0)
+
+        status = dynamic_reconfigure.client.Client('/gps/fix/status', timeout=30)
+        # At start the values are the plugin's: STATUS_FIX, service 0.
+        config = status.get_configuration(timeout=30)
+        self.assertTrue(config['STATUS_FIX'])
+        self.assertFalse(config['SERVICE_GPS'])
+        status.update_configuration({'STATUS_FIX': False, 'SERVICE_GALILEO': True})
+        t = rospy.get_time()
+        fix = self.fix.first_stamped(t + 0.2)
+        self.assertEqual(fix.status.status, NavSatStatus.STATUS_NO_FIX)
+        self.assertEqual(fix.status.service, NavSatStatus.SERVICE_GALILEO)
 
 
 if __name__ == '__main__':

@@ -66,6 +66,12 @@ void setXyzw(const Eigen::Quaterniond& q, Eigen::Vector4d* out) {
 
 HectorImu::HectorImu(HectorImuConfig config)
     : config_(std::move(config)), rng_(config_.seed), q_offset_(euler(config_.rpy_offset)) {
+  // Filled once at Load, as upstream ("constant covariance matrix").
+  ImuReading& m = reading_.imu;
+  for (int i = 0; i < 3; ++i) {
+    m.angular_velocity_covariance[4 * i] = std::pow(config_.rate.gaussian_noise[i], 2);
+    m.linear_acceleration_covariance[4 * i] = std::pow(config_.accel.gaussian_noise[i], 2);
+  }
   reset();
 }
 
@@ -121,10 +127,6 @@ const HectorImuReading& HectorImu::update(double dt, const LinkState& link,
   m.orientation_covariance[8] = std::pow(config_.yaw.gaussian_noise[0], 2);
   m.orientation_covariance[0] = g > 0.0 ? std::pow(a.gaussian_noise.x() / g, 2) : -1.0;
   m.orientation_covariance[4] = g > 0.0 ? std::pow(a.gaussian_noise.y() / g, 2) : -1.0;
-  for (int i = 0; i < 3; ++i) {
-    m.angular_velocity_covariance[4 * i] = w.gaussian_noise[i] * w.gaussian_noise[i];
-    m.linear_acceleration_covariance[4 * i] = a.gaussian_noise[i] * a.gaussian_noise[i];
-  }
 
   ImuReading& b = reading_.bias;
   setXyzw(error, &b.orientation_xyzw);

@@ -81,6 +81,13 @@ class HectorGps {
   void reset();
   const HectorGpsReading& update(double dt, const LinkState& link);
   const HectorGpsReading& reading() const { return reading_; }
+  /// The models and the status, for dynamic_reconfigure.
+  HectorErrorModel3& positionModel() { return config_.position; }
+  HectorErrorModel3& velocityModel() { return config_.velocity; }
+  void setStatus(int status, int service) {
+    config_.status = status;
+    config_.service = service;
+  }
 
  private:
   HectorGpsConfig config_;

@@ -12,7 +12,8 @@
 //    e = (cos(yawBias/2), 0, 0, sin(yawBias/2)) * (1, d.y / 2|g|, -d.x / 2|g|, 0), normalised;
 //    the orientation published is e * rot;
 //  - covariances: orientation [0], [4] accel gn.x^2 / |g|^2, gn.y^2 / |g|^2 (-1 without
-//    gravity), [8] yaw gn^2; rates and accelerations diag(gn^2) of their models;
+//    gravity), [8] yaw gn^2, at each update; rates and accelerations diag(gn^2) of their
+//    models as loaded (upstream fills them once: a reconfigured noise does not change them);
 //  - the bias message: orientation e, angular_velocity the rate bias, linear_acceleration the
 //    accel bias (drift + offset), covariances 0.
 // Differences: the rate's rotation angle is 2 atan2(|v|, w) of the shortest rotation (upstream
@@ -82,6 +83,10 @@ class HectorImu {
   /// set_accel_bias / set_rate_bias: the model's drift set to `bias`.
   void setAccelBias(const Eigen::Vector3d& bias) { config_.accel.reset(bias); }
   void setRateBias(const Eigen::Vector3d& bias) { config_.rate.reset(bias); }
+  /// The models, for dynamic_reconfigure (upstream's SensorModel_::dynamicReconfigureCallback).
+  HectorErrorModel3& accelModel() { return config_.accel; }
+  HectorErrorModel3& rateModel() { return config_.rate; }
+  HectorErrorModel1& yawModel() { return config_.yaw; }
 
  private:
   HectorImuConfig config_;  // holds the models' state

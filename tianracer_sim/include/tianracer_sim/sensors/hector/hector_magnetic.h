@@ -56,6 +56,8 @@ class HectorMagnetic {
   void reset();
   const Eigen::Vector3d& update(double dt, const Eigen::Matrix3d& R_WL);
   const Eigen::Vector3d& field() const { return field_; }
+  /// The model, for dynamic_reconfigure.
+  HectorErrorModel3& model() { return config_.model; }
 
  private:
   HectorMagneticConfig config_;

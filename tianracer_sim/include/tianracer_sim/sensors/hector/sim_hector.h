@@ -76,6 +76,7 @@ class SimHectorGps : public SimHectorPlugin {
   const HectorGpsConfig& config() const { return gps_.config(); }
   const std::string& frame() const { return frame_; }
   const HectorGpsReading& reading() const { return gps_.reading(); }
+  HectorGps& core() { return gps_; }
 
  private:
   void measure(double dt) override { gps_.update(dt, state()); }
@@ -92,6 +93,7 @@ class SimHectorMagnetic : public SimHectorPlugin {
   const HectorMagneticConfig& config() const { return magnetic_.config(); }
   const std::string& frame() const { return frame_; }
   const Eigen::Vector3d& field() const { return magnetic_.field(); }
+  HectorMagnetic& core() { return magnetic_; }
 
  private:
   void measure(double dt) override { magnetic_.update(dt, state().X_WL.linear()); }
@@ -107,6 +109,8 @@ class SimHectorSonar : public SimSensor {
   SimHectorSonar(const SimSensorSetup& setup, HectorSonarConfig config);
   const HectorSonarConfig& config() const { return config_; }
   const RangeReading& reading() const { return reading_; }
+  /// The model, for dynamic_reconfigure.
+  HectorErrorModel1& model() { return config_.model; }
 
   SensorOutputs update(double t, SensorWorld& world) override;
   void sample(SensorOutputs outputs, SensorWorld& world) override;
