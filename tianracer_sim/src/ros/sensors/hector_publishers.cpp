@@ -155,9 +155,9 @@ std::unique_ptr<ReconfigureServer> statusServer(const PublisherSetup& setup,
   };
   const auto set = [gps](const ReconfigureServer::Values& v) {
     const auto on = [&](const char* name) { return v.at(name) != 0.0; };
-    const int status = !on("STATUS_FIX") ? NavSatStatus::STATUS_NO_FIX
-                                         : (on("STATUS_SBAS_FIX") ? NavSatStatus::STATUS_SBAS_FIX : 0) |
-                                               (on("STATUS_GBAS_FIX") ? NavSatStatus::STATUS_GBAS_FIX : 0);
+    const int augmented = (on("STATUS_SBAS_FIX") ? NavSatStatus::STATUS_SBAS_FIX : 0) |
+                          (on("STATUS_GBAS_FIX") ? NavSatStatus::STATUS_GBAS_FIX : 0);
+    const int status = on("STATUS_FIX") ? augmented : NavSatStatus::STATUS_NO_FIX;
     const int service = (on("SERVICE_GPS") ? NavSatStatus::SERVICE_GPS : 0) |
                         (on("SERVICE_GLONASS") ? NavSatStatus::SERVICE_GLONASS : 0) |
                         (on("SERVICE_COMPASS") ? NavSatStatus::SERVICE_COMPASS : 0) |

@@ -51,7 +51,8 @@ HectorGpsConfig parseHectorGpsConfig(const SensorSpec& spec, const std::string& 
   r.number("referenceLongitude", &c.reference_longitude);
   if (r.number("referenceHeading", &c.reference_heading)) c.reference_heading *= kDeg;
   r.number("referenceAltitude", &c.reference_altitude);
-  c.status = readInteger(r, "status", -1, 2, c.status, "NavSatStatus: -1 no fix, 0 fix, 1 SBAS, 2 GBAS");
+  c.status = readInteger(r, "status", -1, 2, c.status,
+                         "NavSatStatus: -1 no fix, 0 fix, 1 SBAS, 2 GBAS");
   c.service = readInteger(r, "service", 0, 15, c.service,
                           "NavSatStatus bits: 1 GPS, 2 GLONASS, 4 COMPASS, 8 GALILEO");
   readErrorModel(r, "", &c.position);

@@ -42,9 +42,9 @@ std::vector<SensorTopic> publishedTopics(const HectorMagneticConfig& c) {
 
 Eigen::Vector3d HectorMagneticConfig::fieldWorld() const {
   // Gazebo's frame as north-west-up; heading and declination are compass angles.
-  return magnitude * Eigen::Vector3d(std::cos(inclination) * std::cos(reference_heading - declination),
-                                     std::cos(inclination) * std::sin(reference_heading - declination),
-                                     -std::sin(inclination));
+  const double h = reference_heading - declination;
+  return magnitude * Eigen::Vector3d(std::cos(inclination) * std::cos(h),
+                                     std::cos(inclination) * std::sin(h), -std::sin(inclination));
 }
 
 HectorMagnetic::HectorMagnetic(HectorMagneticConfig config)

@@ -75,7 +75,8 @@ void readErrorModel(PluginReader& r, const std::string& prefix, HectorErrorModel
 
 const PluginSpec& hectorModelPlugin(const SensorSpec& spec, const std::string& context) {
   if (spec.plugins.size() != 1)
-    throw InputError(SourceLocation{spec.source, spec.line, "plugin"}, context + ": expected one plugin");
+    throw InputError(SourceLocation{spec.source, spec.line, "plugin"},
+                     context + ": expected one plugin");
   return spec.plugins.front();
 }
 

@@ -77,24 +77,29 @@ SensorOutputs imuOutputs(const HectorImuConfig& c) {
 }  // namespace
 
 const SensorKind& hectorImuKind() {
-  static const SensorKind kind = {"hector_imu", {}, {"libhector_gazebo_ros_imu.so"}, &topicsOf<parseHectorImuConfig>, &makeImu};
+  static const SensorKind kind = {"hector_imu", {}, {"libhector_gazebo_ros_imu.so"},
+                                  &topicsOf<parseHectorImuConfig>, &makeImu};
   return kind;
 }
 
 const SensorKind& hectorGpsKind() {
-  static const SensorKind kind = {"hector_gps", {}, {"libhector_gazebo_ros_gps.so"}, &topicsOf<parseHectorGpsConfig>, &makeGps};
+  static const SensorKind kind = {"hector_gps", {}, {"libhector_gazebo_ros_gps.so"},
+                                  &topicsOf<parseHectorGpsConfig>, &makeGps};
   return kind;
 }
 
 const SensorKind& hectorMagneticKind() {
-  static const SensorKind kind = {"hector_magnetic", {}, {"libhector_gazebo_ros_magnetic.so"}, &topicsOf<parseHectorMagneticConfig>, &makeMagnetic};
+  static const SensorKind kind = {"hector_magnetic", {}, {"libhector_gazebo_ros_magnetic.so"},
+                                  &topicsOf<parseHectorMagneticConfig>, &makeMagnetic};
   return kind;
 }
 
 const SensorKind& hectorSonarKind() {
   // A ray sensor (Gazebo casts the plugin's parent to RaySensor: gpu_ray is refused there and
   // here, by the parser's message).
-  static const SensorKind kind = {"hector_sonar", {"ray", "gpu_ray"}, {"libhector_gazebo_ros_sonar.so"}, &topicsOf<parseHectorSonarConfig>, &makeSonar};
+  static const SensorKind kind = {"hector_sonar", {"ray", "gpu_ray"},
+                                  {"libhector_gazebo_ros_sonar.so"},
+                                  &topicsOf<parseHectorSonarConfig>, &makeSonar};
   return kind;
 }
 
