@@ -32,6 +32,10 @@ const SensorKind& imuPluginKind();
 const SensorKind& p3dKind();
 const SensorKind& bumperKind();
 const SensorKind& driveKind();
+const SensorKind& hectorImuKind();
+const SensorKind& hectorGpsKind();
+const SensorKind& hectorMagneticKind();
+const SensorKind& hectorSonarKind();
 
 const std::vector<SensorKind>& sensorKinds() {
   // To add a sensor kind: its folder sensors/<kind>/, its declaration above and one line here
@@ -42,6 +46,7 @@ const std::vector<SensorKind>& sensorKinds() {
       cameraKind(), multiCameraKind(), depthCameraKind(),  // sensors/camera/
       imuKind(),    imuPluginKind(),                       // sensors/imu/
       p3dKind(),    bumperKind(),      driveKind(),        // sensors/p3d/, bumper/, drives/
+      hectorImuKind(), hectorGpsKind(), hectorMagneticKind(), hectorSonarKind(),  // hector/
   };
   return kinds;
 }

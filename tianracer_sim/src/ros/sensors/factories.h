@@ -28,6 +28,14 @@ std::unique_ptr<SensorListener> makeRangePublisher(SimSensor& sensor, const Publ
 std::unique_ptr<SensorListener> makeBlockLaserPublisher(SimSensor& sensor,
                                                         const PublisherSetup& setup);
 std::unique_ptr<SensorListener> makeDrivePublisher(SimSensor& sensor, const PublisherSetup& setup);
+std::unique_ptr<SensorListener> makeHectorImuPublisher(SimSensor& sensor,
+                                                       const PublisherSetup& setup);
+std::unique_ptr<SensorListener> makeHectorGpsPublisher(SimSensor& sensor,
+                                                       const PublisherSetup& setup);
+std::unique_ptr<SensorListener> makeHectorMagneticPublisher(SimSensor& sensor,
+                                                            const PublisherSetup& setup);
+std::unique_ptr<SensorListener> makeHectorSonarPublisher(SimSensor& sensor,
+                                                         const PublisherSetup& setup);
 
 struct CameraConfig;
 /// The camera's optical frame (z forward, x right, y down), which its images are stamped

@@ -20,6 +20,10 @@ std::unique_ptr<SensorListener> makeSensorPublisher(SimSensor& sensor, const Pub
       {"range", &makeRangePublisher},
       {"block_laser", &makeBlockLaserPublisher},
       {"drive", &makeDrivePublisher},
+      {"hector_imu", &makeHectorImuPublisher},
+      {"hector_gps", &makeHectorGpsPublisher},
+      {"hector_magnetic", &makeHectorMagneticPublisher},
+      {"hector_sonar", &makeHectorSonarPublisher},
   };
   const auto it = factories.find(sensor.kind());
   if (it == factories.end())

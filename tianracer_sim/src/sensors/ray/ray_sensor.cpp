@@ -123,10 +123,11 @@ RaySensorConfig ConfigReader::read() {
       r.finish();
       continue;
     }
-    // gazebo_ros_range and gazebo_ros_block_laser read the same <ray>; their own parsers
-    // (ray_plugins.h) read their parameters.
+    // gazebo_ros_range, gazebo_ros_block_laser and hector's sonar read the same <ray>; their
+    // own parsers (ray_plugins.h, hector/hector_sonar.h) read their parameters.
     if (p.filename.find("gazebo_ros_range") != std::string::npos ||
-        p.filename.find("gazebo_ros_block_laser") != std::string::npos) {
+        p.filename.find("gazebo_ros_block_laser") != std::string::npos ||
+        p.filename.find("hector_gazebo_ros_sonar") != std::string::npos) {
       continue;
     }
     if (!laser) {
