@@ -9,12 +9,16 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <string>
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <tinyxml2.h>
+
+#include "mesh_check.h"
 
 namespace tianracer_assets {
 
@@ -166,15 +170,35 @@ void collect(const std::vector<Instance>& parts, const aiVector3D& offset,
 namespace {
 
 void checkFile(const std::string& path, const Eigen::Vector3d& scale) {
-  struct stat st {};
   if (path.empty()) throw MeshError("mesh: empty path");
-  if (::stat(path.c_str(), &st) != 0) throw MeshError("mesh '" + path + "': file not found");
-  if (!S_ISREG(st.st_mode)) throw MeshError("mesh '" + path + "': not a regular file");
+  // stat() before open(): a directory or device names no mesh, and reading /dev/zero or a
+  // fifo would never end.
+  const std::string problem = mesh_check::fileProblem(path);
+  if (!problem.empty()) throw MeshError("mesh '" + path + "': " + problem);
+  struct stat st {};
+  ::stat(path.c_str(), &st);
   if (st.st_size == 0) throw MeshError("mesh '" + path + "': file is empty");
+  if (static_cast<std::uint64_t>(st.st_size) > mesh_check::kMaxFileBytes) {
+    throw MeshError("mesh '" + path + "': " + std::to_string(st.st_size) + " bytes, above the limit of " +
+                    std::to_string(mesh_check::kMaxFileBytes) + " bytes (256 MiB) for a mesh file");
+  }
   if (!scale.allFinite() || scale.minCoeff() <= 0.0) {
     throw MeshError("mesh '" + path + "': scale must be finite and positive");
   }
 }
+
+// assimp's file system, refusing what is not a regular file: an OBJ's mtllib naming a fifo or
+// /dev/zero would otherwise block or read without end.
+class RegularFilesOnly : public Assimp::DefaultIOSystem {
+ public:
+  bool Exists(const char* file) const override {
+    return mesh_check::fileProblem(file).empty() && Assimp::DefaultIOSystem::Exists(file);
+  }
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    if (!mesh_check::fileProblem(file).empty()) return nullptr;
+    return Assimp::DefaultIOSystem::Open(file, mode);
+  }
+};
 
 [[noreturn]] void importFailed(const std::string& path, const Assimp::Importer& importer) {
   // assimp drops points and lines on import, so a file with no triangles fails as
@@ -188,8 +212,16 @@ void checkFile(const std::string& path, const Eigen::Vector3d& scale) {
 void checkResult(const std::string& path, const TriangleMesh& mesh) {
   if (mesh.vertices.empty()) throw MeshError("mesh '" + path + "': no triangles: the file holds no geometry");
   if (mesh.indices.empty()) throw MeshError("mesh '" + path + "': no triangles");
-  for (const auto& v : mesh.vertices) {
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+    const Eigen::Vector3f& v = mesh.vertices[i];
     if (!v.allFinite()) throw MeshError("mesh '" + path + "': non-finite vertex");
+    if (v.cwiseAbs().maxCoeff() > mesh_check::kMaxCoordinate) {
+      std::ostringstream at;
+      at << "mesh '" << path << "': vertex " << i << " at (" << v.x() << ", " << v.y() << ", " << v.z()
+         << ") is out of range: farther than " << mesh_check::kMaxCoordinate
+         << " m from the mesh origin (unit, nodes and scale applied)";
+      throw MeshError(at.str());
+    }
   }
 }
 
@@ -316,14 +348,22 @@ const aiScene* readScene(Assimp::Importer* importer, const std::string& path, un
   // A file without geometry is an error, not assimp's stand-in (a zero-size "skeleton" mesh
   // at each node, which would collide and be seen as a point).
   importer->SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
-  const unsigned flags = aiProcess_RemoveComponent | aiProcess_Triangulate |
-                        aiProcess_JoinIdenticalVertices | aiProcess_SortByPType;
+  importer->SetIOHandler(new RegularFilesOnly);  // the importer owns it
+  // What assimp 5.2 trusts in a COLLADA file is checked first (mesh_check.h); STL needs no
+  // pre-pass: assimp checks a binary file's facet count against its size (STLLoader.cpp
+  // LoadBinaryFile), and an ASCII file's facets are bounded by its size; OBJ indices are
+  // checked by assimp (ObjFileImporter) and by checkScene.
+  if (mesh_check::looksLikeCollada(path)) mesh_check::checkCollada(path);
+  // ValidateDataStructure: assimp's own check of its scene, before the other steps read it.
+  const unsigned flags = aiProcess_ValidateDataStructure | aiProcess_RemoveComponent | aiProcess_Triangulate |
+                         aiProcess_JoinIdenticalVertices | aiProcess_SortByPType;
   const aiScene* scene = importer->ReadFile(path, flags);
   if (scene == nullptr && std::string(importer->GetErrorString()).find("Invalid texture") != std::string::npos) {
     const std::string mended = colladaWithImagePlaceholders(path);
     if (!mended.empty()) scene = importer->ReadFileFromMemory(mended.data(), mended.size(), flags, "dae");
   }
   if (scene == nullptr || scene->mRootNode == nullptr) importFailed(path, *importer);
+  mesh_check::checkScene(path, scene);
   return scene;
 }
 
