@@ -353,15 +353,18 @@ const aiScene* readScene(Assimp::Importer* importer, const std::string& path, un
   // pre-pass: assimp checks a binary file's facet count against its size (STLLoader.cpp
   // LoadBinaryFile), and an ASCII file's facets are bounded by its size; OBJ indices are
   // checked by assimp (ObjFileImporter) and by checkScene.
-  if (mesh_check::looksLikeCollada(path)) mesh_check::checkCollada(path);
   // ValidateDataStructure: assimp's own check of its scene, before the other steps read it.
   const unsigned flags = aiProcess_ValidateDataStructure | aiProcess_RemoveComponent | aiProcess_Triangulate |
                          aiProcess_JoinIdenticalVertices | aiProcess_SortByPType;
-  const aiScene* scene = importer->ReadFile(path, flags);
-  if (scene == nullptr && std::string(importer->GetErrorString()).find("Invalid texture") != std::string::npos) {
-    const std::string mended = colladaWithImagePlaceholders(path);
-    if (!mended.empty()) scene = importer->ReadFileFromMemory(mended.data(), mended.size(), flags, "dae");
+  std::string mended;
+  if (mesh_check::looksLikeCollada(path)) {
+    mesh_check::checkCollada(path);
+    // Mended before assimp sees it rather than after it refused the file: assimp leaks what it
+    // had built when it throws "Invalid texture" (found by fuzz_mesh's LeakSanitizer).
+    mended = colladaWithImagePlaceholders(path);
   }
+  const aiScene* scene = mended.empty() ? importer->ReadFile(path, flags)
+                                        : importer->ReadFileFromMemory(mended.data(), mended.size(), flags, "dae");
   if (scene == nullptr || scene->mRootNode == nullptr) importFailed(path, *importer);
   mesh_check::checkScene(path, scene);
   return scene;
