@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -43,7 +44,7 @@ std::string errorOf(const std::string& file) {
 
 TEST(MeshFuzzRegressions, EveryFileLoadsOrIsACleanErrorInBoundedTime) {
   const std::vector<std::string> files = corpusFiles();
-  ASSERT_GE(files.size(), 40u) << "the corpus is missing in " << kCorpus;
+  ASSERT_GE(files.size(), 44u) << "the corpus is missing in " << kCorpus;
   for (const std::string& f : files) {
     const auto t0 = std::chrono::steady_clock::now();
     EXPECT_EQ(tianracer_sim_fuzz::replayMeshFile(f), "") << f;
@@ -94,6 +95,20 @@ TEST(MeshFuzzRegressions, TheCrashesOfIssue43NameFileLineAndElement) {
        "collada_float_array_count_huge.dae:8: COLLADA <float_array id='pos-array'>: count 2000000000 is above"},
       {"collada_triangles_count_huge.dae", "COLLADA <triangles>: count 2000000000 is above the limit of 10000000"},
       {"collada_nodes_instanced_2_to_the_40.dae", "the scene expands to more than 1000000 nodes (the limit)"},
+      // assimp's own errors before, now named (the last one an allocation error):
+      {"collada_p_too_short.dae", "collada_p_too_short.dae:18: COLLADA <p>: holds 11 vertices; count 4 triangles need 12"},
+      {"collada_polylist_vcount_sum_mismatch.dae",
+       "collada_polylist_vcount_sum_mismatch.dae:19: COLLADA <p>: holds 12 vertices; the <vcount> entries add up to 11"},
+      {"collada_p_not_whole_vertices.dae",
+       "COLLADA <p>: 23 indices are not a whole number of vertices of 2 indices (the inputs' offsets)"},
+      {"collada_tristrips_empty_p.dae", "COLLADA <p>: holds 0 vertices; a tristrip needs 3"},
+      {"collada_input_offset_huge.dae", "COLLADA <input source='#v'>: offset 4000000000 is above the limit of 255"},
+      {"collada_no_vertex_input.dae", "COLLADA <triangles>: has no VERTEX input"},
+      {"collada_vertex_input_names_other_vertices.dae",
+       "COLLADA <input source='#w'>: source '#w' is not this mesh's <vertices> ('#v')"},
+      {"collada_vertices_without_position.dae", "its <vertices> '#v' has no POSITION input"},
+      {"collada_polylist_vcount_deleted.dae", "count 4 but 0 <vcount> elements (a polylist gives one)"},
+      {"collada_polylist_vcount_short.dae", "COLLADA <vcount>: holds 2 entries for count 4"},
       // accepted before with wrong geometry:
       {"collada_accessor_count_above_array.dae", "read past the end of <float_array id='pos-array'>"},
       {"collada_p_negative_index.dae", "COLLADA <p>: index '-3' (number 6) is not a non-negative integer"},
@@ -120,6 +135,22 @@ TEST(MeshFuzzRegressions, ADirectoryADeviceOrAFifoIsSaidToBeOneAndNotRead) {
   ::rmdir(tmpl);
   EXPECT_THAT(test::errorText<MeshError>([] { loadMeshFile("/nonexistent/mesh.stl"); }),
               HasSubstr("mesh '/nonexistent/mesh.stl': file not found"));
+}
+
+TEST(MeshFuzzRegressions, AFileAbove256MiBIsRefusedBeforeItIsRead) {
+  // A sparse file: no disk, and nothing is read (a binary STL of 5.6e6 facets by its size).
+  char tmpl[] = "/tmp/test_mesh_big_XXXXXX";
+  ASSERT_NE(::mkdtemp(tmpl), nullptr);
+  const std::string big = std::string(tmpl) + "/big.stl";
+  const off_t size = (256ll << 20) + 84;
+  FILE* f = std::fopen(big.c_str(), "wb");
+  ASSERT_NE(f, nullptr);
+  ASSERT_EQ(::ftruncate(fileno(f), size), 0);
+  std::fclose(f);
+  EXPECT_THAT(test::errorText<MeshError>([&] { loadMeshFile(big); }),
+              HasSubstr("mesh '" + big + "': 268435540 bytes, above the limit of 268435456 bytes (256 MiB)"));
+  ::unlink(big.c_str());
+  ::rmdir(tmpl);
 }
 
 }  // namespace
