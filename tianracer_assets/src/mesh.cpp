@@ -315,9 +315,7 @@ void collectWithMaterials(const std::vector<Instance>& parts, const aiVector3D& 
 // gazebo_models parts) each get a placeholder file name, so that assimp, which refuses such an
 // image ("Invalid texture, no data or file reference given"), reads the geometry, as Gazebo's
 // ColladaLoader does (it just draws the material's colour). "" when there is nothing to mend.
-std::string colladaWithImagePlaceholders(const std::string& path) {
-  tinyxml2::XMLDocument doc;
-  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) return "";
+std::string colladaWithImagePlaceholders(tinyxml2::XMLDocument& doc) {
   tinyxml2::XMLElement* root = doc.RootElement();
   int mended = 0;
   for (tinyxml2::XMLElement* lib = root ? root->FirstChildElement("library_images") : nullptr; lib;
@@ -358,10 +356,11 @@ const aiScene* readScene(Assimp::Importer* importer, const std::string& path, un
                          aiProcess_JoinIdenticalVertices | aiProcess_SortByPType;
   std::string mended;
   if (mesh_check::looksLikeCollada(path)) {
-    mesh_check::checkCollada(path);
+    tinyxml2::XMLDocument doc;
+    mesh_check::checkCollada(path, &doc);
     // Mended before assimp sees it rather than after it refused the file: assimp leaks what it
     // had built when it throws "Invalid texture" (found by fuzz_mesh's LeakSanitizer).
-    mended = colladaWithImagePlaceholders(path);
+    mended = colladaWithImagePlaceholders(doc);
   }
   const aiScene* scene = mended.empty() ? importer->ReadFile(path, flags)
                                         : importer->ReadFileFromMemory(mended.data(), mended.size(), flags, "dae");

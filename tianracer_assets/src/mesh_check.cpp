@@ -62,6 +62,13 @@ const char* textOf(const XMLElement* e) {
   return "";
 }
 
+// A token of a list: [b, b + n), inside the element's text (no copy: lists hold millions).
+struct Token {
+  const char* b;
+  std::size_t n;
+  std::string str() const { return std::string(b, std::min<std::size_t>(n, 40)); }
+};
+
 // Calls f(token) for each whitespace-separated token; stops when f returns false.
 template <class F>
 void forEachToken(const char* s, F f) {
@@ -70,27 +77,30 @@ void forEachToken(const char* s, F f) {
     if (!*s) break;
     const char* b = s;
     while (*s && !isSpace(*s)) ++s;
-    if (!f(std::string(b, s))) return;
+    if (!f(Token{b, static_cast<std::size_t>(s - b)})) return;
   }
 }
 
 // A non-negative decimal integer of at most 18 digits (no sign, no spaces), as COLLADA's
 // uint and int index lists write them.
-bool parseUint(const std::string& t, std::uint64_t* out) {
-  if (t.empty() || t.size() > 18) return false;
+bool parseUint(const Token& t, std::uint64_t* out) {
+  if (t.n == 0 || t.n > 18) return false;
   std::uint64_t v = 0;
-  for (char c : t) {
+  for (std::size_t i = 0; i < t.n; ++i) {
+    const char c = t.b[i];
     if (c < '0' || c > '9') return false;
     v = v * 10 + static_cast<std::uint64_t>(c - '0');
   }
   *out = v;
   return true;
 }
+bool parseUint(const std::string& s, std::uint64_t* out) { return parseUint(Token{s.data(), s.size()}, out); }
 
-bool parseNumber(const std::string& t) {
+// strtod stops at the whitespace that ends the token; the whole token must be the number.
+bool parseNumber(const Token& t) {
   char* end = nullptr;
-  std::strtod(t.c_str(), &end);
-  return end != t.c_str() && *end == '\0';
+  std::strtod(t.b, &end);
+  return end == t.b + t.n;
 }
 
 std::string quoted(const char* s) { return std::string("'") + (s ? s : "") + "'"; }
@@ -129,9 +139,7 @@ class ColladaCheck {
  public:
   explicit ColladaCheck(std::string path) : path_(std::move(path)) {}
 
-  void run() {
-    tinyxml2::XMLDocument doc;
-    // LoadFile would follow a path that changed since it was checked; the size was checked.
+  void run(tinyxml2::XMLDocument& doc) {
     const tinyxml2::XMLError err = doc.LoadFile(path_.c_str());
     if (err != tinyxml2::XML_SUCCESS) {
       // assimp's pugixml reads what tinyxml2 refuses only in corner cases (tinyxml2 stops at
@@ -202,9 +210,9 @@ class ColladaCheck {
     const std::uint64_t count = uintAttr(e, "count", 0, kMaxFileBytes);
     std::uint64_t n = 0;
     std::string bad;
-    forEachToken(textOf(e), [&](const std::string& t) {
+    forEachToken(textOf(e), [&](const Token& t) {
       if (is_float && !parseNumber(t)) {
-        bad = t;
+        bad = t.str();
         return false;
       }
       ++n;
@@ -407,10 +415,10 @@ class ColladaCheck {
         fail(prim, "count " + std::to_string(count) + " but " + std::to_string(vcounts.size()) +
                        " <vcount> elements (a polylist gives one)");
       std::string bad;
-      forEachToken(textOf(vcounts[0]), [&](const std::string& t) {
+      forEachToken(textOf(vcounts[0]), [&](const Token& t) {
         std::uint64_t v = 0;
         if (!parseUint(t, &v) || v == 0 || v > kMaxVertices) {
-          bad = t;
+          bad = t.str();
           return false;
         }
         vcount.push_back(v);
@@ -429,10 +437,10 @@ class ColladaCheck {
       std::string bad;
       bool out_of_range = false;
       std::uint64_t bad_value = 0, bad_bound = 0;
-      forEachToken(textOf(p), [&](const std::string& t) {
+      forEachToken(textOf(p), [&](const Token& t) {
         std::uint64_t v = 0;
         if (!parseUint(t, &v)) {
-          bad = t;
+          bad = t.str();
           return false;
         }
         const std::uint64_t b = bound[i % slots];
@@ -591,7 +599,7 @@ class ColladaCheck {
 
 }  // namespace
 
-void checkCollada(const std::string& path) { ColladaCheck(path).run(); }
+void checkCollada(const std::string& path, tinyxml2::XMLDocument* doc) { ColladaCheck(path).run(*doc); }
 
 namespace {
 

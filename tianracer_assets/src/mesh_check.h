@@ -10,6 +10,9 @@
 #include "tianracer_assets/file_kind.h"
 
 struct aiScene;
+namespace tinyxml2 {
+class XMLDocument;
+}
 
 namespace tianracer_assets {
 namespace mesh_check {
@@ -36,8 +39,9 @@ bool looksLikeCollada(const std::string& path);
 /// The pre-pass over a COLLADA file (tinyxml2) that checks what assimp 5.2's ColladaParser
 /// trusts: accessor counts, strides and offsets against their arrays, <p> and <vcount> lists,
 /// input offsets, node cycles, and the size limits above. Throws MeshError
-/// "<path>:<line>: COLLADA <element ...>: <what is wrong>".
-void checkCollada(const std::string& path);
+/// "<path>:<line>: COLLADA <element ...>: <what is wrong>". `doc` receives the parsed file
+/// (the loader mends its images without parsing it again).
+void checkCollada(const std::string& path, tinyxml2::XMLDocument* doc);
 
 /// The scene assimp returned, before anything reads it: node tree (depth, mesh indices), faces
 /// (sizes, vertex indices in range), vertex arrays, and the placed-triangle limit. Throws
