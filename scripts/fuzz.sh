@@ -40,11 +40,12 @@ for name in $TARGETS; do
   rc=0
   # -rss_limit_mb: urdfdom, tinyxml2 and assimp are not instrumented, ASan's shadow adds its
   # share; a single allocation above it (-malloc_limit_mb defaults to it) is a finding too.
-  # The mesh harness's inputs are COLLADA (XML), STL and OBJ: the XML dictionary serves it too.
+  # fuzz_mesh: its own dictionary (mesh.dict: COLLADA elements, STL and OBJ keywords).
   # assimp (Debian's, not instrumented) leaks on some of its own error paths: fuzz_mesh runs
   # without LeakSanitizer, so that those do not stop it; crashes and memory limits stay.
-  extra=(); [[ "$name" == mesh ]] && extra=(-detect_leaks=0)
-  "$bin" "$work" "${extra[@]}" -dict="$FUZZ/xml.dict" -max_total_time="$SECONDS_PER" -max_len=65536 \
+  dict="$FUZZ/xml.dict"; extra=()
+  [[ "$name" == mesh ]] && { dict="$FUZZ/mesh.dict"; extra=(-detect_leaks=0); }
+  "$bin" "$work" "${extra[@]}" -dict="$dict" -max_total_time="$SECONDS_PER" -max_len=65536 \
     -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 \
     -artifact_prefix="$OUT/crashes/$name/" >"$log" 2>&1 || rc=$?
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")

@@ -315,6 +315,57 @@ void collectWithMaterials(const std::vector<Instance>& parts, const aiVector3D& 
 // gazebo_models parts) each get a placeholder file name, so that assimp, which refuses such an
 // image ("Invalid texture, no data or file reference given"), reads the geometry, as Gazebo's
 // ColladaLoader does (it just draws the material's colour). "" when there is nothing to mend.
+// Skins, morphs and animations are left out of what assimp reads: the loader keeps no bones
+// and no animation, and assimp 5.2 trusts their indices (ColladaLoader::CreateMesh indexes its
+// bones with the <v> joint indices and reads weights with an ai_assert: SIGSEGV and SIGABRT on
+// a mutated <vertex_weights>; ColladaParser::ReadControllerWeights sizes its arrays by `count`
+// and the <vcount> sum). A node's <instance_controller> becomes an <instance_geometry> of the
+// skin's or morph's source mesh, with its <bind_material>: assimp places a skinned mesh's
+// vertices exactly so (the bind shape matrix only goes into the bones' offset matrices), and
+// Gazebo's ColladaLoader.cc LoadController also loads the skin's source geometry at the node.
+// Returns the number of changes.
+int withoutControllersAndAnimations(tinyxml2::XMLDocument& doc) {
+  std::map<std::string, std::string> source_of;  // controller id -> its mesh's id
+  std::vector<tinyxml2::XMLElement*> remove, instances;
+  std::vector<tinyxml2::XMLElement*> stack;
+  if (doc.RootElement()) stack.push_back(doc.RootElement());
+  while (!stack.empty()) {
+    tinyxml2::XMLElement* e = stack.back();
+    stack.pop_back();
+    const std::string name = e->Name();
+    if (name == "controller") {
+      const char* id = e->Attribute("id");
+      for (const char* kind : {"skin", "morph"}) {
+        const tinyxml2::XMLElement* k = e->FirstChildElement(kind);
+        const char* src = k ? k->Attribute("source") : nullptr;
+        if (id && src && src[0] == '#') source_of[id] = src + 1;
+      }
+    } else if (name == "instance_controller") {
+      instances.push_back(e);
+    }
+    if (name == "library_controllers" || name == "library_animations" || name == "library_animation_clips") {
+      remove.push_back(e);
+    }
+    for (tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) stack.push_back(c);
+  }
+  for (tinyxml2::XMLElement* inst : instances) {
+    const char* url = inst->Attribute("url");
+    const auto it = url && url[0] == '#' ? source_of.find(url + 1) : source_of.end();
+    if (it == source_of.end()) {
+      remove.push_back(inst);  // assimp would find no mesh for it either
+      continue;
+    }
+    inst->SetName("instance_geometry");
+    inst->SetAttribute("url", ("#" + it->second).c_str());
+    while (tinyxml2::XMLElement* skeleton = inst->FirstChildElement("skeleton")) inst->DeleteChild(skeleton);
+  }
+  // Parents before children in `remove` (pre-order): delete the deepest first.
+  for (auto it = remove.rbegin(); it != remove.rend(); ++it) {
+    if (tinyxml2::XMLNode* parent = (*it)->Parent()) parent->DeleteChild(*it);
+  }
+  return static_cast<int>(remove.size() + instances.size());
+}
+
 std::string colladaWithImagePlaceholders(tinyxml2::XMLDocument& doc) {
   tinyxml2::XMLElement* root = doc.RootElement();
   int mended = 0;
@@ -330,6 +381,7 @@ std::string colladaWithImagePlaceholders(tinyxml2::XMLDocument& doc) {
       ++mended;
     }
   }
+  mended += withoutControllersAndAnimations(doc);
   if (mended == 0) return "";
   tinyxml2::XMLPrinter printer;
   doc.Print(&printer);
@@ -359,7 +411,8 @@ const aiScene* readScene(Assimp::Importer* importer, const std::string& path, un
     tinyxml2::XMLDocument doc;
     mesh_check::checkCollada(path, &doc);
     // Mended before assimp sees it rather than after it refused the file: assimp leaks what it
-    // had built when it throws "Invalid texture" (found by fuzz_mesh's LeakSanitizer).
+    // had built when it throws "Invalid texture" (found by fuzz_mesh's LeakSanitizer). Skins
+    // and animations go too (withoutControllersAndAnimations).
     mended = colladaWithImagePlaceholders(doc);
   }
   const aiScene* scene = mended.empty() ? importer->ReadFile(path, flags)

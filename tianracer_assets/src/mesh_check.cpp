@@ -521,8 +521,13 @@ class ColladaCheck {
     if (!url || url[0] != '#') return 0;
     std::string id = url + 1;
     if (std::strcmp(instance->Name(), "instance_controller") == 0) {
+      // The loader reads the skin's or morph's source mesh in its place (mesh.cpp).
       const auto c = controller_by_id_.find(id);
-      const XMLElement* skin = c == controller_by_id_.end() ? nullptr : c->second->FirstChildElement("skin");
+      const XMLElement* skin = nullptr;
+      if (c != controller_by_id_.end()) {
+        skin = c->second->FirstChildElement("skin");
+        if (!skin) skin = c->second->FirstChildElement("morph");
+      }
       const char* src = skin ? skin->Attribute("source") : nullptr;
       if (!src || src[0] != '#') return 0;
       id = src + 1;
