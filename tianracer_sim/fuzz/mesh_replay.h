@@ -49,10 +49,16 @@ inline std::string replayMeshFile(const std::string& path) {
       const std::string broken = brokenMeshPromise(mesh, materials);
       if (!broken.empty()) return broken;
     } catch (const tianracer_assets::MeshError& e) {
+      // assimp's reason comes right after "unreadable (" (a message of the checks may quote
+      // the file's text, which may say anything: fuzz_harness_bad_alloc_quoted.dae).
       const std::string what = e.what();
-      if (what.find("bad_alloc") != std::string::npos || what.find("vector::") != std::string::npos ||
-          what.find("length_error") != std::string::npos)
-        return "assimp ran out of memory instead of a limit refusing the file: " + what;
+      const std::string prefix = "mesh '" + path + "': unreadable (";
+      if (what.rfind(prefix, 0) == 0) {
+        const std::string why = what.substr(prefix.size());
+        for (const char* oom : {"std::bad_alloc", "vector::", "cannot create std::vector", "std::length_error"}) {
+          if (why.rfind(oom, 0) == 0) return "assimp ran out of memory instead of a limit refusing the file: " + what;
+        }
+      }
     } catch (const std::exception& e) {
       return std::string("an exception other than MeshError: ") + e.what();
     }
