@@ -44,8 +44,9 @@ for name in $TARGETS; do
   # assimp (Debian's, not instrumented) leaks on some of its own error paths: fuzz_mesh runs
   # without LeakSanitizer, so that those do not stop it; crashes and memory limits stay.
   dict="$FUZZ/xml.dict"; extra=()
-  [[ "$name" == mesh ]] && { dict="$FUZZ/mesh.dict"; extra=(-detect_leaks=0); }
-  "$bin" "$work" "${extra[@]}" -dict="$dict" -max_total_time="$SECONDS_PER" -max_len=65536 \
+  leaks=1; [[ "$name" == mesh ]] && { dict="$FUZZ/mesh.dict"; extra=(-detect_leaks=0); leaks=0; }
+  # (-detect_leaks=0 is per input; ASAN_OPTIONS also spares the exit-time report.)
+  ASAN_OPTIONS="detect_leaks=$leaks${ASAN_OPTIONS:+:$ASAN_OPTIONS}" "$bin" "$work" "${extra[@]}" -dict="$dict" -max_total_time="$SECONDS_PER" -max_len=65536 \
     -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 \
     -artifact_prefix="$OUT/crashes/$name/" >"$log" 2>&1 || rc=$?
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
