@@ -9,12 +9,16 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <string>
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <tinyxml2.h>
+
+#include "mesh_check.h"
 
 namespace tianracer_assets {
 
@@ -166,15 +170,35 @@ void collect(const std::vector<Instance>& parts, const aiVector3D& offset,
 namespace {
 
 void checkFile(const std::string& path, const Eigen::Vector3d& scale) {
-  struct stat st {};
   if (path.empty()) throw MeshError("mesh: empty path");
-  if (::stat(path.c_str(), &st) != 0) throw MeshError("mesh '" + path + "': file not found");
-  if (!S_ISREG(st.st_mode)) throw MeshError("mesh '" + path + "': not a regular file");
+  // stat() before open(): a directory or device names no mesh, and reading /dev/zero or a
+  // fifo would never end.
+  const std::string problem = mesh_check::fileProblem(path);
+  if (!problem.empty()) throw MeshError("mesh '" + path + "': " + problem);
+  struct stat st {};
+  ::stat(path.c_str(), &st);
   if (st.st_size == 0) throw MeshError("mesh '" + path + "': file is empty");
+  if (static_cast<std::uint64_t>(st.st_size) > mesh_check::kMaxFileBytes) {
+    throw MeshError("mesh '" + path + "': " + std::to_string(st.st_size) + " bytes, above the limit of " +
+                    std::to_string(mesh_check::kMaxFileBytes) + " bytes (256 MiB) for a mesh file");
+  }
   if (!scale.allFinite() || scale.minCoeff() <= 0.0) {
     throw MeshError("mesh '" + path + "': scale must be finite and positive");
   }
 }
+
+// assimp's file system, refusing what is not a regular file: an OBJ's mtllib naming a fifo or
+// /dev/zero would otherwise block or read without end.
+class RegularFilesOnly : public Assimp::DefaultIOSystem {
+ public:
+  bool Exists(const char* file) const override {
+    return mesh_check::fileProblem(file).empty() && Assimp::DefaultIOSystem::Exists(file);
+  }
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    if (!mesh_check::fileProblem(file).empty()) return nullptr;
+    return Assimp::DefaultIOSystem::Open(file, mode);
+  }
+};
 
 [[noreturn]] void importFailed(const std::string& path, const Assimp::Importer& importer) {
   // assimp drops points and lines on import, so a file with no triangles fails as
@@ -188,8 +212,16 @@ void checkFile(const std::string& path, const Eigen::Vector3d& scale) {
 void checkResult(const std::string& path, const TriangleMesh& mesh) {
   if (mesh.vertices.empty()) throw MeshError("mesh '" + path + "': no triangles: the file holds no geometry");
   if (mesh.indices.empty()) throw MeshError("mesh '" + path + "': no triangles");
-  for (const auto& v : mesh.vertices) {
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+    const Eigen::Vector3f& v = mesh.vertices[i];
     if (!v.allFinite()) throw MeshError("mesh '" + path + "': non-finite vertex");
+    if (v.cwiseAbs().maxCoeff() > mesh_check::kMaxCoordinate) {
+      std::ostringstream at;
+      at << "mesh '" << path << "': vertex " << i << " at (" << v.x() << ", " << v.y() << ", " << v.z()
+         << ") is out of range: farther than " << mesh_check::kMaxCoordinate
+         << " m from the mesh origin (unit, nodes and scale applied)";
+      throw MeshError(at.str());
+    }
   }
 }
 
@@ -283,9 +315,58 @@ void collectWithMaterials(const std::vector<Instance>& parts, const aiVector3D& 
 // gazebo_models parts) each get a placeholder file name, so that assimp, which refuses such an
 // image ("Invalid texture, no data or file reference given"), reads the geometry, as Gazebo's
 // ColladaLoader does (it just draws the material's colour). "" when there is nothing to mend.
-std::string colladaWithImagePlaceholders(const std::string& path) {
-  tinyxml2::XMLDocument doc;
-  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS) return "";
+// Skins, morphs and animations are left out of what assimp reads: the loader keeps no bones
+// and no animation, and assimp 5.2 trusts their indices (ColladaLoader::CreateMesh indexes its
+// bones with the <v> joint indices and reads weights with an ai_assert: SIGSEGV and SIGABRT on
+// a mutated <vertex_weights>; ColladaParser::ReadControllerWeights sizes its arrays by `count`
+// and the <vcount> sum). A node's <instance_controller> becomes an <instance_geometry> of the
+// skin's or morph's source mesh, with its <bind_material>: assimp places a skinned mesh's
+// vertices exactly so (the bind shape matrix only goes into the bones' offset matrices), and
+// Gazebo's ColladaLoader.cc LoadController also loads the skin's source geometry at the node.
+// Returns the number of changes.
+int withoutControllersAndAnimations(tinyxml2::XMLDocument& doc) {
+  std::map<std::string, std::string> source_of;  // controller id -> its mesh's id
+  std::vector<tinyxml2::XMLElement*> remove, instances;
+  std::vector<tinyxml2::XMLElement*> stack;
+  if (doc.RootElement()) stack.push_back(doc.RootElement());
+  while (!stack.empty()) {
+    tinyxml2::XMLElement* e = stack.back();
+    stack.pop_back();
+    const std::string name = e->Name();
+    if (name == "controller") {
+      const char* id = e->Attribute("id");
+      for (const char* kind : {"skin", "morph"}) {
+        const tinyxml2::XMLElement* k = e->FirstChildElement(kind);
+        const char* src = k ? k->Attribute("source") : nullptr;
+        if (id && src && src[0] == '#') source_of[id] = src + 1;
+      }
+    } else if (name == "instance_controller") {
+      instances.push_back(e);
+    }
+    if (name == "library_controllers" || name == "library_animations" || name == "library_animation_clips") {
+      remove.push_back(e);
+    }
+    for (tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) stack.push_back(c);
+  }
+  for (tinyxml2::XMLElement* inst : instances) {
+    const char* url = inst->Attribute("url");
+    const auto it = url && url[0] == '#' ? source_of.find(url + 1) : source_of.end();
+    if (it == source_of.end()) {
+      remove.push_back(inst);  // assimp would find no mesh for it either
+      continue;
+    }
+    inst->SetName("instance_geometry");
+    inst->SetAttribute("url", ("#" + it->second).c_str());
+    while (tinyxml2::XMLElement* skeleton = inst->FirstChildElement("skeleton")) inst->DeleteChild(skeleton);
+  }
+  // Parents before children in `remove` (pre-order): delete the deepest first.
+  for (auto it = remove.rbegin(); it != remove.rend(); ++it) {
+    if (tinyxml2::XMLNode* parent = (*it)->Parent()) parent->DeleteChild(*it);
+  }
+  return static_cast<int>(remove.size() + instances.size());
+}
+
+std::string colladaWithImagePlaceholders(tinyxml2::XMLDocument& doc) {
   tinyxml2::XMLElement* root = doc.RootElement();
   int mended = 0;
   for (tinyxml2::XMLElement* lib = root ? root->FirstChildElement("library_images") : nullptr; lib;
@@ -300,6 +381,7 @@ std::string colladaWithImagePlaceholders(const std::string& path) {
       ++mended;
     }
   }
+  mended += withoutControllersAndAnimations(doc);
   if (mended == 0) return "";
   tinyxml2::XMLPrinter printer;
   doc.Print(&printer);
@@ -316,14 +398,27 @@ const aiScene* readScene(Assimp::Importer* importer, const std::string& path, un
   // A file without geometry is an error, not assimp's stand-in (a zero-size "skeleton" mesh
   // at each node, which would collide and be seen as a point).
   importer->SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
-  const unsigned flags = aiProcess_RemoveComponent | aiProcess_Triangulate |
-                        aiProcess_JoinIdenticalVertices | aiProcess_SortByPType;
-  const aiScene* scene = importer->ReadFile(path, flags);
-  if (scene == nullptr && std::string(importer->GetErrorString()).find("Invalid texture") != std::string::npos) {
-    const std::string mended = colladaWithImagePlaceholders(path);
-    if (!mended.empty()) scene = importer->ReadFileFromMemory(mended.data(), mended.size(), flags, "dae");
+  importer->SetIOHandler(new RegularFilesOnly);  // the importer owns it
+  // What assimp 5.2 trusts in a COLLADA file is checked first (mesh_check.h); STL needs no
+  // pre-pass: assimp checks a binary file's facet count against its size (STLLoader.cpp
+  // LoadBinaryFile), and an ASCII file's facets are bounded by its size; OBJ indices are
+  // checked by assimp (ObjFileImporter) and by checkScene.
+  // ValidateDataStructure: assimp's own check of its scene, before the other steps read it.
+  const unsigned flags = aiProcess_ValidateDataStructure | aiProcess_RemoveComponent | aiProcess_Triangulate |
+                         aiProcess_JoinIdenticalVertices | aiProcess_SortByPType;
+  std::string mended;
+  if (mesh_check::looksLikeCollada(path)) {
+    tinyxml2::XMLDocument doc;
+    mesh_check::checkCollada(path, &doc);
+    // Mended before assimp sees it rather than after it refused the file: assimp leaks what it
+    // had built when it throws "Invalid texture" (found by fuzz_mesh's LeakSanitizer). Skins
+    // and animations go too (withoutControllersAndAnimations).
+    mended = colladaWithImagePlaceholders(doc);
   }
+  const aiScene* scene = mended.empty() ? importer->ReadFile(path, flags)
+                                        : importer->ReadFileFromMemory(mended.data(), mended.size(), flags, "dae");
   if (scene == nullptr || scene->mRootNode == nullptr) importFailed(path, *importer);
+  mesh_check::checkScene(path, scene);
   return scene;
 }
 

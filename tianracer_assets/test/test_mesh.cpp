@@ -118,7 +118,7 @@ TEST(MeshLoader, NoTrianglesIsAnError) {
 
 TEST(MeshLoader, DirectoryIsNotAMesh) {
   const std::string e = errorOf(::testing::TempDir());
-  EXPECT_NE(e.find("not a regular file"), std::string::npos) << e;
+  EXPECT_NE(e.find("is a directory, not a mesh file"), std::string::npos) << e;
 }
 
 }  // namespace

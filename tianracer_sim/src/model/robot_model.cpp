@@ -15,6 +15,7 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include "model_internal.h"
+#include "tianracer_assets/file_kind.h"
 
 namespace tianracer_sim {
 
@@ -220,10 +221,14 @@ void collectMeshes(RobotModel& model, const LoadOptions& options, XmlReader& war
       }
       model.mesh_paths[uri] = path;
       if (!options.require_meshes) continue;
-      std::error_code ec;
-      if (!std::filesystem::is_regular_file(path, ec))
+      // A directory or a device is said to be one; only a missing file is "not found".
+      const std::string problem = tianracer_assets::fileProblem(path);
+      if (problem == "file not found")
         throw ModelError(model.source + ": link '" + link->name + "': mesh '" + uri +
                          "' not found (resolved to " + path + ")");
+      if (!problem.empty())
+        throw ModelError(model.source + ": link '" + link->name + "': mesh '" + uri + "' (resolved to " +
+                         path + ") " + problem);
     }
   }
 }

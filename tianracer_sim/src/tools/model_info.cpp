@@ -1,5 +1,6 @@
 // model_info: expands a xacro/URDF, loads it as the simulator does and prints its summary.
 //   rosrun tianracer_sim model_info [path.xacro|path.urdf] [--no-meshes]
+// It reads every mesh file as the simulator would (--no-meshes: neither resolved nor read).
 #include <cstdio>
 #include <iostream>
 #include <set>
@@ -8,6 +9,7 @@
 #include <ros/package.h>
 #include <urdf_model/model.h>
 
+#include "tianracer_sim/model/robot_meshes.h"
 #include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/sensors/model_report.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
@@ -44,6 +46,9 @@ int main(int argc, char** argv) {
   };
   try {
     const tianracer_sim::RobotModel model = tianracer_sim::loadRobotModelFile(path, options);
+    // The mesh contents too, as the physics and the renderer read them: a file that would stop
+    // the simulator (or crash it, before issue 43) stops model_info with the same message.
+    if (require_meshes) tianracer_sim::readRobotMeshes(model, options.warn);
     std::cout << tianracer_sim::describeRobotModel(model) << "\n"
               << tianracer_sim::formatModelReport(
                      model.urdf->getName(), tianracer_sim::modelReport(model, model.urdf->getName()));

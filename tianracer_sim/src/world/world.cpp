@@ -8,6 +8,7 @@
 #include "tianracer_sim/world/map_world.h"
 
 #include "tianracer_sim/mesh/mesh_loader.h"
+#include "tianracer_assets/file_kind.h"
 #include "tianracer_sim/scene/materials.h"
 
 #include <sys/stat.h>
@@ -516,8 +517,25 @@ std::optional<std::string> Parser::resolveMesh(const XMLElement* e, const std::s
     return std::nullopt;
   }
   const std::vector<std::string>& tried = found.tried;
-  const std::string path = found.path.empty() ? tried.front() : found.path;
+  std::string path = found.path;
+  if (path.empty()) {
+    // None is a file: report the first that exists (a directory, a device), else the first.
+    path = tried.front();
+    for (const std::string& t : tried) {
+      if (tianracer_assets::fileProblem(t) != "file not found") {
+        path = t;
+        break;
+      }
+    }
+  }
   if (options_.require_meshes && !isFile(path)) {
+    // A directory or a device is said to be one (reading /dev/zero would never end); only a
+    // missing file is "not found".
+    const std::string problem = tianracer_assets::fileProblem(path);
+    if (problem != "file not found") {
+      leftOut(e, what + ": mesh '" + uri + "' (" + path + ") " + problem, "the " + kind + " is left out");
+      return std::nullopt;
+    }
     std::string msg = what + ": mesh '" + uri + "' not found (";
     for (std::size_t i = 0; i < tried.size(); ++i) msg += (i ? ", " : "tried ") + tried[i];
     leftOut(e, msg + ")", "the " + kind + " is left out");

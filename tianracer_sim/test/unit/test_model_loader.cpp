@@ -400,6 +400,21 @@ TEST(ModelLoaderBadInput, MissingMesh) {
                         "not found (resolved to " + path + ")"));
 }
 
+TEST(ModelLoaderBadInput, AMeshUriNamingADirectoryOrADeviceSaysSo) {
+  // Issue 43: these were "not found"; reading /dev/zero would never end.
+  Loader l;
+  const auto urdf = [](const std::string& uri) {
+    return "<robot name='r'><link name='wheel'><visual><geometry><mesh filename='" + uri +
+           "'/></geometry></visual></link></robot>";
+  };
+  EXPECT_THAT(l.errorOf(urdf("file:///dev/zero")),
+              HasSubstr("robot_description: link 'wheel': mesh 'file:///dev/zero' (resolved to /dev/zero) "
+                        "is not a regular file (a character device)"));
+  EXPECT_THAT(l.errorOf(urdf("package://test_meshes/meshes")),
+              HasSubstr("link 'wheel': mesh 'package://test_meshes/meshes' (resolved to " + kData +
+                        "meshes) is a directory, not a mesh file"));
+}
+
 TEST(ModelLoaderBadInput, UnresolvablePackage) {
   Loader l;
   l.options.resolver.find_package = [](const std::string&) { return std::string(); };

@@ -161,6 +161,13 @@ TEST(WorldMeshes, MeshesThatCannotBeUsedAreErrorsAndTheRestLoads) {
       {"<uri>meshes/collada_submeshes.dae</uri><submesh><name>middle</name></submesh>",
        "no submesh 'middle' (its parts: 'left', 'right')"},
       {"<uri>http://example.com/x.dae</uri>", "unsupported scheme"},
+      // Issue 43: a directory or a device is said to be one (not "not found"), and a file that
+      // crashed assimp is an error naming its line.
+      {"<uri>meshes</uri>", "mesh 'meshes' (" + kData + "meshes) is a directory, not a mesh file"},
+      {"<uri>/dev/zero</uri>", "mesh '/dev/zero' (/dev/zero) is not a regular file (a character device)"},
+      {"<uri>fuzz_regressions/mesh/collada_node_instances_itself.dae</uri>",
+       "collada_node_instances_itself.dae:26: COLLADA <instance_node url='#a'>: instances a node inside "
+       "itself ('a' -> 'a'): a node cycle"},
   };
   for (const Case& c : cases) {
     const Loaded l = load(meshModel("bad", c.mesh_xml));
