@@ -377,7 +377,21 @@ struct RayCaster::Impl {
     RTCGeometry instance = nullptr;
     std::vector<Analytic> prims;  // never resized after the user geometry is created
     Eigen::Matrix4d X_WB_last = Eigen::Matrix4d::Zero();
+    // What Embree holds, for exactDistance(): the triangles' vertices (sub-scene frame) and
+    // indices, the geometry ids in the sub-scene, and the instance transform as the floats
+    // Embree was given (and its inverse).
+    std::vector<float> vertices;
+    std::vector<uint32_t> indices;
+    unsigned triangle_geom = RTC_INVALID_GEOMETRY_ID, user_geom = RTC_INVALID_GEOMETRY_ID;
+    Eigen::Matrix4d M = Eigen::Matrix4d::Identity(), M_inv = Eigen::Matrix4d::Identity();
+    void setTransform(const float xfm[12]) {
+      M.setIdentity();
+      for (int col = 0; col < 4; ++col)
+        for (int r = 0; r < 3; ++r) M(r, col) = static_cast<double>(xfm[col * 3 + r]);
+      M_inv = M.inverse();
+    }
   };
+  std::vector<int> sub_of_instance;  // top-scene geometry id -> index in subs
 
   RTCDevice device = nullptr;
   RTCScene top = nullptr;
@@ -391,9 +405,47 @@ struct RayCaster::Impl {
   // Scan buffers, reused.
   std::vector<RTCRayHit> stream;
 
-  Impl() {
-    device = rtcNewDevice(nullptr);
-    if (!device) throw RayCasterError("Embree: rtcNewDevice failed");
+  /// The distance of a hit that Embree found (instance, geometry and primitive), computed again
+  /// in double by one scalar routine from the ray as Embree was given it and the geometry it
+  /// holds: Embree picks its kernels by the CPU's ISA at run time (SSE, AVX2, AVX-512), and their
+  /// hit distances differ in the last bits; this one does not (issue 43). Embree's own distance
+  /// is kept for a hit this routine cannot place (a ray parallel to the triangle's plane, a
+  /// grazing analytic hit it misses).
+  float exactDistance(const Eigen::Vector3f& o_f, const Eigen::Vector3f& d_f, unsigned instance,
+                      unsigned geom, unsigned prim, float t_min, float t_max,
+                      float embree_t) const {
+    if (instance >= sub_of_instance.size() || sub_of_instance[instance] < 0) return embree_t;
+    const SubScene& sub = *subs[sub_of_instance[instance]];
+    const Eigen::Vector3d o = o_f.cast<double>(), d = d_f.cast<double>();
+    if (geom == sub.triangle_geom && 3 * prim + 2 < sub.indices.size()) {
+      Eigen::Vector3d w[3];
+      for (int k = 0; k < 3; ++k) {
+        const float* v = &sub.vertices[3 * sub.indices[3 * prim + k]];
+        const Eigen::Vector4d v_S(v[0], v[1], v[2], 1.0);
+        w[k] = (sub.M * v_S).head<3>();
+      }
+      const Eigen::Vector3d n = (w[1] - w[0]).cross(w[2] - w[0]);
+      const double den = n.dot(d);
+      if (den == 0.0) return embree_t;
+      // Within the ray's segment, where Embree found the hit (rounding must not move a hit
+      // at range min below it).
+      return std::clamp(static_cast<float>(n.dot(w[0] - o) / den), t_min, t_max);
+    }
+    if (geom == sub.user_geom && prim < sub.prims.size()) {
+      const Analytic& p = sub.prims[prim];
+      const Eigen::Vector3d o_P = (sub.M_inv * Eigen::Vector4d(o.x(), o.y(), o.z(), 1.0)).head<3>();
+      const Eigen::Vector3d d_P = sub.M_inv.topLeftCorner<3, 3>() * d;
+      double t;
+      Eigen::Vector3d n_S;
+      if (intersectShape(p, p.X_SP * o_P, p.X_SP.linear() * d_P, t_min, t_max, &t, &n_S))
+        return std::clamp(static_cast<float>(t), t_min, t_max);
+    }
+    return embree_t;
+  }
+
+  explicit Impl(const std::string& config) {
+    device = rtcNewDevice(config.empty() ? nullptr : config.c_str());
+    if (!device) throw RayCasterError("Embree: rtcNewDevice failed (config '" + config + "')");
     rtcSetDeviceErrorFunction(
         device,
         [](void* user, RTCError, const char* str) {
@@ -411,6 +463,7 @@ struct RayCaster::Impl {
     }
     subs.clear();
     static_poses.clear();
+    sub_of_instance.clear();
     if (top) rtcReleaseScene(top);
     top = nullptr;
     built = false;
@@ -423,7 +476,7 @@ struct RayCaster::Impl {
 };
 
 RayCaster::RayCaster(RayCasterOptions options)
-    : options_(options), impl_(std::make_unique<Impl>()) {}
+    : options_(options), impl_(std::make_unique<Impl>(options.embree_config)) {}
 
 RayCaster::~RayCaster() = default;
 
@@ -519,8 +572,10 @@ void RayCaster::build(const Scene& scene) {
       std::copy(soup.vertices.begin(), soup.vertices.end(), v);
       std::copy(soup.indices.begin(), soup.indices.end(), idx);
       rtcCommitGeometry(g);
-      rtcAttachGeometry(sub.scene, g);
+      sub.triangle_geom = rtcAttachGeometry(sub.scene, g);
       rtcReleaseGeometry(g);
+      sub.vertices = soup.vertices;
+      sub.indices = soup.indices;
       m.n_triangles += soup.triangleCount();
     }
     if (!sub.prims.empty()) {
@@ -531,7 +586,7 @@ void RayCaster::build(const Scene& scene) {
       rtcSetGeometryIntersectFunction(g, analyticIntersect);
       rtcSetGeometryOccludedFunction(g, analyticOccluded);
       rtcCommitGeometry(g);
-      rtcAttachGeometry(sub.scene, g);
+      sub.user_geom = rtcAttachGeometry(sub.scene, g);
       rtcReleaseGeometry(g);
       m.n_analytic += sub.prims.size();
     }
@@ -545,9 +600,12 @@ void RayCaster::build(const Scene& scene) {
     float xfm[12];
     toEmbreeTransform(X, xfm);
     rtcSetGeometryTransform(sub.instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+    sub.setTransform(xfm);
     sub.X_WB_last = X.matrix();
     rtcCommitGeometry(sub.instance);
-    rtcAttachGeometry(m.top, sub.instance);
+    const unsigned instance_id = rtcAttachGeometry(m.top, sub.instance);
+    if (m.sub_of_instance.size() <= instance_id) m.sub_of_instance.resize(instance_id + 1, -1);
+    m.sub_of_instance[instance_id] = static_cast<int>(i);
     rtcReleaseGeometry(sub.instance);  // the top scene holds it
     if (sub.body >= 0) ++m.n_moving;
   }
@@ -581,6 +639,7 @@ void RayCaster::update(const Scene& scene) {
     float xfm[12];
     toEmbreeTransform(X, xfm);
     rtcSetGeometryTransform(sub->instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+    sub->setTransform(xfm);
     rtcCommitGeometry(sub->instance);
     sub->X_WB_last = X.matrix();
     changed = true;
@@ -616,7 +675,11 @@ void RayCaster::castRays(const Eigen::Vector3d& origin_W,
         RTCRayHit rh;
         setUpRay(&rh, o, directions[i], t_min, t_max, i);
         rtcIntersect1(m.top, &context, &rh);
-        distances[i] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? inf : rh.ray.tfar;
+        distances[i] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID
+                           ? inf
+                           : m.exactDistance(o, Eigen::Vector3f(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z),
+                                             rh.hit.instID[0], rh.hit.geomID, rh.hit.primID,
+                                             t_min, t_max, rh.ray.tfar);
       }
       break;
     }
@@ -643,8 +706,14 @@ void RayCaster::castRays(const Eigen::Vector3d& origin_W,
           rh.hit.instID[0][j] = RTC_INVALID_GEOMETRY_ID;
         }
         rtcIntersect16(valid, m.top, &context, &rh);
-        for (int j = 0; j < count; ++j)
-          distances[start + j] = rh.hit.geomID[j] == RTC_INVALID_GEOMETRY_ID ? inf : rh.ray.tfar[j];
+        for (int j = 0; j < count; ++j) {
+          distances[start + j] =
+              rh.hit.geomID[j] == RTC_INVALID_GEOMETRY_ID
+                  ? inf
+                  : m.exactDistance(o, Eigen::Vector3f(rh.ray.dir_x[j], rh.ray.dir_y[j], rh.ray.dir_z[j]),
+                                    rh.hit.instID[0][j], rh.hit.geomID[j], rh.hit.primID[j], t_min,
+                                    t_max, rh.ray.tfar[j]);
+        }
       }
       break;
     }
@@ -653,9 +722,14 @@ void RayCaster::castRays(const Eigen::Vector3d& origin_W,
       m.stream.resize(n);
       for (int i = 0; i < n; ++i) setUpRay(&m.stream[i], o, directions[i], t_min, t_max, i);
       rtcIntersect1M(m.top, &context, m.stream.data(), n, sizeof(RTCRayHit));
-      for (int i = 0; i < n; ++i)
-        distances[i] = m.stream[i].hit.geomID == RTC_INVALID_GEOMETRY_ID ? inf
-                                                                           : m.stream[i].ray.tfar;
+      for (int i = 0; i < n; ++i) {
+        const RTCRayHit& h = m.stream[i];
+        distances[i] = h.hit.geomID == RTC_INVALID_GEOMETRY_ID
+                           ? inf
+                           : m.exactDistance(o, Eigen::Vector3f(h.ray.dir_x, h.ray.dir_y, h.ray.dir_z),
+                                             h.hit.instID[0], h.hit.geomID, h.hit.primID, t_min,
+                                             t_max, h.ray.tfar);
+      }
       break;
     }
   }

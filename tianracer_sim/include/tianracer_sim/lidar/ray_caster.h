@@ -23,6 +23,7 @@
 #include <cstddef>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -46,6 +47,10 @@ struct RayCasterOptions {
   PrimitiveMode primitives = PrimitiveMode::kHybrid;
   RayQueryMode query = RayQueryMode::kPacket16;
   double max_sagitta = 1e-4;  // m, tessellation error bound for cylinders and spheres
+  /// Embree's device configuration (rtcNewDevice), e.g. "isa=sse2" to force one ISA (tests);
+  /// "" = Embree picks the best the CPU has. The distances do not depend on it: each hit's
+  /// distance is computed again by one scalar routine.
+  std::string embree_config;
 };
 
 /// Casts rays and nothing else: beam layout, range limits and noise belong to the sensor
