@@ -15,6 +15,7 @@
 // <urdf_model/model.h> itself (66k lines, 0.6 s in each of 68 sources that included it here).
 #include <urdf_world/types.h>
 
+#include "tianracer_sim/common/element_lines.h"
 #include "tianracer_sim/common/diagnostic.h"
 
 namespace tinyxml2 {
@@ -122,6 +123,7 @@ struct RobotModel {
   RobotExtensions ext;
   std::string source;                              // file path, or the parameter name
   std::map<std::string, std::string> mesh_paths;   // URI as written -> resolved absolute path
+  ElementLines lines;                              // where each <link> and <joint> stands
 };
 
 struct LoadOptions {
