@@ -157,8 +157,12 @@ void checkMagnitudes(const XMLElement* link_or_joint, const std::string& source)
     return;
   }
   checkOrigin(e, what, source);
-  if (const auto xyz = numbersOf(e->FirstChildElement("axis"), "xyz", 3)) {
-    // Checked before it is normalised, in a way that cannot overflow (limits::unitAxis).
+  // A fixed or floating joint's axis is not used (urdfdom ignores it; the tianracer's fixed
+  // joints say "0 0 0"). A movable one's is checked before it is normalised, in a way that
+  // cannot overflow (limits::unitAxis).
+  const std::string type = attr(e, "type");
+  const bool movable = type == "revolute" || type == "continuous" || type == "prismatic";
+  if (const auto xyz = movable ? numbersOf(e->FirstChildElement("axis"), "xyz", 3) : std::nullopt) {
     if (!limits::unitAxis({(*xyz)[0], (*xyz)[1], (*xyz)[2]}))
       throw ModelError(mi::at(source, e->FirstChildElement("axis")) + what + "<axis xyz='" +
                        attr(e->FirstChildElement("axis"), "xyz") +
