@@ -9,6 +9,7 @@
 #include <urdf_model/model.h>
 
 #include "tianracer_sim/model/robot_model.h"
+#include "tianracer_sim/physics/rigid_tree.h"
 #include "tianracer_sim/sensors/model_report.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
 
@@ -44,6 +45,10 @@ int main(int argc, char** argv) {
   };
   try {
     const tianracer_sim::RobotModel model = tianracer_sim::loadRobotModelFile(path, options);
+    // What the simulator checks when it builds the physics (moving bodies without mass, joint
+    // types and axes, inertia), with the same messages and places: model_info accepts no model
+    // the simulator refuses.
+    tianracer_sim::buildRigidTree(*model.urdf, model.mesh_paths, model.lines, options.warn);
     std::cout << tianracer_sim::describeRobotModel(model) << "\n"
               << tianracer_sim::formatModelReport(
                      model.urdf->getName(), tianracer_sim::modelReport(model, model.urdf->getName()));
