@@ -162,6 +162,28 @@ class BadInput(unittest.TestCase):
             f()
         return str(c.exception)
 
+    def test_non_utf8_text_reaches_python_intact(self):
+        # Names and values are quoted from the user's files, which need not be UTF-8 (issue 43:
+        # the InputError arrived empty and drain_warnings() raised UnicodeDecodeError).
+        import tempfile
+        from tianracer_sim import simulator
+        inertia = b'<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>'
+        with tempfile.TemporaryDirectory() as d:
+            bad = os.path.join(d, 'bad.urdf')
+            with open(bad, 'wb') as f:
+                f.write(b'<robot name="c"><link name="caf\xe9"><inertial><mass value="-1"/>' +
+                        inertia + b'</inertial></link></robot>')
+            msg = self.error(lambda: simulator.Simulation(model=bad, world='empty'))
+            self.assertIn("link 'caf\\xe9': mass '-1' must be a positive finite number", msg)
+            warn = os.path.join(d, 'warn.urdf')
+            with open(warn, 'wb') as f:
+                f.write(b'<robot name="c"><link name="base"><inertial><mass value="1"/>' + inertia +
+                        b'</inertial></link><gazebo reference="caf\xe9"><mu1>1</mu1></gazebo></robot>')
+            simulator.drain_warnings()
+            simulator.Simulation(model=warn, world='empty')
+            warnings = simulator.drain_warnings()
+            self.assertTrue(any("no link named 'caf\\xe9'" in w for w in warnings), warnings)
+
     def test_an_action_outside_the_space(self):
         msg = self.error(lambda: self.env.step(np.array([5.0, 0.0], np.float32)))
         self.assertIn('outside the action space', msg)

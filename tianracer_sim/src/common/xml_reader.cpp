@@ -1,5 +1,6 @@
 #include "tianracer_sim/common/xml_reader.h"
 #include "tianracer_sim/common/sdf_pose.h"
+#include "tianracer_sim/common/input_limits.h"
 
 #include <algorithm>
 #include <charconv>
@@ -182,6 +183,15 @@ double XmlReader::anyNumber(const XMLElement* e, const std::string& what) const 
   return *v;
 }
 
+double XmlReader::bounded(const XMLElement* e, const std::string& what, double bound,
+                          const std::string& unit) const {
+  const double v = number(e, what);
+  if (std::abs(v) > bound)
+    fail(e, lead(what, e) + " " + text(e) + " is out of range (<= " + limits::formatNumber(bound) +
+                (unit.empty() ? "" : " " + unit) + ")");
+  return v;
+}
+
 double XmlReader::positive(const XMLElement* e, const std::string& what) const {
   const double v = number(e, what);
   if (!(v > 0.0)) fail(e, lead(what, e) + " must be > 0 (got " + text(e) + ")");
@@ -235,6 +245,8 @@ Eigen::Isometry3d XmlReader::pose(const XMLElement* e, const std::string& what) 
   const auto v = numbers(e, what);
   if (v.size() != 6)
     fail(e, lead(what, e) + " '" + text(e) + "' is not 6 numbers \"x y z roll pitch yaw\"");
+  const std::string bad = limits::checkVector({v[0], v[1], v[2]}, limits::kPosition, "m");
+  if (!bad.empty()) fail(e, lead(what, e) + " position " + bad);
   return sdfPose(v[0], v[1], v[2], v[3], v[4], v[5]);
 }
 

@@ -16,6 +16,7 @@
 
 #include "model_internal.h"
 #include "tianracer_assets/file_kind.h"
+#include "tianracer_sim/common/input_limits.h"
 
 namespace tianracer_sim {
 
@@ -55,6 +56,9 @@ void checkInertial(const XMLElement* link, const std::string& name, const std::s
   if (!m || !std::isfinite(*m) || *m <= 0.0)
     throw ModelError(mi::at(source, mass) + what + "mass '" + mv +
                      "' must be a positive finite number");
+  if (*m > limits::kMass)
+    throw ModelError(mi::at(source, mass) + what + "mass " + mv + " is out of range (<= " +
+                     limits::formatNumber(limits::kMass) + " kg)");
   const XMLElement* inertia = inertial->FirstChildElement("inertia");
   if (!inertia) throw ModelError(mi::at(source, inertial) + what + "<inertial> has no <inertia>");
   static const char* kKeys[6] = {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"};
@@ -66,6 +70,10 @@ void checkInertial(const XMLElement* link, const std::string& name, const std::s
     if (!d || !std::isfinite(*d))
       throw ModelError(mi::at(source, inertia) + what + "inertia " + kKeys[i] + "='" + a +
                        "' is not a finite number");
+    if (std::abs(*d) > limits::kInertia)
+      throw ModelError(mi::at(source, inertia) + what + "inertia " + kKeys[i] + "=" + a +
+                       " is out of range (|" + kKeys[i] + "| <= " + limits::formatNumber(limits::kInertia) +
+                       " kg m^2)");
     v[i] = *d;
   }
   Eigen::Matrix3d I;
@@ -77,6 +85,99 @@ void checkInertial(const XMLElement* link, const std::string& name, const std::s
     for (int i = 0; i < 6; ++i) values += std::string(i ? " " : "") + kKeys[i] + "=" + fmt(v[i]);
     throw ModelError(mi::at(source, inertia) + what + "inertia is not positive definite (" +
                      values + "; smallest eigenvalue " + fmt(min_eig) + ")");
+  }
+}
+
+/// The numbers of attribute `name` of `e` when it has `count` of them; nullopt when absent or
+/// unreadable (urdfdom reports those with its own message).
+std::optional<std::vector<double>> numbersOf(const XMLElement* e, const char* name,
+                                             std::size_t count) {
+  const char* a = e ? e->Attribute(name) : nullptr;
+  if (!a) return std::nullopt;
+  auto v = parseNumbers(a);
+  if (!v || v->size() != count) return std::nullopt;
+  return v;
+}
+
+/// Magnitudes urdfdom takes as they come (it checks only that numbers parse): origins within
+/// limits::kPosition, rpy finite, shape sizes > 0 and within limits::kSize, a joint axis that is
+/// finite and not zero, damping and friction within limits::kJointCoefficient.
+void checkOrigin(const XMLElement* parent, const std::string& what, const std::string& source) {
+  const XMLElement* o = parent->FirstChildElement("origin");
+  if (!o) return;
+  if (const auto xyz = numbersOf(o, "xyz", 3)) {
+    const std::string bad =
+        limits::checkVector({(*xyz)[0], (*xyz)[1], (*xyz)[2]}, limits::kPosition, "m");
+    if (!bad.empty())
+      throw ModelError(mi::at(source, o) + what + "<origin xyz='" + attr(o, "xyz") + "'>: " + bad);
+  }
+  if (const auto rpy = numbersOf(o, "rpy", 3)) {
+    for (double r : *rpy)
+      if (!std::isfinite(r))
+        throw ModelError(mi::at(source, o) + what + "<origin rpy='" + attr(o, "rpy") +
+                         "'> is not finite");
+  }
+}
+
+void checkGeometry(const XMLElement* holder, const std::string& what, const std::string& source) {
+  checkOrigin(holder, what, source);
+  const XMLElement* g = holder->FirstChildElement("geometry");
+  if (!g) return;
+  auto check = [&](const XMLElement* e, const char* name, std::size_t count) {
+    const auto v = numbersOf(e, name, count);
+    if (!v) return;
+    for (std::size_t i = 0; i < v->size(); ++i) {
+      const double x = (*v)[i];
+      std::string bad;
+      if (!std::isfinite(x)) bad = "is not finite";
+      else if (!(x > 0.0)) bad = "must be > 0";
+      else if (x > limits::kSize) bad = "is out of range (<= " + limits::formatNumber(limits::kSize) + " m)";
+      if (!bad.empty())
+        throw ModelError(mi::at(source, e) + what + "<" + e->Name() + " " + name + "='" +
+                         attr(e, name) + "'> " + bad);
+    }
+  };
+  check(g->FirstChildElement("box"), "size", 3);
+  check(g->FirstChildElement("cylinder"), "radius", 1);
+  check(g->FirstChildElement("cylinder"), "length", 1);
+  check(g->FirstChildElement("sphere"), "radius", 1);
+  check(g->FirstChildElement("mesh"), "scale", 3);
+}
+
+void checkMagnitudes(const XMLElement* link_or_joint, const std::string& source) {
+  const XMLElement* e = link_or_joint;
+  const bool is_link = std::string(e->Name()) == "link";
+  const std::string what = (is_link ? "link '" : "joint '") + attr(e, "name") + "': ";
+  if (is_link) {
+    if (const XMLElement* in = e->FirstChildElement("inertial"))
+      checkOrigin(in, what + "<inertial> ", source);
+    for (const char* tag : {"visual", "collision"}) {
+      for (const XMLElement* c = e->FirstChildElement(tag); c; c = c->NextSiblingElement(tag))
+        checkGeometry(c, what + "<" + tag + "> ", source);
+    }
+    return;
+  }
+  checkOrigin(e, what, source);
+  // A fixed or floating joint's axis is not used (urdfdom ignores it; the tianracer's fixed
+  // joints say "0 0 0"). A movable one's is checked before it is normalised, in a way that
+  // cannot overflow (limits::unitAxis).
+  const std::string type = attr(e, "type");
+  const bool movable = type == "revolute" || type == "continuous" || type == "prismatic";
+  if (const auto xyz = movable ? numbersOf(e->FirstChildElement("axis"), "xyz", 3) : std::nullopt) {
+    if (!limits::unitAxis({(*xyz)[0], (*xyz)[1], (*xyz)[2]}))
+      throw ModelError(mi::at(source, e->FirstChildElement("axis")) + what + "<axis xyz='" +
+                       attr(e->FirstChildElement("axis"), "xyz") +
+                       "'> must be finite and not zero");
+  }
+  if (const XMLElement* d = e->FirstChildElement("dynamics")) {
+    for (const char* name : {"damping", "friction"}) {
+      const auto v = numbersOf(d, name, 1);
+      if (!v) continue;
+      const double x = (*v)[0];
+      if (!std::isfinite(x) || x < 0.0 || x > limits::kJointCoefficient)
+        throw ModelError(mi::at(source, d) + what + "<dynamics " + name + "='" + attr(d, name) +
+                         "'> must be finite, >= 0 and <= " + limits::formatNumber(limits::kJointCoefficient));
+    }
   }
 }
 
@@ -92,7 +193,11 @@ void checkStructure(const XMLElement* robot, const std::string& source) {
     if (!ins.second)
       throw ModelError(source + ": duplicate link name '" + name + "' (" +
                        lines(ins.first->second, e) + ")");
+    if (links.size() > limits::kLinksPerModel)
+      throw ModelError(mi::at(source, e) + "the model has more than " +
+                       std::to_string(limits::kLinksPerModel) + " links (limit of one model)");
     checkInertial(e, name, source);
+    checkMagnitudes(e, source);
   }
   if (links.empty()) throw ModelError(mi::at(source, robot) + "<robot> has no <link>");
 
@@ -109,6 +214,7 @@ void checkStructure(const XMLElement* robot, const std::string& source) {
     if (!ins.second)
       throw ModelError(source + ": duplicate joint name '" + name + "' (" +
                        lines(ins.first->second, e) + ")");
+    checkMagnitudes(e, source);
     const std::string what = "joint '" + name + "': ";
     const std::string parent = attr(e->FirstChildElement("parent"), "link");
     const std::string child = attr(e->FirstChildElement("child"), "link");
@@ -269,6 +375,12 @@ RobotModel loadRobotModel(const std::string& urdf_xml, const std::string& source
   checkStructure(robot, source);
   RobotModel model;
   model.source = source;
+  model.lines.source = source;
+  for (const XMLElement* e = robot->FirstChildElement(); e; e = e->NextSiblingElement()) {
+    const std::string tag = e->Name();
+    if (tag == "link") model.lines.links.emplace(attr(e, "name"), e->GetLineNum());
+    if (tag == "joint") model.lines.joints.emplace(attr(e, "name"), e->GetLineNum());
+  }
   model.urdf = parseWithUrdfdom(urdf_xml, source, warner);
   model.ext = mi::parseExtensionsXml(robot, source, warner);
   collectMeshes(model, options, warner);

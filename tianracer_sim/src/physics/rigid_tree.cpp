@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "tianracer_sim/common/input_limits.h"
+
 namespace tianracer_sim {
 
 Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
@@ -73,7 +75,8 @@ std::string resolveMesh(const std::string& uri, const std::map<std::string, std:
 }
 
 void addCollisions(const urdf::Link& link, const Eigen::Isometry3d& X_BL,
-                   const std::map<std::string, std::string>& mesh_paths, TreeBody* body) {
+                   const std::map<std::string, std::string>& mesh_paths,
+                   const ElementLines& lines, TreeBody* body) {
   for (const auto& col : link.collision_array) {
     if (!col || !col->geometry) continue;
     CollisionGeometry g;
@@ -81,18 +84,24 @@ void addCollisions(const urdf::Link& link, const Eigen::Isometry3d& X_BL,
     g.X_BG = X_BL * toIsometry(col->origin);
     const auto resolve = [&](const std::string& uri) {
       g.mesh_uri = uri;
-      return resolveMesh(uri, mesh_paths, link.name);
+      try {
+        return resolveMesh(uri, mesh_paths, link.name);
+      } catch (const PhysicsError& e) {
+        throw PhysicsError(lines.link(link.name) + e.what());
+      }
     };
     if (!shapeFromUrdf(*col->geometry, resolve, &g.shape))
-      throw PhysicsError("link '" + link.name + "': unsupported collision geometry type");
+      throw PhysicsError(lines.link(link.name) + "link '" + link.name +
+                         "': unsupported collision geometry type");
     body->collisions.push_back(g);
   }
 }
 
 class TreeBuilder {
  public:
-  TreeBuilder(const std::map<std::string, std::string>& mesh_paths, RigidTree* tree)
-      : mesh_paths_(mesh_paths), tree_(tree) {}
+  TreeBuilder(const std::map<std::string, std::string>& mesh_paths, const ElementLines& lines,
+              RigidTree* tree)
+      : mesh_paths_(mesh_paths), lines_(lines), tree_(tree) {}
 
   // Adds `link` (placed at X_BL in body `b`) and, recursively, everything below it.
   void visit(const urdf::Link& link, int b, const Eigen::Isometry3d& X_BL) {
@@ -102,7 +111,7 @@ class TreeBuilder {
     tree_->links[link.name] = {b, X_BL};
     body.mass = combineMassProperties(body.mass,
                                       transformMassProperties(linkMassProperties(link), X_BL));
-    addCollisions(link, X_BL, mesh_paths_, &body);
+    addCollisions(link, X_BL, mesh_paths_, lines_, &body);
 
     for (const auto& joint : link.child_joints) {
       const urdf::LinkConstSharedPtr child = findChild(link, joint->child_link_name);
@@ -121,15 +130,18 @@ class TreeBuilder {
         case urdf::Joint::CONTINUOUS: nb.joint_type = TreeJointType::kContinuous; break;
         case urdf::Joint::PRISMATIC: nb.joint_type = TreeJointType::kPrismatic; break;
         default:
-          throw PhysicsError("joint '" + joint->name +
+          throw PhysicsError(lines_.joint(joint->name) + "joint '" + joint->name +
                              "': only fixed, revolute, continuous and prismatic joints are "
                              "supported inside a robot");
       }
-      const Eigen::Vector3d axis(joint->axis.x, joint->axis.y, joint->axis.z);
-      if (!(axis.norm() > 1e-9) || !axis.allFinite()) {
-        throw PhysicsError("joint '" + joint->name + "': zero or invalid axis");
+      // Normalised without overflow (an axis of 1e308 once normalised to zero).
+      const std::optional<Eigen::Vector3d> axis =
+          limits::unitAxis(Eigen::Vector3d(joint->axis.x, joint->axis.y, joint->axis.z));
+      if (!axis) {
+        throw PhysicsError(lines_.joint(joint->name) + "joint '" + joint->name +
+                           "': zero or invalid axis");
       }
-      nb.axis_B = axis.normalized();
+      nb.axis_B = *axis;
       if (joint->limits) {
         nb.effort_limit = std::max(0.0, joint->limits->effort);
         nb.velocity_limit = std::max(0.0, joint->limits->velocity);
@@ -158,13 +170,15 @@ class TreeBuilder {
   }
 
   const std::map<std::string, std::string>& mesh_paths_;
+  const ElementLines& lines_;
   RigidTree* tree_;
 };
 
 }  // namespace
 
 RigidTree buildRigidTree(const urdf::ModelInterface& urdf,
-                         const std::map<std::string, std::string>& mesh_paths) {
+                         const std::map<std::string, std::string>& mesh_paths,
+                         const ElementLines& lines, const WarningSink& warn) {
   const urdf::LinkConstSharedPtr root = urdf.getRoot();
   if (!root) throw PhysicsError("robot '" + urdf.getName() + "': no root link");
   RigidTree tree;
@@ -172,23 +186,36 @@ RigidTree buildRigidTree(const urdf::ModelInterface& urdf,
   TreeBody base;
   base.link = root->name;
   tree.bodies.push_back(base);
-  TreeBuilder(mesh_paths, &tree).visit(*root, 0, Eigen::Isometry3d::Identity());
+  TreeBuilder(mesh_paths, lines, &tree).visit(*root, 0, Eigen::Isometry3d::Identity());
 
   for (std::size_t i = 0; i < tree.bodies.size(); ++i) {
     const TreeBody& b = tree.bodies[i];
     if (i == 0 && tree.fixed_base) continue;
     if (!(b.mass.mass > 0.0)) {
       std::ostringstream os;
-      os << "link '" << b.link << "'"
+      os << lines.link(b.link) << "link '" << b.link << "'"
          << (i == 0 ? " (root, with its fixed children)" : " (child of joint '" + b.joint + "')")
          << ": a moving body needs a positive mass, got " << b.mass.mass;
       throw PhysicsError(os.str());
     }
-    if (!isPhysicalInertia(b.mass.inertia)) {
+    if (!isPositiveDefiniteInertia(b.mass.inertia)) {
       std::ostringstream os;
-      os << "link '" << b.link << "': merged inertia is not positive definite or violates the "
-         << "triangle inequality:\n" << b.mass.inertia;
+      os << lines.link(b.link) << "link '" << b.link
+         << "': the inertia of the links moving with it is not positive definite:\n"
+         << b.mass.inertia;
       throw PhysicsError(os.str());
+    }
+    if (!isPhysicalInertia(b.mass.inertia) && warn) {
+      // The one rule for robots and world models (sim/world_physics.cpp): no rigid body has
+      // such moments, but ODE checks only that the inertia is positive definite (dMassCheck),
+      // so Gazebo simulates it as given. So do we, with a warning.
+      const Eigen::Vector3d I = principalInertia(b.mass.inertia).moments;
+      std::ostringstream os;
+      os << lines.link(b.link) << "link '" << b.link
+         << "': the principal moments of inertia of the links moving with it, (" << I.x() << " "
+         << I.y() << " " << I.z() << "), violate the triangle inequality (each at most the sum "
+         << "of the other two); simulated as given, as Gazebo does";
+      warn(os.str());
     }
   }
   return tree;

@@ -70,7 +70,7 @@ void PhysicsWorld::Impl::applyCommands(RobotState* r) {
   // cannot be crossed unseen.
   for (std::size_t k = 0; k < r->limits.size(); ++k) {
     const JointInfo& j = r->joints[k];
-    const btMultiBody* mb = r->mbOfJoint(static_cast<int>(k));
+    btMultiBody* mb = r->mbOfJoint(static_cast<int>(k));
     const int link = r->linkOfJoint(static_cast<int>(k));
     bool near = false;
     if (j.has_position_limits) {
@@ -80,6 +80,11 @@ void PhysicsWorld::Impl::applyCommands(RobotState* r) {
     }
     if (near != r->limit_in_world[k]) {
       if (near) {
+        if (!r->limits[k]) {
+          auto lim = std::make_unique<btMultiBodyJointLimitConstraint>(mb, link, j.lower, j.upper);
+          lim->finalizeMultiDof();
+          r->limits[k] = std::move(lim);
+        }
         world->addMultiBodyConstraint(r->limits[k].get());
       } else {
         world->removeMultiBodyConstraint(r->limits[k].get());
@@ -110,11 +115,22 @@ void PhysicsWorld::Impl::applyCommands(RobotState* r) {
     btMultiBody* mb = r->mbOfJoint(static_cast<int>(i));
     const int link = r->linkOfJoint(static_cast<int>(i));
     double tau = (c.mode == RobotState::Mode::kEffort ? c.effort : 0.0) + r->ext_effort[i];
-    if (j.damping > 0.0) tau -= j.damping * mb->getJointVel(link);
     if (j.spring_stiffness != 0.0) tau -= j.spring_stiffness * (mb->getJointPos(link) - j.spring_reference);
     if (tau != 0.0) mb->addJointTorque(link, tau);
 
-    btMultiBodyJointMotor* motor = r->motors[i].get();
+    // Viscous damping in the solve, implicitly (JointDamper): stable for any damping.
+    const bool damped = j.damping > 0.0;
+    if (damped && !r->dampers[i]) {
+      r->dampers[i] = std::make_unique<JointDamper>(mb, link);
+      r->dampers[i]->finalizeMultiDof();
+    }
+    if (damped) r->dampers[i]->setDamping(j.damping);
+    if (damped != r->damper_in_world[i]) {
+      if (damped) world->addMultiBodyConstraint(r->dampers[i].get());
+      else world->removeMultiBodyConstraint(r->dampers[i].get());
+      r->damper_in_world[i] = damped;
+    }
+
     double target = 0.0, max_impulse = 0.0;
     if (c.mode == RobotState::Mode::kVelocity) {
       target = c.velocity;
@@ -123,9 +139,14 @@ void PhysicsWorld::Impl::applyCommands(RobotState* r) {
       max_impulse = j.friction * dt;
     }
     if (max_impulse > 0.0 && !r->motor_in_world[i]) {
-      world->addMultiBodyConstraint(motor);
+      if (!r->motors[i]) {
+        r->motors[i] = std::make_unique<btMultiBodyJointMotor>(mb, link, 0.0, 0.0);
+        r->motors[i]->finalizeMultiDof();  // allocates the row data read by jointEffort()
+      }
+      world->addMultiBodyConstraint(r->motors[i].get());
       r->motor_in_world[i] = true;
     }
+    btMultiBodyJointMotor* motor = r->motors[i].get();
     if (r->motor_in_world[i]) {
       motor->setVelocityTarget(target, 1.0);
       motor->setMaxAppliedImpulse(max_impulse);
@@ -252,8 +273,10 @@ void PhysicsRobot::setJointLimits(int i, double lower, double upper) {
   j.has_position_limits = true;
   j.lower = lower;
   j.upper = upper;
-  s_->limits[i]->setLowerBound(lower);
-  s_->limits[i]->setUpperBound(upper);
+  if (s_->limits[i]) {
+    s_->limits[i]->setLowerBound(lower);
+    s_->limits[i]->setUpperBound(upper);
+  }
   s_->wake();
 }
 

@@ -208,8 +208,6 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
   for (int b = 1; b < nb; ++b) {
     const TreeBody& body = tree.bodies[b];
     if (body.parent < 0) continue;  // the root of another tree
-    btMultiBody* mb = r->mbOfBody(b);
-    const int link = r->body_link[b];
     JointInfo j;
     j.name = body.joint;
     j.type = body.joint_type == TreeJointType::kRevolute
@@ -232,14 +230,13 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
     r->joint_index[j.name] = static_cast<int>(r->joints.size());
     r->joints.push_back(j);
     r->joint_body.push_back(b);
-    // Always built (limits can be set later); joins the solve only near a limit.
-    auto lim = std::make_unique<btMultiBodyJointLimitConstraint>(mb, link, j.lower, j.upper);
-    lim->finalizeMultiDof();
-    r->limits.push_back(std::move(lim));
+    // Limit, motor and damper constraints are made when first used (applyCommands).
+    r->limits.emplace_back();
     r->limit_in_world.push_back(false);
-    r->motors.push_back(std::make_unique<btMultiBodyJointMotor>(mb, link, 0.0, 0.0));
-    r->motors.back()->finalizeMultiDof();  // allocates the row data read by jointEffort()
+    r->motors.emplace_back();
     r->motor_in_world.push_back(false);
+    r->dampers.emplace_back();
+    r->damper_in_world.push_back(false);
   }
   r->commands.assign(r->joints.size(), RobotState::Command());
   r->applied_effort.assign(r->joints.size(), 0.0);
@@ -261,6 +258,9 @@ void PhysicsWorld::Impl::removeFromWorld(RobotState* r) {
   }
   for (std::size_t k = 0; k < r->limits.size(); ++k) {
     if (r->limit_in_world[k]) world->removeMultiBodyConstraint(r->limits[k].get());
+  }
+  for (std::size_t k = 0; k < r->dampers.size(); ++k) {
+    if (r->damper_in_world[k]) world->removeMultiBodyConstraint(r->dampers[k].get());
   }
   for (auto& c : r->colliders) {
     if (c) world->removeCollisionObject(c.get());

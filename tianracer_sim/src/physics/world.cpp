@@ -300,7 +300,7 @@ void PhysicsWorld::Impl::readEfforts(RobotState* r) {
       r->applied_effort[i] = c.effort;
     } else if (c.mode == RobotState::Mode::kVelocity) {
       btMultiBodyJointMotor* m = r->motors[i].get();
-      r->applied_effort[i] = m->getNumRows() > 0 ? m->getAppliedImpulse(0) * inv_dt : 0.0;
+      r->applied_effort[i] = m && m->getNumRows() > 0 ? m->getAppliedImpulse(0) * inv_dt : 0.0;
     } else {
       r->applied_effort[i] = 0.0;
     }

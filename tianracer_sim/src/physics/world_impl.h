@@ -13,6 +13,7 @@
 
 #include "bullet.h"
 #include "contact_solver.h"
+#include "joint_damper.h"
 #include "shapes.h"
 #include "tianracer_sim/physics/world.h"
 
@@ -52,11 +53,16 @@ struct RobotState {
   std::vector<std::unique_ptr<OwnedShape>> meshes;  // triangles of concave meshes: outlive shapes
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   /// Per joint; in the solve only for a joint with position limits, near one of them (see
-  /// applyCommands).
+  /// applyCommands). Limits, motors and dampers are made when a joint first needs them: each
+  /// holds Jacobians over every degree of freedom of its multibody (Bullet's dense rows), so
+  /// one of each per joint, made up front, took memory quadratic in the number of joints
+  /// (6.6 GB for a chain of 20,000 links); null until then.
   std::vector<std::unique_ptr<btMultiBodyJointLimitConstraint>> limits;
   std::vector<bool> limit_in_world;
   std::vector<std::unique_ptr<btMultiBodyJointMotor>> motors;  // per joint
   std::vector<bool> motor_in_world;
+  std::vector<std::unique_ptr<JointDamper>> dampers;  // per joint: damping, implicitly
+  std::vector<bool> damper_in_world;
   std::vector<Command> commands;
   std::vector<double> applied_effort;
   /// Per joint: an effort added to whatever else acts (apply_joint_effort), every step until

@@ -50,6 +50,15 @@ Warnings& warnings() {
   return w;
 }
 
+// Messages quote names and values from the user's files, which need not be UTF-8: decoded
+// with backslashreplace, a stray byte reads \xe9 and nothing is lost (pybind11's strict
+// decoding left the exception's message empty and made drain_warnings() raise).
+py::str text(const std::string& s) {
+  PyObject* o = PyUnicode_DecodeUTF8(s.data(), static_cast<Py_ssize_t>(s.size()), "backslashreplace");
+  if (!o) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(o);
+}
+
 // Gazebo's pose convention, as SDF's <pose> (common/sdf_pose.h).
 Eigen::Isometry3d poseFrom(const std::vector<double>& p, const char* what) {
   double x = 0, y = 0, z = 0, roll = 0, pitch = 0, yaw = 0;
@@ -236,11 +245,16 @@ PYBIND11_MODULE(simulator, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const InputError& e) {
-      input_error(e.what());
+      PyErr_SetObject(input_error.ptr(), text(e.what()).ptr());
     }
   });
 
-  m.def("drain_warnings", [] { return warnings().drain(); },
+  m.def("drain_warnings",
+        [] {
+          py::list out;
+          for (const std::string& w : warnings().drain()) out.append(text(w));
+          return out;
+        },
         "Warnings of the loaders and sensors since the last call (each distinct one once).");
 
   py::class_<SimEnv>(m, "Simulation")

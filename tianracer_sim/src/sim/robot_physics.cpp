@@ -21,10 +21,11 @@ LinkSurfaces linkSurfaces(const RobotModel& model) {
 }
 
 RobotId addRobotModel(PhysicsWorld* physics, const RobotModel& model,
-                      const Eigen::Isometry3d& X_WB_spawn, const std::string& name) {
+                      const Eigen::Isometry3d& X_WB_spawn, const std::string& name,
+                      const WarningSink& warn) {
   if (!model.urdf) throw PhysicsError("robot '" + name + "': model has no URDF");
-  return physics->addRobot(buildRigidTree(*model.urdf, model.mesh_paths), linkSurfaces(model),
-                           X_WB_spawn, name);
+  return physics->addRobot(buildRigidTree(*model.urdf, model.mesh_paths, model.lines, warn),
+                           linkSurfaces(model), X_WB_spawn, name);
 }
 
 }  // namespace tianracer_sim

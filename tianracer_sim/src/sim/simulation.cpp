@@ -62,7 +62,7 @@ void buildJointHandles(const RobotModel& model, const PhysicsRobot& robot,
 }
 
 double depthBelowBase(const RobotModel& model, const Eigen::Matrix3d& R_WB) {
-  const RigidTree tree = buildRigidTree(*model.urdf, model.mesh_paths);
+  const RigidTree tree = buildRigidTree(*model.urdf, model.mesh_paths, model.lines);
   // Body poses in the root body's frame at q = 0 (parents precede children).
   std::vector<Eigen::Isometry3d> X_RB(tree.bodies.size(), Eigen::Isometry3d::Identity());
   for (size_t b = 1; b < tree.bodies.size(); ++b) {
@@ -125,7 +125,7 @@ SimRobot& Simulation::addRobot(RobotConfig config) {
   if (config.drop_to_ground) {
     config.X_WB_spawn.translation().z() = depthBelowBase(robot->model, config.X_WB_spawn.linear());
   }
-  robot->id = addRobotModel(&physics_, robot->model, config.X_WB_spawn, config.name);
+  robot->id = addRobotModel(&physics_, robot->model, config.X_WB_spawn, config.name, warn_);
   PhysicsRobot& physics_robot = physics_.robot(robot->id);
   try {
     buildJointHandles(robot->model, physics_robot, &robot->handles, &robot->handle_joint);

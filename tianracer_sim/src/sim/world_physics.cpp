@@ -1,4 +1,5 @@
 #include "tianracer_sim/sim/world_physics.h"
+#include "tianracer_sim/common/input_limits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -271,7 +272,16 @@ RigidTree worldModelTree(const WorldDescription& world, const ModelDescription& 
         throw PhysicsError(lwhat + "<mass> must be > 0 (got " + fmt(l.inertial.mass) +
                            ") for a link that moves");
       }
+      if (l.inertial.mass > limits::kMass) {
+        throw PhysicsError(lwhat + "<mass> " + fmt(l.inertial.mass) + " is out of range (<= " +
+                           limits::formatNumber(limits::kMass) + " kg) for a link that moves");
+      }
       const Eigen::Matrix3d& I = l.inertial.inertia;
+      if (I.allFinite() && I.cwiseAbs().maxCoeff() > limits::kInertia) {
+        throw PhysicsError(lwhat + "inertia component " + fmt(I.cwiseAbs().maxCoeff()) +
+                           " is out of range (<= " + limits::formatNumber(limits::kInertia) +
+                           " kg m^2) for a link that moves");
+      }
       const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I);
       if (!I.allFinite() || !(eig.eigenvalues().minCoeff() > 0.0)) {
         std::ostringstream os;

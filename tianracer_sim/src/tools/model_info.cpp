@@ -11,6 +11,7 @@
 
 #include "tianracer_sim/model/robot_meshes.h"
 #include "tianracer_sim/model/robot_model.h"
+#include "tianracer_sim/physics/rigid_tree.h"
 #include "tianracer_sim/sensors/model_report.h"
 #include "tianracer_sim/sensors/sensor_registry.h"
 
@@ -49,6 +50,10 @@ int main(int argc, char** argv) {
     // The mesh contents too, as the physics and the renderer read them: a file that would stop
     // the simulator (or crash it, before issue 43) stops model_info with the same message.
     if (require_meshes) tianracer_sim::readRobotMeshes(model, options.warn);
+    // What the simulator checks when it builds the physics (moving bodies without mass, joint
+    // types and axes, inertia), with the same messages and places: model_info accepts no model
+    // the simulator refuses.
+    tianracer_sim::buildRigidTree(*model.urdf, model.mesh_paths, model.lines, options.warn);
     std::cout << tianracer_sim::describeRobotModel(model) << "\n"
               << tianracer_sim::formatModelReport(
                      model.urdf->getName(), tianracer_sim::modelReport(model, model.urdf->getName()));

@@ -3,6 +3,7 @@
 // reported once through the WarningSink.
 #include "tianracer_sim/world/world.h"
 #include "tianracer_sim/common/xml_reader.h"
+#include "tianracer_sim/common/input_limits.h"
 #include "world_parser.h"
 #include "tianracer_sim/world/sdf_material.h"
 #include "tianracer_sim/world/map_world.h"
@@ -77,12 +78,13 @@ WorldDescription Parser::parse(const std::string& xml) {
       have_physics = true;
       parsePhysics(c, world.physics);
     } else if (tag == "gravity") {  // SDF >= 1.5 puts gravity in <world>
-      world.physics.gravity = vector3(c, "world");
+      world.physics.gravity = gravity(c, "world");
     } else if (tag == "scene") {
       parseScene(c, world);
     } else if (tag == "include") {
       const std::size_t before = world.models.size();
       parseInclude(c, world);
+      checkModelCount(c, world);
       for (std::size_t i = before; i < world.models.size(); ++i) {
         if (!model_names.insert(world.models[i].name).second)
           fail(c, "duplicate model name '" + world.models[i].name + "'");
@@ -95,6 +97,7 @@ WorldDescription Parser::parse(const std::string& xml) {
       ModelDescription m = parseModel(c);
       if (!model_names.insert(m.name).second) fail(c, "duplicate model name '" + m.name + "'");
       world.models.push_back(std::move(m));
+      checkModelCount(c, world);
     } else {
       unsupported(c);
     }
@@ -108,17 +111,45 @@ void Parser::parsePhysics(const XMLElement* e, PhysicsSettings& physics) {
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
     if (tag == "max_step_size") {
+      // As PhysicsWorld::setTimeStep takes it (0, kMaxTimeStep], checked here with the line.
       physics.max_step_size = positive(c, "<physics>");
+      if (physics.max_step_size > limits::kTimeStep)
+        fail(c, "<physics>: <max_step_size> " + text(c) + " is out of range (0 < step <= " +
+                    limits::formatNumber(limits::kTimeStep) + " s)");
     } else if (tag == "real_time_factor") {
       physics.real_time_factor = nonNegative(c, "<physics>");
     } else if (tag == "real_time_update_rate") {
       physics.real_time_update_rate = nonNegative(c, "<physics>");
     } else if (tag == "gravity") {
-      physics.gravity = vector3(c, "<physics>");
+      physics.gravity = gravity(c, "<physics>");
     } else {
       unsupported(c);
     }
   }
+}
+
+void Parser::checkModelCount(const XMLElement* e, const WorldDescription& world) {
+  // Each dynamic model is a multibody stepped every step: 20,000 hung the first step.
+  if (world.models.size() > limits::kModelsPerWorld)
+    fail(e, "the world has more than " + std::to_string(limits::kModelsPerWorld) +
+                " models (limit of one world)");
+}
+
+Eigen::Vector3d Parser::gravity(const XMLElement* e, const std::string& what) {
+  const Eigen::Vector3d g = vector3(e, what);
+  const std::string bad = limits::checkVector(g, limits::kGravity, "m/s^2");
+  if (!bad.empty()) fail(e, what + ": <gravity> " + bad);
+  return g;
+}
+
+void Parser::checkSize(const XMLElement* e, const Eigen::Vector3d& size, const std::string& what) {
+  const std::string bad = limits::checkVector(size, limits::kSize, "m");
+  if (!bad.empty()) fail(e, what + " " + bad);
+}
+
+double Parser::coefficient(const XMLElement* e, const std::string& what) {
+  nonNegative(e, what);
+  return bounded(e, what, limits::kJointCoefficient, "");
 }
 
 void Parser::parseScene(const XMLElement* e, WorldDescription& world) {
@@ -168,8 +199,9 @@ void Parser::parseLight(const XMLElement* e, WorldDescription& world) {
     }
   }
   if (type == "point") light.direction = Eigen::Vector3d(0, 0, -1);
-  if (light.direction.norm() == 0.0) fail(e, what + ": <direction> must not be zero");
-  light.direction = (X.linear() * light.direction).normalized();
+  const std::optional<Eigen::Vector3d> direction = limits::unitAxis(light.direction);
+  if (!direction) fail(e, what + ": <direction> must not be zero");
+  light.direction = X.linear() * *direction;
   light.attenuation = {constant, linear, quadratic};
   if (type != "directional") light.attenuation_height = std::max(0.0, X.translation().z());
   litColours(&light);
@@ -246,6 +278,9 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
     }
   }
   if (m.links.empty()) warn(e, what + " has no <link>: nothing to simulate or see");
+  if (m.links.size() > limits::kLinksPerModel)
+    fail(e, what + " has " + std::to_string(m.links.size()) + " links, more than " +
+                std::to_string(limits::kLinksPerModel) + " (limit of one model)");
   auto linkOf = [&](const std::string& name) -> const LinkDescription* {
     for (const LinkDescription& l : m.links)
       if (l.name == name) return &l;
@@ -405,6 +440,7 @@ std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::strin
     bool have = false;
     children({"size"}, [&](const XMLElement* c, const std::string&) {
       s.size = vector3(c, what + " box");
+      checkSize(c, s.size, what + ": <box> <size>");
       have = true;
     });
     if (!have) fail(g, what + ": <box> has no <size>");
@@ -416,6 +452,8 @@ std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::strin
     children({"radius", "length"}, [&](const XMLElement* c, const std::string& tag) {
       if (tag == "radius") s.radius = positive(c, what + " cylinder"), r = true;
       else s.length = positive(c, what + " cylinder"), l = true;
+      checkSize(c, Eigen::Vector3d::Constant(tag == "radius" ? s.radius : s.length),
+                what + ": <cylinder> <" + tag + ">");
     });
     if (!r || !l) fail(g, what + ": <cylinder> needs <radius> and <length>");
   } else if (type == "sphere") {
@@ -423,6 +461,7 @@ std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::strin
     bool r = false;
     children({"radius"}, [&](const XMLElement* c, const std::string&) {
       s.radius = positive(c, what + " sphere");
+      checkSize(c, Eigen::Vector3d::Constant(s.radius), what + ": <sphere> <radius>");
       r = true;
     });
     if (!r) fail(g, what + ": <sphere> has no <radius>");
@@ -431,14 +470,15 @@ std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::strin
     s.size = Eigen::Vector3d::Zero();
     children({"normal", "size"}, [&](const XMLElement* c, const std::string& tag) {
       if (tag == "normal") {
-        s.normal = vector3(c, what + " plane");
-        if (s.normal.norm() == 0.0) fail(c, what + ": <plane> <normal> must not be zero");
-        s.normal.normalize();
+        const std::optional<Eigen::Vector3d> n = limits::unitAxis(vector3(c, what + " plane"));
+        if (!n) fail(c, what + ": <plane> <normal> must not be zero");
+        s.normal = *n;
       } else {
         const auto v = numbers(c, what + " plane");
         if (v.size() != 2 || v[0] < 0.0 || v[1] < 0.0)
           fail(c, what + ": <plane> <size> '" + text(c) + "' is not 2 numbers >= 0");
         s.size = Eigen::Vector3d(v[0], v[1], 0.0);
+        checkSize(c, s.size, what + ": <plane> <size>");
       }
     });
   } else if (type == "mesh") {
@@ -453,6 +493,7 @@ std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::strin
       } else if (tag == "scale") {
         s.scale = vector3(c, what + " mesh");
         if (!(s.scale.minCoeff() > 0.0)) bad_scale = c;
+        else checkSize(c, s.scale, what + ": <mesh> <scale>");
       } else {
         // <submesh>: the file's parts of one name (mesh/mesh_loader.h), centred or not.
         for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
@@ -603,9 +644,10 @@ JointDescription Parser::parseJoint(const XMLElement* e, const std::string& mode
       for (const XMLElement* a = c->FirstChildElement(); a; a = a->NextSiblingElement()) {
         const std::string atag = a->Name();
         if (atag == "xyz") {
-          j.axis = vector3(a, awhat);
-          if (!(j.axis.norm() > 0.0)) fail(a, awhat + ": <xyz> must not be zero");
-          j.axis.normalize();
+          // Normalised without overflow: "1e308 1e308 0" is the unit vector it points along.
+          const std::optional<Eigen::Vector3d> axis = limits::unitAxis(vector3(a, awhat));
+          if (!axis) fail(a, awhat + ": <xyz> must not be zero");
+          j.axis = *axis;
           if (const char* in = a->Attribute("expressed_in")) {
             const std::string frame = trimText(in);
             if (frame == "__model__") *axis_in_model_frame = true;
@@ -627,10 +669,12 @@ JointDescription Parser::parseJoint(const XMLElement* e, const std::string& mode
         } else if (atag == "dynamics") {
           for (const XMLElement* d = a->FirstChildElement(); d; d = d->NextSiblingElement()) {
             const std::string dtag = d->Name();
-            if (dtag == "damping") j.damping = nonNegative(d, awhat + " <dynamics>");
-            else if (dtag == "friction") j.friction = nonNegative(d, awhat + " <dynamics>");
-            else if (dtag == "spring_reference") j.spring_reference = number(d, awhat + " <dynamics>");
-            else if (dtag == "spring_stiffness") j.spring_stiffness = nonNegative(d, awhat + " <dynamics>");
+            const std::string dwhat = awhat + " <dynamics>";
+            if (dtag == "damping") j.damping = coefficient(d, dwhat);
+            else if (dtag == "friction") j.friction = coefficient(d, dwhat);
+            else if (dtag == "spring_reference")
+              j.spring_reference = bounded(d, dwhat, limits::kPosition, "");
+            else if (dtag == "spring_stiffness") j.spring_stiffness = coefficient(d, dwhat);
             else unsupported(d);
           }
         } else {

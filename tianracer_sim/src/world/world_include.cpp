@@ -92,6 +92,7 @@ void Parser::applyState(const XMLElement* e, WorldDescription& world,
         ModelDescription m = parseModel(k);
         if (!names.insert(m.name).second) fail(k, "duplicate model name '" + m.name + "'");
         world.models.push_back(std::move(m));
+        checkModelCount(k, world);
       }
     } else if (tag == "deletions") {
       for (const XMLElement* k = c->FirstChildElement("name"); k; k = k->NextSiblingElement("name")) {

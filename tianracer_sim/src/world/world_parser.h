@@ -45,6 +45,14 @@ class Parser : public XmlReader {
  private:
   void parsePhysics(const XMLElement* e, PhysicsSettings& physics);
   void parseScene(const XMLElement* e, WorldDescription& world);
+  /// A <gravity> vector within limits::kGravity.
+  Eigen::Vector3d gravity(const XMLElement* e, const std::string& what);
+  /// Fails "<what> x 1e+308 is out of range (|x| <= 1e+06 m)" beyond limits::kSize.
+  void checkSize(const XMLElement* e, const Eigen::Vector3d& size, const std::string& what);
+  /// A joint's damping, friction or spring stiffness: >= 0 and within limits::kJointCoefficient.
+  double coefficient(const XMLElement* e, const std::string& what);
+  /// Fails when the world holds more than limits::kModelsPerWorld models.
+  void checkModelCount(const XMLElement* e, const WorldDescription& world);
   void parseInclude(const XMLElement* e, WorldDescription& world);
   void parseLight(const XMLElement* e, WorldDescription& world);
   ModelDescription parseModel(const XMLElement* e);

@@ -178,6 +178,9 @@ TEST(RenderCameraConfig, ValidationErrors) {
   expectError(edited(seed, "<width>800", "<width>8193"), {"<image><width> 8193"});
   expectError(edited(seed, "<height>800", "<height>0"), {"<image><height> 0"});
   expectError(edited(seed, "<height>800", "<height>10000"), {"<image><height> 10000"});
+  // Each side within 8192, but 8192 x 8192 is beyond the pixel budget (issue 43).
+  expectError(edited(edited(seed, "<height>800", "<height>8192"), "<width>800", "<width>8192"),
+              {"<image> 8192 x 8192 pixels is out of range (<= 33554432 pixels"});
   expectError(edited(seed, "<width>800", "<width>wide"), {"<image><width> 'wide' is not a number"});
   expectError(edited(seed, "<horizontal_fov>1.3962634", "<horizontal_fov>0"), {"<horizontal_fov> 0", "(0, pi)"});
   expectError(edited(seed, "<horizontal_fov>1.3962634", "<horizontal_fov>3.2"), {"<horizontal_fov> 3.2"});

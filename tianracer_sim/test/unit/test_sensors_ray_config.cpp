@@ -140,6 +140,11 @@ TEST(RaySensorConfig, BadValuesNameSensorAndValue) {
             "sensor 'hokuyo_sensor': <samples> must be > 0 (got 0)");
   EXPECT_EQ(with("<samples>1081</samples>", "<samples>-5</samples>"),
             "sensor 'hokuyo_sensor': <samples> must be > 0 (got -5)");
+  // Resource limit (issue 43): 1e9 samples allocated 4 GB and hung.
+  EXPECT_EQ(with("<samples>1081</samples>", "<samples>1000000000</samples>"),
+            "sensor 'hokuyo_sensor': <samples> 1000000000 x <vertical><samples> 1 rays per scan "
+            "is out of range (<= 1e+06)");
+  EXPECT_EQ(with("<samples>1081</samples>", "<samples>1000000</samples>"), "(no error)");  // at the limit
   EXPECT_NE(with("<samples>1081</samples>", "<samples>many</samples>")
                 .find("test.urdf:12: sensor 'hokuyo_sensor': <samples> 'many' is not an integer"),
             std::string::npos);

@@ -88,6 +88,10 @@ class XmlReader {
   /// One number, nan and inf included, for values checked where they are used (sdformat reads
   /// "nan" as a double; Gazebo's saved worlds write it in static links' inertia).
   double anyNumber(const tinyxml2::XMLElement* e, const std::string& what) const;
+  /// A finite number with |v| <= bound, else "<tag> <text> is out of range (<= <bound> <unit>)"
+  /// (common/input_limits.h).
+  double bounded(const tinyxml2::XMLElement* e, const std::string& what, double bound,
+                 const std::string& unit) const;
   double positive(const tinyxml2::XMLElement* e, const std::string& what) const;
   double nonNegative(const tinyxml2::XMLElement* e, const std::string& what) const;
   int integer(const tinyxml2::XMLElement* e, const std::string& what) const;
@@ -95,7 +99,8 @@ class XmlReader {
   Eigen::Vector3d vector3(const tinyxml2::XMLElement* e, const std::string& what) const;
   /// "r g b [a]" (alpha 1 when left out).
   Eigen::Vector4f color(const tinyxml2::XMLElement* e, const std::string& what) const;
-  /// SDF "x y z roll pitch yaw": translation, then R = Rz(yaw) Ry(pitch) Rx(roll). A frame or
+  /// SDF "x y z roll pitch yaw": translation, then R = Rz(yaw) Ry(pitch) Rx(roll); each
+  /// coordinate within limits::kPosition ("position x 1e+30 is out of range (|x| <= 1e+06 m)"). A frame or
   /// relative_to attribute is warned about and the pose taken relative to the parent.
   Eigen::Isometry3d pose(const tinyxml2::XMLElement* e, const std::string& what);
 

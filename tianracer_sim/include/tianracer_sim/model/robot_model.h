@@ -17,6 +17,7 @@
 
 #include <tianracer_assets/paths.h>
 
+#include "tianracer_sim/common/element_lines.h"
 #include "tianracer_sim/common/diagnostic.h"
 
 namespace tinyxml2 {
@@ -117,6 +118,7 @@ struct RobotModel {
   RobotExtensions ext;
   std::string source;                              // file path, or the parameter name
   std::map<std::string, std::string> mesh_paths;   // URI as written -> resolved absolute path
+  ElementLines lines;                              // where each <link> and <joint> stands
 };
 
 struct LoadOptions {

@@ -14,6 +14,7 @@
 #include <urdf_model/model.h>
 
 #include "tianracer_sim/common/diagnostic.h"
+#include "tianracer_sim/common/element_lines.h"
 #include "tianracer_sim/geometry/shape.h"
 #include "tianracer_sim/physics/mass_properties.h"
 
@@ -90,10 +91,15 @@ bool shapeFromUrdf(const urdf::Geometry& geometry,
 
 /// Builds the tree. Mesh URIs are resolved through `mesh_paths` (URI -> absolute path, as in
 /// RobotModel), else file:// and absolute paths are taken as they are.
-/// Throws PhysicsError for floating/planar joints, zero joint axes, a movable body without mass
-/// or a body whose inertia is not physical; the message names the link or joint.
+/// Throws PhysicsError for floating/planar joints, zero or non-finite joint axes, a movable
+/// body without mass or whose inertia is not positive definite; the message names the link or
+/// joint and starts with its place in `lines` ("<file>:<line>: "). A body whose principal
+/// moments violate the triangle inequality is simulated as given and reported to `warn`, as
+/// Gazebo does (ODE's dMassCheck asks positive definite only) and as for world models.
 RigidTree buildRigidTree(const urdf::ModelInterface& urdf,
-                         const std::map<std::string, std::string>& mesh_paths);
+                         const std::map<std::string, std::string>& mesh_paths,
+                         const ElementLines& lines = ElementLines(),
+                         const WarningSink& warn = WarningSink());
 
 /// Mass properties of one URDF <inertial>, expressed in its link frame (zero mass when absent).
 MassProperties linkMassProperties(const urdf::Link& link);

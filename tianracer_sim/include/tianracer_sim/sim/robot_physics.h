@@ -14,9 +14,11 @@ namespace tianracer_sim {
 LinkSurfaces linkSurfaces(const RobotModel& model);
 
 /// buildRigidTree + linkSurfaces + PhysicsWorld::addRobot. Throws PhysicsError / MeshError
-/// naming the robot, link and file.
+/// naming the robot, link and file ("<file>:<line>: " of the link or joint at fault); what is
+/// simulated as given (inertia breaking the triangle inequality) goes to `warn`.
 RobotId addRobotModel(PhysicsWorld* physics, const RobotModel& model,
-                      const Eigen::Isometry3d& X_WB_spawn, const std::string& name);
+                      const Eigen::Isometry3d& X_WB_spawn, const std::string& name,
+                      const WarningSink& warn = WarningSink());
 
 }  // namespace tianracer_sim
 

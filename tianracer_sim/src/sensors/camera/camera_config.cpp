@@ -1,4 +1,5 @@
 #include "tianracer_sim/sensors/camera/camera_config.h"
+#include "tianracer_sim/common/input_limits.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -211,6 +212,11 @@ class Parser {
     };
     if (c->width <= 0 || c->width > 8192) fail("<image><width> " + std::to_string(c->width) + " out of range 1..8192");
     if (c->height <= 0 || c->height > 8192) fail("<image><height> " + std::to_string(c->height) + " out of range 1..8192");
+    // 8192 x 8192 RGBA is 256 MB per image, rendered and copied every update.
+    if (static_cast<double>(c->width) * c->height > limits::kImagePixels)
+      fail("<image> " + std::to_string(c->width) + " x " + std::to_string(c->height) +
+           " pixels is out of range (<= " + std::to_string(static_cast<long>(limits::kImagePixels)) +
+           " pixels, e.g. 7680 x 4320)");
     if (!(c->horizontal_fov > 0.0 && c->horizontal_fov < M_PI)) {
       fail("<horizontal_fov> " + str(c->horizontal_fov) + " rad outside (0, pi)");
     }

@@ -25,6 +25,7 @@
 //  - frameName defaults to the link name, not gazebo_ros_laser's "/world"; a leading '/' is
 //    dropped (tf2 frame ids have none).
 #include "tianracer_sim/sensors/ray/ray_sensor.h"
+#include "tianracer_sim/common/input_limits.h"
 
 #include "tianracer_sim/common/xml_reader.h"
 
@@ -235,6 +236,12 @@ void validate(const RaySensorConfig& c) {
   if (c.vertical_samples < 1 || c.vertical_samples > kMaxVerticalSamples)
     throw SensorError(what + ": <vertical><samples> " + std::to_string(c.vertical_samples) +
                       " out of range 1.." + std::to_string(kMaxVerticalSamples));
+  // Each ray is a float per scan and an Embree query per update: 1e9 samples allocated 4 GB
+  // and hung for minutes.
+  if (static_cast<double>(c.samples) * c.vertical_samples > limits::kRaysPerScan)
+    throw SensorError(what + ": <samples> " + std::to_string(c.samples) + " x <vertical><samples> " +
+                      std::to_string(c.vertical_samples) + " rays per scan is out of range (<= " +
+                      limits::formatNumber(limits::kRaysPerScan) + ")");
   if (c.vertical_min_angle > c.vertical_max_angle)
     throw SensorError(what + ": <vertical><min_angle> " + fmt(c.vertical_min_angle) +
                       " > <vertical><max_angle> " + fmt(c.vertical_max_angle));
