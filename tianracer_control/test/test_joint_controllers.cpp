@@ -411,7 +411,12 @@ TEST(ControllerRegistry, ListsTheTypesInRegistrationOrderAndTakesNewOnes) {
       "joint_state_controller/JointStateController", "effort_controllers/JointPositionController",
       "effort_controllers/JointVelocityController", "effort_controllers/JointEffortController",
       "velocity_controllers/JointVelocityController",
-      "position_controllers/JointPositionController"};
+      "position_controllers/JointPositionController",
+      "velocity_controllers/JointPositionController",
+      "effort_controllers/JointGroupEffortController",
+      "velocity_controllers/JointGroupVelocityController",
+      "position_controllers/JointGroupPositionController",
+      "effort_controllers/JointGroupPositionController"};
   EXPECT_EQ(types, expected);
 
   // A registry of one's own: a new type is one factory and one add().

@@ -143,6 +143,7 @@ void RobotBridge::publish(double t) {
   StepProfile* const profile = sim_.profile();
   const ros::Time stamp(t);
   const PhysicsRobot& pr = sim_.simulation().physics().robot(sim_.robot(id_)->id);
+  commands_->publish(t);  // what the controllers produced (diff_drive_controller's odom, tf)
   {
     StepProfile::Scope timed(profile, rows_.joint_states);
     for (JointStateStream& s : joint_states_) {
