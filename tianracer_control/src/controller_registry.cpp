@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "tianracer_control/controllers/diff_drive_controller.h"
 #include "tianracer_control/controllers/effort_joint_position_controller.h"
 #include "tianracer_control/controllers/effort_joint_velocity_controller.h"
 #include "tianracer_control/controllers/forward_command_controller.h"
@@ -27,6 +28,7 @@ const ControllerRegistry& builtinControllers() {
     r.add(JointGroupController::kVelocityType, &JointGroupController::create<Iface::kVelocity>);
     r.add(JointGroupController::kPositionType, &JointGroupController::create<Iface::kPosition>);
     r.add(JointGroupController::kEffortPositionType, &JointGroupController::createEffortPosition);
+    r.add(DiffDriveController::kType, &DiffDriveController::create);
     return r;
   }();
   return registry;

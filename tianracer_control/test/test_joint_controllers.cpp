@@ -416,7 +416,8 @@ TEST(ControllerRegistry, ListsTheTypesInRegistrationOrderAndTakesNewOnes) {
       "effort_controllers/JointGroupEffortController",
       "velocity_controllers/JointGroupVelocityController",
       "position_controllers/JointGroupPositionController",
-      "effort_controllers/JointGroupPositionController"};
+      "effort_controllers/JointGroupPositionController",
+      "diff_drive_controller/DiffDriveController"};
   EXPECT_EQ(types, expected);
 
   // A registry of one's own: a new type is one factory and one add().

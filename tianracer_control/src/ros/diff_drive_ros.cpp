@@ -1,0 +1,154 @@
+// The ROS side of diff_drive_controller/DiffDriveController (ros_controllers noetic-devel,
+// diff_drive_controller/src/diff_drive_controller.cpp: init(), cmdVelCallback(),
+// setOdomPubFields(), update()'s publications):
+//   <controller>/cmd_vel      geometry_msgs/Twist, queue 1: linear.x and angular.z;
+//   <controller>/odom         nav_msgs/Odometry, odom_frame_id -> base_frame_id, at publish_rate;
+//   /tf                       tf2_msgs/TFMessage odom_frame_id -> base_frame_id (enable_odom_tf);
+//   <controller>/cmd_vel_out  geometry_msgs/TwistStamped, the limited command (publish_cmd).
+#include <cmath>
+#include <mutex>
+#include <optional>
+
+#include <geometry_msgs/Twist.h>
+#include <geometry_msgs/TwistStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/console.h>
+#include <ros/publisher.h>
+#include <ros/subscriber.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include "tianracer_control/controllers/diff_drive_controller.h"
+#include "tianracer_control/ros/controller_ros.h"
+
+namespace tianracer_control {
+
+namespace {
+
+geometry_msgs::Quaternion yawQuaternion(double yaw) {
+  geometry_msgs::Quaternion q;  // tf::createQuaternionMsgFromYaw
+  q.z = std::sin(yaw / 2.0);
+  q.w = std::cos(yaw / 2.0);
+  return q;
+}
+
+class DiffDriveRos : public ControllerRosSide {
+ public:
+  static std::unique_ptr<ControllerRosSide> create(RosSideContext& context) {
+    return std::make_unique<DiffDriveRos>(context);
+  }
+
+  explicit DiffDriveRos(RosSideContext& context)
+      : controller_(dynamic_cast<DiffDriveController&>(context.controller)), set_(context.set) {
+    const DiffDriveController::Params& p = controller_.params();
+    ROS_INFO_STREAM_NAMED(controller_.name(), "controller '" << controller_.name()
+                          << "': odometry params: wheel separation " << controller_.wheelSeparation()
+                          << ", left wheel radius " << controller_.leftWheelRadius()
+                          << ", right wheel radius " << controller_.rightWheelRadius()
+                          << "; odom at " << p.publish_rate << " Hz, " << p.odom_frame_id << " -> "
+                          << p.base_frame_id << (p.enable_odom_tf ? " on /tf" : ""));
+    ros::NodeHandle& nh = context.controller_nh;
+    if (p.publish_cmd) cmd_vel_out_ = nh.advertise<geometry_msgs::TwistStamped>("cmd_vel_out", 100);
+    odom_pub_ = nh.advertise<nav_msgs::Odometry>("odom", 100);
+    odom_.header.frame_id = p.odom_frame_id;
+    odom_.child_frame_id = p.base_frame_id;
+    for (int i = 0; i < 6; ++i) {
+      odom_.pose.covariance[i * 7] = p.pose_covariance_diagonal[i];
+      odom_.twist.covariance[i * 7] = p.twist_covariance_diagonal[i];
+    }
+    tf_pub_ = context.root_nh.advertise<tf2_msgs::TFMessage>("/tf", 100);
+    tf_.transforms.resize(1);
+    tf_.transforms[0].header.frame_id = p.odom_frame_id;
+    tf_.transforms[0].child_frame_id = p.base_frame_id;
+    sub_ = nh.subscribe<geometry_msgs::Twist>(
+        "cmd_vel", 1, [this](const geometry_msgs::Twist::ConstPtr& msg) { onCmdVel(*msg); });
+  }
+
+  void apply() override {
+    std::optional<geometry_msgs::Twist> cmd;
+    bool brake = false;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      cmd.swap(pending_);
+      std::swap(brake, brake_);
+    }
+    if (brake) controller_.brake();
+    if (!cmd) return;
+    if (!set_.isRunning(controller_)) {
+      ROS_ERROR_NAMED(controller_.name(), "Can't accept new commands. Controller is not running.");
+      return;
+    }
+    controller_.setCommand(cmd->linear.x, cmd->angular.z);
+  }
+
+  void publish(double) override {
+    for (const DiffDriveController::OdomSample& s : controller_.takeOdom()) {
+      const geometry_msgs::Quaternion q = yawQuaternion(s.heading);
+      odom_.header.stamp = ros::Time(s.t);
+      odom_.pose.pose.position.x = s.x;
+      odom_.pose.pose.position.y = s.y;
+      odom_.pose.pose.orientation = q;
+      odom_.twist.twist.linear.x = s.linear;
+      odom_.twist.twist.angular.z = s.angular;
+      odom_pub_.publish(odom_);
+      if (!s.tf) continue;
+      geometry_msgs::TransformStamped& tf = tf_.transforms[0];
+      tf.header.stamp = ros::Time(s.t);
+      tf.transform.translation.x = s.x;
+      tf.transform.translation.y = s.y;
+      tf.transform.rotation = q;
+      tf_pub_.publish(tf_);
+    }
+    for (const DiffDriveController::CmdSample& s : controller_.takeCmdOut()) {
+      if (!cmd_vel_out_) continue;
+      geometry_msgs::TwistStamped msg;
+      msg.header.stamp = ros::Time(s.t);
+      msg.twist.linear.x = s.linear;
+      msg.twist.angular.z = s.angular;
+      cmd_vel_out_.publish(msg);
+    }
+  }
+
+  void clear() override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pending_.reset();
+    brake_ = false;
+  }
+  std::vector<std::string> commandTopics() const override { return {sub_.getTopic()}; }
+
+ private:
+  // cmdVelCallback(): runs on a spinner thread; the controller is the sim loop's.
+  void onCmdVel(const geometry_msgs::Twist& cmd) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!controller_.params().allow_multiple_cmd_vel_publishers && sub_.getNumPublishers() > 1) {
+      ROS_ERROR_STREAM_THROTTLE_NAMED(1.0, controller_.name(),
+                                      "Detected " << sub_.getNumPublishers()
+                                                  << " publishers. Only 1 publisher is allowed. "
+                                                     "Going to brake.");
+      brake_ = true;
+      return;
+    }
+    if (!std::isfinite(cmd.angular.z) || !std::isfinite(cmd.linear.x)) {
+      nan_.warn("controller '" + controller_.name() +
+                "': Received NaN in velocity command. Ignoring.");
+      return;
+    }
+    pending_ = cmd;
+  }
+
+  DiffDriveController& controller_;
+  const ControllerSet& set_;
+  ros::Subscriber sub_;
+  ros::Publisher odom_pub_, tf_pub_, cmd_vel_out_;
+  nav_msgs::Odometry odom_;
+  tf2_msgs::TFMessage tf_;
+  std::mutex mutex_;
+  std::optional<geometry_msgs::Twist> pending_;
+  bool brake_ = false;
+  ThrottledWarning nan_;
+};
+
+TIANRACER_CONTROLLER_ROS_SIDE(DiffDriveController::kType, DiffDriveRos::create);
+
+}  // namespace
+
+}  // namespace tianracer_control
