@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "tianracer_control/controllers/ackermann_steering_controller.h"
 #include "tianracer_control/controllers/diff_drive_controller.h"
 #include "tianracer_control/controllers/effort_joint_position_controller.h"
 #include "tianracer_control/controllers/effort_joint_velocity_controller.h"
@@ -29,6 +30,7 @@ const ControllerRegistry& builtinControllers() {
     r.add(JointGroupController::kPositionType, &JointGroupController::create<Iface::kPosition>);
     r.add(JointGroupController::kEffortPositionType, &JointGroupController::createEffortPosition);
     r.add(DiffDriveController::kType, &DiffDriveController::create);
+    r.add(AckermannSteeringController::kType, &AckermannSteeringController::create);
     return r;
   }();
   return registry;

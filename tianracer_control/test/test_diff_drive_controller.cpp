@@ -192,7 +192,7 @@ TEST(DiffDriveController, VelocityAccelerationAndJerkLimits) {
   bot.step(t += 0.1, 0.1);
   EXPECT_NEAR(dd.lastLinear(), 0.6, 1e-12);  // -4 m/s^2
   // cmd_vel_out: the limited commands, one per update.
-  const std::vector<DiffDriveController::CmdSample> out = dd.takeCmdOut();
+  const std::vector<CmdVelDriveController::CmdSample> out = dd.takeCmdOut();
   ASSERT_EQ(out.size(), 12u);
   EXPECT_NEAR(out.front().linear, 0.2, 1e-12);
   EXPECT_NEAR(out.back().linear, 0.6, 1e-12);
@@ -215,8 +215,8 @@ TEST(DiffDriveController, OdometryFromTheWheelsAtThePublishRate) {
   s.params["pose_covariance_diagonal"] = list({0.001, 0.001, 1000000.0, 1000000.0, 1000000.0, 1000.0});
   s.params["enable_odom_tf"] = false;
   DiffDriveController& dd = bot.load(s);
-  EXPECT_EQ(dd.params().pose_covariance_diagonal[5], 1000.0);
-  EXPECT_EQ(dd.params().twist_covariance_diagonal[0], 0.0);  // absent: zeros, as upstream
+  EXPECT_EQ(dd.common().pose_covariance_diagonal[5], 1000.0);
+  EXPECT_EQ(dd.common().twist_covariance_diagonal[0], 0.0);  // absent: zeros, as upstream
   const double v = 0.4, w = 0.5;
   dd.setCommand(v, w);
   double t = 0.0;
@@ -229,7 +229,7 @@ TEST(DiffDriveController, OdometryFromTheWheelsAtThePublishRate) {
   EXPECT_NEAR(dd.odometry().y(), v / w * (1.0 - std::cos(w * travelled)), 1e-9);
   EXPECT_NEAR(dd.odometry().linear(), v, 1e-9);
   EXPECT_NEAR(dd.odometry().angular(), w, 1e-9);
-  const std::vector<DiffDriveController::OdomSample> odom = dd.takeOdom();
+  const std::vector<CmdVelDriveController::OdomSample> odom = dd.takeOdom();
   EXPECT_EQ(odom.size(), 15u);  // at the first update after each k/16 s, k = 1..15 (t <= 1)
   EXPECT_DOUBLE_EQ(odom.front().t, 1.0 / 16 + dt);
   EXPECT_FALSE(odom.back().tf);

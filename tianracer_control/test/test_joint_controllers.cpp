@@ -417,7 +417,8 @@ TEST(ControllerRegistry, ListsTheTypesInRegistrationOrderAndTakesNewOnes) {
       "velocity_controllers/JointGroupVelocityController",
       "position_controllers/JointGroupPositionController",
       "effort_controllers/JointGroupPositionController",
-      "diff_drive_controller/DiffDriveController"};
+      "diff_drive_controller/DiffDriveController",
+      "ackermann_steering_controller/AckermannSteeringController"};
   EXPECT_EQ(types, expected);
 
   // A registry of one's own: a new type is one factory and one add().

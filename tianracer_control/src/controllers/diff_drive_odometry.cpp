@@ -35,8 +35,11 @@ bool DiffDriveOdometry::update(double left_pos, double right_pos, double t) {
   const double right_travel = right_cur - right_wheel_old_pos_;
   left_wheel_old_pos_ = left_cur;
   right_wheel_old_pos_ = right_cur;
-  const double linear = (right_travel + left_travel) * 0.5;
-  const double angular = (right_travel - left_travel) / wheel_separation_;
+  return integrate((right_travel + left_travel) * 0.5, (right_travel - left_travel) / wheel_separation_,
+                   t);
+}
+
+bool DiffDriveOdometry::integrate(double linear, double angular, double t) {
   integrateExact(linear, angular);
   const double dt = t - timestamp_;
   if (dt < 0.0001) return false;  // interval too small to integrate with

@@ -36,6 +36,10 @@ class DiffDriveOdometry {
   /// Pose to 0 and the wheels' last positions to (left_pos, right_pos) (a sim reset).
   void resetPose(double left_pos, double right_pos);
   bool update(double left_pos, double right_pos, double t);
+  /// The tail of update() for a travel already computed (ackermann_steering_controller's
+  /// odometry: linear = rear wheel travel, angular = tan(steer) linear / wheel_separation_h):
+  /// integrates, then averages linear/dt and angular/dt unless dt < 0.0001 s.
+  bool integrate(double linear, double angular, double t);
   void updateOpenLoop(double linear, double angular, double t);
   void setWheelParams(double wheel_separation, double left_wheel_radius, double right_wheel_radius);
   void setVelocityRollingWindowSize(std::size_t size);

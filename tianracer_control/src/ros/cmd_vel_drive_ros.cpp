@@ -1,13 +1,17 @@
-// The ROS side of diff_drive_controller/DiffDriveController (ros_controllers noetic-devel,
-// diff_drive_controller/src/diff_drive_controller.cpp: init(), cmdVelCallback(),
+// The ROS side of diff_drive_controller/DiffDriveController and
+// ackermann_steering_controller/AckermannSteeringController (ros_controllers noetic-devel,
+// diff_drive_controller/src/diff_drive_controller.cpp and
+// ackermann_steering_controller/src/ackermann_steering_controller.cpp: init(), cmdVelCallback(),
 // setOdomPubFields(), update()'s publications):
 //   <controller>/cmd_vel      geometry_msgs/Twist, queue 1: linear.x and angular.z;
 //   <controller>/odom         nav_msgs/Odometry, odom_frame_id -> base_frame_id, at publish_rate;
 //   /tf                       tf2_msgs/TFMessage odom_frame_id -> base_frame_id (enable_odom_tf);
-//   <controller>/cmd_vel_out  geometry_msgs/TwistStamped, the limited command (publish_cmd).
+//   <controller>/cmd_vel_out  geometry_msgs/TwistStamped, the limited command (diff drive's
+//                             publish_cmd).
 #include <cmath>
 #include <mutex>
 #include <optional>
+#include <sstream>
 
 #include <geometry_msgs/Twist.h>
 #include <geometry_msgs/TwistStamped.h>
@@ -17,6 +21,7 @@
 #include <ros/subscriber.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include "tianracer_control/controllers/ackermann_steering_controller.h"
 #include "tianracer_control/controllers/diff_drive_controller.h"
 #include "tianracer_control/ros/controller_ros.h"
 
@@ -31,20 +36,26 @@ geometry_msgs::Quaternion yawQuaternion(double yaw) {
   return q;
 }
 
-class DiffDriveRos : public ControllerRosSide {
+class CmdVelDriveRos : public ControllerRosSide {
  public:
   static std::unique_ptr<ControllerRosSide> create(RosSideContext& context) {
-    return std::make_unique<DiffDriveRos>(context);
+    return std::make_unique<CmdVelDriveRos>(context);
   }
 
-  explicit DiffDriveRos(RosSideContext& context)
-      : controller_(dynamic_cast<DiffDriveController&>(context.controller)), set_(context.set) {
-    const DiffDriveController::Params& p = controller_.params();
+  explicit CmdVelDriveRos(RosSideContext& context)
+      : controller_(dynamic_cast<CmdVelDriveController&>(context.controller)), set_(context.set) {
+    const CmdVelDriveController::Common& p = controller_.common();
+    std::ostringstream geometry;
+    if (auto* dd = dynamic_cast<const DiffDriveController*>(&controller_)) {
+      geometry << "wheel separation " << dd->wheelSeparation() << ", left wheel radius "
+               << dd->leftWheelRadius() << ", right wheel radius " << dd->rightWheelRadius();
+    } else if (auto* ack = dynamic_cast<const AckermannSteeringController*>(&controller_)) {
+      geometry << "wheel separation h " << ack->params().wheel_separation_h << ", wheel radius "
+               << ack->params().wheel_radius;
+    }
     ROS_INFO_STREAM_NAMED(controller_.name(), "controller '" << controller_.name()
-                          << "': odometry params: wheel separation " << controller_.wheelSeparation()
-                          << ", left wheel radius " << controller_.leftWheelRadius()
-                          << ", right wheel radius " << controller_.rightWheelRadius()
-                          << "; odom at " << p.publish_rate << " Hz, " << p.odom_frame_id << " -> "
+                          << "': odometry params: " << geometry.str() << "; odom at "
+                          << p.publish_rate << " Hz, " << p.odom_frame_id << " -> "
                           << p.base_frame_id << (p.enable_odom_tf ? " on /tf" : ""));
     ros::NodeHandle& nh = context.controller_nh;
     if (p.publish_cmd) cmd_vel_out_ = nh.advertise<geometry_msgs::TwistStamped>("cmd_vel_out", 100);
@@ -81,7 +92,7 @@ class DiffDriveRos : public ControllerRosSide {
   }
 
   void publish(double) override {
-    for (const DiffDriveController::OdomSample& s : controller_.takeOdom()) {
+    for (const CmdVelDriveController::OdomSample& s : controller_.takeOdom()) {
       const geometry_msgs::Quaternion q = yawQuaternion(s.heading);
       odom_.header.stamp = ros::Time(s.t);
       odom_.pose.pose.position.x = s.x;
@@ -98,7 +109,7 @@ class DiffDriveRos : public ControllerRosSide {
       tf.transform.rotation = q;
       tf_pub_.publish(tf_);
     }
-    for (const DiffDriveController::CmdSample& s : controller_.takeCmdOut()) {
+    for (const CmdVelDriveController::CmdSample& s : controller_.takeCmdOut()) {
       if (!cmd_vel_out_) continue;
       geometry_msgs::TwistStamped msg;
       msg.header.stamp = ros::Time(s.t);
@@ -119,7 +130,7 @@ class DiffDriveRos : public ControllerRosSide {
   // cmdVelCallback(): runs on a spinner thread; the controller is the sim loop's.
   void onCmdVel(const geometry_msgs::Twist& cmd) {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (!controller_.params().allow_multiple_cmd_vel_publishers && sub_.getNumPublishers() > 1) {
+    if (!controller_.common().allow_multiple_cmd_vel_publishers && sub_.getNumPublishers() > 1) {
       ROS_ERROR_STREAM_THROTTLE_NAMED(1.0, controller_.name(),
                                       "Detected " << sub_.getNumPublishers()
                                                   << " publishers. Only 1 publisher is allowed. "
@@ -135,7 +146,7 @@ class DiffDriveRos : public ControllerRosSide {
     pending_ = cmd;
   }
 
-  DiffDriveController& controller_;
+  CmdVelDriveController& controller_;
   const ControllerSet& set_;
   ros::Subscriber sub_;
   ros::Publisher odom_pub_, tf_pub_, cmd_vel_out_;
@@ -147,7 +158,7 @@ class DiffDriveRos : public ControllerRosSide {
   ThrottledWarning nan_;
 };
 
-TIANRACER_CONTROLLER_ROS_SIDE(DiffDriveController::kType, DiffDriveRos::create);
+TIANRACER_CONTROLLER_ROS_SIDE(DiffDriveController::kType, CmdVelDriveRos::create);
 
 }  // namespace
 
