@@ -7,12 +7,17 @@
 //   <controller>/odom         nav_msgs/Odometry, odom_frame_id -> base_frame_id, at publish_rate;
 //   /tf                       tf2_msgs/TFMessage odom_frame_id -> base_frame_id (enable_odom_tf);
 //   <controller>/cmd_vel_out  geometry_msgs/TwistStamped, the limited command (diff drive's
-//                             publish_cmd).
+//                             publish_cmd);
+//   <controller>/set_parameters, ...  the diff drive's dynamic_reconfigure
+//                             (cfg/DiffDriveController.cfg; reconfCallback: taken at the next
+//                             update, as upstream's realtime buffer).
 #include <cmath>
 #include <mutex>
 #include <optional>
 #include <sstream>
 
+#include <boost/thread/recursive_mutex.hpp>
+#include <dynamic_reconfigure/server.h>
 #include <geometry_msgs/Twist.h>
 #include <geometry_msgs/TwistStamped.h>
 #include <nav_msgs/Odometry.h>
@@ -22,6 +27,7 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include "tianracer_control/controllers/ackermann_steering_controller.h"
+#include "tianracer_control/DiffDriveControllerConfig.h"
 #include "tianracer_control/controllers/diff_drive_controller.h"
 #include "tianracer_control/ros/controller_ros.h"
 
@@ -72,16 +78,20 @@ class CmdVelDriveRos : public ControllerRosSide {
     tf_.transforms[0].child_frame_id = p.base_frame_id;
     sub_ = nh.subscribe<geometry_msgs::Twist>(
         "cmd_vel", 1, [this](const geometry_msgs::Twist::ConstPtr& msg) { onCmdVel(*msg); });
+    if (auto* dd = dynamic_cast<DiffDriveController*>(&controller_)) startReconfigure(*dd, nh);
   }
 
   void apply() override {
     std::optional<geometry_msgs::Twist> cmd;
+    std::optional<DiffDriveController::DynamicParams> reconfigured;
     bool brake = false;
     {
       std::lock_guard<std::mutex> lock(mutex_);
       cmd.swap(pending_);
+      reconfigured.swap(reconfigured_);
       std::swap(brake, brake_);
     }
+    if (reconfigured) dynamic_cast<DiffDriveController&>(controller_).setDynamicParams(*reconfigured);
     if (brake) controller_.brake();
     if (!cmd) return;
     if (!set_.isRunning(controller_)) {
@@ -127,6 +137,40 @@ class CmdVelDriveRos : public ControllerRosSide {
   std::vector<std::string> commandTopics() const override { return {sub_.getTopic()}; }
 
  private:
+  using Config = tianracer_control::DiffDriveControllerConfig;
+
+  // init()'s dynamic_reconfigure server, starting from the controller's values.
+  void startReconfigure(const DiffDriveController& dd, ros::NodeHandle& nh) {
+    const DiffDriveController::DynamicParams d = dd.dynamicParams();
+    Config config;
+    config.left_wheel_radius_multiplier = d.left_wheel_radius_multiplier;
+    config.right_wheel_radius_multiplier = d.right_wheel_radius_multiplier;
+    config.wheel_separation_multiplier = d.wheel_separation_multiplier;
+    config.publish_rate = d.publish_rate;
+    config.enable_odom_tf = d.enable_odom_tf;
+    reconfigure_ = std::make_unique<dynamic_reconfigure::Server<Config>>(reconfigure_mutex_, nh);
+    {
+      boost::recursive_mutex::scoped_lock lock(reconfigure_mutex_);
+      reconfigure_->updateConfig(config);
+    }
+    reconfigure_->setCallback([this](Config& c, uint32_t) {
+      DiffDriveController::DynamicParams p;
+      p.left_wheel_radius_multiplier = c.left_wheel_radius_multiplier;
+      p.right_wheel_radius_multiplier = c.right_wheel_radius_multiplier;
+      p.wheel_separation_multiplier = c.wheel_separation_multiplier;
+      p.publish_rate = c.publish_rate;
+      p.enable_odom_tf = c.enable_odom_tf;
+      ROS_INFO_STREAM_NAMED(controller_.name(), "controller '" << controller_.name()
+                            << "': Dynamic Reconfigure: left wheel radius multiplier "
+                            << p.left_wheel_radius_multiplier << ", right wheel radius multiplier "
+                            << p.right_wheel_radius_multiplier << ", wheel separation multiplier "
+                            << p.wheel_separation_multiplier << ", publish rate " << p.publish_rate
+                            << ", enable odom tf " << p.enable_odom_tf);
+      std::lock_guard<std::mutex> lock(mutex_);
+      reconfigured_ = p;
+    });
+  }
+
   // cmdVelCallback(): runs on a spinner thread; the controller is the sim loop's.
   void onCmdVel(const geometry_msgs::Twist& cmd) {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -154,8 +198,11 @@ class CmdVelDriveRos : public ControllerRosSide {
   tf2_msgs::TFMessage tf_;
   std::mutex mutex_;
   std::optional<geometry_msgs::Twist> pending_;
+  std::optional<DiffDriveController::DynamicParams> reconfigured_;
   bool brake_ = false;
   ThrottledWarning nan_;
+  boost::recursive_mutex reconfigure_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<Config>> reconfigure_;  // last: goes first
 };
 
 TIANRACER_CONTROLLER_ROS_SIDE(DiffDriveController::kType, CmdVelDriveRos::create);

@@ -67,12 +67,21 @@ std::vector<ControllerSpec> loadControllerSpecs(const ros::NodeHandle& ns,
 }
 
 ControllerCommandSubscribers::ControllerCommandSubscribers(ros::NodeHandle ns,
-                                                           ControllerSet& controllers) {
+                                                           ControllerSet& controllers,
+                                                           ControllerCommandSubscribers* previous) {
   for (const auto& c : controllers.controllers()) {
-    const RosSideFactory factory = findRosSide(c->type());
-    if (!factory) continue;
-    RosSideContext context{ns, ros::NodeHandle(ns, c->name()), *c, controllers};
-    sides_.push_back(factory(context));
+    std::unique_ptr<ControllerRosSide> side;
+    for (std::size_t i = 0; previous && i < previous->owners_.size(); ++i) {
+      if (previous->owners_[i] == c.get() && previous->sides_[i]) side.swap(previous->sides_[i]);
+    }
+    if (!side) {
+      const RosSideFactory factory = findRosSide(c->type());
+      if (!factory) continue;
+      RosSideContext context{ns, ros::NodeHandle(ns, c->name()), *c, controllers};
+      side = factory(context);
+    }
+    sides_.push_back(std::move(side));
+    owners_.push_back(c.get());
   }
 }
 

@@ -13,6 +13,7 @@ Sim time throughout; wall time only bounds the waits."""
 import math
 import unittest
 
+import dynamic_reconfigure.client
 import rospy
 import rostest
 from controller_manager_msgs.srv import ListControllers, LoadController
@@ -65,7 +66,7 @@ class DiffDriveControllerTest(unittest.TestCase):
         for t in msg.transforms:
             self.tf[(t.header.frame_id, t.child_frame_id)] = t
 
-    def drive(self, v, w):
+    def drive(self, v, w, rate=50):
         """Settles 1 s at (v, w), then measures 2 s: (odom's twist, odom's poses, ground truth's
         poses), each as (forward speed, yaw rate)."""
         drive_twist(self.cmd, 1.0, v, w, wall_timeout=WALL_TIMEOUT)
@@ -76,7 +77,7 @@ class DiffDriveControllerTest(unittest.TestCase):
         self.odom.first_stamped(t1)
         odom = self.odom.between(t0, t1)
         truth = self.truth.between(t0, t1)
-        self.assertGreater(len(odom), 50)  # 50 Hz
+        self.assertGreater(len(odom), 1.9 * rate)  # odom at `rate` Hz for 2 s
         self.assertGreater(len(truth), 50)
         twist = (sum(m.twist.twist.linear.x for m in odom) / len(odom),
                  sum(m.twist.twist.angular.z for m in odom) / len(odom))
@@ -188,6 +189,25 @@ class DiffDriveControllerTest(unittest.TestCase):
                  'the error about the missing wheel joint', WALL_TIMEOUT)
         twist, _, truth = self.drive(0.5, 0.0)
         self.assert_speeds(truth, 0.5, 0.0, 'ground truth after the refused load', 0.06)
+
+        # dynamic_reconfigure (cfg/DiffDriveController.cfg): publish_rate 10 Hz, the wheel
+        # separation taken 1.5 times as wide (a turn command then turns the wheels 1.5 times as
+        # fast: the robot turns at 1.5 times the command, and its odometry, computed with the
+        # same separation, says the commanded rate).
+        client = dynamic_reconfigure.client.Client(CONTROLLER, timeout=WALL_TIMEOUT)
+        config = client.update_configuration({'publish_rate': 10.0,
+                                              'wheel_separation_multiplier': 1.5})
+        self.assertEqual(config['publish_rate'], 10.0)
+        t0 = rospy.get_time()
+        drive_twist(self.cmd, 1.0, 0.0, 0.4, wall_timeout=WALL_TIMEOUT)
+        t1 = rospy.get_time()
+        self.truth.first_stamped(t1)
+        n = len(self.odom.between(t0 + 0.2, t1))
+        print('odom messages in 0.8 s at publish_rate 10: %d' % n)
+        self.assertIn(n, (7, 8, 9))
+        twist, odom, truth = self.drive(0.0, 0.4, rate=10)
+        self.assert_speeds(twist, 0.0, 0.4, 'odom twist, separation x 1.5', 0.03)
+        self.assert_speeds(truth, 0.0, 0.6, 'ground truth, separation x 1.5', 0.06)
 
 
 if __name__ == '__main__':

@@ -35,7 +35,11 @@ std::vector<ControllerSpec> loadControllerSpecs(const ros::NodeHandle& ns,
 /// dropped with a throttled warning naming the controller; the previous command stays.
 class ControllerCommandSubscribers {
  public:
-  ControllerCommandSubscribers(ros::NodeHandle ns, ControllerSet& controllers);
+  /// `previous`: the sides made before the controllers changed; the sides of the controllers
+  /// still loaded are taken over from it (their subscriptions, services and pending commands
+  /// stay), so that it must be made after every load or unload.
+  ControllerCommandSubscribers(ros::NodeHandle ns, ControllerSet& controllers,
+                               ControllerCommandSubscribers* previous = nullptr);
   ~ControllerCommandSubscribers();
   ControllerCommandSubscribers(const ControllerCommandSubscribers&) = delete;
   ControllerCommandSubscribers& operator=(const ControllerCommandSubscribers&) = delete;
@@ -51,6 +55,7 @@ class ControllerCommandSubscribers {
 
  private:
   std::vector<std::unique_ptr<ControllerRosSide>> sides_;
+  std::vector<const Controller*> owners_;  // the controller of each side
 };
 
 }  // namespace tianracer_control
