@@ -206,6 +206,7 @@ class CmdVelDriveRos : public ControllerRosSide {
 };
 
 TIANRACER_CONTROLLER_ROS_SIDE(DiffDriveController::kType, CmdVelDriveRos::create);
+TIANRACER_CONTROLLER_ROS_SIDE(AckermannSteeringController::kType, CmdVelDriveRos::create);
 
 }  // namespace
 
