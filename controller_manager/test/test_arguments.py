@@ -56,3 +56,64 @@ class ControllerManagerCommand(unittest.TestCase):
 
 if __name__ == '__main__':
     unittest.main()
+
+
+class FakeManager:
+    """controller_manager_interface's calls, recorded; `unknown` cannot be loaded (a type the
+    manager does not have), and what was not loaded cannot be started."""
+    def __init__(self, unknown):
+        self.unknown, self.loaded, self.running, self.calls = set(unknown), set(), set(), []
+
+    def load_controller(self, name):
+        self.calls.append(('load', name))
+        if name in self.unknown:
+            return False
+        self.loaded.add(name)
+        return True
+
+    def start_controller(self, name):
+        self.calls.append(('start', name))
+        if name not in self.loaded:
+            return False
+        self.running.add(name)
+        return True
+
+    def stop_controller(self, name):
+        self.calls.append(('stop', name))
+        ok = name in self.running
+        self.running.discard(name)
+        return ok
+
+    def unload_controller(self, name):
+        self.calls.append(('unload', name))
+        ok = name in self.loaded
+        self.loaded.discard(name)
+        return ok
+
+
+class ControllerManagerCommands(unittest.TestCase):
+    def run_with(self, fake, args):
+        real = cli.cm
+        cli.cm = fake
+        try:
+            return cli.run(args)
+        finally:
+            cli.cm = real
+
+    def test_spawn_starts_every_controller_it_could_load(self):
+        fake = FakeManager(unknown=['arm_controller'])
+        status = self.run_with(fake, ['spawn', 'joint_state_controller', 'arm_controller', 'gripper'])
+        self.assertEqual(fake.running, {'joint_state_controller', 'gripper'})
+        self.assertEqual(status, 1)  # one failed: the exit status says so
+        self.assertEqual(fake.calls[:3], [('load', 'joint_state_controller'),
+                                          ('load', 'arm_controller'), ('load', 'gripper')])
+        fake = FakeManager(unknown=[])
+        self.assertEqual(self.run_with(fake, ['sp', 'a', 'b']), 0)
+        self.assertEqual(fake.running, {'a', 'b'})
+
+    def test_kill_unloads_every_controller_it_can(self):
+        fake = FakeManager(unknown=[])
+        self.run_with(fake, ['spawn', 'a', 'b'])
+        fake.running.discard('a')  # stopped already: its stop fails, its unload still runs
+        self.assertEqual(self.run_with(fake, ['kill', 'a', 'b']), 1)
+        self.assertEqual(fake.loaded, set())

@@ -83,15 +83,15 @@ class ControllerManagerTest(ControllerTestCase):
         self.assert_stopped_left_wheel_goes_then_follows_again()
 
     def test_e_bad_input_gets_controller_managers_errors(self):
-        rospy.set_param(NS + '/diff_drive', {'type': 'diff_drive_controller/DiffDriveController'})
+        rospy.set_param(NS + '/no_such_type', {'type': 'no_such_controllers/NoSuchController'})
         cases = [
             (lambda: self.load('no_such_controller'),
              "Could not load controller 'no_such_controller' because the type was not specified. "
              "Did you load the controller configuration on the parameter server (namespace: "
              "'%s/no_such_controller')?" % NS),
-            (lambda: self.load('diff_drive'),
-             "Could not load controller 'diff_drive' because controller type "
-             "'diff_drive_controller/DiffDriveController' does not exist."),
+            (lambda: self.load('no_such_type'),
+             "Could not load controller 'no_such_type' because controller type "
+             "'no_such_controllers/NoSuchController' does not exist."),
             (lambda: self.load(LEFT),
              "A controller named '%s' was already loaded inside the controller manager" % LEFT),
             (lambda: self.switch(['not_loaded'], [], STRICT, False, 0.0),

@@ -89,11 +89,12 @@ class GazeboUserTest(ControllerTestCase):
             "Could not load controller 'no_such_controller' because the type was not specified. "
             "Did you load the controller configuration on the parameter server (namespace: "
             "'%s/no_such_controller')?" % NS,
-            "Could not load controller 'diff_drive_controller' because controller type "
-            "'diff_drive_controller/DiffDriveController' does not exist.",
+            "Could not load controller 'no_such_type_controller' because controller type "
+            "'no_such_controllers/NoSuchController' does not exist.",
         ]
-        spawner_errors = ['Failed to load no_such_controller', 'Failed to load diff_drive_controller']
-        with run_spawner(['no_such_controller', 'diff_drive_controller'], NS,
+        spawner_errors = ['Failed to load no_such_controller',
+                          'Failed to load no_such_type_controller']
+        with run_spawner(['no_such_controller', 'no_such_type_controller'], NS,
                          'bad_spawner') as out:
             for text in manager_errors:
                 self.assertTrue(wall_wait(lambda: text in [t for _, t in self.said(Log.ERROR)],

@@ -17,14 +17,10 @@ std::string describe(JointHandle::Interface iface) {
 
 }  // namespace
 
-JointHandle* SingleJointController::claimJoint(ControllerContext& context,
-                                               JointHandle::Interface needs) {
+JointHandle* findJoint(ControllerContext& context, const std::string& joint,
+                       JointHandle::Interface needs) {
   ControllerParams& params = context.params;
   const std::string pre = params.prefix();
-  const std::string joint = params.text("joint").value_or("");
-  if (joint.empty()) {
-    throw ControllerError(pre + "no joint given (parameter 'joint' of " + params.type() + ")");
-  }
   const auto it = context.joints.find(joint);
   if (it == context.joints.end() || it->second == nullptr) {
     std::string names;
@@ -38,6 +34,17 @@ JointHandle* SingleJointController::claimJoint(ControllerContext& context,
                           describe(it->second->interface));
   }
   return it->second;
+}
+
+JointHandle* SingleJointController::claimJoint(ControllerContext& context,
+                                               JointHandle::Interface needs) {
+  ControllerParams& params = context.params;
+  const std::string joint = params.text("joint").value_or("");
+  if (joint.empty()) {
+    throw ControllerError(params.prefix() + "no joint given (parameter 'joint' of " +
+                          params.type() + ")");
+  }
+  return findJoint(context, joint, needs);
 }
 
 double shortestAngularDistance(double from, double to) {

@@ -89,6 +89,24 @@ std::optional<bool> ControllerParams::boolean(const std::string& key) {
   throw ControllerError(prefix() + key + " must be true or false, got " + v->typeName());
 }
 
+std::optional<std::vector<std::string>> ControllerParams::textList(const std::string& key) {
+  const ParamValue* v = lookup(key);
+  if (!v) return std::nullopt;
+  if (v->kind() != ParamValue::Kind::kList) {
+    throw ControllerError(prefix() + key + " must be a list of strings, got " + v->typeName());
+  }
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < v->items().size(); ++i) {
+    const ParamValue& item = v->items()[i];
+    if (item.kind() != ParamValue::Kind::kString) {
+      throw ControllerError(prefix() + key + " must be a list of strings, item " +
+                            std::to_string(i) + " is " + item.typeName());
+    }
+    out.push_back(item.asString());
+  }
+  return out;
+}
+
 namespace {
 
 void collectUnread(const ParamValue& tree, const std::string& path,

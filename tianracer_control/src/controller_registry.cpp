@@ -2,9 +2,12 @@
 
 #include <algorithm>
 
+#include "tianracer_control/controllers/ackermann_steering_controller.h"
+#include "tianracer_control/controllers/diff_drive_controller.h"
 #include "tianracer_control/controllers/effort_joint_position_controller.h"
 #include "tianracer_control/controllers/effort_joint_velocity_controller.h"
 #include "tianracer_control/controllers/forward_command_controller.h"
+#include "tianracer_control/controllers/joint_group_controller.h"
 #include "tianracer_control/controllers/joint_state_controller.h"
 
 namespace tianracer_control {
@@ -21,6 +24,13 @@ const ControllerRegistry& builtinControllers() {
           &ForwardCommandController::create<Iface::kVelocity>);
     r.add(ForwardCommandController::kPositionType,
           &ForwardCommandController::create<Iface::kPosition>);
+    r.add(VelocityJointPositionController::kType, &VelocityJointPositionController::create);
+    r.add(JointGroupController::kEffortType, &JointGroupController::create<Iface::kEffort>);
+    r.add(JointGroupController::kVelocityType, &JointGroupController::create<Iface::kVelocity>);
+    r.add(JointGroupController::kPositionType, &JointGroupController::create<Iface::kPosition>);
+    r.add(JointGroupController::kEffortPositionType, &JointGroupController::createEffortPosition);
+    r.add(DiffDriveController::kType, &DiffDriveController::create);
+    r.add(AckermannSteeringController::kType, &AckermannSteeringController::create);
     return r;
   }();
   return registry;
@@ -49,7 +59,8 @@ bool ControllerRegistry::has(const std::string& type) const {
 
 std::unique_ptr<Controller> ControllerRegistry::create(const ControllerSpec& spec,
                                                        std::map<std::string, JointHandle*>& joints,
-                                                       const WarningSink& warn) const {
+                                                       const WarningSink& warn,
+                                                       const urdf::ModelInterface* description) const {
   ControllerParams params(spec);
   const std::string pre = params.prefix();
   if (spec.name.empty()) throw ControllerError(pre + "the controller name is empty");
@@ -62,7 +73,7 @@ std::unique_ptr<Controller> ControllerRegistry::create(const ControllerSpec& spe
     throw ControllerError(pre + "unknown type '" + spec.type + "' (known types: " +
                           known + ")");
   }
-  ControllerContext context{params, joints, warn};
+  ControllerContext context{params, joints, warn, description};
   std::unique_ptr<Controller> controller = it->second(context);
   if (warn) {
     for (const std::string& key : params.unread()) {

@@ -17,13 +17,15 @@ Controller& ControllerSet::add(std::unique_ptr<Controller> controller, double ti
       throw ControllerError(controllerPrefix(controller->name()) +
                             "a controller of that name is loaded");
     }
-    if (controller->joint() != nullptr && c->joint() == controller->joint()) {
-      throw ControllerError(controllerPrefix(controller->name()) + "joint '" +
-                            controller->joint()->name + "' is already commanded by controller '" +
-                            c->name() + "'");
+    for (const JointHandle* mine : controller->claimedJoints()) {
+      for (const JointHandle* theirs : c->claimedJoints()) {
+        if (mine != theirs) continue;
+        throw ControllerError(controllerPrefix(controller->name()) + "joint '" + mine->name +
+                              "' is already commanded by controller '" + c->name() + "'");
+      }
     }
   }
-  controller->starting(time);
+  startController(*controller, time);
   controllers_.push_back(std::move(controller));
   states_.push_back(ControllerState::kRunning);
   return *controllers_.back();
@@ -32,7 +34,7 @@ Controller& ControllerSet::add(std::unique_ptr<Controller> controller, double ti
 Controller& ControllerSet::load(const ControllerSpec& spec,
                                 std::map<std::string, JointHandle*>& joints, double time,
                                 const WarningSink& warn) {
-  return add(builtinControllers().create(spec, joints, warn), time);
+  return add(builtinControllers().create(spec, joints, warn, description_), time);
 }
 
 Controller& ControllerSet::loadController(const ControllerSpec& spec,
@@ -55,7 +57,7 @@ Controller& ControllerSet::loadController(const ControllerSpec& spec,
   }
   std::unique_ptr<Controller> controller;
   try {
-    controller = registry.create(spec, joints, warn);
+    controller = registry.create(spec, joints, warn, description_);
   } catch (const ControllerError& e) {
     throw ControllerError(std::string(e.what()) + "\nInitializing controller '" + name +
                           "' failed");
@@ -148,21 +150,31 @@ void ControllerSet::switchControllers(const std::vector<std::string>& start,
   }
   for (std::size_t i = 0; i < controllers_.size(); ++i) {
     if (!starts[i]) continue;
-    controllers_[i]->starting(time);
+    startController(*controllers_[i], time);
     states_[i] = ControllerState::kRunning;
   }
 }
 
-void ControllerSet::update(double dt) {
+void ControllerSet::startController(Controller& controller, double time) {
+  controller.now_ = time;
+  clock_ = time;
+  controller.starting(time);
+}
+
+void ControllerSet::update(double dt, double time) {
+  clock_ = time;
   for (std::size_t i = 0; i < controllers_.size(); ++i) {
-    if (states_[i] == ControllerState::kRunning) controllers_[i]->update(dt);
+    if (states_[i] != ControllerState::kRunning) continue;
+    controllers_[i]->now_ = time;
+    controllers_[i]->update(dt);
   }
 }
 
 void ControllerSet::reset(double time) {
+  clock_ = time;
   for (std::size_t i = 0; i < controllers_.size(); ++i) {
     controllers_[i]->reset();
-    if (states_[i] == ControllerState::kRunning) controllers_[i]->starting(time);
+    if (states_[i] == ControllerState::kRunning) startController(*controllers_[i], time);
   }
 }
 
@@ -189,9 +201,17 @@ ControllerState ControllerSet::state(const Controller& controller) const {
 }
 
 std::vector<ClaimedResources> ControllerSet::claimedResources(const Controller& controller) {
-  const JointHandle* joint = controller.joint();
-  if (!joint) return {{"hardware_interface::JointStateInterface", {}}};
-  return {{std::string("hardware_interface::") + toString(joint->interface), {joint->name}}};
+  const std::vector<const JointHandle*> joints = controller.claimedJoints();
+  if (joints.empty()) return {{"hardware_interface::JointStateInterface", {}}};
+  std::vector<ClaimedResources> out;
+  for (const JointHandle* joint : joints) {
+    const std::string iface = std::string("hardware_interface::") + toString(joint->interface);
+    auto it = std::find_if(out.begin(), out.end(),
+                           [&](const ClaimedResources& r) { return r.hardware_interface == iface; });
+    if (it == out.end()) it = out.insert(out.end(), ClaimedResources{iface, {}});
+    it->resources.push_back(joint->name);
+  }
+  return out;
 }
 
 }  // namespace tianracer_control

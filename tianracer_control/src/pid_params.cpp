@@ -41,17 +41,17 @@ PidGains toPidGains(const std::string& controller, const PidParams& params,
   return g;
 }
 
-PidGains readPidGains(ControllerParams& params, const WarningSink& warn) {
+PidGains readPidGains(ControllerParams& params, const WarningSink& warn, const std::string& ns) {
   PidParams pid;
-  pid.p = params.number("pid/p");
-  pid.i = params.number("pid/i");
-  pid.d = params.number("pid/d");
-  pid.i_clamp = params.number("pid/i_clamp");
-  pid.i_clamp_min = params.number("pid/i_clamp_min");
-  pid.i_clamp_max = params.number("pid/i_clamp_max");
-  pid.antiwindup = params.boolean("pid/antiwindup");
+  pid.p = params.number(ns + "/p");
+  pid.i = params.number(ns + "/i");
+  pid.d = params.number(ns + "/d");
+  pid.i_clamp = params.number(ns + "/i_clamp");
+  pid.i_clamp_min = params.number(ns + "/i_clamp_min");
+  pid.i_clamp_max = params.number(ns + "/i_clamp_max");
+  pid.antiwindup = params.boolean(ns + "/antiwindup");
   if (!pid.p) {
-    throw ControllerError(params.prefix() + "pid/p is missing (" + params.type() +
+    throw ControllerError(params.prefix() + ns + "/p is missing (" + params.type() +
                           " needs pid gains)");
   }
   return toPidGains(params.name(), pid, warn);

@@ -66,3 +66,15 @@ TEST(ControllerAdapter, WrongTypesNameTheController) {
   w["pid"]["p"] = "high";
   EXPECT_EQ(errorOf("c", w), "");
 }
+
+TEST(ControllerAdapter, EveryTypeWithTopicsHasItsRosSide) {
+  // joint_state_controller's joint_states are the node's; every other type has topics.
+  for (const std::string& type : builtinControllers().types()) {
+    if (type == "joint_state_controller/JointStateController") {
+      EXPECT_EQ(findRosSide(type), nullptr) << type;
+    } else {
+      EXPECT_NE(findRosSide(type), nullptr) << type;
+    }
+  }
+  EXPECT_EQ(findRosSide("no_such_controllers/NoSuchController"), nullptr);
+}

@@ -106,11 +106,11 @@ TEST(ControllerManager, LoadErrorsAreControllerManagersTexts) {
   EXPECT_EQ(errorOf([&] { set.loadController(wheelSpec("w"), car.joints); }),
             "A controller named 'w' was already loaded inside the controller manager");
   EXPECT_EQ(errorOf([&] {
-              set.loadController(spec("dd", "diff_drive_controller/DiffDriveController", ""),
+              set.loadController(spec("dd", "no_such_controllers/NoSuchController", ""),
                                  car.joints);
             }),
             "Could not load controller 'dd' because controller type "
-            "'diff_drive_controller/DiffDriveController' does not exist.\n"
+            "'no_such_controllers/NoSuchController' does not exist.\n"
             "Use 'rosservice call controller_manager/list_controller_types' to get the available "
             "types");
   EXPECT_EQ(errorOf([&] {

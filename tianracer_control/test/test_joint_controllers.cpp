@@ -411,7 +411,14 @@ TEST(ControllerRegistry, ListsTheTypesInRegistrationOrderAndTakesNewOnes) {
       "joint_state_controller/JointStateController", "effort_controllers/JointPositionController",
       "effort_controllers/JointVelocityController", "effort_controllers/JointEffortController",
       "velocity_controllers/JointVelocityController",
-      "position_controllers/JointPositionController"};
+      "position_controllers/JointPositionController",
+      "velocity_controllers/JointPositionController",
+      "effort_controllers/JointGroupEffortController",
+      "velocity_controllers/JointGroupVelocityController",
+      "position_controllers/JointGroupPositionController",
+      "effort_controllers/JointGroupPositionController",
+      "diff_drive_controller/DiffDriveController",
+      "ackermann_steering_controller/AckermannSteeringController"};
   EXPECT_EQ(types, expected);
 
   // A registry of one's own: a new type is one factory and one add().

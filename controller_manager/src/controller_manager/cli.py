@@ -43,11 +43,15 @@ def run(args):
     elif command == 'stop':
         ok = all([cm.stop_controller(n) for n in names])
     elif command in ('sp', 'spawn'):
-        ok = all([cm.load_controller(n) for n in names]) and \
-            all([cm.start_controller(n) for n in names])
+        # As ros_control's script: every load, then every start, each on its own, so that one
+        # controller that cannot load (an unknown type) does not keep the others from starting.
+        loaded = [cm.load_controller(n) for n in names]
+        started = [cm.start_controller(n) for n in names]
+        ok = all(loaded) and all(started)
     elif command in ('kl', 'kill'):
-        ok = all([cm.stop_controller(n) for n in names]) and \
-            all([cm.unload_controller(n) for n in names])
+        stopped = [cm.stop_controller(n) for n in names]
+        unloaded = [cm.unload_controller(n) for n in names]
+        ok = all(stopped) and all(unloaded)
     else:
         print(USAGE)
         return 1

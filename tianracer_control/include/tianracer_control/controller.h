@@ -7,11 +7,18 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "tianracer_control/controller_params.h"
 #include "tianracer_control/joint_handle.h"
 
+namespace urdf {
+class ModelInterface;  // urdfdom's parsed robot_description (urdf_model/model.h)
+}
+
 namespace tianracer_control {
+
+class ControllerSet;
 
 /// Base of all controllers.
 class Controller {
@@ -24,8 +31,17 @@ class Controller {
   const std::string& name() const { return name_; }
   const std::string& type() const { return type_; }
 
-  /// The joint this controller writes, nullptr if none (joint_state_controller).
+  /// The joint this controller writes, nullptr if none or several (see claimedJoints()).
   virtual const JointHandle* joint() const { return nullptr; }
+  /// Every joint this controller writes, each through its handle's interface (what
+  /// hardware_interface's ClaimedResources list). Default: joint(), if any.
+  virtual std::vector<const JointHandle*> claimedJoints() const {
+    if (const JointHandle* j = joint()) return {j};
+    return {};
+  }
+  /// The sim time of the update running (or of the last starting()); ControllerSet sets it,
+  /// as controller_manager passes `time` to update() and starting().
+  double now() const { return now_; }
 
   /// Called when the controller starts (load, sim reset). Position controllers take the current
   /// position as their target so that nothing jumps; velocity controllers start at 0.
@@ -46,17 +62,28 @@ class Controller {
   virtual double command() const { return 0.0; }
 
  private:
+  friend class ControllerSet;
   std::string name_;
   std::string type_;
+  double now_ = 0.0;
 };
 
-/// What a controller class is built from (controller_interface's init(hw, controller_nh)): its
-/// parameters, the joints that have a transmission by name, and where warnings go.
+/// What a controller class is built from (controller_interface's init(hw, root_nh,
+/// controller_nh)): its parameters, the joints that have a transmission by name, where warnings
+/// go, and the robot's parsed robot_description (null when the host has none; what upstream's
+/// controllers read from the parameter server, e.g. diff_drive_controller's wheel radius).
 struct ControllerContext {
   ControllerParams& params;
   std::map<std::string, JointHandle*>& joints;
   const WarningSink& warn;
+  const urdf::ModelInterface* robot_description = nullptr;
 };
+
+/// Finds `joint` among context.joints for controller type `type`. Throws ControllerError,
+/// naming the controller, for a joint without a transmission, or a transmission whose
+/// interface is not `needs` (naming both interfaces).
+JointHandle* findJoint(ControllerContext& context, const std::string& joint,
+                       JointHandle::Interface needs);
 
 /// Shared code of the controllers that command one joint.
 class SingleJointController : public Controller {

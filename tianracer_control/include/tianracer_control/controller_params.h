@@ -99,6 +99,11 @@ class ControllerParams {
   std::optional<double> number(const std::string& key);
   std::optional<std::string> text(const std::string& key);
   std::optional<bool> boolean(const std::string& key);
+  /// A list of strings (upstream's getParam(key, std::vector<std::string>)); nullopt when
+  /// absent. Throws for another kind or an item that is not a string.
+  std::optional<std::vector<std::string>> textList(const std::string& key);
+  /// The value itself, for the readers of compound keys; null when absent.
+  const ParamValue* value(const std::string& key) { return lookup(key); }
 
   /// Keys present that no read asked for, depth first in key order ("type" is the registry's).
   /// The members of a dictionary nobody read are not listed again.

@@ -33,7 +33,8 @@ class ControllerRegistry {
   /// `warn` ("controller 'c': key 'k' is not used by <type>, ignored").
   std::unique_ptr<Controller> create(const ControllerSpec& spec,
                                      std::map<std::string, JointHandle*>& joints,
-                                     const WarningSink& warn = WarningSink()) const;
+                                     const WarningSink& warn = WarningSink(),
+                                     const urdf::ModelInterface* robot_description = nullptr) const;
 
  private:
   std::vector<std::pair<std::string, ControllerFactory>> factories_;

@@ -68,8 +68,14 @@ class ControllerSet {
                          const std::vector<std::string>& stop, Strictness strictness,
                          double time);
 
-  /// Updates the running controllers in the order they were loaded (between read and write).
-  void update(double dt);
+  /// Updates the running controllers in the order they were loaded (between read and write), at
+  /// sim time `time` (Controller::now()).
+  void update(double dt, double time);
+  /// Same, the time advanced by dt from the last update or start.
+  void update(double dt) { update(dt, clock_ + dt); }
+  /// The parsed robot_description the controllers are built with (ControllerContext); null by
+  /// default. It must outlive the set.
+  void setRobotDescription(const urdf::ModelInterface* description) { description_ = description; }
   /// Sim reset: clears every PID and restarts every running controller at `time`.
   void reset(double time = 0.0);
 
@@ -81,17 +87,20 @@ class ControllerSet {
   bool isRunning(const Controller& controller) const {
     return state(controller) == ControllerState::kRunning;
   }
-  /// JointStateController: the JointStateInterface, no resource; single-joint controllers:
-  /// their joint's interface and the joint.
+  /// JointStateController: the JointStateInterface, no resource; the others: their claimed
+  /// joints, grouped by interface (first appearance order).
   static std::vector<ClaimedResources> claimedResources(const Controller& controller);
   std::size_t size() const { return controllers_.size(); }
   bool empty() const { return controllers_.empty(); }
 
  private:
   std::size_t indexOf(const Controller& controller) const;
+  void startController(Controller& controller, double time);
 
   std::vector<std::unique_ptr<Controller>> controllers_;
   std::vector<ControllerState> states_;  // one per controller
+  const urdf::ModelInterface* description_ = nullptr;
+  double clock_ = 0.0;  // time of the last update or start
 };
 
 }  // namespace tianracer_control

@@ -26,7 +26,9 @@ PidGains toPidGains(const std::string& controller, const PidParams& params,
 /// The gains of a controller that needs them (control_toolbox::Pid::init(nh "pid")): reads
 /// pid/..., throws ControllerError "pid/p is missing (<type> needs pid gains)" when p is absent,
 /// then toPidGains().
-PidGains readPidGains(ControllerParams& params, const WarningSink& warn);
+/// `ns`: where the gains are (effort_controllers/JointGroupPositionController: <joint>/pid).
+PidGains readPidGains(ControllerParams& params, const WarningSink& warn,
+                      const std::string& ns = "pid");
 
 }  // namespace tianracer_control
 

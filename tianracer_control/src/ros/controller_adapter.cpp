@@ -1,10 +1,5 @@
 #include "tianracer_control/ros/controller_adapter.h"
 
-#include <cmath>
-#include <sstream>
-
-#include <ros/console.h>
-
 namespace tianracer_control {
 
 namespace {
@@ -72,59 +67,43 @@ std::vector<ControllerSpec> loadControllerSpecs(const ros::NodeHandle& ns,
 }
 
 ControllerCommandSubscribers::ControllerCommandSubscribers(ros::NodeHandle ns,
-                                                           ControllerSet& controllers) {
+                                                           ControllerSet& controllers,
+                                                           ControllerCommandSubscribers* previous) {
   for (const auto& c : controllers.controllers()) {
-    if (!c->hasCommand()) continue;
-    Controller* controller = c.get();
-    subscribers_.push_back(ns.subscribe<std_msgs::Float64>(
-        controller->name() + "/command", 10,
-        [this, controller](const std_msgs::Float64::ConstPtr& msg) { onCommand(controller, msg); }));
+    std::unique_ptr<ControllerRosSide> side;
+    for (std::size_t i = 0; previous && i < previous->owners_.size(); ++i) {
+      if (previous->owners_[i] == c.get() && previous->sides_[i]) side.swap(previous->sides_[i]);
+    }
+    if (!side) {
+      const RosSideFactory factory = findRosSide(c->type());
+      if (!factory) continue;
+      RosSideContext context{ns, ros::NodeHandle(ns, c->name()), *c, controllers};
+      side = factory(context);
+    }
+    sides_.push_back(std::move(side));
+    owners_.push_back(c.get());
   }
 }
 
-void ControllerCommandSubscribers::onCommand(Controller* controller,
-                                             const std_msgs::Float64::ConstPtr& msg) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  if (!std::isfinite(msg->data)) {
-    // At most one warning a second per controller (a per-call-site throttle would let one
-    // controller's warnings hide another's).
-    Ignored& ignored = ignored_[controller];
-    const ros::WallTime now = ros::WallTime::now();
-    if (ignored.last_warning.isZero() || (now - ignored.last_warning).toSec() >= 1.0) {
-      std::ostringstream text;
-      text << "controller '" << controller->name() << "': ignoring command " << msg->data
-           << " (not finite)";
-      if (ignored.since_warning > 0) {
-        text << "; " << ignored.since_warning << " more ignored since the last warning";
-      }
-      ROS_WARN_STREAM(text.str());
-      ignored.last_warning = now;
-      ignored.since_warning = 0;
-    } else {
-      ++ignored.since_warning;
-    }
-    return;
-  }
-  pending_[controller] = msg->data;
-}
+ControllerCommandSubscribers::~ControllerCommandSubscribers() = default;
 
 void ControllerCommandSubscribers::apply() {
-  std::map<Controller*, double> pending;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    pending.swap(pending_);
-  }
-  for (const auto& kv : pending) kv.first->setCommand(kv.second);
+  for (const auto& side : sides_) side->apply();
+}
+
+void ControllerCommandSubscribers::publish(double t) {
+  for (const auto& side : sides_) side->publish(t);
 }
 
 void ControllerCommandSubscribers::clear() {
-  std::lock_guard<std::mutex> lock(mutex_);
-  pending_.clear();
+  for (const auto& side : sides_) side->clear();
 }
 
 std::vector<std::string> ControllerCommandSubscribers::topics() const {
   std::vector<std::string> out;
-  for (const auto& s : subscribers_) out.push_back(s.getTopic());
+  for (const auto& side : sides_) {
+    for (const std::string& t : side->commandTopics()) out.push_back(t);
+  }
   return out;
 }
 

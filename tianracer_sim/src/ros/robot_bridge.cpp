@@ -65,8 +65,9 @@ void RobotBridge::controllersChanged() {
   // The new subscribers and publishers exist before the old ones go, so that connections on
   // the topics that stay are kept. A stream that stays keeps its schedule.
   ros::NodeHandle robot_nh(root_, options_.ns);
-  commands_ = std::make_shared<tc::ControllerCommandSubscribers>(robot_nh,
-                                                                 sim_.robot(id_)->controllers);
+  // The sides of the controllers still loaded are taken over (their topics and services stay).
+  commands_ = std::make_shared<tc::ControllerCommandSubscribers>(
+      robot_nh, sim_.robot(id_)->controllers, commands_.get());
   std::vector<JointStateStream> streams = makeJointStates();
   for (JointStateStream& s : streams) {
     for (const JointStateStream& old : joint_states_) {
@@ -143,6 +144,7 @@ void RobotBridge::publish(double t) {
   StepProfile* const profile = sim_.profile();
   const ros::Time stamp(t);
   const PhysicsRobot& pr = *sim_.physicsOf(id_);
+  commands_->publish(t);  // what the controllers produced (diff_drive_controller's odom, tf)
   {
     StepProfile::Scope timed(profile, rows_.joint_states);
     for (JointStateStream& s : joint_states_) {

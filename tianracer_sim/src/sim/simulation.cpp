@@ -149,6 +149,7 @@ SimRobot& Simulation::addRobot(RobotConfig config) {
       }
     }
     read(*robot);
+    robot->controllers.setRobotDescription(robot->model.urdf.get());
     for (const tc::ControllerSpec& spec : config.controllers) {
       robot->controllers.load(spec, joints, physics_.time(), [&](const std::string& w) {
         if (warn_) warn_("robot '" + config.name + "': " + w);
@@ -215,7 +216,8 @@ void Simulation::updateClaims(SimRobot& robot) {
   for (size_t k = 0; k < robot.handles.size(); ++k) {
     bool claimed = false;
     for (const auto& c : robot.controllers.controllers()) {
-      if (c->joint() == &robot.handles[k] && robot.controllers.isRunning(*c)) claimed = true;
+      if (!robot.controllers.isRunning(*c)) continue;
+      for (const tc::JointHandle* j : c->claimedJoints()) claimed = claimed || j == &robot.handles[k];
     }
     if (robot.claimed[k] && !claimed) pr.clearJointCommand(robot.handle_joint[k]);
     robot.claimed[k] = claimed;
@@ -267,7 +269,7 @@ void Simulation::step() {
     for (auto& robot : robots_) {
       if (n % static_cast<std::uint64_t>(robot->control_every) != 0) continue;
       read(*robot);
-      robot->controllers.update(robot->control_every * physics_.dt());
+      robot->controllers.update(robot->control_every * physics_.dt(), physics_.time());
       write(*robot);
     }
   }

@@ -98,7 +98,7 @@ TEST_F(ControllerManagerSim, UnloadAndErrorsLeaveTheRobotRunning) {
                tc::ControllerError);
   tc::ControllerSpec unknown;
   unknown.name = "dd";
-  unknown.type = "diff_drive_controller/DiffDriveController";
+  unknown.type = "no_such_controllers/NoSuchController";
   EXPECT_THROW(sim_.loadController(*robot_, unknown), tc::ControllerError);
   sim_.switchControllers(*robot_, {}, allNames(), tc::Strictness::kStrict);
   for (const std::string& name : allNames()) sim_.unloadController(*robot_, name);

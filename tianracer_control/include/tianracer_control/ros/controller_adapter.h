@@ -1,19 +1,17 @@
-// ROS side of the joint controllers: parameter server -> ControllerSpec, and the
-// /<ns>/<controller>/command topics -> Controller::setCommand(). Used by the simulator node.
+// ROS side of the controllers: parameter server -> ControllerSpec, and each loaded
+// controller's ROS side (controller_ros.h: its topics). Used by the simulator node.
 #ifndef TIANRACER_CONTROL_ROS_CONTROLLER_ADAPTER_H
 #define TIANRACER_CONTROL_ROS_CONTROLLER_ADAPTER_H
 
-#include <map>
-#include <mutex>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <ros/node_handle.h>
-#include <ros/subscriber.h>
-#include <std_msgs/Float64.h>
 #include <xmlrpcpp/XmlRpcValue.h>
 
 #include "tianracer_control/joint_controllers.h"
+#include "tianracer_control/ros/controller_ros.h"
 
 namespace tianracer_control {
 
@@ -28,35 +26,36 @@ ControllerSpec toControllerSpec(const std::string& name, const XmlRpc::XmlRpcVal
 std::vector<ControllerSpec> loadControllerSpecs(const ros::NodeHandle& ns,
                                                 const std::vector<std::string>& names);
 
-/// Subscribes <ns>/<controller>/command (std_msgs/Float64) for every controller with a
-/// command. Messages are buffered under a mutex and applied by apply(), which the simulation
-/// loop calls before ControllerSet::update(): callbacks may run on any spinner thread, the
-/// controllers are only touched by the loop. NaN/inf commands are dropped with a throttled
-/// warning naming the controller; the previous command stays.
+/// The ROS sides (controller_ros.h) of a robot's loaded controllers, made for every loaded
+/// controller whose type registered one: e.g. <ns>/<controller>/command (std_msgs/Float64) of
+/// the single-joint controllers, <ns>/<controller>/cmd_vel of diff_drive_controller. Made anew
+/// when the controllers change (load, unload). Commands are buffered under a mutex and applied
+/// by apply(), which the simulation loop calls before ControllerSet::update(): callbacks may run
+/// on any spinner thread, the controllers are only touched by the loop. NaN/inf commands are
+/// dropped with a throttled warning naming the controller; the previous command stays.
 class ControllerCommandSubscribers {
  public:
-  ControllerCommandSubscribers(ros::NodeHandle ns, ControllerSet& controllers);
+  /// `previous`: the sides made before the controllers changed; the sides of the controllers
+  /// still loaded are taken over from it (their subscriptions, services and pending commands
+  /// stay), so that it must be made after every load or unload.
+  ControllerCommandSubscribers(ros::NodeHandle ns, ControllerSet& controllers,
+                               ControllerCommandSubscribers* previous = nullptr);
+  ~ControllerCommandSubscribers();
   ControllerCommandSubscribers(const ControllerCommandSubscribers&) = delete;
   ControllerCommandSubscribers& operator=(const ControllerCommandSubscribers&) = delete;
 
   /// Hands the commands received since the last call to their controllers.
   void apply();
+  /// What the controllers produced since the last call (odom, tf, ...), at sim time t.
+  void publish(double t);
   /// Drops commands not yet applied (sim reset).
   void clear();
-  /// The topics subscribed, e.g. "/tianracer/left_rear_wheel_velocity_controller/command".
+  /// The command topics, e.g. "/tianracer/left_rear_wheel_velocity_controller/command".
   std::vector<std::string> topics() const;
 
  private:
-  void onCommand(Controller* controller, const std_msgs::Float64::ConstPtr& msg);
-
-  std::vector<ros::Subscriber> subscribers_;
-  std::mutex mutex_;
-  std::map<Controller*, double> pending_;
-  struct Ignored {
-    ros::WallTime last_warning;
-    int since_warning = 0;
-  };
-  std::map<Controller*, Ignored> ignored_;  // non-finite commands, for the throttled warning
+  std::vector<std::unique_ptr<ControllerRosSide>> sides_;
+  std::vector<const Controller*> owners_;  // the controller of each side
 };
 
 }  // namespace tianracer_control
