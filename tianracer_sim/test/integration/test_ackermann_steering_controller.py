@@ -13,6 +13,8 @@ import rostest
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
+from tianracer_sim.rotation import planar_motion as motion
+from tianracer_sim.rotation import wrap_angle as wrap
 from tianracer_sim.rotation import yaw_from_quaternion as yaw_of
 from tianracer_sim.sim_time import Stream, clock_stamp, drive_twist, sim_sleep, wait_connected
 from tianracer_sim.sim_time import wait_for
@@ -23,20 +25,6 @@ CONTROLLER = NS + '/ackermann_steering_controller'
 SEPARATION_H = 0.3
 
 
-def wrap(a):
-    return math.atan2(math.sin(a), math.cos(a))
-
-
-def motion(poses):
-    """Mean forward speed (along the heading) and yaw rate of [(t, Pose)] in time order."""
-    path = turned = 0.0
-    for (t0, p0), (t1, p1) in zip(poses, poses[1:]):
-        yaw = yaw_of(p0.orientation)
-        dx, dy = p1.position.x - p0.position.x, p1.position.y - p0.position.y
-        path += dx * math.cos(yaw) + dy * math.sin(yaw)
-        turned += wrap(yaw_of(p1.orientation) - yaw)
-    span = poses[-1][0] - poses[0][0]
-    return path / span, turned / span
 
 
 class AckermannSteeringControllerTest(unittest.TestCase):

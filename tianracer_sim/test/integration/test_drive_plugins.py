@@ -21,7 +21,7 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock, Log
 from sensor_msgs.msg import JointState
 from tf2_msgs.msg import TFMessage
-from tianracer_sim.rotation import yaw_from_quaternion as yaw_of
+from tianracer_sim.rotation import planar_motion as motion
 from tianracer_sim.sim_time import Stream, clock_stamp, drive_twist, sim_sleep, wait_connected
 from tianracer_sim.sim_time import wait_for
 
@@ -29,24 +29,6 @@ WALL_TIMEOUT = 120.0
 TOLERANCE = 0.03  # relative
 
 
-def wrap(a):
-    while a > math.pi:
-        a -= 2 * math.pi
-    while a < -math.pi:
-        a += 2 * math.pi
-    return a
-
-
-def motion(poses):
-    """Mean forward speed (along the heading) and yaw rate of [(t, Pose)] in time order."""
-    path = turned = 0.0
-    for (t0, p0), (t1, p1) in zip(poses, poses[1:]):
-        yaw = yaw_of(p0.orientation)
-        dx, dy = p1.position.x - p0.position.x, p1.position.y - p0.position.y
-        path += dx * math.cos(yaw) + dy * math.sin(yaw)
-        turned += wrap(yaw_of(p1.orientation) - yaw)
-    span = poses[-1][0] - poses[0][0]
-    return path / span, turned / span
 
 
 class DrivePluginsTest(unittest.TestCase):

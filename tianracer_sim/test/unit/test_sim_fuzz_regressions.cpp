@@ -135,26 +135,24 @@ void expectPlaced(const std::string& file, const std::string& error) {
       << "no line: " << error;
 }
 
-TEST(FuzzRegressions, EveryModelLoadsAndStaysFiniteOrIsACleanErrorWithFileAndLine) {
-  const std::vector<std::string> files = corpus("model");
+/// Every file of corpus/<kind> through `replay`: it loads and stays finite, or its error is placed.
+void expectEveryFileFiniteOrPlaced(const std::string& kind, Outcome (*replay)(const std::string&)) {
+  const std::vector<std::string> files = corpus(kind);
   ASSERT_GE(files.size(), 10u);
   for (const std::string& f : files) {
     SCOPED_TRACE(f);
-    const Outcome o = replayModel(f);
+    const Outcome o = replay(f);
     if (!o.error.empty()) expectPlaced(f, o.error);
     if (::testing::Test::HasFailure()) return;
   }
 }
 
+TEST(FuzzRegressions, EveryModelLoadsAndStaysFiniteOrIsACleanErrorWithFileAndLine) {
+  expectEveryFileFiniteOrPlaced("model", replayModel);
+}
+
 TEST(FuzzRegressions, EveryWorldLoadsAndStaysFiniteOrIsACleanErrorWithFileAndLine) {
-  const std::vector<std::string> files = corpus("world");
-  ASSERT_GE(files.size(), 10u);
-  for (const std::string& f : files) {
-    SCOPED_TRACE(f);
-    const Outcome o = replayWorld(f);
-    if (!o.error.empty()) expectPlaced(f, o.error);
-    if (::testing::Test::HasFailure()) return;
-  }
+  expectEveryFileFiniteOrPlaced("world", replayWorld);
 }
 
 // What each case must give: refused with the bound in the message, or loaded.
