@@ -41,9 +41,13 @@ ControllerManagerBridge::ControllerManagerBridge(ros::NodeHandle robot_nh, std::
   serve("reload_controller_libraries", &ControllerManagerBridge::onReload);
 }
 
-const tc::ControllerSet& ControllerManagerBridge::controllers() const {
-  return sim_.robot(robot_)->controllers;
+SimRobot& ControllerManagerBridge::robot() const {
+  SimRobot* r = sim_.robot(robot_);
+  if (!r) throw tc::ControllerError("the robot of this controller manager is no longer in the world");
+  return *r;
 }
+
+const tc::ControllerSet& ControllerManagerBridge::controllers() const { return robot().controllers; }
 
 bool ControllerManagerBridge::onList(cmm::ListControllers::Request&,
                                      cmm::ListControllers::Response& res) {
@@ -91,7 +95,7 @@ bool ControllerManagerBridge::load(const std::string& name) {
               name.c_str(), controller_nh.getNamespace().c_str());
     return false;
   }
-  return logErrors([&] { sim_.loadController(robot_, tc::toControllerSpec(name, params)); });
+  return logErrors([&] { sim_.controllerManager().load(robot(), tc::toControllerSpec(name, params)); });
 }
 
 bool ControllerManagerBridge::answer(bool ok, uint8_t* res_ok) {
@@ -106,7 +110,7 @@ bool ControllerManagerBridge::onLoad(cmm::LoadController::Request& req,
 }
 
 bool ControllerManagerBridge::unload(const std::string& name) {
-  return logErrors([&] { sim_.unloadController(robot_, name); });
+  return logErrors([&] { sim_.controllerManager().unload(robot(), name); });
 }
 
 bool ControllerManagerBridge::onUnload(cmm::UnloadController::Request& req,
@@ -126,7 +130,7 @@ bool ControllerManagerBridge::switchControllers(const std::vector<std::string>& 
   const tc::Strictness s = strictness == cmm::SwitchController::Request::STRICT
                                ? tc::Strictness::kStrict
                                : tc::Strictness::kBestEffort;
-  return logErrors([&] { sim_.switchControllers(robot_, start, stop, s); });
+  return logErrors([&] { sim_.controllerManager().switchControllers(robot(), start, stop, s); });
 }
 
 bool ControllerManagerBridge::onSwitch(cmm::SwitchController::Request& req,

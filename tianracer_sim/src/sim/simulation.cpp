@@ -112,7 +112,9 @@ double depthBelowBase(const RobotModel& model, const Eigen::Matrix3d& R_WB) {
 }
 
 Simulation::Simulation(const PhysicsOptions& options, WarningSink warn)
-    : physics_(options), warn_(std::move(warn)) {}
+    : physics_(options),
+      warn_(std::move(warn)),
+      controllers_(physics_, warn_, [this](SimRobot& robot) { read(robot); }) {}
 
 SimRobot& Simulation::addRobot(RobotConfig config) {
   if (findRobot(config.name)) {
@@ -139,25 +141,14 @@ SimRobot& Simulation::addRobot(RobotConfig config) {
               std::to_string(robot->control_every * physics_.dt()) + " s");
       }
     }
-    std::map<std::string, tc::JointHandle*> joints;
-    for (tc::JointHandle& h : robot->handles) {
-      joints[h.name] = &h;
+    for (const tc::JointHandle& h : robot->handles) {
       if (h.interface != tc::JointHandle::Interface::kEffort && h.effort_limit <= 0.0 && warn_) {
         warn_("robot '" + config.name + "': joint '" + h.name +
               "' has no effort limit in the URDF; its motor is limited to the default " +
               std::to_string(physics_.options().default_motor_effort) + " N m");
       }
     }
-    read(*robot);
-    robot->controllers.setRobotDescription(robot->model.urdf.get());
-    for (const tc::ControllerSpec& spec : config.controllers) {
-      robot->controllers.load(spec, joints, physics_.time(), [&](const std::string& w) {
-        if (warn_) warn_("robot '" + config.name + "': " + w);
-      });
-    }
-    // Joints no controller writes stay free (no motor holding them at a zero command).
-    robot->claimed.assign(robot->handles.size(), false);
-    updateClaims(*robot);
+    controllers_.attach(*robot, config.controllers);
   } catch (...) {
     physics_.removeRobot(robot->id);  // nothing of a robot that failed stays
     throw;
@@ -179,49 +170,6 @@ SimRobot* Simulation::findRobot(const std::string& name) {
     if (r->name == name) return r.get();
   }
   return nullptr;
-}
-
-namespace {
-
-std::map<std::string, tc::JointHandle*> jointsOf(SimRobot& robot) {
-  std::map<std::string, tc::JointHandle*> joints;
-  for (tc::JointHandle& h : robot.handles) joints[h.name] = &h;
-  return joints;
-}
-
-}  // namespace
-
-tc::Controller& Simulation::loadController(SimRobot& robot, const tc::ControllerSpec& spec) {
-  std::map<std::string, tc::JointHandle*> joints = jointsOf(robot);
-  return robot.controllers.loadController(spec, joints, [&](const std::string& w) {
-    if (warn_) warn_("robot '" + robot.name + "': " + w);
-  });
-}
-
-void Simulation::unloadController(SimRobot& robot, const std::string& name) {
-  robot.controllers.unloadController(name);
-  updateClaims(robot);
-}
-
-void Simulation::switchControllers(SimRobot& robot, const std::vector<std::string>& start,
-                                   const std::vector<std::string>& stop,
-                                   tc::Strictness strictness) {
-  read(robot);  // a controller starting holds the current position
-  robot.controllers.switchControllers(start, stop, strictness, physics_.time());
-  updateClaims(robot);
-}
-
-void Simulation::updateClaims(SimRobot& robot) {
-  PhysicsRobot& pr = physics_.robot(robot.id);
-  for (size_t k = 0; k < robot.handles.size(); ++k) {
-    bool claimed = false;
-    for (const auto& c : robot.controllers.controllers()) {
-      if (!robot.controllers.isRunning(*c)) continue;
-      for (const tc::JointHandle* j : c->claimedJoints()) claimed = claimed || j == &robot.handles[k];
-    }
-    if (robot.claimed[k] && !claimed) pr.clearJointCommand(robot.handle_joint[k]);
-    robot.claimed[k] = claimed;
-  }
 }
 
 void Simulation::read(SimRobot& robot) {
@@ -269,7 +217,7 @@ void Simulation::step() {
     for (auto& robot : robots_) {
       if (n % static_cast<std::uint64_t>(robot->control_every) != 0) continue;
       read(*robot);
-      robot->controllers.update(robot->control_every * physics_.dt(), physics_.time());
+      controllers_.update(*robot);
       write(*robot);
     }
   }
@@ -284,9 +232,7 @@ void Simulation::setProfile(StepProfile* profile) {
 }
 
 void Simulation::restartControllers(SimRobot& robot) {
-  for (tc::JointHandle& h : robot.handles) h.command = 0.0;
-  read(robot);
-  robot.controllers.reset(physics_.time());
+  controllers_.restart(robot);
   write(robot);
 }
 

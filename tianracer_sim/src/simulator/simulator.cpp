@@ -519,29 +519,7 @@ void Simulator::jointStates(ModelId id, JointStates* out) const {
 bool Simulator::setCommand(ModelId id, const std::string& controller, double value) {
   SimRobot* r = robot(id);
   if (!r) return false;
-  tianracer_control::Controller* c = r->controllers.find(controller);
-  return c && c->hasCommand() && c->setCommand(value);
-}
-
-SimRobot& Simulator::robotOrThrow(ModelId id) {
-  SimRobot* r = robot(id);
-  if (!r) throw std::out_of_range("model id " + std::to_string(id) + " is not a robot");
-  return *r;
-}
-
-tianracer_control::Controller& Simulator::loadController(
-    ModelId id, const tianracer_control::ControllerSpec& spec) {
-  return sim_.loadController(robotOrThrow(id), spec);
-}
-
-void Simulator::unloadController(ModelId id, const std::string& name) {
-  sim_.unloadController(robotOrThrow(id), name);
-}
-
-void Simulator::switchControllers(ModelId id, const std::vector<std::string>& start,
-                                  const std::vector<std::string>& stop,
-                                  tianracer_control::Strictness strictness) {
-  sim_.switchControllers(robotOrThrow(id), start, stop, strictness);
+  return sim_.controllerManager().setCommand(*r, controller, value);
 }
 
 void Simulator::setContactTracking(bool on) {

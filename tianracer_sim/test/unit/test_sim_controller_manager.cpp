@@ -26,7 +26,7 @@ class ControllerManagerSim : public ::testing::Test {
     for (long i = 0; i < n; ++i) sim_.step();
   }
   void loadShipped() {
-    for (const tc::ControllerSpec& spec : test::shippedControllers()) sim_.loadController(*robot_, spec);
+    for (const tc::ControllerSpec& spec : test::shippedControllers()) sim_.controllerManager().load(*robot_, spec);
   }
   double wheelVelocity(const std::string& joint) {
     return physics().jointVelocity(physics().jointIndex(joint));
@@ -50,7 +50,7 @@ TEST_F(ControllerManagerSim, LoadedControllersDoNothingUntilStarted) {
   run(1.0);
   EXPECT_LT(distance(), 0.005);  // loaded, not running: the wheels stay free
 
-  sim_.switchControllers(*robot_, allNames(), {}, tc::Strictness::kStrict);
+  sim_.controllerManager().switchControllers(*robot_, allNames(), {}, tc::Strictness::kStrict);
   // starting(): velocity controllers start at 0, so the car holds still...
   run(0.5);
   EXPECT_LT(distance(), 0.005);
@@ -66,7 +66,7 @@ TEST_F(ControllerManagerSim, LoadedControllersDoNothingUntilStarted) {
 
 TEST_F(ControllerManagerSim, AStoppedWheelControllerLetsItsJointGo) {
   loadShipped();
-  sim_.switchControllers(*robot_, allNames(), {}, tc::Strictness::kStrict);
+  sim_.controllerManager().switchControllers(*robot_, allNames(), {}, tc::Strictness::kStrict);
   tc::Controller& left = *robot_->controllers.find(kLeftWheel);
   tc::Controller& right = *robot_->controllers.find(kRightWheel);
   // The right wheel holds 0; the left one spins the car round it.
@@ -74,7 +74,7 @@ TEST_F(ControllerManagerSim, AStoppedWheelControllerLetsItsJointGo) {
   run(1.0);
   EXPECT_NEAR(wheelVelocity("left_rear_wheel_joint"), 15.0, 0.5);
 
-  sim_.switchControllers(*robot_, {}, {kLeftWheel}, tc::Strictness::kStrict);
+  sim_.controllerManager().switchControllers(*robot_, {}, {kLeftWheel}, tc::Strictness::kStrict);
   EXPECT_FALSE(robot_->controllers.isRunning(left));
   left.setCommand(30.0);  // no longer followed
   run(1.0);
@@ -83,7 +83,7 @@ TEST_F(ControllerManagerSim, AStoppedWheelControllerLetsItsJointGo) {
   (void)right;
 
   // Started again, it follows from 0 (starting()), then the new command.
-  sim_.switchControllers(*robot_, {kLeftWheel}, {}, tc::Strictness::kStrict);
+  sim_.controllerManager().switchControllers(*robot_, {kLeftWheel}, {}, tc::Strictness::kStrict);
   EXPECT_EQ(left.command(), 0.0);
   left.setCommand(10.0);
   run(1.0);
@@ -92,16 +92,16 @@ TEST_F(ControllerManagerSim, AStoppedWheelControllerLetsItsJointGo) {
 
 TEST_F(ControllerManagerSim, UnloadAndErrorsLeaveTheRobotRunning) {
   loadShipped();
-  sim_.switchControllers(*robot_, allNames(), {}, tc::Strictness::kStrict);
-  EXPECT_THROW(sim_.unloadController(*robot_, kLeftWheel), tc::ControllerError);
-  EXPECT_THROW(sim_.switchControllers(*robot_, {"nope"}, {}, tc::Strictness::kStrict),
+  sim_.controllerManager().switchControllers(*robot_, allNames(), {}, tc::Strictness::kStrict);
+  EXPECT_THROW(sim_.controllerManager().unload(*robot_, kLeftWheel), tc::ControllerError);
+  EXPECT_THROW(sim_.controllerManager().switchControllers(*robot_, {"nope"}, {}, tc::Strictness::kStrict),
                tc::ControllerError);
   tc::ControllerSpec unknown;
   unknown.name = "dd";
   unknown.type = "no_such_controllers/NoSuchController";
-  EXPECT_THROW(sim_.loadController(*robot_, unknown), tc::ControllerError);
-  sim_.switchControllers(*robot_, {}, allNames(), tc::Strictness::kStrict);
-  for (const std::string& name : allNames()) sim_.unloadController(*robot_, name);
+  EXPECT_THROW(sim_.controllerManager().load(*robot_, unknown), tc::ControllerError);
+  sim_.controllerManager().switchControllers(*robot_, {}, allNames(), tc::Strictness::kStrict);
+  for (const std::string& name : allNames()) sim_.controllerManager().unload(*robot_, name);
   EXPECT_TRUE(robot_->controllers.empty());
   run(1.0);
   EXPECT_TRUE(physics().basePose().matrix().allFinite());

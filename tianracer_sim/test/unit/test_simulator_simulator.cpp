@@ -85,9 +85,11 @@ TEST(Simulator, LoadsStartsStopsAndUnloadsControllersByName) {
   RobotSpawn spawn = car(test::loadTianracer());
   spawn.controllers.clear();  // as after spawn_model: a spawner brings them
   const ModelId id = sim.addRobot(std::move(spawn));
+  ControllerManager& manager = sim.controllerManager();
+  SimRobot& robot = *sim.robot(id);
   std::vector<std::string> names;
   for (const tc::ControllerSpec& spec : test::shippedControllers()) {
-    names.push_back(sim.loadController(id, spec).name());
+    names.push_back(manager.load(robot, spec).name());
   }
   const double omega = 0.5 / test::kWheelRadius;
   ASSERT_TRUE(sim.setCommand(id, "left_rear_wheel_velocity_controller", omega));
@@ -95,20 +97,18 @@ TEST(Simulator, LoadsStartsStopsAndUnloadsControllersByName) {
   sim.step(500);
   EXPECT_LT(sim.modelState(id).X_WE.translation().x(), 0.005);  // loaded, not running
 
-  sim.switchControllers(id, names, {}, tc::Strictness::kStrict);
+  manager.switchControllers(robot, names, {}, tc::Strictness::kStrict);
   ASSERT_TRUE(sim.setCommand(id, "left_rear_wheel_velocity_controller", omega));
   ASSERT_TRUE(sim.setCommand(id, "right_rear_wheel_velocity_controller", omega));
   sim.step(1000);
   EXPECT_NEAR(sim.modelState(id).V_WE.linear.x(), 0.5, 0.05);
 
   // Running controllers cannot be unloaded; stopped ones can, and their joints go free.
-  EXPECT_THROW(sim.unloadController(id, "left_rear_wheel_velocity_controller"),
-               tc::ControllerError);
-  sim.switchControllers(id, {}, {"left_rear_wheel_velocity_controller"}, tc::Strictness::kStrict);
-  sim.unloadController(id, "left_rear_wheel_velocity_controller");
+  EXPECT_THROW(manager.unload(robot, "left_rear_wheel_velocity_controller"), tc::ControllerError);
+  manager.switchControllers(robot, {}, {"left_rear_wheel_velocity_controller"}, tc::Strictness::kStrict);
+  manager.unload(robot, "left_rear_wheel_velocity_controller");
   EXPECT_FALSE(sim.setCommand(id, "left_rear_wheel_velocity_controller", omega));
-  EXPECT_THROW(sim.loadController(sim.findModel("wall"), test::shippedControllers().front()),
-               std::out_of_range);
+  EXPECT_EQ(sim.robot(sim.findModel("wall")), nullptr);  // a world model has no controllers
 }
 
 TEST(Simulator, ReadsEverySensorAsPlainData) {

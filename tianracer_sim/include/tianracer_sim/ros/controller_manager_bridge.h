@@ -59,6 +59,8 @@ class ControllerManagerBridge {
                          const std::vector<std::string>& stop, int strictness);
 
   std::string control_ns_;
+  /// The robot, or ControllerError once it has left the world.
+  SimRobot& robot() const;
   const tianracer_control::ControllerSet& controllers() const;
 
   Simulator& sim_;

@@ -16,6 +16,7 @@
 #include <tianracer_control/joint_handle.h>
 
 #include "tianracer_sim/common/step_profile.h"
+#include "tianracer_sim/sim/controller_manager.h"
 #include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/physics/world.h"
 
@@ -59,18 +60,9 @@ class Simulation {
   /// unknown name.
   void removeRobot(const std::string& name);
 
-  /// controller_manager's load_controller, unload_controller and switch_controller for one
-  /// robot: tianracer_control::ControllerSet's, with the robot's joints and the sim time (a
-  /// started controller reads the current joint state first). Afterwards exactly the joints
-  /// of running controllers are written; a joint whose controller stopped is free again (in
-  /// Gazebo, DefaultRobotHWSim keeps applying its last command). Throws
-  /// tianracer_control::ControllerError with controller_manager's text; nothing changes then.
-  tianracer_control::Controller& loadController(SimRobot& robot,
-                                                const tianracer_control::ControllerSpec& spec);
-  void unloadController(SimRobot& robot, const std::string& name);
-  void switchControllers(SimRobot& robot, const std::vector<std::string>& start,
-                         const std::vector<std::string>& stop,
-                         tianracer_control::Strictness strictness);
+  /// The robots' controllers: loaded with a robot, loaded, unloaded and switched by name,
+  /// run every control period (sim/controller_manager.h).
+  ControllerManager& controllerManager() { return controllers_; }
 
   /// One physics step of dt.
   void step();
@@ -102,11 +94,10 @@ class Simulation {
   void read(SimRobot& robot);
   void write(SimRobot& robot);
   void restartControllers(SimRobot& robot);
-  /// claimed = written by a running controller; a joint no longer claimed is freed.
-  void updateClaims(SimRobot& robot);
 
   PhysicsWorld physics_;
   WarningSink warn_;
+  ControllerManager controllers_;
   std::vector<std::unique_ptr<SimRobot>> robots_;
   StepProfile* profile_ = nullptr;
   int controllers_row_ = -1, bullet_row_ = -1;

@@ -256,20 +256,12 @@ class Simulator : public SensorWorld {
   /// Takes the light out of the scene (delete_light).
   void deleteLight(const std::string& name);
 
-  // --- controllers by name (controller_manager's load, unload and switch) ---------------------
-  /// Loads a controller stopped on robot `id` (its joints must exist and be free of other
-  /// loaded controllers' claims as controller_manager checks them). Throws
-  /// tianracer_control::ControllerError with controller_manager's text, std::out_of_range for
-  /// a model that is not a robot; nothing changes then.
-  tianracer_control::Controller& loadController(ModelId id,
-                                                const tianracer_control::ControllerSpec& spec);
-  /// Unloads a stopped controller (ControllerError otherwise).
-  void unloadController(ModelId id, const std::string& name);
-  /// Stops, then starts, by name (ControllerSet's rules for strictness). A started controller
-  /// reads the current joint state first; a joint no running controller writes is free.
-  void switchControllers(ModelId id, const std::vector<std::string>& start,
-                         const std::vector<std::string>& stop,
-                         tianracer_control::Strictness strictness);
+  // --- controllers (controller_manager's load, unload and switch) ------------------------------
+  /// The one owner of the robots' controllers (sim/controller_manager.h); its calls take a
+  /// robot (robot(id)).
+  ControllerManager& controllerManager() { return sim_.controllerManager(); }
+
+  // --- sensors --------------------------------------------------------------------------------
   /// Every sensor, in set-up order (robots' sensors in the order their models list them).
   const std::vector<std::unique_ptr<SimSensor>>& sensors() const { return sensors_; }
   /// The sensor called `name` on model `id` (model plugins by their plugin name); nullptr if none.
@@ -332,7 +324,6 @@ class Simulator : public SensorWorld {
   };
 
   const Model* model(ModelId id) const;
-  SimRobot& robotOrThrow(ModelId id);
   void setUpSensors(ModelId id, const RobotSpawn& spawn);
   /// The sensors of world model `id`'s links, attached through options_.attach_world_sensor.
   void setUpWorldModelSensors(ModelId id);
