@@ -9,6 +9,7 @@
 
 #include "tianracer_sim/common/diagnostic.h"
 #include "tianracer_sim/ros/params.h"
+#include "tianracer_sim/ros/sensors/sensor_publisher.h"
 
 namespace tianracer_sim {
 
@@ -34,6 +35,7 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
   nh_.setCallbackQueue(&queue_);
   pnh_.setCallbackQueue(&queue_);
   root_.setCallbackQueue(&queue_);
+  checkSensorPublishers();  // every sensor kind has its publisher (registered beside each)
   setUpProfile();
 
   const NodeParams params = readNodeParams(pnh_);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <functional>
+#include <map>
+#include <stdexcept>
 #include <sstream>
 
 #include <urdf_model/model.h>
@@ -20,39 +22,80 @@ bool contains(const std::vector<std::string>& list, const std::string& s) {
 
 }  // namespace
 
-// The kinds, each defined in its folder (sensors/<kind>/sim_<kind>.cpp).
-const SensorKind& lidarKind();
-const SensorKind& rangeKind();
-const SensorKind& blockLaserKind();
-const SensorKind& cameraKind();
-const SensorKind& multiCameraKind();
-const SensorKind& depthCameraKind();
-const SensorKind& imuKind();
-const SensorKind& imuPluginKind();
-const SensorKind& p3dKind();
-const SensorKind& bumperKind();
-const SensorKind& driveKind();
-const SensorKind& hectorImuKind();
-const SensorKind& hectorGpsKind();
-const SensorKind& hectorMagneticKind();
-const SensorKind& hectorSonarKind();
+namespace {
+
+/// The kinds as registered (library load order), before the check.
+std::vector<SensorKind>& registeredKinds() {
+  static std::vector<SensorKind> kinds;
+  return kinds;
+}
+
+bool shareType(const SensorKind& a, const SensorKind& b) {
+  for (const std::string& t : a.sensor_types) {
+    if (contains(b.sensor_types, t)) return true;
+  }
+  return a.sensor_types.empty() && b.sensor_types.empty();  // model plugins: by filename alone
+}
+
+}  // namespace
+
+bool registerSensorKind(const SensorKind& kind) {
+  registeredKinds().push_back(kind);
+  return true;
+}
+
+std::vector<std::string> sensorKindProblems(const std::vector<SensorKind>& kinds) {
+  std::vector<std::string> problems;
+  std::map<std::string, std::vector<const SensorKind*>> by_type;
+  for (size_t i = 0; i < kinds.size(); ++i) {
+    const SensorKind& k = kinds[i];
+    if (k.id.empty()) problems.push_back("a sensor kind has no id");
+    if (k.plugins.empty() && k.sensor_types.empty())
+      problems.push_back("sensor kind '" + k.id + "' has neither sensor types nor plugins");
+    if (!k.topics || !k.make) problems.push_back("sensor kind '" + k.id + "' lacks its topics or make function");
+    for (const std::string& t : k.sensor_types) by_type[t].push_back(&k);
+    for (size_t j = 0; j < i; ++j) {
+      const SensorKind& o = kinds[j];
+      if (o.id == k.id) problems.push_back("sensor kind '" + k.id + "' is registered twice");
+      if (!shareType(o, k)) continue;
+      for (const std::string& p : k.plugins) {
+        if (contains(o.plugins, p))
+          problems.push_back("plugin '" + p + "' is claimed by sensor kinds '" + o.id + "' and '" + k.id + "'");
+      }
+    }
+  }
+  for (const auto& [type, of_type] : by_type) {
+    if (of_type.size() < 2) continue;
+    std::string ids;
+    int defaults = 0;
+    for (const SensorKind* k : of_type) {
+      ids += (ids.empty() ? "" : ", ") + k->id;
+      defaults += k->type_default ? 1 : 0;
+    }
+    if (defaults != 1)
+      problems.push_back("sensor type '" + type + "' is shared by kinds " + ids + ", of which " +
+                         std::to_string(defaults) + " (not 1) is its type_default");
+  }
+  return problems;
+}
 
 const std::vector<SensorKind>& sensorKinds() {
-  // To add a sensor kind: its folder sensors/<kind>/, its declaration above and one line here
-  // (the order is the order in which findSensorKind tries them), its publisher in
-  // ros/sensors/sensor_publishers.cpp.
-  static const std::vector<SensorKind> kinds = {
-      lidarKind(),  rangeKind(),       blockLaserKind(),   // sensors/ray/
-      cameraKind(), multiCameraKind(), depthCameraKind(),  // sensors/camera/
-      imuKind(),    imuPluginKind(),                       // sensors/imu/
-      p3dKind(),    bumperKind(),      driveKind(),        // sensors/p3d/, bumper/, drives/
-      hectorImuKind(), hectorGpsKind(), hectorMagneticKind(), hectorSonarKind(),  // hector/
-  };
+  static const std::vector<SensorKind> kinds = [] {
+    std::vector<SensorKind> sorted = registeredKinds();
+    std::stable_sort(sorted.begin(), sorted.end(),
+                     [](const SensorKind& a, const SensorKind& b) { return a.id < b.id; });
+    const std::vector<std::string> problems = sensorKindProblems(sorted);
+    if (!problems.empty()) {
+      std::string text = "the registered sensor kinds disagree:";
+      for (const std::string& p : problems) text += "\n  " + p;
+      throw std::logic_error(text);
+    }
+    return sorted;
+  }();
   return kinds;
 }
 
 const SensorKind* findSensorKind(const SensorSpec& sensor) {
-  const SensorKind* by_type = nullptr;
   if (sensor.type.empty()) {
     for (const SensorKind& kind : sensorKinds()) {
       if (!kind.sensor_types.empty() || sensor.plugins.size() != 1) continue;
@@ -60,14 +103,19 @@ const SensorKind* findSensorKind(const SensorSpec& sensor) {
     }
     return nullptr;
   }
+  const SensorKind* only = nullptr;
+  const SensorKind* by_default = nullptr;
+  int of_type = 0;
   for (const SensorKind& kind : sensorKinds()) {
     if (!contains(kind.sensor_types, sensor.type)) continue;
     for (const PluginSpec& p : sensor.plugins) {
       if (contains(kind.plugins, baseName(p.filename))) return &kind;
     }
-    if (!by_type) by_type = &kind;
+    ++of_type;
+    only = &kind;
+    if (kind.type_default) by_default = &kind;
   }
-  return by_type;
+  return of_type == 1 ? only : by_default;
 }
 
 std::vector<SensorTopic> sensorTopics(const SensorSpec& sensor, const std::string& model_name,

@@ -98,6 +98,42 @@ TEST(SensorsRegistry, KindsByTypeAndPlugin) {
   EXPECT_TRUE(sensorTopics(unknown, "r").empty());
 }
 
+TEST(SensorsRegistry, EveryKindRegistersBesideItsClassAndTheyAgree) {
+  std::vector<std::string> ids;
+  for (const SensorKind& k : sensorKinds()) ids.push_back(k.id);
+  // By id, whatever order the libraries registered them in.
+  EXPECT_THAT(ids, ElementsAre("block_laser", "bumper", "camera", "depth_camera", "drive",
+                               "hector_gps", "hector_imu", "hector_magnetic", "hector_sonar", "imu",
+                               "imu_plugin", "lidar", "multicamera", "p3d", "range"));
+  EXPECT_TRUE(sensorKindProblems(sensorKinds()).empty());
+  // A ray sensor with no plugin of the four ray kinds is the type's default: a lidar.
+  const SensorSpec bare = sensorFrom(
+      "<sensor type='ray' name='l'><ray><scan><horizontal><samples>10</samples></horizontal>"
+      "</scan><range><min>0.1</min><max>5</max></range></ray></sensor>");
+  EXPECT_EQ(test::kindOf(bare), "lidar");
+}
+
+TEST(SensorsRegistry, KindsThatDisagreeAreNamed) {
+  std::vector<SensorKind> kinds;
+  for (const std::string& id : {"lidar", "range", "sonar"}) {
+    for (const SensorKind& k : sensorKinds()) {
+      if (k.id == id || (id == std::string("sonar") && k.id == "hector_sonar")) kinds.push_back(k);
+    }
+  }
+  ASSERT_EQ(kinds.size(), 3u);
+  EXPECT_TRUE(sensorKindProblems(kinds).empty());
+  kinds[1].type_default = true;  // two defaults for "ray"
+  kinds[2].plugins.push_back("libgazebo_ros_range.so");  // one plugin claimed by two ray kinds
+  kinds.push_back(kinds[0]);  // lidar twice
+  const std::vector<std::string> problems = sensorKindProblems(kinds);
+  EXPECT_THAT(problems, ::testing::Contains("sensor kind 'lidar' is registered twice"));
+  EXPECT_THAT(problems, ::testing::Contains("plugin 'libgazebo_ros_range.so' is claimed by sensor "
+                                            "kinds 'range' and 'hector_sonar'"));
+  EXPECT_THAT(problems, ::testing::Contains(::testing::HasSubstr(
+                            "sensor type 'ray' is shared by kinds lidar, range, hector_sonar, lidar, of "
+                            "which 3 (not 1) is its type_default")));
+}
+
 TEST(SensorsRegistry, OpenniDefaultsAreTheSimulatorsTopics) {
   // Without imageTopicName openni_kinect publishes <cameraName>/ir/image_raw.
   const SensorSpec s = sensorFrom(depthSensor("libgazebo_ros_openni_kinect.so", ""));

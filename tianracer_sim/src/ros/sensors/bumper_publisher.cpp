@@ -21,4 +21,6 @@ std::unique_ptr<SensorListener> makeBumperPublisher(SimSensor& sensor, const Pub
       &toMsg);
 }
 
+TIANRACER_SENSOR_PUBLISHER(bumperKind, makeBumperPublisher);
+
 }  // namespace tianracer_sim

@@ -166,4 +166,7 @@ std::unique_ptr<SensorListener> makeDepthCameraPublisher(SimSensor& sensor,
   return std::make_unique<DepthCameraPublisher>(static_cast<SimDepthCamera&>(sensor), setup);
 }
 
+TIANRACER_SENSOR_PUBLISHER(cameraKind, makeCameraPublisher);
+TIANRACER_SENSOR_PUBLISHER(depthCameraKind, makeDepthCameraPublisher);
+
 }  // namespace tianracer_sim

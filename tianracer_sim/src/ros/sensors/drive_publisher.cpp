@@ -122,4 +122,6 @@ std::unique_ptr<SensorListener> makeDrivePublisher(SimSensor& sensor, const Publ
   return std::make_unique<DrivePublisher>(static_cast<SimDrive&>(sensor), setup);
 }
 
+TIANRACER_SENSOR_PUBLISHER(driveKind, makeDrivePublisher);
+
 }  // namespace tianracer_sim

@@ -1,5 +1,5 @@
-// The factories of the sensor publishers (one per SensorKind id), for the table in
-// sensor_publishers.cpp.
+// What the sensor publishers share: the sensors' headers (their kinds' functions, which
+// TIANRACER_SENSOR_PUBLISHER names) and the camera's optical frame.
 #ifndef TIANRACER_SIM_SRC_ROS_SENSORS_FACTORIES_H
 #define TIANRACER_SIM_SRC_ROS_SENSORS_FACTORIES_H
 
@@ -14,28 +14,6 @@
 #include "tianracer_sim/sensors/ray/sim_ray.h"
 
 namespace tianracer_sim {
-
-std::unique_ptr<SensorListener> makeLidarPublisher(SimSensor& sensor, const PublisherSetup& setup);
-std::unique_ptr<SensorListener> makeCameraPublisher(SimSensor& sensor, const PublisherSetup& setup);
-std::unique_ptr<SensorListener> makeMultiCameraPublisher(SimSensor& sensor,
-                                                         const PublisherSetup& setup);
-std::unique_ptr<SensorListener> makeDepthCameraPublisher(SimSensor& sensor,
-                                                         const PublisherSetup& setup);
-std::unique_ptr<SensorListener> makeImuPublisher(SimSensor& sensor, const PublisherSetup& setup);
-std::unique_ptr<SensorListener> makeP3dPublisher(SimSensor& sensor, const PublisherSetup& setup);
-std::unique_ptr<SensorListener> makeBumperPublisher(SimSensor& sensor, const PublisherSetup& setup);
-std::unique_ptr<SensorListener> makeRangePublisher(SimSensor& sensor, const PublisherSetup& setup);
-std::unique_ptr<SensorListener> makeBlockLaserPublisher(SimSensor& sensor,
-                                                        const PublisherSetup& setup);
-std::unique_ptr<SensorListener> makeDrivePublisher(SimSensor& sensor, const PublisherSetup& setup);
-std::unique_ptr<SensorListener> makeHectorImuPublisher(SimSensor& sensor,
-                                                       const PublisherSetup& setup);
-std::unique_ptr<SensorListener> makeHectorGpsPublisher(SimSensor& sensor,
-                                                       const PublisherSetup& setup);
-std::unique_ptr<SensorListener> makeHectorMagneticPublisher(SimSensor& sensor,
-                                                            const PublisherSetup& setup);
-std::unique_ptr<SensorListener> makeHectorSonarPublisher(SimSensor& sensor,
-                                                         const PublisherSetup& setup);
 
 struct CameraConfig;
 /// The camera's optical frame (z forward, x right, y down), which its images are stamped

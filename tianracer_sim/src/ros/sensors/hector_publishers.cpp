@@ -291,4 +291,9 @@ std::unique_ptr<SensorListener> makeHectorSonarPublisher(SimSensor& s,
       modelServer(setup, c.topic(), &sensor.model()));
 }
 
+TIANRACER_SENSOR_PUBLISHER(hectorImuKind, makeHectorImuPublisher);
+TIANRACER_SENSOR_PUBLISHER(hectorGpsKind, makeHectorGpsPublisher);
+TIANRACER_SENSOR_PUBLISHER(hectorMagneticKind, makeHectorMagneticPublisher);
+TIANRACER_SENSOR_PUBLISHER(hectorSonarKind, makeHectorSonarPublisher);
+
 }  // namespace tianracer_sim

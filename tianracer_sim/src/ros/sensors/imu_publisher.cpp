@@ -44,4 +44,7 @@ std::unique_ptr<SensorListener> makeImuPublisher(SimSensor& sensor, const Publis
   return std::make_unique<ImuPublisher>(static_cast<SimImu&>(sensor), setup);
 }
 
+TIANRACER_SENSOR_PUBLISHER(imuKind, makeImuPublisher);
+TIANRACER_SENSOR_PUBLISHER(imuPluginKind, makeImuPublisher);
+
 }  // namespace tianracer_sim

@@ -39,4 +39,6 @@ std::unique_ptr<SensorListener> makeLidarPublisher(SimSensor& s, const Publisher
   return publisher;
 }
 
+TIANRACER_SENSOR_PUBLISHER(lidarKind, makeLidarPublisher);
+
 }  // namespace tianracer_sim

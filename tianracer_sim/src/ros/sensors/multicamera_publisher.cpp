@@ -83,4 +83,6 @@ std::unique_ptr<SensorListener> makeMultiCameraPublisher(SimSensor& sensor,
   return std::make_unique<MultiCameraPublisher>(static_cast<SimMultiCamera&>(sensor), setup);
 }
 
+TIANRACER_SENSOR_PUBLISHER(multiCameraKind, makeMultiCameraPublisher);
+
 }  // namespace tianracer_sim

@@ -19,4 +19,6 @@ std::unique_ptr<SensorListener> makeP3dPublisher(SimSensor& sensor, const Publis
       sensor, setup, "p3d", "p3d '%s': link %s in %s, %g Hz on %s", &toMsg);
 }
 
+TIANRACER_SENSOR_PUBLISHER(p3dKind, makeP3dPublisher);
+
 }  // namespace tianracer_sim

@@ -59,4 +59,7 @@ std::unique_ptr<SensorListener> makeBlockLaserPublisher(SimSensor& sensor,
   return makeRayPluginPublisher(sensor, setup, "block laser", &toCloudMsg, &logBlockLaser);
 }
 
+TIANRACER_SENSOR_PUBLISHER(rangeKind, makeRangePublisher);
+TIANRACER_SENSOR_PUBLISHER(blockLaserKind, makeBlockLaserPublisher);
+
 }  // namespace tianracer_sim

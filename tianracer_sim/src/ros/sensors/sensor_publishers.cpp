@@ -1,32 +1,47 @@
-// The one table pairing each SensorKind (sensors/sensor_registry.cpp) with its publisher.
+// The registry of the sensor publishers: each registers beside its code
+// (TIANRACER_SENSOR_PUBLISHER), by the id of its SensorKind.
 #include <map>
 #include <stdexcept>
 
-#include "factories.h"
+#include "tianracer_sim/ros/sensors/sensor_publisher.h"
+#include "tianracer_sim/sensors/sensor_registry.h"
 
 namespace tianracer_sim {
+namespace {
+
+std::multimap<std::string, SensorPublisherFactory>& factories() {
+  static std::multimap<std::string, SensorPublisherFactory> registered;
+  return registered;
+}
+
+}  // namespace
+
+bool registerSensorPublisher(const std::string& kind, SensorPublisherFactory factory) {
+  factories().emplace(kind, factory);
+  return true;
+}
+
+std::vector<std::string> sensorPublisherProblems(const std::vector<SensorKind>& kinds) {
+  std::vector<std::string> problems;
+  for (const SensorKind& kind : kinds) {
+    const size_t n = factories().count(kind.id);
+    if (n == 0) problems.push_back("sensor kind '" + kind.id + "' has no publisher registered");
+    if (n > 1) problems.push_back("sensor kind '" + kind.id + "' has " + std::to_string(n) + " publishers registered");
+  }
+  return problems;
+}
+
+void checkSensorPublishers() {
+  const std::vector<std::string> problems = sensorPublisherProblems(sensorKinds());
+  if (problems.empty()) return;
+  std::string text = "the sensor kinds and their publishers disagree:";
+  for (const std::string& p : problems) text += "\n  " + p;
+  throw std::logic_error(text);
+}
 
 std::unique_ptr<SensorListener> makeSensorPublisher(SimSensor& sensor, const PublisherSetup& setup) {
-  using Factory = std::unique_ptr<SensorListener> (*)(SimSensor&, const PublisherSetup&);
-  static const std::map<std::string, Factory> factories = {
-      {"lidar", &makeLidarPublisher},
-      {"camera", &makeCameraPublisher},
-      {"multicamera", &makeMultiCameraPublisher},
-      {"depth_camera", &makeDepthCameraPublisher},
-      {"imu", &makeImuPublisher},
-      {"imu_plugin", &makeImuPublisher},
-      {"p3d", &makeP3dPublisher},
-      {"bumper", &makeBumperPublisher},
-      {"range", &makeRangePublisher},
-      {"block_laser", &makeBlockLaserPublisher},
-      {"drive", &makeDrivePublisher},
-      {"hector_imu", &makeHectorImuPublisher},
-      {"hector_gps", &makeHectorGpsPublisher},
-      {"hector_magnetic", &makeHectorMagneticPublisher},
-      {"hector_sonar", &makeHectorSonarPublisher},
-  };
-  const auto it = factories.find(sensor.kind());
-  if (it == factories.end())
+  const auto it = factories().find(sensor.kind());
+  if (it == factories().end())
     throw std::logic_error("sensor kind '" + sensor.kind() + "' has no publisher registered");
   return it->second(sensor, setup);
 }

@@ -28,6 +28,7 @@ const SensorKind& bumperKind() {
   static const SensorKind kind = {"bumper", {"contact"}, {"libgazebo_ros_bumper.so"}, &topicsOf<parseBumperConfig>, &makeBumper};
   return kind;
 }
+TIANRACER_SENSOR_KIND(bumperKind);
 
 SimBumper::SimBumper(const SimSensorSetup& setup, BumperConfig config)
     : SimSensor("bumper", config.name, setup.linkRef(config.link), setup.model_name),

@@ -111,6 +111,7 @@ const SensorKind& cameraKind() {
       {"libgazebo_ros_camera.so", "libgazebo_ros_triggered_camera.so"}, &cameraTopics, &makeCamera};
   return kind;
 }
+TIANRACER_SENSOR_KIND(cameraKind);
 
 const SensorKind& depthCameraKind() {
   static const SensorKind kind = {"depth_camera", {"depth"},
@@ -118,12 +119,14 @@ const SensorKind& depthCameraKind() {
       &makeDepthCamera};
   return kind;
 }
+TIANRACER_SENSOR_KIND(depthCameraKind);
 
 const SensorKind& multiCameraKind() {
   static const SensorKind kind = {"multicamera", {"multicamera"}, {"libgazebo_ros_multicamera.so"},
                                    &multiCameraTopics, &makeMultiCamera};
   return kind;
 }
+TIANRACER_SENSOR_KIND(multiCameraKind);
 
 SimCamera::SimCamera(const SimSensorSetup& setup, const CameraConfig& config, Renderer& renderer)
     : SimSensor("camera", setup.spec->name, setup.linkRef(config.link), setup.model_name),

@@ -23,6 +23,7 @@ const SensorKind& driveKind() {
        &topicsOf<parseDriveConfig>, &makeDrive};
   return kind;
 }
+TIANRACER_SENSOR_KIND(driveKind);
 
 SimDrive::SimDrive(const SimSensorSetup& setup, DriveConfig config)
     : SimSensor("drive", config.name, setup.linkRef(""), setup.model_name), core_(std::move(config)) {

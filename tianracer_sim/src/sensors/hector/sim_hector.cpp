@@ -81,18 +81,21 @@ const SensorKind& hectorImuKind() {
                                   &topicsOf<parseHectorImuConfig>, &makeImu};
   return kind;
 }
+TIANRACER_SENSOR_KIND(hectorImuKind);
 
 const SensorKind& hectorGpsKind() {
   static const SensorKind kind = {"hector_gps", {}, {"libhector_gazebo_ros_gps.so"},
                                   &topicsOf<parseHectorGpsConfig>, &makeGps};
   return kind;
 }
+TIANRACER_SENSOR_KIND(hectorGpsKind);
 
 const SensorKind& hectorMagneticKind() {
   static const SensorKind kind = {"hector_magnetic", {}, {"libhector_gazebo_ros_magnetic.so"},
                                   &topicsOf<parseHectorMagneticConfig>, &makeMagnetic};
   return kind;
 }
+TIANRACER_SENSOR_KIND(hectorMagneticKind);
 
 const SensorKind& hectorSonarKind() {
   // A ray sensor (Gazebo casts the plugin's parent to RaySensor: gpu_ray is refused there and
@@ -102,6 +105,7 @@ const SensorKind& hectorSonarKind() {
                                   &topicsOf<parseHectorSonarConfig>, &makeSonar};
   return kind;
 }
+TIANRACER_SENSOR_KIND(hectorSonarKind);
 
 SimHectorPlugin::SimHectorPlugin(const std::string& kind, const SimSensorSetup& setup,
                                  const std::string& name, const std::string& link,

@@ -30,11 +30,13 @@ const SensorKind& imuKind() {
   static const SensorKind kind = {"imu", {"imu"}, {"libgazebo_ros_imu_sensor.so"}, &topicsOf<parseImuSensorConfig>, &makeImu};
   return kind;
 }
+TIANRACER_SENSOR_KIND(imuKind);
 
 const SensorKind& imuPluginKind() {
   static const SensorKind kind = {"imu_plugin", {}, {"libgazebo_ros_imu.so"}, &topicsOf<parseImuPluginConfig>, &makeImuPlugin};
   return kind;
 }
+TIANRACER_SENSOR_KIND(imuPluginKind);
 
 SimImu::SimImu(const SimSensorSetup& setup, ImuConfig config)
     : SimSensor(config.model_plugin ? "imu_plugin" : "imu", config.name,

@@ -18,6 +18,7 @@ const SensorKind& p3dKind() {
   static const SensorKind kind = {"p3d", {}, {"libgazebo_ros_p3d.so"}, &topicsOf<parseP3dConfig>, &makeP3d};
   return kind;
 }
+TIANRACER_SENSOR_KIND(p3dKind);
 
 SimP3d::SimP3d(const SimSensorSetup& setup, P3dConfig config)
     : SimSensor("p3d", config.name, setup.linkRef(config.link), setup.model_name),

@@ -37,20 +37,23 @@ const SensorKind& lidarKind() {
   static const SensorKind kind = {"lidar", {"ray", "gpu_ray"},
        {"libgazebo_ros_laser.so", "libgazebo_ros_gpu_laser.so", "libgazebo_ros_velodyne_laser.so",
         "libgazebo_ros_velodyne_gpu_laser.so"},
-       &topicsOf<parseRaySensorConfig>, &makeLidar};
+       &topicsOf<parseRaySensorConfig>, &makeLidar, /*type_default=*/true};
   return kind;
 }
+TIANRACER_SENSOR_KIND(lidarKind);
 
 const SensorKind& rangeKind() {
   static const SensorKind kind = {"range", {"ray", "gpu_ray"}, {"libgazebo_ros_range.so"}, &topicsOf<parseRangeConfig>, &makeRange};
   return kind;
 }
+TIANRACER_SENSOR_KIND(rangeKind);
 
 const SensorKind& blockLaserKind() {
   static const SensorKind kind = {"block_laser", {"ray", "gpu_ray"}, {"libgazebo_ros_block_laser.so"},
                                    &topicsOf<parseBlockLaserConfig>, &makeBlockLaser};
   return kind;
 }
+TIANRACER_SENSOR_KIND(blockLaserKind);
 
 SimLidar::SimLidar(const SimSensorSetup& setup, RaySensorConfig config)
     : SimSensor("lidar", config.name, setup.linkRef(config.link), setup.model_name),

@@ -32,6 +32,10 @@ class SimBumper : public SimSensor {
   std::vector<BumperState> states_;
 };
 
+struct SensorKind;
+/// The kind(s) of this folder, registered beside their classes (sensors/sensor_registry.h).
+const SensorKind& bumperKind();
+
 }  // namespace tianracer_sim
 
 #endif  // TIANRACER_SIM_SENSORS_BUMPER_SIM_BUMPER_H

@@ -83,6 +83,12 @@ class SimMultiCamera : public SimSensor {
   Schedule schedule_;
 };
 
+struct SensorKind;
+/// The kind(s) of this folder, registered beside their classes (sensors/sensor_registry.h).
+const SensorKind& cameraKind();
+const SensorKind& multiCameraKind();
+const SensorKind& depthCameraKind();
+
 }  // namespace tianracer_sim
 
 #endif  // TIANRACER_SIM_SENSORS_CAMERA_SIM_CAMERA_H

@@ -56,6 +56,10 @@ class SimDrive : public SimSensor {
   double restart_t_ = 0.0;
 };
 
+struct SensorKind;
+/// The kind(s) of this folder, registered beside their classes (sensors/sensor_registry.h).
+const SensorKind& driveKind();
+
 }  // namespace tianracer_sim
 
 #endif  // TIANRACER_SIM_SENSORS_DRIVES_SIM_DRIVE_H

@@ -127,6 +127,13 @@ class SimHectorSonar : public SimSensor {
   RangeReading reading_;
 };
 
+struct SensorKind;
+/// The kind(s) of this folder, registered beside their classes (sensors/sensor_registry.h).
+const SensorKind& hectorImuKind();
+const SensorKind& hectorGpsKind();
+const SensorKind& hectorMagneticKind();
+const SensorKind& hectorSonarKind();
+
 }  // namespace tianracer_sim
 
 #endif  // TIANRACER_SIM_SENSORS_HECTOR_SIM_HECTOR_H

@@ -28,6 +28,11 @@ class SimImu : public SimSensor {
   const ImuReading* reading_ = &none_;
 };
 
+struct SensorKind;
+/// The kind(s) of this folder, registered beside their classes (sensors/sensor_registry.h).
+const SensorKind& imuKind();
+const SensorKind& imuPluginKind();
+
 }  // namespace tianracer_sim
 
 #endif  // TIANRACER_SIM_SENSORS_IMU_SIM_IMU_H

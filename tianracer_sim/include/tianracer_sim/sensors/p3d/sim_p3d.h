@@ -36,6 +36,10 @@ class SimP3d : public SimSensor {
   const P3dReading* reading_ = &none_;
 };
 
+struct SensorKind;
+/// The kind(s) of this folder, registered beside their classes (sensors/sensor_registry.h).
+const SensorKind& p3dKind();
+
 }  // namespace tianracer_sim
 
 #endif  // TIANRACER_SIM_SENSORS_P3D_SIM_P3D_H

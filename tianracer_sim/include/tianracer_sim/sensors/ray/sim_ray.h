@@ -96,6 +96,12 @@ class SimBlockLaser : public SimRayGrid<BlockLaserConfig, BlockCloud, &blockLase
   const BlockCloud& cloud() const { return output(); }
 };
 
+struct SensorKind;
+/// The kind(s) of this folder, registered beside their classes (sensors/sensor_registry.h).
+const SensorKind& lidarKind();
+const SensorKind& rangeKind();
+const SensorKind& blockLaserKind();
+
 }  // namespace tianracer_sim
 
 #endif  // TIANRACER_SIM_SENSORS_RAY_SIM_RAY_H
