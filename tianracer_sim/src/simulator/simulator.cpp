@@ -35,8 +35,8 @@ Simulator::Simulator(WorldDescription world, SimulatorOptions options)
   contacts_row_ = profileRow(options_.profile, StepProfile::kContactScan);
   scene_row_ = profileRow(options_.profile, "sensors: sample / scene: bodies to this step's poses");
   caster_.setProfile(options_.profile);
-  frame_wait_row_ = profileRow(options_.profile, "frames: waiting for the worker's last frame");
-  frames_row_ = profileRow(options_.profile, "frames: scene snapshot, hand-off to the worker");
+  sensors_ = std::make_unique<SensorHost>(*this, scene_, [this]() { updateScene(); }, options_.log,
+                                          options_.profile);
   int shapes = 0;
   for (const ModelDescription& m : world_->models) {
     Model entry;
@@ -57,7 +57,7 @@ Simulator::Simulator(WorldDescription world, SimulatorOptions options)
 }
 
 Simulator::~Simulator() {
-  frame_worker_.reset();  // finish the frame in flight while its sensors still exist
+  sensors_.reset();  // the frame in flight finishes while the scene and the physics exist
 }
 
 // --- models ---------------------------------------------------------------------------------------
@@ -119,13 +119,7 @@ void Simulator::removeModel(const std::string& name) {
   if (id == kNoModel) {
     throw std::runtime_error("model '" + name + "' cannot be deleted (the ground plane stays)");
   }
-  // The frame in flight may be one of its cameras'.
-  waitFrames();
-  sensors_.erase(std::remove_if(sensors_.begin(), sensors_.end(),
-                                [id](const std::unique_ptr<SimSensor>& s) {
-                                  return s->link().model == id;
-                                }),
-                 sensors_.end());
+  sensors_->removeModel(id);  // after the frame in flight, which may be one of its cameras'
   Model& m = models_[id];
   removeModelFromScene(name, &scene_);
   scene_step_ = ~0ull;
@@ -268,18 +262,6 @@ void Simulator::setUpWorldModelSensors(ModelId id) {
 void Simulator::setUpSensor(ModelId id, const SensorSpec& spec, const std::string& tf_prefix,
                             const std::function<void(SimSensor&)>& attach) {
   Model& m = models_[id];
-  const std::string owner = (m.robot ? "robot '" : "model '") + m.name + "'";
-  const std::string what = spec.type.empty() ? "plugin" : "sensor";
-  if (!spec.error.empty()) {
-    say(options_.log.error, owner + ": " + what + " '" + spec.name + "' left out: " + spec.error);
-    return;
-  }
-  const SensorKind* kind = findSensorKind(spec);
-  if (!kind) {
-    say(options_.log.warn, owner + ": sensor '" + spec.name + "' of type '" + spec.type +
-                               "' is not supported; left out");
-    return;
-  }
   SimSensorSetup setup;
   setup.spec = &spec;
   setup.model = id;
@@ -292,57 +274,13 @@ void Simulator::setUpSensor(ModelId id, const SensorSpec& spec, const std::strin
     setup.check_link = [this, id](const std::string& l) { (void)linkPose(LinkRef{id, l}); };
   }
   setup.seed = options_.seed;
-  setup.index = sensors_of_kind_[kind->id];
   setup.gravity = sim_.physics().options().gravity;
   if (m.robot) setup.urdf = m.robot->model.urdf.get();
   setup.warn = options_.log.warn;
-  setup.renderer = [this]() { return ensureRenderer(); };
-  setup.world = this;
-  // A bad sensor is reported and left out; the model and the other sensors run on.
-  try {
-    std::unique_ptr<SimSensor> sensor = kind->make(setup);
-    if (!sensor) return;
-    if (StepProfile* p = options_.profile) {
-      SimSensor::ProfileRows rows;
-      rows.update = p->row("sensor " + kind->id + ": update");
-      rows.sample = p->row("sensor " + kind->id + ": sample (cast, measure)");
-      rows.publish = p->row("sensor " + kind->id + ": publish");
-      rows.render = p->row("frame worker: " + kind->id + " render");
-      rows.frame_publish = p->row("frame worker: " + kind->id + " publish");
-      sensor->setProfileRows(rows);
-    }
-    if (attach) attach(*sensor);
-    sensors_.push_back(std::move(sensor));
-    ++sensors_of_kind_[kind->id];
-  } catch (const std::exception& e) {
-    say(options_.log.error, owner + ": " + what + " '" + spec.name + "'" +
-                                (spec.link.empty() ? "" : " on link '" + spec.link + "'") +
-                                " left out: " + e.what());
-    m.left_out[spec.name] = e.what();
-  }
-}
-
-SimSensor* Simulator::findSensor(ModelId id, const std::string& name) const {
-  for (const auto& s : sensors_) {
-    if (s->link().model == id && s->name() == name) return s.get();
-  }
-  return nullptr;
-}
-
-Renderer* Simulator::ensureRenderer() {
-  if (renderer_) return renderer_.get();
-  if (renderer_failed_) return nullptr;
-  try {
-    renderer_ = std::make_unique<Renderer>(options_.log.warn);
-    renderer_->setProfile(options_.profile);
-    say(options_.log.info, "cameras render offscreen with " + renderer_->glInfo());
-    return renderer_.get();
-  } catch (const std::exception& e) {
-    renderer_failed_ = true;
-    say(options_.log.error, std::string("no offscreen rendering (") + e.what() +
-                                "): the simulation runs on without cameras");
-    return nullptr;
-  }
+  const std::string owner = (m.robot ? "robot '" : "model '") + m.name + "'";
+  const std::string why = sensors_->add(std::move(setup), owner, attach);
+  // Left out by its set-up (its spec's own error and an unknown type are not listed, as before).
+  if (!why.empty() && spec.error.empty() && findSensorKind(spec)) m.left_out[spec.name] = why;
 }
 
 // --- time -----------------------------------------------------------------------------------------
@@ -360,43 +298,7 @@ StepWaits Simulator::advance() {
   return waits;
 }
 
-void Simulator::sense() {
-  const double t = sim_.time();
-  StepProfile* const profile = options_.profile;
-  for (const auto& s : sensors_) {
-    const SimSensor::ProfileRows& rows = s->profileRows();
-    SensorOutputs due;
-    {
-      StepProfile::Scope timed(profile, rows.update);
-      due = s->update(t, *this);
-    }
-    if (!due) continue;
-    SensorListener* listener = s->listener();
-    const SensorOutputs want = listener ? listener->wanted(*s, due) & due : due;
-    const SensorOutputs counted = s->counted();
-    if (due & counted) {
-      SensorStat& stat = s->stat();
-      if (want & counted) {
-        ++stat.count;
-        ++stat.renders;
-      } else {
-        ++stat.skipped;
-        s->skip();
-      }
-    }
-    if (!want) continue;
-    {
-      StepProfile::Scope timed(profile, rows.sample);
-      s->sample(want, *this);
-    }
-    const SensorOutputs now = want & ~s->rendered();
-    if (now && listener) {
-      StepProfile::Scope timed(profile, rows.publish);
-      listener->onOutputs(*s, now, t);
-    }
-  }
-  submitFrames();
-}
+void Simulator::sense() { sensors_->sense(sim_.time()); }
 
 void Simulator::step(int n) {
   StepProfile* const profile = options_.profile;
@@ -408,50 +310,7 @@ void Simulator::step(int n) {
   }
 }
 
-void Simulator::submitFrames() {
-  // What is due and wanted was decided at the step; the frames are rendered (and handed to the
-  // listeners) on the frame worker from a snapshot of this step's scene (frame_worker.h).
-  if (due_frames_.empty()) return;
-  StepProfile* const profile = options_.profile;
-  if (frame_worker_) {
-    // At most one frame in flight (frame_worker.h): the step waits here while the worker still
-    // renders the last one (the profile's row shows how long).
-    StepProfile::Scope timed(profile, frame_wait_row_);
-    frame_worker_->wait();
-  }
-  StepProfile::Scope timed(profile, frames_row_);
-  updateScene();
-  if (!frame_worker_) {
-    frame_worker_ = std::make_unique<FrameWorker<FrameJob>>([this](FrameJob& job) {
-      try {
-        StepProfile* const profile = options_.profile;
-        for (const FrameRequest& f : job.frames) {
-          const SimSensor::ProfileRows& rows = f.sensor->profileRows();
-          {
-            StepProfile::Scope timed(profile, rows.render);
-            f.sensor->render(render_scene_, f);
-          }
-          if (SensorListener* l = f.sensor->listener()) {
-            StepProfile::Scope timed(profile, rows.frame_publish);
-            l->onOutputs(*f.sensor, f.outputs, job.t);
-          }
-        }
-      } catch (const std::exception& e) {
-        say(options_.log.frame_error, std::string("camera frame not published: ") + e.what());
-      }
-    });
-  }
-  frame_worker_->submit([&](FrameJob& job) {
-    job.t = sim_.time();
-    job.frames.clear();
-    std::swap(job.frames, due_frames_);
-    snapshotScene(scene_, &render_scene_);
-  });
-}
-
-void Simulator::waitFrames() {
-  if (frame_worker_) frame_worker_->wait();
-}
+void Simulator::waitFrames() { sensors_->waitFrames(); }
 
 void Simulator::resetSimulation() {
   waitFrames();  // the frame in flight goes out before time jumps back
@@ -459,7 +318,7 @@ void Simulator::resetSimulation() {
   contacts_.reset();
   scene_step_ = ~0ull;  // the step count goes back to one the scene may have been drawn at
   const double t = sim_.time();
-  for (const auto& s : sensors_) s->restart(t);
+  sensors_->restart(t);
   restartLockstep(t);
 }
 

@@ -46,6 +46,7 @@
 #include "tianracer_sim/sim/world_physics.h"
 #include "tianracer_sim/sensors/sim_sensor.h"
 #include "tianracer_sim/simulator/entities.h"
+#include "tianracer_sim/simulator/sensor_host.h"
 #include "tianracer_sim/world/world.h"
 
 namespace tianracer_sim {
@@ -262,10 +263,11 @@ class Simulator : public SensorWorld {
   ControllerManager& controllerManager() { return sim_.controllerManager(); }
 
   // --- sensors --------------------------------------------------------------------------------
-  /// Every sensor, in set-up order (robots' sensors in the order their models list them).
-  const std::vector<std::unique_ptr<SimSensor>>& sensors() const { return sensors_; }
+  /// Every sensor, in set-up order (robots' sensors in the order their models list them); they
+  /// run in the SensorHost (simulator/sensor_host.h).
+  const std::vector<std::unique_ptr<SimSensor>>& sensors() const { return sensors_->sensors(); }
   /// The sensor called `name` on model `id` (model plugins by their plugin name); nullptr if none.
-  SimSensor* findSensor(ModelId id, const std::string& name) const;
+  SimSensor* findSensor(ModelId id, const std::string& name) const { return sensors_->find(id, name); }
   /// Waits for the frame in flight: rendered outputs are complete afterwards.
   void waitFrames();
   /// Contacts begun so far by robot `id` (a pair touching again after a gap counts again).
@@ -291,7 +293,7 @@ class Simulator : public SensorWorld {
   Eigen::Isometry3d linkPose(const LinkRef& link) const override;
   bool linkState(const LinkRef& link, LinkState* state) const override;
   void linkContacts(const LinkRef& link, std::vector<LinkContact>* out) override;
-  void requestFrame(const FrameRequest& request) override { due_frames_.push_back(request); }
+  void requestFrame(const FrameRequest& request) override { sensors_->requestFrame(request); }
   int jointIndex(ModelId model, const std::string& joint, std::string* parent_link,
                  std::string* child_link) const override;
   double jointPosition(ModelId model, int joint) const override;
@@ -318,11 +320,6 @@ class Simulator : public SensorWorld {
     WorldModelBodies bodies;        // world models
     LeftOut left_out;
   };
-  struct FrameJob {
-    double t = 0.0;
-    std::vector<FrameRequest> frames;
-  };
-
   const Model* model(ModelId id) const;
   void setUpSensors(ModelId id, const RobotSpawn& spawn);
   /// The sensors of world model `id`'s links, attached through options_.attach_world_sensor.
@@ -330,10 +327,8 @@ class Simulator : public SensorWorld {
   /// One sensor of robot or world model `id`; a bad one is reported and left out.
   void setUpSensor(ModelId id, const SensorSpec& spec, const std::string& tf_prefix,
                    const std::function<void(SimSensor&)>& attach);
-  Renderer* ensureRenderer();
   void restartLockstep(double t);
   void updateScene();
-  void submitFrames();
 
   SimulatorOptions options_;
   std::unique_ptr<WorldDescription> world_;
@@ -342,11 +337,9 @@ class Simulator : public SensorWorld {
   Scene scene_;  // what sensors see: the world's models and every robot's links
   std::uint64_t scene_step_ = ~0ull;  // step count the scene's poses belong to
   RayCaster caster_;
-  std::unique_ptr<Renderer> renderer_;
-  bool renderer_failed_ = false;
-  // After renderer_: camera sensors render through it and go first.
-  std::vector<std::unique_ptr<SimSensor>> sensors_;
-  std::map<std::string, int> sensors_of_kind_;  // SensorKind id -> sensors set up
+  // After scene_ and caster_, which its sensors read; made in the constructor (its profile rows
+  // after the Simulator's), reset first in ~Simulator.
+  std::unique_ptr<SensorHost> sensors_;
   ContactTracker contacts_;
   std::vector<RobotContact> contact_scratch_;  // linkContacts
   Schedule reply_schedule_, tick_schedule_;
@@ -356,12 +349,7 @@ class Simulator : public SensorWorld {
 
   bool track_contacts_ = true;
   // options_.profile's rows
-  int contacts_row_ = -1, frame_wait_row_ = -1, frames_row_ = -1, step_row_ = -1, scene_row_ = -1;
-
-  std::vector<FrameRequest> due_frames_;  // filled each step, handed to the worker
-  Scene render_scene_;                    // the worker's snapshot of scene_
-  // Started with the first frame; reset first in ~Simulator (it uses the sensors above).
-  std::unique_ptr<FrameWorker<FrameJob>> frame_worker_;
+  int contacts_row_ = -1, step_row_ = -1, scene_row_ = -1;
 };
 
 }  // namespace tianracer_sim
