@@ -228,9 +228,10 @@ void GazeboInterface::rebuildStateMessages() {
       add_link(name + "::" + b.link, body, b.link, Eigen::Isometry3d::Identity());
     }
   }
+  msgs_valid_ = true;
   model_states_.twist.assign(model_states_.name.size(), geometry_msgs::Twist());
   link_states_.twist.assign(link_states_.name.size(), geometry_msgs::Twist());
-  robots_in_msgs_ = robots.size();
+  msgs_models_version_ = simulator_.modelsVersion();
 }
 
 void GazeboInterface::afterStep() {
@@ -247,7 +248,7 @@ void GazeboInterface::afterStep() {
   const bool want_models = model_states_pub_.getNumSubscribers() > 0;
   const bool want_links = link_states_pub_.getNumSubscribers() > 0;
   if (!want_models && !want_links) return;
-  if (robots_in_msgs_ != simulator_.robotIds().size()) rebuildStateMessages();
+  if (!msgs_valid_ || msgs_models_version_ != simulator_.modelsVersion()) rebuildStateMessages();
   if (want_models) {
     for (std::size_t i = 0; i < model_slots_.size(); ++i) {
       const Slot& s = model_slots_[i];

@@ -77,6 +77,7 @@ ModelId Simulator::addRobot(RobotSpawn spawn) {
   entry.name = robot.name;
   entry.robot = &robot;
   models_.push_back(std::move(entry));
+  ++models_version_;
   try {
     models_[id].scene_bodies = addRobotToScene(robot.model, robot.name, &scene_);
     scene_step_ = ~0ull;
@@ -109,6 +110,7 @@ ModelId Simulator::addWorldModel(ModelDescription model) {
   scene_step_ = ~0ull;
   world_->models.push_back(std::move(model));
   models_.push_back(std::move(entry));
+  ++models_version_;
   const ModelId id = static_cast<ModelId>(models_.size() - 1);
   setUpWorldModelSensors(id);
   return id;
@@ -132,6 +134,7 @@ void Simulator::removeModel(const std::string& name) {
                                       [&](const ModelDescription& d) { return d.name == name; }));
   }
   m = Model();
+  ++models_version_;
 }
 
 ModelId Simulator::findModel(const std::string& name) const {

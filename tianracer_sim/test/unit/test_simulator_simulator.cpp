@@ -343,3 +343,28 @@ TEST(Simulator, RejectsAStepOutOfRange) {
 
 }  // namespace
 }  // namespace tianracer_sim
+
+namespace tianracer_sim {
+namespace {
+
+// What a cache of the model list (gazebo_states' message slots) compares: a model removed and
+// another added, the count unchanged, is still a change.
+TEST(Simulator, ModelsVersionChangesWithEveryAddAndRemove) {
+  Simulator sim(test::groundWithWall(), {});
+  const std::uint64_t v0 = sim.modelsVersion();
+  sim.addRobot(car(test::loadTianracer()));
+  const std::uint64_t v1 = sim.modelsVersion();
+  EXPECT_NE(v1, v0);
+  sim.removeModel("tianracer");
+  RobotSpawn other = car(test::loadTianracer());
+  other.name = "other";
+  sim.addRobot(std::move(other));
+  EXPECT_EQ(sim.robotIds().size(), 1u);
+  EXPECT_NE(sim.modelsVersion(), v1);
+  const std::uint64_t v2 = sim.modelsVersion();
+  sim.step(1);
+  EXPECT_EQ(sim.modelsVersion(), v2);  // stepping is no change
+}
+
+}  // namespace
+}  // namespace tianracer_sim

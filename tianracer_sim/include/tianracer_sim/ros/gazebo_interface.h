@@ -98,7 +98,7 @@ class GazeboInterface {
   /// Publishes model_states and link_states when due (and subscribed).
   void afterStep();
   /// Models were added or removed: the state messages are rebuilt before the next publish.
-  void onModelsChanged() { robots_in_msgs_ = ~std::size_t(0); }
+  void onModelsChanged() { msgs_valid_ = false; }
 
   // The handlers, public so that tests and the topics share them. Each answers success false
   // with a message naming the entity and the value on bad input, and changes nothing then.
@@ -209,7 +209,10 @@ class GazeboInterface {
   ros::Subscriber set_model_state_sub_, set_link_state_sub_;
   std::vector<ros::ServiceServer> services_;
   double period_ = 0.0, next_ = 0.0;  // publishing schedule (sim time)
-  std::size_t robots_in_msgs_ = ~std::size_t(0);  // robot count the messages were built for
+  // The state messages' slots were built for this Simulator::modelsVersion() (a model added or
+  // removed, even one for another of the same count, rebuilds them).
+  std::uint64_t msgs_models_version_ = 0;
+  bool msgs_valid_ = false;
   gazebo_msgs::ModelStates model_states_;
   gazebo_msgs::LinkStates link_states_;
   /// Where each entry of the messages comes from: a robot's or free body's physics (its base,

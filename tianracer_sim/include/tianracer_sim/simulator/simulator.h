@@ -178,6 +178,8 @@ class Simulator : public SensorWorld {
   /// The robot of a model id; nullptr for world models and removed ones.
   SimRobot* robot(ModelId id);
   const SimRobot* robot(ModelId id) const;
+  /// Changes whenever a model is added or removed (what a cache of the model list compares).
+  std::uint64_t modelsVersion() const { return models_version_; }
   /// Ids of the robots, in the order they were added.
   std::vector<ModelId> robotIds() const;
   /// Ids of every model (world models and robots), in the order they were added.
@@ -334,6 +336,7 @@ class Simulator : public SensorWorld {
   std::unique_ptr<WorldDescription> world_;
   Simulation sim_;
   std::vector<Model> models_;
+  std::uint64_t models_version_ = 0;  // modelsVersion()
   Scene scene_;  // what sensors see: the world's models and every robot's links
   std::uint64_t scene_step_ = ~0ull;  // step count the scene's poses belong to
   RayCaster caster_;
