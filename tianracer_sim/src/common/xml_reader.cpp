@@ -91,23 +91,58 @@ std::string attributeText(const XMLElement* e, const char* name) {
 XmlReader::XmlReader(std::string source, WarningSink warn, std::string context)
     : source_(std::move(source)), context_(std::move(context)), warn_(std::move(warn)) {}
 
-XmlReader XmlReader::copyOf(std::string source, int line, std::string context, WarningSink warn) {
+XmlReader XmlReader::copyOf(std::string source, int line, std::string context, WarningSink warn,
+                            std::vector<int> element_lines) {
   XmlReader r(std::move(source), std::move(warn), std::move(context));
   r.copy_line_ = std::max(line, 0);
+  r.copy_element_lines_ = std::move(element_lines);
   return r;
 }
 
-XMLElement* XmlReader::parseCopy(const std::string& xml, tinyxml2::XMLDocument* doc) const {
+namespace {
+
+/// `e` and its descendants in document order (pre-order), as printing and parsing keep them.
+template <class Element, class Visit>
+void eachElement(Element* e, Visit&& visit) {
+  visit(e);
+  for (Element* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) eachElement(c, visit);
+}
+
+}  // namespace
+
+XMLElement* XmlReader::parseCopy(const std::string& xml, tinyxml2::XMLDocument* doc) {
   if (trimText(xml).empty()) fail(nullptr, "no XML to read");
   if (doc->Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS || !doc->RootElement()) {
     fail(nullptr, "its XML does not parse (line " + std::to_string(doc->ErrorLineNum()) +
                       " of the copy): " + (doc->ErrorStr() ? doc->ErrorStr() : "no element"));
   }
+  std::vector<const XMLElement*> elements;
+  eachElement(static_cast<const XMLElement*>(doc->RootElement()),
+              [&](const XMLElement* e) { elements.push_back(e); });
+  copy_lines_.clear();
+  // Lines that do not match the copy (edited since it was printed) are not used.
+  if (elements.size() == copy_element_lines_.size()) {
+    for (std::size_t i = 0; i < elements.size(); ++i) copy_lines_[elements[i]] = copy_element_lines_[i];
+  }
   return doc->RootElement();
 }
 
+XmlReader::Copy XmlReader::printCopy(const XMLElement* e) const {
+  Copy copy;
+  tinyxml2::XMLPrinter printer;
+  e->Accept(&printer);
+  copy.xml = printer.CStr();
+  eachElement(e, [&](const XMLElement* x) { copy.lines.push_back(where(x).line); });
+  return copy;
+}
+
 SourceLocation XmlReader::where(const XMLElement* e) const {
-  return {source_, copy_line_ >= 0 ? copy_line_ : lineOf(e), e ? e->Name() : ""};
+  int line = lineOf(e);
+  if (copy_line_ >= 0) {
+    const auto it = e ? copy_lines_.find(e) : copy_lines_.end();
+    line = it != copy_lines_.end() ? it->second : copy_line_;
+  }
+  return {source_, line, e ? e->Name() : ""};
 }
 
 std::string XmlReader::at(const XMLElement* e) const {

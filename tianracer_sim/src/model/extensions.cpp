@@ -157,9 +157,9 @@ SensorSpec parseSensor(const XMLElement* e, const std::string& link, const std::
     // Everything else (ray, camera, noise, visualize, ...) belongs to the sensor loaders, which
     // read it from `xml` and report what they do not support.
   }
-  tinyxml2::XMLPrinter printer;
-  e->Accept(&printer);
-  s.xml = printer.CStr();
+  XmlReader::Copy copy = XmlReader(source, WarningSink()).printCopy(e);
+  s.xml = std::move(copy.xml);
+  s.xml_lines = std::move(copy.lines);
   return s;
 }
 

@@ -225,7 +225,7 @@ TEST_F(XmlReaderTest, AnEmptySinkDropsWarningsAndACopyIsPlacedWhereItsElementSta
 }
 
 TEST_F(XmlReaderTest, AKeptCopyIsParsedInOnePlaceWithItsErrorsAtTheElementsLine) {
-  const XmlReader r = XmlReader::copyOf("car.urdf", 40, "sensor 'lidar': ", {});
+  XmlReader r = XmlReader::copyOf("car.urdf", 40, "sensor 'lidar': ", {});
   tinyxml2::XMLDocument doc;
   const tinyxml2::XMLElement* root = r.parseCopy("<sensor name='lidar'><ray/></sensor>", &doc);
   ASSERT_NE(root, nullptr);
@@ -236,6 +236,25 @@ TEST_F(XmlReaderTest, AKeptCopyIsParsedInOnePlaceWithItsErrorsAtTheElementsLine)
   tinyxml2::XMLDocument broken;
   EXPECT_THAT(error([&] { r.parseCopy("<sensor>\n<ray></sensor>", &broken); }),
               HasSubstr("car.urdf:40: sensor 'lidar': its XML does not parse (line 2 of the copy): "));
+}
+
+TEST_F(XmlReaderTest, APrintedCopyKeepsEachElementsLine) {
+  tinyxml2::XMLDocument file;
+  ASSERT_EQ(file.Parse("<robot>\n<sensor name='lidar'>\n<ray>\n<samples>many</samples>\n</ray>\n"
+                       "</sensor>\n</robot>"),
+            tinyxml2::XML_SUCCESS);
+  const XmlReader in_file("car.urdf", {});
+  const XmlReader::Copy copy = in_file.printCopy(file.RootElement()->FirstChildElement("sensor"));
+  EXPECT_EQ(copy.lines, (std::vector<int>{2, 3, 4}));
+  XmlReader r = XmlReader::copyOf("car.urdf", 2, "sensor 'lidar': ", {}, copy.lines);
+  tinyxml2::XMLDocument doc;
+  const tinyxml2::XMLElement* samples =
+      r.parseCopy(copy.xml, &doc)->FirstChildElement("ray")->FirstChildElement("samples");
+  EXPECT_EQ(error([&] { r.integer(samples, ""); }),
+            "car.urdf:4: sensor 'lidar': <samples> 'many' is not an integer");
+  // A copy of the copy (a multicamera's cameras) keeps the file's lines.
+  const XmlReader::Copy again = r.printCopy(doc.RootElement()->FirstChildElement("ray"));
+  EXPECT_EQ(again.lines, (std::vector<int>{3, 4}));
 }
 
 TEST_F(XmlReaderTest, FailuresRaiseTheOneErrorTypeWithFileLineAndElement) {

@@ -265,3 +265,43 @@ int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
 }
+
+namespace tianracer_sim {
+namespace {
+
+// A <sensor> is kept as a printed copy; its parser still places an error at the bad element's
+// own line in the model file (SensorSpec::xml_lines), not at the <sensor> line.
+TEST(RaySensorConfig, ErrorsNameTheLineOfTheBadElement) {
+  const std::string urdf =
+      "<robot name='r'>\n"                                           // 1
+      "  <link name='lidar'/>\n"                                     // 2
+      "  <gazebo reference='lidar'>\n"                               // 3
+      "    <sensor type='ray' name='laser'>\n"                       // 4
+      "      <ray>\n"                                                // 5
+      "        <scan><horizontal>\n"                                 // 6
+      "          <samples>many</samples>\n"                          // 7
+      "        </horizontal></scan>\n"                               // 8
+      "        <range><min>0.1</min><max>5</max></range>\n"          // 9
+      "      </ray>\n"                                               // 10
+      "    </sensor>\n"                                              // 11
+      "  </gazebo>\n"                                                // 12
+      "</robot>\n";
+  const RobotExtensions ext = parseExtensions(urdf, "robot.urdf", {});
+  const SensorSpec& s = ext.links.at("lidar").sensors.at(0);
+  EXPECT_EQ(s.line, 4);
+  const std::string error =
+      test::errorText<SensorError>([&] { parseRaySensorConfig(s); }, "(no error)");
+  EXPECT_NE(error.find("robot.urdf:7: sensor 'laser': <samples> 'many' is not an integer"),
+            std::string::npos)
+      << error;
+  // A copy edited since it was printed (its elements no longer match the lines) falls back to
+  // the <sensor>'s line rather than a wrong one.
+  SensorSpec edited = s;
+  edited.xml.replace(edited.xml.find("<ray>"), 5, "<ray><extra/>");
+  const std::string fallback =
+      test::errorText<SensorError>([&] { parseRaySensorConfig(edited); }, "(no error)");
+  EXPECT_NE(fallback.find("robot.urdf:4: sensor 'laser': <samples>"), std::string::npos) << fallback;
+}
+
+}  // namespace
+}  // namespace tianracer_sim

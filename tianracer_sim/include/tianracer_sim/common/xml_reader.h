@@ -5,6 +5,7 @@
 #define TIANRACER_SIM_COMMON_XML_READER_H
 
 #include <optional>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -50,13 +51,24 @@ class XmlReader {
   /// at its own line, and every message goes on with `context` (e.g. "model 'm' visual 'v': ").
   XmlReader(std::string source, WarningSink warn, std::string context = "");
   /// A reader of a printed copy of one element of `source` that stands at `line` there (the
-  /// <sensor> blocks a SensorSpec keeps): the copy's line numbers are not the file's, so every
-  /// place is that line, and every message goes on with `context` ("sensor 'lidar': ").
-  static XmlReader copyOf(std::string source, int line, std::string context, WarningSink warn);
+  /// <sensor> blocks a SensorSpec keeps), every message going on with `context` ("sensor
+  /// 'lidar': "). The copy's line numbers are not the file's: with `element_lines` (printCopy's,
+  /// one per element of the copy in document order) each element is placed at its own line in
+  /// `source`; without them, or when they do not match the copy, every place is `line`.
+  static XmlReader copyOf(std::string source, int line, std::string context, WarningSink warn,
+                          std::vector<int> element_lines = {});
   /// Parses such a printed copy (`xml`, e.g. SensorSpec::xml) into `doc` and returns its root
   /// element; fails "no XML to read" when it is blank, "its XML does not parse (line <n> of the
   /// copy): <tinyxml2's error>" when it does not parse. The one place a kept copy is parsed.
-  tinyxml2::XMLElement* parseCopy(const std::string& xml, tinyxml2::XMLDocument* doc) const;
+  tinyxml2::XMLElement* parseCopy(const std::string& xml, tinyxml2::XMLDocument* doc);
+
+  /// An element printed back for a later copyOf() reader: the text, and the line of each of its
+  /// elements (document order) as this reader places them.
+  struct Copy {
+    std::string xml;
+    std::vector<int> lines;
+  };
+  Copy printCopy(const tinyxml2::XMLElement* e) const;
 
   const std::string& source() const { return source_; }
   /// The file, line and name of `e` (line 0 and no name for nullptr).
@@ -107,6 +119,8 @@ class XmlReader {
  private:
   std::string source_;
   int copy_line_ = -1;  // >= 0: a printed copy standing at this line of source_
+  std::vector<int> copy_element_lines_;  // copyOf's element_lines
+  std::map<const tinyxml2::XMLElement*, int> copy_lines_;  // parseCopy: element -> line in source_
   std::string context_;
   WarnOnce warn_;
 };

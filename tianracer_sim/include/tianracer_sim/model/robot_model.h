@@ -48,6 +48,9 @@ struct SensorSpec {
   double update_rate = 0.0;
   bool always_on = true;
   std::string xml;  // the <sensor> element, printed back
+  /// The line in `source` of each element of `xml`, in document order (XmlReader::printCopy),
+  /// so that a sensor's parser places an error at the bad element, not at the <sensor>.
+  std::vector<int> xml_lines;
   std::vector<PluginSpec> plugins;
   std::string source;  // the model file (or parameter) it was read from; with `line`, the place
   int line = 0;        // of every message about the sensor

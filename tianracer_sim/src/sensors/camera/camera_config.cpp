@@ -97,7 +97,7 @@ class Parser {
   // sensor's line of the model file, then names the sensor.
   Parser(const SensorSpec& sensor, const WarningSink& warn)
       : sensor_(sensor), warn_(warn),
-        xml_(XmlReader::copyOf(sensor.source, sensor.line, context(sensor) + ": ", warn)) {}
+        xml_(XmlReader::copyOf(sensor.source, sensor.line, context(sensor) + ": ", warn, sensor.xml_lines)) {}
 
   /// What every message names: "camera sensor 'c' on link 'l'".
   static std::string context(const SensorSpec& sensor) {

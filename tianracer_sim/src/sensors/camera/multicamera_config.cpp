@@ -47,7 +47,7 @@ class MultiCameraParser {
                     const WarningSink& warn)
       : sensor_(sensor), model_name_(model_name), warn_(warn),
         xml_(XmlReader::copyOf(sensor.source, sensor.line, context(sensor, model_name) + ": ",
-                               warn)) {}
+                               warn, sensor.xml_lines)) {}
 
   // Read from the <sensor>'s printed copy (SensorSpec::xml): every message is placed at the
   // sensor's line of the model file, then names the robot and the sensor.
@@ -91,11 +91,11 @@ class MultiCameraParser {
         cam->DeleteChild(pose);
       }
       poses.push_back(X_SC);
-      tinyxml2::XMLPrinter printer;
-      cam->Accept(&printer);
+      XmlReader::Copy copy = xml_.printCopy(cam);
       SensorSpec spec = sensor_;
       spec.name = sensor_.name + "/" + name;
-      spec.xml = printer.CStr();
+      spec.xml = std::move(copy.xml);
+      spec.xml_lines = std::move(copy.lines);
       spec.plugins.clear();
       if (plugin) spec.plugins.push_back(cameraPlugin(*plugin));
       specs.push_back(spec);

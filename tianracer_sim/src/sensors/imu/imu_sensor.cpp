@@ -140,7 +140,7 @@ ImuConfig parseImuSensorConfig(const SensorSpec& spec, const std::string& model_
                                const WarningSink& warn) {
   const std::string context =
       "IMU sensor '" + spec.name + "' on link '" + spec.link + "' of model '" + model_name + "'";
-  XmlReader r = XmlReader::copyOf(spec.source, spec.line, context + ": ", warn);
+  XmlReader r = XmlReader::copyOf(spec.source, spec.line, context + ": ", warn, spec.xml_lines);
   if (spec.type != "imu") r.fail(nullptr, "type '" + spec.type + "' is not an IMU");
   ImuConfig c;
   c.name = spec.name;

@@ -53,7 +53,7 @@ class ConfigReader {
  public:
   ConfigReader(const SensorSpec& spec, const WarningSink& warn)
       : spec_(spec), warn_(warn), what_("sensor '" + spec.name + "'"),
-        xml_(XmlReader::copyOf(spec.source, spec.line, what_ + ": ", warn)) {}
+        xml_(XmlReader::copyOf(spec.source, spec.line, what_ + ": ", warn, spec.xml_lines)) {}
 
   RaySensorConfig read();
 
