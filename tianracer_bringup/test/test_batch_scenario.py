@@ -198,8 +198,19 @@ class TestExpansion(unittest.TestCase):
               driver.reply_period: [0.025, 0]
             """)
         got = [scenario.lockstep(r.config) for r in sc.runs]
-        self.assertEqual(got[0], {'replies': '/cmd_vel', 'reply_period': 0.025, 'ticks': 'commands'})
+        self.assertEqual(got[0], {'replies': '/cmd_vel /cmd_vel_node/received', 'reply_period': 0.025,
+                                  'ticks': 'commands'})
         self.assertEqual(got[1:], [{}, {}, {}])
+        # A driver that answers elsewhere than the cmd_vel node: its topic alone.
+        sc, _ = load_text("""\
+            base:
+              world: empty
+              duration: 5
+              real_time_factor: 0
+              driver: {command: my_driver, ready_topic: /tianracer/left_rear_wheel_velocity_controller/command}
+            """)
+        self.assertEqual(scenario.lockstep(sc.runs[0].config)['replies'],
+                         '/tianracer/left_rear_wheel_velocity_controller/command')
         sc, _ = load_text("base: {world: empty, duration: 3}\n")
         self.assertEqual(scenario.lockstep(sc.runs[0].config), {})
 

@@ -65,6 +65,35 @@ class Spaces(unittest.TestCase):
         env.close()
 
 
+class DepthImage(unittest.TestCase):
+    def test_no_return_is_nan_in_the_simulation_and_inf_in_the_env(self):
+        """gazebo_ros_openni_kinect publishes NaN outside (pointCloudCutoff, pointCloudCutoffMax),
+        for no return as for too near: Simulation's depth holds NaN there (never +-inf), as the ROS
+        image does; the env's observation holds +inf in exactly those pixels (a Box cannot hold
+        NaN), the same bits elsewhere (docs/learning.md)."""
+        env = TianracerEnv(observe=('depth',), world='walled_room', reward=lambda *a: 0.0)
+        try:
+            env.reset(seed=0)
+            obs, *_ = env.step(np.zeros(2))
+            raw = env.sim.observation()['depth']
+            self.assertEqual(raw.dtype, np.float32)
+            self.assertGreater(np.isnan(raw).sum(), 0)  # the sky: no return
+            self.assertGreater(np.isfinite(raw).sum(), 0)  # the floor and the walls
+            self.assertFalse(np.isinf(raw).any())
+            finite = raw[np.isfinite(raw)]
+            self.assertGreater(finite.min(), 0.4)
+            self.assertLess(finite.max(), 5.0)
+            depth = obs['depth']
+            self.assertFalse(np.isnan(depth).any())
+            self.assertTrue(np.array_equal(np.isposinf(depth), np.isnan(raw)))
+            self.assertFalse(np.isneginf(depth).any())
+            self.assertTrue(np.array_equal(depth[np.isfinite(raw)].view(np.uint32),
+                                           finite.view(np.uint32)))
+            self.assertTrue(env.observation_space['depth'].contains(depth))
+        finally:
+            env.close()
+
+
 class Determinism(unittest.TestCase):
     def test_reset_with_a_seed_repeats_and_another_seed_differs(self):
         env = gym_model_env()

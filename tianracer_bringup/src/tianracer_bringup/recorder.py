@@ -84,12 +84,17 @@ def main(argv):
         m.add_user_metric(spec['name'], spec.get('stat') or 'mean')
 
         def on_user(raw, spec=spec):
-            # AnyMsg: the type comes with the connection, so the topic need not exist yet.
-            cls = classes.get(spec['topic'])
-            if cls is None:
-                cls = roslib.message.get_message_class(spec.get('type') or raw._connection_header['type'])
-                classes[spec['topic']] = cls
-            msg = cls().deserialize(raw._buff)
+            # AnyMsg: the type comes with the connection, so the topic need not exist yet. On a
+            # topic the recorder reads itself (ground truth, odometry) rospy shares that typed
+            # subscription: the message comes deserialized.
+            if isinstance(raw, rospy.AnyMsg):
+                cls = classes.get(spec['topic'])
+                if cls is None:
+                    cls = roslib.message.get_message_class(spec.get('type') or raw._connection_header['type'])
+                    classes[spec['topic']] = cls
+                msg = cls().deserialize(raw._buff)
+            else:
+                msg = raw
             try:
                 value = float(get_field(msg, spec['field']))
             except (AttributeError, IndexError, TypeError, ValueError) as e:

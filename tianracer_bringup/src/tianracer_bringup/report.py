@@ -20,7 +20,7 @@ BASE_COLUMNS = ['id', 'label', 'status', 'completed', 'reason', 'sim_time', 'wal
                 'run_wall_time', 'startup_wall_time', 'stop_wall_time', 'rtf', 'distance', 'mean_speed', 'max_speed',
                 'laps', 'lap_times', 'best_lap', 'goal_time', 'collisions', 'first_collision_time',
                 'first_collision_with', 'min_clearance', 'odom_drift', 'odom_drift_max',
-                'odom_drift_pct', 'leftover_processes', 'host']
+                'odom_drift_pct', 'leftover_processes', 'host', 'attempts']
 
 
 def flatten(run, result):
@@ -31,7 +31,8 @@ def flatten(run, result):
            'run_wall_time': result.get('run_wall_time'),
            'startup_wall_time': result.get('startup_wall_time'),
            'stop_wall_time': result.get('stop_wall_time'),
-           'leftover_processes': result.get('leftover_processes'), 'host': result.get('host')}
+           'leftover_processes': result.get('leftover_processes'), 'host': result.get('host'),
+           'attempts': result.get('attempt', 1)}
     row['completed'] = bool(result['status'] == 'ok' and m.get('success'))
     for k in BASE_COLUMNS:
         if k in m and k not in row:
@@ -147,6 +148,20 @@ def write_report(path, scenario, runs, results, rows, pictures, wall, cpus_note)
             for name, tail in (res.get('log_tails') or {}).items():
                 if tail.strip():
                     out += ['%s, last lines:' % name, '', '```', tail.rstrip(), '```', '']
+    lost = [(run, res) for run, res in zip(runs, results) if res.get('lost_attempts')]
+    if lost:
+        out += ['## Lost and retried runs', '',
+                'A Ray task lost with its worker or node is submitted again; its lost attempts '
+                'gave no result (each run is counted once, by its last attempt).', '',
+                '| run | lost attempt | after s | error | outcome |', '|---|---|---|---|---|']
+        for run, res in lost:
+            for a in res['lost_attempts']:
+                retried = res.get('attempt', 1) > a['attempt']
+                out.append('| %s | %d | %.1f | %s | %s |' % (
+                    res['id'], a['attempt'], a['after_s'], a['error'].replace('|', '/'),
+                    ('retried: attempt %d %s' % (res['attempt'], 'completed' if flatten(run, res)['completed']
+                                                 else res['status'])) if retried else 'not retried'))
+        out.append('')
     leftover = sum(r.get('leftover_processes') or 0 for r in rows)
     out += ['Processes left after the runs ended (killed by the runner): %d.' % leftover, '']
     with open(path, 'w') as f:

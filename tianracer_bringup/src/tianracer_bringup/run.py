@@ -7,6 +7,12 @@ clients each in a session of its own, SIGINT then SIGKILL), one log per process.
 every node in a new session, so process groups do not reach them all: every process of a run
 carries the environment variable TIANRACER_BATCH_RUN=<token>, and after stopping, the process
 table is searched for that token; survivors are killed and counted.
+
+The simulator node itself is watched (roslaunch outlives a node that crashed): its death ends the
+run as failed, with roslaunch's exit code line. A guard process (`python3 -m tianracer_bringup.run
+--guard TOKEN`, in a session of its own) waits on a pipe from the run: if the run's process dies
+without saying it is done (a Ray worker killed, its node lost), the guard kills every process
+carrying the token, so that a lost run leaves nothing behind on a node that survives it.
 """
 import json
 import os
@@ -15,13 +21,15 @@ import resource
 import shlex
 import signal
 import socket
+import subprocess
 import sys
 import time
 import uuid
 import xmlrpc.client
 from xml.sax.saxutils import quoteattr
 
-from tianracer_bringup.ros_session import RosSession, graph_connected, stop_master, stop_process
+from tianracer_bringup.ros_session import (RosSession, _alive, graph_connected, stop_master,
+                                           stop_process)
 from tianracer_bringup.scenario import lockstep, run_timeout
 
 TOKEN_VAR = 'TIANRACER_BATCH_RUN'
@@ -120,6 +128,7 @@ class _Run(RosSession):
         self.logs = os.path.join(run_dir, 'logs')
         os.makedirs(self.logs, exist_ok=True)
         self.token = uuid.uuid4().hex
+        self.sim_node_pid = None
         RosSession.__init__(self, os.path.join(run_dir, 'run.launch'), self.log_file('sim'),
                             log_dir=self.logs,
                             env={'ROS_HOME': os.path.join(run_dir, 'ros_home'),
@@ -142,6 +151,9 @@ class _Run(RosSession):
             raise RunFailed('master: cannot start %r: %s' % ('rosmaster', e.strerror))
 
     def check(self, names):
+        if self.sim_node_pid and 'sim' in names and not _alive(self.sim_node_pid):
+            raise RunFailed('the simulator node (pid %d) died%s' % (
+                self.sim_node_pid, self.sim_exit_note()))
         for name in names:
             p = self.master_proc if name == 'master' else self.procs.get(name)
             if p is not None and p.poll() is not None and (p.returncode != 0 or name != 'driver'):
@@ -160,6 +172,27 @@ class _Run(RosSession):
             if time.time() > deadline:
                 raise TimeoutError(what)
             time.sleep(0.05)
+
+    def sim_exit_note(self):
+        """roslaunch's line on the simulator node's exit (`process has died [pid N, exit code
+        -11, ...]`), as ': exit code -11 (SIGSEGV)'; it may come a moment after the death."""
+        pattern = re.compile(r'process has died \[pid %d, exit code (-?\d+)' % self.sim_node_pid)
+        for _ in range(40):
+            try:
+                with open(self.log_file('sim'), errors='replace') as f:
+                    m = pattern.search(f.read())
+            except OSError:
+                m = None
+            if m:
+                code = int(m.group(1))
+                if code < 0:
+                    try:
+                        return ': exit code %d (%s)' % (code, signal.Signals(-code).name)
+                    except ValueError:
+                        pass
+                return ': exit code %d' % code
+            time.sleep(0.05)
+        return ''
 
     def has_service(self, name):
         return self.master().lookupService(CALLER, name)[0] == 1
@@ -203,12 +236,50 @@ def _default_signals():
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
+def start_guard(token):
+    """The guard of a run's processes (module doc); its stdin is the pipe from this process. The
+    process started forks the guard and exits: the guard is not this process's child, as a dying
+    Ray worker kills its children (RAY_kill_child_processes_on_worker_exit)."""
+    env = {k: v for k, v in os.environ.items() if k != TOKEN_VAR}
+    p = subprocess.Popen([sys.executable, '-m', 'tianracer_bringup.run', '--guard', token],
+                         stdin=subprocess.PIPE, env=env, start_new_session=True,
+                         preexec_fn=_default_signals)
+    p.wait()
+    return p.stdin
+
+
+def end_guard(pipe):
+    try:
+        pipe.write(b'done\n')
+        pipe.close()
+    except OSError:
+        pass
+
+
+def guard_main(token):
+    if os.fork() > 0:
+        os._exit(0)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # a Ctrl-C in the terminal is the run's to handle
+    said = sys.stdin.buffer.read()  # until EOF: the run is done, or its process died
+    if said.strip() == b'done':
+        return 0
+    for _ in range(3):  # nodes may be starting as their parents die
+        for pid in processes_with_token(token):
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+        time.sleep(0.5)
+    return 0
+
+
 def run_one(run_id, cfg, run_dir):
     """Runs one scenario run; never raises for a failed run. Returns a dict: id, status ('ok' or
     'failed'), reason, metrics (from the recorder), wall times, leftover processes, log tails."""
     wall0 = time.time()
     cpu0 = children_cpu_seconds()  # a Ray worker runs one task at a time: the delta is this run's
     r = _Run(cfg, run_dir)
+    guard = start_guard(r.token)
     timeout = run_timeout(cfg)
     deadline = wall0 + timeout
     result = {'id': run_id, 'host': socket.gethostname(), 'run_dir': run_dir, 'status': 'failed',
@@ -232,6 +303,7 @@ def run_one(run_id, cfg, run_dir):
         r.launch('sim')
         r.wait('the simulator (/gazebo/unpause_physics)',
                lambda: r.has_service('/gazebo/unpause_physics'), deadline, ['master', 'sim'])
+        r.sim_node_pid = r.node_pid('/tianracer_sim')
         stage = 'starting the recorder'
         r.spawn('recorder', [sys.executable, '-m', 'tianracer_bringup.recorder',
                              os.path.join(run_dir, 'run.json'), metrics_json, ready, go])
@@ -272,6 +344,7 @@ def run_one(run_id, cfg, run_dir):
     finally:
         t_stop = time.time()
         leftovers = r.stop()
+        end_guard(guard)
         result['stop_wall_time'] = time.time() - t_stop
     # Every process of the run has been waited for by now (stop()), its nodes by roslaunch.
     result['cpu_seconds'] = children_cpu_seconds() - cpu0
@@ -287,3 +360,9 @@ def run_one(run_id, cfg, run_dir):
         for path in sorted(glob.glob(os.path.join(r.logs, '**', 'tianracer_sim-*.log'), recursive=True)):
             result['log_tails']['tianracer_sim node'] = _tail(path)
     return result
+
+
+if __name__ == '__main__':
+    if len(sys.argv) == 3 and sys.argv[1] == '--guard':
+        sys.exit(guard_main(sys.argv[2]))
+    sys.exit('usage: python3 -m tianracer_bringup.run --guard TOKEN')

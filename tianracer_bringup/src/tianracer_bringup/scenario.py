@@ -455,11 +455,23 @@ def _finish(cfg, c, base_node, combo_nodes, base_dir, check_files):
 def lockstep(cfg):
     """The simulator's lockstep parameters for a run ({} = none): at real_time_factor 0 the
     simulator waits each driver.reply_period for the driver's answer on its ready_topic, and for
-    the cmd_vel node's controller commands at each of its ticks."""
+    the cmd_vel node's controller commands at each of its ticks. When the driver answers on one of
+    the cmd_vel node's inputs, the node's echo of each command it took (/cmd_vel_node/received) is
+    a reply too: the node then has the answer before the step's /clock reaches it (its
+    connections to the driver and to the simulator are not ordered)."""
     d = cfg['driver']
     if cfg['real_time_factor'] != 0 or not d or not d['ready_topic'] or not d['reply_period']:
         return {}
-    return {'replies': d['ready_topic'], 'reply_period': d['reply_period'], 'ticks': 'commands'}
+    replies = d['ready_topic']
+    if replies in CMD_VEL_NODE_INPUTS:
+        replies += ' ' + CMD_VEL_NODE_ECHO
+    return {'replies': replies, 'reply_period': d['reply_period'], 'ticks': 'commands'}
+
+
+# tianracer.launch's cmd_vel node (tianracer_control/launch/control.launch): its inputs, and the
+# topic on which it echoes each command it took.
+CMD_VEL_NODE_INPUTS = ('/cmd_vel', '/ackermann_cmd')
+CMD_VEL_NODE_ECHO = '/cmd_vel_node/received'
 
 
 def run_timeout(cfg):

@@ -2,6 +2,11 @@
 // AckermannDriveStamped or AckermannDrive) -> the steering hinge position controllers and rear
 // wheel velocity controllers (std_msgs/Float64), through exact Ackermann geometry.
 // The maths is in CmdVelProcessor / ackermann.h; this file wires parameters, topics and time.
+// Every command message taken (applied or rejected) is echoed on ~received (std_msgs/Time: the
+// sim time it was taken at): the simulator's lockstep waits for that echo, as a reply topic,
+// before it publishes the step's /clock, so the node takes a driver's answer before the tick it
+// answers, at a defined sim time, however its connections to the driver and to the simulator
+// interleave (docs/simulator.md, lockstep).
 #include <cmath>
 #include <memory>
 #include <string>
@@ -11,6 +16,7 @@
 #include <geometry_msgs/Twist.h>
 #include <ros/ros.h>
 #include <std_msgs/Float64.h>
+#include <std_msgs/Time.h>
 #include <topic_tools/shape_shifter.h>
 
 #include "tianracer_control/cmd_vel.h"
@@ -110,6 +116,7 @@ class CmdVelNode {
                                   << right_steer_pub_.getTopic() << ", "
                                   << left_wheel_pub_.getTopic() << ", "
                                   << right_wheel_pub_.getTopic());
+    received_pub_ = pnh.advertise<std_msgs::Time>("received", 10);
     sub_ = nh.subscribe(cmd_vel_topic, 10, &CmdVelNode::onTwist, this);
     // Either Ackermann type on one topic, whichever its publishers use (F1TENTH stacks send
     // the stamped one, simpler drivers the bare AckermannDrive).
@@ -128,11 +135,27 @@ class CmdVelNode {
 
  private:
   void onTwist(const geometry_msgs::Twist::ConstPtr& msg) {
+    takeTwist(*msg);
+    echo();
+  }
+
+  void onAckermann(const topic_tools::ShapeShifter::ConstPtr& msg) {
+    takeAckermann(msg);
+    echo();
+  }
+
+  void echo() {
+    std_msgs::Time m;
+    m.data = ros::Time::now();
+    received_pub_.publish(m);
+  }
+
+  void takeTwist(const geometry_msgs::Twist& msg) {
     double v = 0.0, w = 0.0;
     const double t = ros::Time::now().toSec();
-    if (!fromTwistMsg(*msg, &v, &w)) {
+    if (!fromTwistMsg(msg, &v, &w)) {
       ROS_WARN_THROTTLE(1.0, "ignoring %s with a non-finite value (linear.x %g, angular.z %g)",
-                        sub_.getTopic().c_str(), msg->linear.x, msg->angular.z);
+                        sub_.getTopic().c_str(), msg.linear.x, msg.angular.z);
       return;
     }
     if (processor_->setTwist(v, w, t) == CmdVelProcessor::Input::kSpeedClamped) {
@@ -141,7 +164,7 @@ class CmdVelNode {
     reportTwoSources(t);
   }
 
-  void onAckermann(const topic_tools::ShapeShifter::ConstPtr& msg) {
+  void takeAckermann(const topic_tools::ShapeShifter::ConstPtr& msg) {
     ackermann_msgs::AckermannDrive drive;
     const std::string& type = msg->getDataType();
     if (type == ros::message_traits::DataType<ackermann_msgs::AckermannDriveStamped>::value() &&
@@ -217,6 +240,7 @@ class CmdVelNode {
   AckermannGeometry geometry_;
   std::unique_ptr<CmdVelProcessor> processor_;
   ros::Publisher left_steer_pub_, right_steer_pub_, left_wheel_pub_, right_wheel_pub_;
+  ros::Publisher received_pub_;
   ros::NodeHandle nh_;
   std::string ackermann_topic_;
   ros::Subscriber sub_, ackermann_sub_;

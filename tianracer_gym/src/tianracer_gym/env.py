@@ -34,8 +34,9 @@ _TOLERANCE = 1e-9
 
 
 def observation_space_of(sim):
-    """The Dict space of a Simulation's observations (raw values: a lidar's -inf/+inf, a depth
-    camera's +inf where the ROS image has NaN)."""
+    """The Dict space of a Simulation's observations (raw values: a lidar's -inf/+inf; a depth
+    image's NaN (no return, or nearer than the near clip: Gazebo's and the ROS image's NaN) is
+    +inf in the env's observation, as a Box cannot hold NaN)."""
     entries = collections.OrderedDict()  # in the order of `observe`
     for key, shape, dtype in sim.observation_specs:
         dtype = np.dtype(dtype)

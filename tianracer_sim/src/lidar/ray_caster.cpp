@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -367,6 +368,17 @@ void toEmbreeTransform(const Eigen::Isometry3d& X, float out[12]) {
   for (int r = 0; r < 3; ++r) out[9 + r] = static_cast<float>(X.translation()[r]);
 }
 
+// A body pose that may reach Embree: finite, its origin within kMaxBodyPosition.
+bool poseInReach(const Eigen::Isometry3d& X) {
+  return X.matrix().allFinite() &&
+         X.translation().cwiseAbs().maxCoeff() <= RayCaster::kMaxBodyPosition;
+}
+
+// Bitwise equality of two poses (a NaN pose equals itself: no rebuild or commit per scan).
+bool sameBits(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b) {
+  return std::memcmp(a.data(), b.data(), sizeof(double) * 16) == 0;
+}
+
 }  // namespace
 
 struct RayCaster::Impl {
@@ -377,6 +389,7 @@ struct RayCaster::Impl {
     RTCGeometry instance = nullptr;
     std::vector<Analytic> prims;  // never resized after the user geometry is created
     Eigen::Matrix4d X_WB_last = Eigen::Matrix4d::Zero();
+    bool left_out = false;  // disabled: the body's pose is out of reach (poseInReach)
     // What Embree holds, for exactDistance(): the triangles' vertices (sub-scene frame) and
     // indices, the geometry ids in the sub-scene, and the instance transform as the floats
     // Embree was given (and its inverse).
@@ -399,7 +412,7 @@ struct RayCaster::Impl {
   std::vector<std::pair<int, Eigen::Matrix4d>> static_poses;  // rebuild when one changes
   bool built = false;
   std::size_t n_bodies = 0, n_items = 0;
-  std::size_t n_triangles = 0, n_analytic = 0, n_moving = 0;
+  std::size_t n_triangles = 0, n_analytic = 0, n_moving = 0, n_static_left_out = 0;
   std::string last_error;
 
   // Scan buffers, reused.
@@ -483,7 +496,7 @@ RayCaster::~RayCaster() = default;
 void RayCaster::build(const Scene& scene) {
   Impl& m = *impl_;
   m.clear();
-  m.n_triangles = m.n_analytic = m.n_moving = 0;
+  m.n_triangles = m.n_analytic = m.n_moving = m.n_static_left_out = 0;
   // Which shapes go to user geometry (see PrimitiveMode).
   auto isAnalytic = [&](const Shape& shape, const Eigen::Isometry3d& X_PS) {
     switch (options_.primitives) {
@@ -516,9 +529,11 @@ void RayCaster::build(const Scene& scene) {
     soups.emplace_back();
     return static_cast<int>(m.subs.size() - 1);
   };
-  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
-    if (scene.bodies[b].is_static)
-      m.static_poses.emplace_back(static_cast<int>(b), scene.bodies[b].X_WB.matrix());
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    if (!scene.bodies[b].is_static) continue;
+    m.static_poses.emplace_back(static_cast<int>(b), scene.bodies[b].X_WB.matrix());
+    if (!poseInReach(scene.bodies[b].X_WB)) ++m.n_static_left_out;
+  }
 
   for (const SceneItem& item : scene.items) {
     if (!item.collision) continue;
@@ -526,6 +541,7 @@ void RayCaster::build(const Scene& scene) {
       throw RayCasterError("scene item refers to body " + std::to_string(item.body) + " of " +
                            std::to_string(scene.bodies.size()));
     const SceneBody& body = scene.bodies[item.body];
+    if (body.is_static && !poseInReach(body.X_WB)) continue;  // counted below
     const int s = subFor(item.body);
     const Eigen::Isometry3d X_PS = body.is_static ? body.X_WB * item.X_BS : item.X_BS;
     const ShapeType type = item.shape.type;
@@ -597,11 +613,13 @@ void RayCaster::build(const Scene& scene) {
     rtcSetGeometryTimeStepCount(sub.instance, 1);
     const Eigen::Isometry3d X = sub.body < 0 ? Eigen::Isometry3d::Identity()
                                              : scene.bodies[sub.body].X_WB;
+    sub.left_out = !poseInReach(X);
     float xfm[12];
-    toEmbreeTransform(X, xfm);
+    toEmbreeTransform(sub.left_out ? Eigen::Isometry3d::Identity() : X, xfm);
     rtcSetGeometryTransform(sub.instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
     sub.setTransform(xfm);
     sub.X_WB_last = X.matrix();
+    if (sub.left_out) rtcDisableGeometry(sub.instance);
     rtcCommitGeometry(sub.instance);
     const unsigned instance_id = rtcAttachGeometry(m.top, sub.instance);
     if (m.sub_of_instance.size() <= instance_id) m.sub_of_instance.resize(instance_id + 1, -1);
@@ -628,20 +646,31 @@ void RayCaster::update(const Scene& scene) {
   bool rebuild = !m.built || m.n_bodies != scene.bodies.size() || m.n_items != scene.items.size();
   for (std::size_t i = 0; !rebuild && i < m.static_poses.size(); ++i) {
     const auto& sp = m.static_poses[i];
-    rebuild = !scene.bodies[sp.first].is_static || scene.bodies[sp.first].X_WB.matrix() != sp.second;
+    rebuild = !scene.bodies[sp.first].is_static || !sameBits(scene.bodies[sp.first].X_WB.matrix(), sp.second);
   }
   if (rebuild) build(scene);
   bool changed = false;
   for (auto& sub : m.subs) {
     if (sub->body < 0) continue;
     const Eigen::Isometry3d& X = scene.bodies[sub->body].X_WB;
-    if (X.matrix() == sub->X_WB_last) continue;
+    if (sameBits(X.matrix(), sub->X_WB_last)) continue;
+    sub->X_WB_last = X.matrix();
+    if (!poseInReach(X)) {  // left out, its last transform kept (it never reaches Embree)
+      if (!sub->left_out) {
+        rtcDisableGeometry(sub->instance);
+        rtcCommitGeometry(sub->instance);
+        sub->left_out = true;
+        changed = true;
+      }
+      continue;
+    }
     float xfm[12];
     toEmbreeTransform(X, xfm);
     rtcSetGeometryTransform(sub->instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
     sub->setTransform(xfm);
+    if (sub->left_out) rtcEnableGeometry(sub->instance);
+    sub->left_out = false;
     rtcCommitGeometry(sub->instance);
-    sub->X_WB_last = X.matrix();
     changed = true;
   }
   if (changed) {
@@ -738,5 +767,11 @@ void RayCaster::castRays(const Eigen::Vector3d& origin_W,
 std::size_t RayCaster::triangleCount() const { return impl_->n_triangles; }
 std::size_t RayCaster::analyticCount() const { return impl_->n_analytic; }
 std::size_t RayCaster::movingBodyCount() const { return impl_->n_moving; }
+
+std::size_t RayCaster::leftOutBodyCount() const {
+  std::size_t n = impl_->n_static_left_out;
+  for (const auto& sub : impl_->subs) n += sub->body >= 0 && sub->left_out;
+  return n;
+}
 
 }  // namespace tianracer_sim

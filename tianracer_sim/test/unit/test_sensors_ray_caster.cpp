@@ -493,11 +493,62 @@ TEST(RayCaster, SensorFarOutsideTheWorldSeesNothing) {
   Scene scene;
   addRoom(scene, -2, 2, -2, 2);
   SeedLidar lidar;
-  for (double x : {1e30, -1e30, 1e19, std::numeric_limits<double>::quiet_NaN(), kInf}) {
+  for (double x : {1e30, -1e30, 1e19, 1e15, 1e12, 2.1e9, std::numeric_limits<double>::quiet_NaN(), kInf}) {
     const std::vector<float> r = lidar.scan(scene, pose(x, 0, 0.5));
     for (float v : r) EXPECT_EQ(v, std::numeric_limits<float>::infinity()) << x;
   }
   EXPECT_NEAR(lidar.scan(scene, pose(0, 0, 0.5))[540], 2.0, 0.05);  // still works
+}
+
+// A body at 1e30 or NaN at run time (a body flung by the physics; spawn, set_model_state and
+// set_link_state refuse such poses): its pose would reach Embree as an instance transform or as
+// the static scene's vertices (Embree aborts near 2e9 m, issue 43). The caster leaves such a body
+// out of the scene (it is out of any sensor's reach) until it comes back.
+TEST(RayCaster, MovingBodyFarOutsideTheWorldIsLeftOut) {
+  Scene scene;
+  addRoom(scene, -3, 3, -3, 3);
+  SceneBody crate;
+  crate.name = "crate::link";
+  crate.model = "crate";
+  crate.is_static = false;
+  crate.X_WB = pose(1.0, 0, 0.5);
+  const int b = scene.addBody(crate);
+  scene.items.push_back(boxItem(b, pose(0.1, 0, 0), {0.4, 0.5, 1.0}));
+  Scene room;  // the same room without the crate
+  addRoom(room, -3, 3, -3, 3);
+  SeedLidar alone;
+  const std::vector<float> expected = alone.scan(room, pose(0, 0, 0.5));
+  SeedLidar lidar;
+  EXPECT_NEAR(lidar.scan(scene, pose(0, 0, 0.5))[540], 0.9, 1e-5);
+  for (double x : {1e30, -1e30, 2.1e9, 1e7, std::numeric_limits<double>::quiet_NaN(), kInf}) {
+    scene.bodies[b].X_WB = pose(x, 0, 0.5);
+    const std::vector<float> r = lidar.scan(scene, pose(0, 0, 0.5));
+    EXPECT_NEAR(r[540], 3.0, 1e-5) << x;  // the wall behind, where the crate was
+    EXPECT_EQ(lidar.caster.leftOutBodyCount(), std::abs(x) > 1e9 || !std::isfinite(x) ? 1u : 0u) << x;
+    ASSERT_EQ(r.size(), expected.size());
+    for (std::size_t i = 0; i < r.size(); ++i) EXPECT_NEAR(r[i], expected[i], 1e-5) << x << " beam " << i;
+  }
+  scene.bodies[b].X_WB = pose(1.0, 0, 0.5);  // back: seen again
+  EXPECT_NEAR(lidar.scan(scene, pose(0, 0, 0.5))[540], 0.9, 1e-5);
+  EXPECT_EQ(lidar.caster.leftOutBodyCount(), 0u);
+  // A body that starts out there (the scene built with it), then comes back.
+  RayCaster fresh;
+  scene.bodies[b].X_WB = pose(1e30, 0, 0.5);
+  std::vector<float> r = scanRays(fresh, scene, pose(0, 0, 0.5), seedHokuyo(), lidar.rng);
+  EXPECT_NEAR(r[540], 3.0, 1e-5);
+  EXPECT_EQ(fresh.leftOutBodyCount(), 1u);
+  scene.bodies[b].X_WB = pose(2.0, 0, 0.5);
+  r = scanRays(fresh, scene, pose(0, 0, 0.5), seedHokuyo(), lidar.rng);
+  EXPECT_NEAR(r[540], 1.9, 1e-5);
+  EXPECT_EQ(fresh.leftOutBodyCount(), 0u);
+  // A static body moved there (its geometry is baked into the static part of the scene).
+  scene.bodies[b].is_static = true;
+  for (double x : {1e30, 2.1e9, std::numeric_limits<double>::quiet_NaN(), 1.0}) {
+    scene.bodies[b].X_WB = pose(x, 0, 0.5);
+    r = lidar.scan(scene, pose(0, 0, 0.5));
+    EXPECT_NEAR(r[540], x == 1.0 ? 0.9 : 3.0, 1e-5) << x;
+    EXPECT_EQ(lidar.caster.leftOutBodyCount(), x == 1.0 ? 0u : 1u) << x;
+  }
 }
 
 // REP 117's masks, as Gazebo's RaySensor applies them to min + the distance along the ray:

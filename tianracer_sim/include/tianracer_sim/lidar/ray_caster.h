@@ -86,6 +86,12 @@ class RayCaster {
   std::size_t triangleCount() const;
   std::size_t analyticCount() const;
   std::size_t movingBodyCount() const;
+  /// Bodies left out of the scene by the last update() because their pose is not finite or is
+  /// farther than kMaxBodyPosition (a body set or flung there at run time): such a pose never
+  /// reaches Embree (it aborts near 2e9 m), and the body is out of any sensor's reach. A body
+  /// that comes back is in the scene again.
+  std::size_t leftOutBodyCount() const;
+  static constexpr double kMaxBodyPosition = 1e9;  // m, each coordinate of a body's origin
 
   /// Times update()'s commits of moved bodies (and rebuilds) and castRays() into `profile`
   /// (common/step_profile.h), as parts of the sensors' sampling rows; null: not timed.
