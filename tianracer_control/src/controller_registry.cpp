@@ -9,6 +9,7 @@
 #include "tianracer_control/controllers/forward_command_controller.h"
 #include "tianracer_control/controllers/joint_group_controller.h"
 #include "tianracer_control/controllers/joint_state_controller.h"
+#include "tianracer_control/controllers/joint_trajectory_controller.h"
 
 namespace tianracer_control {
 
@@ -31,6 +32,12 @@ const ControllerRegistry& builtinControllers() {
     r.add(JointGroupController::kEffortPositionType, &JointGroupController::createEffortPosition);
     r.add(DiffDriveController::kType, &DiffDriveController::create);
     r.add(AckermannSteeringController::kType, &AckermannSteeringController::create);
+    r.add(JointTrajectoryController::kPositionType,
+          &JointTrajectoryController::create<Iface::kPosition>);
+    r.add(JointTrajectoryController::kVelocityType,
+          &JointTrajectoryController::create<Iface::kVelocity>);
+    r.add(JointTrajectoryController::kEffortType,
+          &JointTrajectoryController::create<Iface::kEffort>);
     return r;
   }();
   return registry;
