@@ -6,6 +6,7 @@
 #include "tianracer_control/controllers/diff_drive_controller.h"
 #include "tianracer_control/controllers/effort_joint_position_controller.h"
 #include "tianracer_control/controllers/effort_joint_velocity_controller.h"
+#include "tianracer_control/controllers/gripper_action_controller.h"
 #include "tianracer_control/controllers/forward_command_controller.h"
 #include "tianracer_control/controllers/joint_group_controller.h"
 #include "tianracer_control/controllers/joint_state_controller.h"
@@ -38,6 +39,9 @@ const ControllerRegistry& builtinControllers() {
           &JointTrajectoryController::create<Iface::kVelocity>);
     r.add(JointTrajectoryController::kEffortType,
           &JointTrajectoryController::create<Iface::kEffort>);
+    r.add(GripperActionController::kPositionType,
+          &GripperActionController::create<Iface::kPosition>);
+    r.add(GripperActionController::kEffortType, &GripperActionController::create<Iface::kEffort>);
     return r;
   }();
   return registry;
