@@ -4,7 +4,8 @@ arm_control.urdf, through ROS only, with a python actionlib client: a goal SUCCE
 joints' final joint_states within its goal tolerance; a goal with a path tolerance it cannot
 keep ABORTED with PATH_TOLERANCE_VIOLATED and upstream's error_string; a goal preempted by a
 newer one; a cancel holding position; bad goals (NaN, unknown joints) REJECTED with upstream's
-error codes while the controller goes on; the command topic; state at state_publish_rate;
+error codes while the controller goes on; a controller with a bad 'joints' refused while the
+others run; the command topic; state at state_publish_rate;
 query_state. Sim time throughout."""
 import math
 import unittest
@@ -17,6 +18,7 @@ from control_msgs.msg import (FollowJointTrajectoryAction, FollowJointTrajectory
                               FollowJointTrajectoryResult, JointTolerance,
                               JointTrajectoryControllerState)
 from control_msgs.srv import QueryTrajectoryState
+from controller_manager_msgs.srv import ListControllers, LoadController
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
@@ -72,6 +74,27 @@ class JointTrajectoryControllerTest(unittest.TestCase):
         g = FollowJointTrajectoryGoal()
         g.trajectory = trajectory(points, joints)
         return g
+
+    def test_0_loaded_with_its_claims_and_a_bad_one_refused(self):
+        rospy.wait_for_service(NS + '/controller_manager/list_controllers', timeout=WALL_TIMEOUT)
+        listed = rospy.ServiceProxy(NS + '/controller_manager/list_controllers', ListControllers)()
+        states = {c.name: (c.type, c.state) for c in listed.controller}
+        self.assertEqual(states['arm_controller'],
+                         ('position_controllers/JointTrajectoryController', 'running'))
+        arm = [c for c in listed.controller if c.name == 'arm_controller'][0]
+        self.assertEqual(arm.claimed_resources[0].hardware_interface,
+                         'hardware_interface::PositionJointInterface')
+        self.assertEqual(sorted(arm.claimed_resources[0].resources), sorted(JOINTS))
+        # bad input: 'joints' is no list: the load fails (upstream's message), the others run
+        rospy.set_param(NS + '/bad_arm_controller',
+                        {'type': 'effort_controllers/JointTrajectoryController',
+                         'joints': 'shoulder_joint'})
+        load = rospy.ServiceProxy(NS + '/controller_manager/load_controller', LoadController)
+        self.assertFalse(load('bad_arm_controller').ok)
+        listed = rospy.ServiceProxy(NS + '/controller_manager/list_controllers', ListControllers)()
+        states = {c.name: c.state for c in listed.controller}
+        self.assertNotIn('bad_arm_controller', states)
+        self.assertEqual(states['arm_controller'], 'running')
 
     def test_1_goal_succeeds_and_the_joints_end_there(self):
         target = [0.8, -0.6]
