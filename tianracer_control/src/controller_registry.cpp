@@ -6,9 +6,11 @@
 #include "tianracer_control/controllers/diff_drive_controller.h"
 #include "tianracer_control/controllers/effort_joint_position_controller.h"
 #include "tianracer_control/controllers/effort_joint_velocity_controller.h"
+#include "tianracer_control/controllers/gripper_action_controller.h"
 #include "tianracer_control/controllers/forward_command_controller.h"
 #include "tianracer_control/controllers/joint_group_controller.h"
 #include "tianracer_control/controllers/joint_state_controller.h"
+#include "tianracer_control/controllers/joint_trajectory_controller.h"
 
 namespace tianracer_control {
 
@@ -31,6 +33,15 @@ const ControllerRegistry& builtinControllers() {
     r.add(JointGroupController::kEffortPositionType, &JointGroupController::createEffortPosition);
     r.add(DiffDriveController::kType, &DiffDriveController::create);
     r.add(AckermannSteeringController::kType, &AckermannSteeringController::create);
+    r.add(JointTrajectoryController::kPositionType,
+          &JointTrajectoryController::create<Iface::kPosition>);
+    r.add(JointTrajectoryController::kVelocityType,
+          &JointTrajectoryController::create<Iface::kVelocity>);
+    r.add(JointTrajectoryController::kEffortType,
+          &JointTrajectoryController::create<Iface::kEffort>);
+    r.add(GripperActionController::kPositionType,
+          &GripperActionController::create<Iface::kPosition>);
+    r.add(GripperActionController::kEffortType, &GripperActionController::create<Iface::kEffort>);
     return r;
   }();
   return registry;

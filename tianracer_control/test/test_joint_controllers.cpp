@@ -418,7 +418,12 @@ TEST(ControllerRegistry, ListsTheTypesInRegistrationOrderAndTakesNewOnes) {
       "position_controllers/JointGroupPositionController",
       "effort_controllers/JointGroupPositionController",
       "diff_drive_controller/DiffDriveController",
-      "ackermann_steering_controller/AckermannSteeringController"};
+      "ackermann_steering_controller/AckermannSteeringController",
+      "position_controllers/JointTrajectoryController",
+      "velocity_controllers/JointTrajectoryController",
+      "effort_controllers/JointTrajectoryController",
+      "position_controllers/GripperActionController",
+      "effort_controllers/GripperActionController"};
   EXPECT_EQ(types, expected);
 
   // A registry of one's own: a new type is one factory and one add().
