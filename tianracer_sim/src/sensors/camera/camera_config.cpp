@@ -276,11 +276,11 @@ class Parser {
     c->has_plugin = true;
     c->plugin_filename = p.filename;
     c->triggered = endsWith(p.filename, "libgazebo_ros_triggered_camera.so");
-    // An empty <robotNamespace/> is the root here. gazebo_ros's GetRobotNamespace
-    // (gazebo_ros_utils.h) makes it the model's name; tianracer.gazebo's default
-    // sensor_namespace "" relies on the root (the seed's /rrbot/camera1/...), and none of
-    // gazebo_ros_pkgs' registered tests depends on it (docs/model_and_sensors.md).
-    r.text("robotNamespace", &c->robot_namespace);
+    // An empty <robotNamespace/> is the model's name: gazebo_ros_camera_utils.cpp Load calls
+    // GetRobotNamespace (gazebo_ros_utils.h), which gives the model's name when the element is
+    // there but empty, and "" when it is missing. Resolved by applyModelNamespace().
+    if (r.text("robotNamespace", &c->robot_namespace))
+      c->namespace_from_model = trimText(c->robot_namespace).empty();
     r.text("cameraName", &c->camera_name);
     r.text("imageTopicName", &c->image_topic);
     r.text("cameraInfoTopicName", &c->camera_info_topic);
@@ -387,6 +387,10 @@ DepthCameraConfig parseDepthCameraConfig(const SensorSpec& sensor, const Warning
     r.finish();
   }
   return d;
+}
+
+void applyModelNamespace(CameraConfig* c, const std::string& model_name) {
+  if (c->namespace_from_model) c->robot_namespace = model_name;
 }
 
 CameraInfo makeCameraInfo(const CameraConfig& c) {
