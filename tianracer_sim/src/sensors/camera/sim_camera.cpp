@@ -110,7 +110,7 @@ std::unique_ptr<SimSensor> makeMultiCamera(const SimSensorSetup& setup) {
 }  // namespace
 
 const SensorKind& cameraKind() {
-  static const SensorKind kind = {"camera", {"camera"},
+  static const SensorKind kind = {"camera", {"camera", "wideanglecamera"},
       {"libgazebo_ros_camera.so", "libgazebo_ros_triggered_camera.so"}, &cameraTopics, &makeCamera};
   return kind;
 }

@@ -15,6 +15,7 @@
 #include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/render/camera_intrinsics.h"
 #include "tianracer_sim/sensors/camera/lens_distortion.h"
+#include "tianracer_sim/sensors/camera/wide_angle_lens.h"
 
 namespace tianracer_sim {
 
@@ -75,6 +76,10 @@ struct CameraConfig {
   double noise_mean = 0.0;   // [0, 1] colour units
   double noise_stddev = 0.0;
   uint32_t noise_seed = 0;  // 0: derived from the sensor name (runs are repeatable)
+  /// <sensor type="wideanglecamera">: rendered through a cube map and its <lens>
+  /// (wide_angle_lens.h); horizontal_fov may then be up to 2 pi.
+  bool wide_angle = false;
+  WideAngleLens lens;
 
   // libgazebo_ros_camera (and the shared part of openni_kinect)
   bool has_plugin = false;  // without one, Gazebo renders but publishes nothing
