@@ -243,6 +243,25 @@ TEST(WideAngleRender, BeyondTheCutoffIsBlack) {
   EXPECT_EQ(lit_in, inside);
 }
 
+TEST(WideAngleRender, AShapeThatChangesSizeIsDrawnAtItsNewSize) {
+  // The renderer matches items by index and shape kind and draws primitives at their current
+  // size: a ball that grows between two frames covers more of the image (the ray caster's
+  // side: RayCaster.AShapeThatChangesSizeOrIsSwappedForAnotherIsRebuilt).
+  Renderer renderer;
+  CameraSensor cam(parseCameraConfig(spec(wideXml("2.0", "<lens><type>equidistant</type>"
+                                                          "<cutoff_angle>3.1</cutoff_angle></lens>"))),
+                   renderer);
+  Scene scene = ballScene(Eigen::Vector3d(3, 0, 0), 0.1);
+  int small = 0, large = 0;
+  cam.render(scene, Eigen::Isometry3d::Identity());
+  redCentroid(cam, &small);
+  scene.items[0].shape.radius = 0.3;
+  cam.render(scene, Eigen::Isometry3d::Identity());
+  redCentroid(cam, &large);
+  EXPECT_GT(small, 10);
+  EXPECT_NEAR(static_cast<double>(large) / small, 9.0, 1.5);  // area ~ radius^2
+}
+
 TEST(WideAngleConfig, BadLensIsAnErrorAtTheSensorNamingTheValue) {
   const std::string unknown = errorOf(wideXml("2.0", "<lens><type>fisheye</type></lens>"));
   EXPECT_NE(unknown.find("autorace.urdf:42:"), std::string::npos) << unknown;
