@@ -412,6 +412,41 @@ struct RayCaster::Impl {
   std::vector<std::pair<int, Eigen::Matrix4d>> static_poses;  // rebuild when one changes
   bool built = false;
   std::size_t n_bodies = 0, n_items = 0;
+  /// What each collision item was built from (body, placement, shape): a shape that changes
+  /// size or kind, or items swapped for others of the same count (a model deleted and another
+  /// spawned between two scans), rebuild too.
+  struct ItemKey {
+    int body = 0;
+    Eigen::Matrix4d X_BS = Eigen::Matrix4d::Identity();
+    Shape shape;
+    // Bitwise, so that a NaN that was built once does not rebuild at every scan.
+    template <typename T>
+    static bool same(const T& a, const T& b) {
+      return std::memcmp(&a, &b, sizeof(T)) == 0;
+    }
+    bool operator==(const SceneItem& item) const {
+      const Shape& o = item.shape;
+      const Eigen::Matrix4d X = item.X_BS.matrix();
+      return body == item.body && same(X_BS, X) && shape.type == o.type &&
+             same(shape.size, o.size) && same(shape.radius, o.radius) &&
+             same(shape.length, o.length) && same(shape.normal, o.normal) &&
+             same(shape.scale, o.scale) && shape.center_submesh == o.center_submesh &&
+             shape.mesh_path == o.mesh_path && shape.submesh == o.submesh;
+    }
+  };
+  std::vector<int> collision_items;  // indices into scene.items at the build
+  std::vector<ItemKey> item_keys;     // ... and what they were
+  bool itemsChanged(const Scene& scene) const {
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < scene.items.size(); ++i) {
+      if (!scene.items[i].collision) continue;
+      if (k >= collision_items.size() || collision_items[k] != static_cast<int>(i) ||
+          !(item_keys[k] == scene.items[i]))
+        return true;
+      ++k;
+    }
+    return k != collision_items.size();
+  }
   std::size_t n_triangles = 0, n_analytic = 0, n_moving = 0, n_static_left_out = 0;
   std::string last_error;
 
@@ -631,6 +666,14 @@ void RayCaster::build(const Scene& scene) {
   m.check("building the ray-casting scene");
   m.n_bodies = scene.bodies.size();
   m.n_items = scene.items.size();
+  m.collision_items.clear();
+  m.item_keys.clear();
+  for (std::size_t i = 0; i < scene.items.size(); ++i) {
+    const SceneItem& item = scene.items[i];
+    if (!item.collision) continue;
+    m.collision_items.push_back(static_cast<int>(i));
+    m.item_keys.push_back({item.body, item.X_BS.matrix(), item.shape});
+  }
   m.built = true;
 }
 
@@ -643,7 +686,8 @@ void RayCaster::setProfile(StepProfile* profile) {
 void RayCaster::update(const Scene& scene) {
   StepProfile::Scope timed(profile_, update_row_);
   Impl& m = *impl_;
-  bool rebuild = !m.built || m.n_bodies != scene.bodies.size() || m.n_items != scene.items.size();
+  bool rebuild = !m.built || m.n_bodies != scene.bodies.size() || m.n_items != scene.items.size() ||
+                 m.itemsChanged(scene);
   for (std::size_t i = 0; !rebuild && i < m.static_poses.size(); ++i) {
     const auto& sp = m.static_poses[i];
     rebuild = !scene.bodies[sp.first].is_static || !sameBits(scene.bodies[sp.first].X_WB.matrix(), sp.second);

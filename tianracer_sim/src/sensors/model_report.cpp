@@ -23,7 +23,8 @@ std::string fmt(double v) { return formatShort(v); }
 std::vector<std::string> typeDifferences(const RobotModel& model, const SensorSpec& s) {
   std::vector<std::string> out;
   if (s.type == "gpu_ray") out.push_back("ray-cast on the CPU (Embree), exactly as type ray");
-  if (s.type == "camera" || s.type == "depth" || s.type == "multicamera") {
+  if (s.type == "camera" || s.type == "wideanglecamera" || s.type == "depth" ||
+      s.type == "multicamera") {
     // The simulator's own decision (sim_camera.cpp), from the settings as it parses them; a
     // camera that does not parse is left out below, with its error.
     bool own = false;

@@ -1,7 +1,7 @@
 // model_corpus: Gazebo's model library (github:osrf/gazebo_models, or any folder of model
 // folders) through the ROS-free core, one model at a time, the way a user's world would hold it
 // (docs/gazebo_models.md). Run by hand, not in CI:
-//   model_corpus <models_dir> [--only NAME]... [--settle S] [--hold S] [--markdown FILE]
+//   model_corpus <models_dir> [--only NAME]... [--settle S] [--hold S] [--trace S] [--markdown FILE]
 //                [--load-only]
 // For every folder with a model.sdf: a world with model://ground_plane and an <include> of the
 // model at its default pose is loaded (world loader), added to a Simulation (sim/world_physics)
@@ -212,6 +212,8 @@ void judgeBase(const ts::ModelDescription& m, Result* r) {
   r->base = os.str();
 }
 
+double g_trace = 0.0;  // --trace S: print the base and joints every S seconds (0: not)
+
 Result run(const std::string& models_dir, const std::string& name, double settle, double hold,
            bool load_only) {
   Result r;
@@ -291,6 +293,16 @@ Result run(const std::string& models_dir, const std::string& name, double settle
         r.max_angle = std::max(r.max_angle, angleBetween(r.X_start, X));
       }
       if (k == settle_steps) r.X_settled = body->basePose();
+      if (g_trace > 0.0 && k % std::max(1, static_cast<int>(std::lround(g_trace / sim.dt()))) == 0) {
+        // --trace: the base's position and every joint's position and rate, for a "why".
+        const Eigen::Vector3d p = body->basePose().translation();
+        std::cerr << "t " << fmt(k * sim.dt(), 2) << " base " << fmt(p.x(), 5) << " " << fmt(p.y(), 5)
+                  << " " << fmt(p.z(), 5);
+        for (int j = 0; j < static_cast<int>(body->joints().size()); ++j)
+          std::cerr << " | " << body->joints()[j].name << " " << fmt(body->jointPosition(j), 5)
+                    << " " << fmt(body->jointVelocity(j), 5);
+        std::cerr << "\n";
+      }
     }
     if (body) r.X_end = body->basePose();
     if (!body) r.X_end = r.X_settled = r.X_start = m.X_WM;
@@ -370,6 +382,7 @@ int main(int argc, char** argv) {
     if (a == "--only") only.push_back(next());
     else if (a == "--settle") settle = std::stod(next());
     else if (a == "--hold") hold = std::stod(next());
+    else if (a == "--trace") g_trace = std::stod(next());
     else if (a == "--markdown") markdown = next();
     else if (a == "--load-only") load_only = true;
     else if (!a.empty() && a[0] == '-') {

@@ -692,6 +692,47 @@ TEST(RayCaster, SceneChangesAreRebuiltAndStaticBodiesRead) {
   EXPECT_NEAR(lidar.scan(scene, pose(0, 0, 0.5))[540], 1.5, 1e-5);
 }
 
+TEST(RayCaster, AShapeThatChangesSizeOrIsSwappedForAnotherIsRebuilt) {
+  // The counts of bodies and items stay the same: only the shapes change (a model deleted and
+  // another spawned between two scans, a mesh's scale). Static and moving bodies alike.
+  Scene scene;
+  addRoom(scene, -3, 3, -3, 3);
+  const int b = addStatic(scene, "crate");
+  scene.items.push_back(boxItem(b, pose(1.5, 0, 0.5), {1.0, 1.0, 1.0}));
+  SceneBody mover;
+  mover.name = "ball::link";
+  mover.model = "ball";
+  mover.is_static = false;
+  mover.X_WB = pose(-1.5, 0, 0.5);
+  const int m = scene.addBody(mover);
+  scene.items.push_back(boxItem(m, pose(0, 0, 0), {0.2, 0.2, 0.2}));
+  const std::size_t crate = scene.items.size() - 2, ball = scene.items.size() - 1;
+  SeedLidar lidar;  // beam 540 along +x, 0 along -x (almost: -135 deg is beam 0; use 900)
+  std::vector<float> r = lidar.scan(scene, pose(0, 0, 0.5));
+  EXPECT_NEAR(r[540], 1.0, 1e-5);
+  scene.items[crate].shape.size = Eigen::Vector3d(2.0, 2.0, 1.0);  // the crate grows
+  r = lidar.scan(scene, pose(0, 0, 0.5));
+  EXPECT_NEAR(r[540], 0.5, 1e-5);
+  // The moving ball grows, seen from the side (beam 180 looks along -y, so turn the sensor).
+  const Eigen::Isometry3d back = pose(0, 0, 0.5, M_PI);
+  EXPECT_NEAR(lidar.scan(scene, back)[540], 1.4, 1e-5);
+  scene.items[ball].shape.size = Eigen::Vector3d(1.0, 1.0, 1.0);
+  EXPECT_NEAR(lidar.scan(scene, back)[540], 1.0, 1e-5);
+  // Swapped for a cylinder of radius 0.3 (same counts).
+  scene.items[ball].shape.type = ShapeType::kCylinder;
+  scene.items[ball].shape.radius = 0.3;
+  scene.items[ball].shape.length = 1.0;
+  EXPECT_NEAR(lidar.scan(scene, back)[540], 1.2, 1e-5);
+  // An item no longer a collision (and a visual one made one): the ray caster follows.
+  scene.items[crate].collision = false;
+  EXPECT_NEAR(lidar.scan(scene, pose(0, 0, 0.5))[540], 3.0, 1e-5);
+  scene.items[crate].collision = true;
+  EXPECT_NEAR(lidar.scan(scene, pose(0, 0, 0.5))[540], 0.5, 1e-5);
+  // Unchanged scenes do not rebuild: the moving body's pose still commits as before.
+  scene.bodies[m].X_WB = pose(-2.0, 0, 0.5);
+  EXPECT_NEAR(lidar.scan(scene, back)[540], 1.7, 1e-5);
+}
+
 TEST(RayCaster, GroundPlaneSphereAndTiltedSensor) {
   for (PrimitiveMode mode :
        {PrimitiveMode::kHybrid, PrimitiveMode::kAnalytic, PrimitiveMode::kTessellated}) {

@@ -64,14 +64,60 @@ TEST(SensorsRegistry, GazeboPluginsOfTheUpstreamSuite) {
   t = sensorTopics(trig, "r");
   ASSERT_EQ(t.size(), 2u);
   EXPECT_EQ(t[0].topic, "/camera1/image_raw");
-  // An empty <robotNamespace/> is the root (gazebo_ros: the model's name; see camera_config.cpp).
+  // An empty <robotNamespace/> is the model's name: gazebo_ros_camera_utils.cpp Load calls
+  // GetRobotNamespace (gazebo_ros_utils.h). A missing one is the root (above).
   const SensorSpec empty_ns = sensorFrom(std::string("<sensor type='camera' name='c'>") +
                                          kCameraBody + "<plugin name='p' filename='libgazebo_ros_camera.so'>"
                                          "<robotNamespace></robotNamespace><cameraName>cam</cameraName>"
                                          "</plugin></sensor>");
   t = sensorTopics(empty_ns, "pioneer");
   ASSERT_EQ(t.size(), 2u);
-  EXPECT_EQ(t[0].topic, "/cam/image_raw");
+  EXPECT_EQ(t[0].topic, "/pioneer/cam/image_raw");
+}
+
+TEST(SensorsRegistry, EmptyRobotNamespaceIsTheModelsNameWhereGazeboRosSaysSo) {
+  // GetRobotNamespace: gazebo_ros_camera_utils (camera, depth, multicamera), gazebo_ros_laser,
+  // gazebo_ros_gpu_laser. "/" stays the root (tianracer.gazebo's default sensor namespace).
+  const auto camera = [](const std::string& ns_element) {
+    return sensorFrom(std::string("<sensor type='camera' name='c'>") + kCameraBody +
+                      "<plugin name='p' filename='libgazebo_ros_camera.so'>" + ns_element +
+                      "<cameraName>rrbot/camera1</cameraName></plugin></sensor>");
+  };
+  EXPECT_EQ(sensorTopics(camera("<robotNamespace/>"), "tianracer")[0].topic,
+            "/tianracer/rrbot/camera1/image_raw");
+  EXPECT_EQ(sensorTopics(camera("<robotNamespace> </robotNamespace>"), "tianracer")[0].topic,
+            "/tianracer/rrbot/camera1/image_raw");
+  EXPECT_EQ(sensorTopics(camera("<robotNamespace>/</robotNamespace>"), "tianracer")[0].topic,
+            "/rrbot/camera1/image_raw");
+  EXPECT_EQ(sensorTopics(camera(""), "tianracer")[0].topic, "/rrbot/camera1/image_raw");
+
+  const SensorSpec depth = sensorFrom(depthSensor("libgazebo_ros_openni_kinect.so",
+                                                  "<robotNamespace/>"));
+  EXPECT_EQ(sensorTopics(depth, "kinect_bot")[0].topic, "/kinect_bot/rs/ir/image_raw");
+
+  const std::string ray_body =
+      "<ray><scan><horizontal><samples>10</samples><min_angle>-1</min_angle>"
+      "<max_angle>1</max_angle></horizontal></scan><range><min>0.1</min><max>5</max></range></ray>";
+  const auto laser = [&](const std::string& file, const std::string& ns_element) {
+    return sensorFrom("<sensor type='ray' name='l'>" + ray_body + "<plugin name='p' filename='" +
+                      file + "'><topicName>scan</topicName>" + ns_element + "</plugin></sensor>");
+  };
+  EXPECT_THAT(topicNames(sensorTopics(laser("libgazebo_ros_laser.so", "<robotNamespace/>"), "car")),
+              ElementsAre("/car/scan"));
+  EXPECT_THAT(topicNames(sensorTopics(laser("libgazebo_ros_gpu_laser.so", "<robotNamespace/>"), "car")),
+              ElementsAre("/car/scan"));
+  EXPECT_THAT(topicNames(sensorTopics(laser("libgazebo_ros_laser.so", ""), "car")),
+              ElementsAre("/scan"));
+  // An absolute topicName stays where it is (the seed's /scan).
+  const SensorSpec abs = sensorFrom("<sensor type='ray' name='l'>" + ray_body +
+                                    "<plugin name='p' filename='libgazebo_ros_laser.so'>"
+                                    "<topicName>/scan</topicName><robotNamespace/></plugin></sensor>");
+  EXPECT_THAT(topicNames(sensorTopics(abs, "car")), ElementsAre("/scan"));
+  // gazebo_ros_range reads robotNamespace itself ("" + "/"): the root, as upstream.
+  const SensorSpec range = sensorFrom("<sensor type='ray' name='l'>" + ray_body +
+                                      "<plugin name='p' filename='libgazebo_ros_range.so'>"
+                                      "<topicName>sonar</topicName><robotNamespace/></plugin></sensor>");
+  EXPECT_THAT(topicNames(sensorTopics(range, "car")), ElementsAre("/sonar"));
 }
 
 TEST(SensorsRegistry, KindsByTypeAndPlugin) {

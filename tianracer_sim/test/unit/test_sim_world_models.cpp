@@ -316,6 +316,34 @@ TEST(WorldModels, PrismaticJointStaysWithinItsLimits) {
   EXPECT_NEAR(lift.linkPose("carriage").translation().z(), 1.0 + q_high, 1e-9);
 }
 
+TEST(WorldModels, SpringWhoseReferenceLiesBeyondTheLimitHoldsTheJointThereUnderASmallerLoad) {
+  // cart_soft_suspension's suspension (osrf/gazebo_models): limits +-0.0375 m, 2500 N/m towards
+  // 0.05 m, damping 100. The spring pushes 2500 (0.05 - 0.0375) = 31.25 N at the limit: a
+  // 2.5 kg load (24.5 N, the cart's chassis share) stays at the limit, a 4 kg one (39.2 N)
+  // rests inside it where the spring carries it, q = 0.05 - 39.2 / 2500. Gazebo's ODE reaches
+  // the same rest (ODEJoint::ApplyImplicitStiffnessDamping: the spring, then the hard limit).
+  const auto rail = [](const std::string& name, double x, double mass) {
+    return "<model name='" + name + "'><pose>" + num(x) + " 0 1 0 0 0</pose><link name='load'>" +
+           boxInertial(mass, 0.1, 0.1, 0.1) + boxCollision(0.1, 0.1, 0.1) +
+           "</link><joint name='susp' type='prismatic'><parent>world</parent><child>load</child>"
+           "<axis><xyz>0 0 1</xyz><limit><lower>-0.0375</lower><upper>0.0375</upper></limit>"
+           "<dynamics><damping>100</damping><spring_stiffness>2500</spring_stiffness>"
+           "<spring_reference>0.05</spring_reference></dynamics></axis><physics><ode>"
+           "<implicit_spring_damper>1</implicit_spring_damper></ode></physics></joint></model>";
+  };
+  ModelWorld w(rail("light", 0, 2.5) + rail("heavy", 1, 4.0));
+  PhysicsRobot& light = w.model("light");
+  PhysicsRobot& heavy = w.model("heavy");
+  w.run(3.0);
+  std::cout << "[spring beyond the limit] 2.5 kg at " << light.jointPosition(0) << " m, 4 kg at "
+            << heavy.jointPosition(0) << " m\n";
+  EXPECT_NEAR(light.jointPosition(0), 0.0375, 2e-4);
+  EXPECT_NEAR(heavy.jointPosition(0), 0.05 - 4.0 * kG / 2500, 5e-4);
+  w.run(10.0);  // and they stay
+  EXPECT_NEAR(light.jointPosition(0), 0.0375, 2e-4);
+  EXPECT_NEAR(heavy.jointPosition(0), 0.05 - 4.0 * kG / 2500, 5e-4);
+}
+
 TEST(WorldModels, JointDampingDecaysExponentially) {
   // I w' = -c w: w(t) = w0 exp(-c t / I).
   const double I = 0.5, c = 0.2, w0 = 3.0;

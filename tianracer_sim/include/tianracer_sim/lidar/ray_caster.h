@@ -67,7 +67,8 @@ class RayCaster {
   const RayCasterOptions& options() const { return options_; }
 
   /// (Re)builds the acceleration structures from the scene's collision items. Called by
-  /// update() when the number of bodies or items has changed since the last build.
+  /// update() when the number of bodies or items has changed since the last build, or any
+  /// collision item's body, placement or shape (a size, a mesh, a scale) has.
   void build(const Scene& scene);
   /// Sets the moving bodies' transforms from the scene (commits only if one changed). Static
   /// bodies are read at build time only. Every body is seen, the sensor's own included, as by

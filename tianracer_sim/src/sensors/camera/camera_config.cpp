@@ -121,6 +121,89 @@ class Parser {
     return static_cast<int>(v);
   }
 
+  /// <lens> of a wideanglecamera (sdformat's camera.sdf; CameraLens::Load / SetType in
+  /// gazebo/rendering/WideAngleCamera.cc). Unknown types and functions are errors here (Gazebo
+  /// logs them and renders something else).
+  void parseLens(const XMLElement* lens_element, WideAngleLens* lens) {
+    std::string type = "stereographic";
+    const XMLElement* custom = nullptr;
+    bool scale_to_hfov = true;
+    double cutoff = lens->cutoff_angle;
+    int env_size = lens->env_texture_size;
+    for (const XMLElement* g = lens_element->FirstChildElement(); g; g = g->NextSiblingElement()) {
+      const std::string g_name = g->Name(), g_text = textOf(g);
+      if (g_name == "type") {
+        type = trimText(g_text);
+      } else if (g_name == "scale_to_hfov") {
+        const std::string b = trimText(g_text);
+        if (b == "true" || b == "1") scale_to_hfov = true;
+        else if (b == "false" || b == "0") scale_to_hfov = false;
+        else fail("<lens><scale_to_hfov> '" + g_text + "' is not a boolean");
+      } else if (g_name == "custom_function") {
+        custom = g;
+      } else if (g_name == "cutoff_angle") {
+        cutoff = number("<lens><cutoff_angle>", g_text);
+      } else if (g_name == "env_texture_size") {
+        env_size = integer("<lens><env_texture_size>", g_text);
+      } else if (g_name == "intrinsics") {
+        warn("<lens><intrinsics> ignored: a wideanglecamera stitches its image from six views "
+             "(camera.sdf)");
+      } else {
+        warn("unknown element <lens><" + g_name + "> ignored");
+      }
+    }
+    if (type == "custom") {
+      if (custom == nullptr) {
+        // CameraLens::Load: gzerr, and the lens becomes stereographic.
+        warn("<lens><type> custom without <custom_function>: stereographic, as Gazebo");
+        type = "stereographic";
+      } else {
+        WideAngleLens l;
+        l.type = "custom";
+        l.c1 = 1.0, l.c2 = 1.0, l.c3 = 0.0, l.f = 1.0, l.fun = WideAngleLens::Fun::kTan;
+        for (const XMLElement* g = custom->FirstChildElement(); g; g = g->NextSiblingElement()) {
+          const std::string g_name = g->Name(), g_text = textOf(g);
+          const std::string what = "<lens><custom_function><" + g_name + ">";
+          if (g_name == "c1") l.c1 = number(what, g_text);
+          else if (g_name == "c2") l.c2 = number(what, g_text);
+          else if (g_name == "c3") l.c3 = number(what, g_text);
+          else if (g_name == "f") l.f = number(what, g_text);
+          else if (g_name == "fun") {
+            const auto fun = WideAngleLens::funOf(trimText(g_text));
+            if (!fun) fail(what + " '" + g_text + "' is not a lens function (sin, tan, id)");
+            l.fun = *fun;
+          } else {
+            warn("unknown element " + what + " ignored");
+          }
+        }
+        if (l.c1 == 0.0 || l.c2 == 0.0) {
+          fail("<lens><custom_function> c1 " + formatShort(l.c1) + ", c2 " + formatShort(l.c2) +
+               ": both must be non-zero");
+        }
+        if (!(l.f > 0.0)) fail("<lens><custom_function><f> " + formatShort(l.f) + " must be > 0");
+        *lens = l;
+      }
+    }
+    if (type != "custom") {
+      const auto named = WideAngleLens::ofType(type);
+      if (!named) {
+        fail("<lens><type> '" + type + "' is not a lens type (gnomonical, stereographic, "
+             "equidistant, equisolid_angle, orthographic, custom)");
+      }
+      *lens = *named;
+    }
+    lens->scale_to_hfov = scale_to_hfov;
+    if (!(cutoff > 0.0 && cutoff <= M_PI)) {
+      fail("<lens><cutoff_angle> " + formatShort(cutoff) + " rad outside (0, pi]");
+    }
+    lens->cutoff_angle = cutoff;
+    if (env_size <= 0 || env_size > 4096) {
+      fail("<lens><env_texture_size> " + std::to_string(env_size) + " out of range 1..4096 "
+           "(the size of each of the cube map's six faces, pixels)");
+    }
+    lens->env_texture_size = env_size;
+  }
+
   void parseCamera(CameraConfig* c) {
     c->name = sensor_.name;
     c->type = sensor_.type;
@@ -136,6 +219,7 @@ class Parser {
     const XMLElement* cam =
         std::string(root->Name()) == "camera" ? root : root->FirstChildElement("camera");
     if (cam == nullptr) fail("has no <camera> element");
+    c->wide_angle = sensor_.type == "wideanglecamera";
     for (const XMLElement* child = cam->FirstChildElement(); child;
          child = child->NextSiblingElement()) {
       const std::string n = child->Name();
@@ -197,6 +281,8 @@ class Parser {
             warn("unknown element <camera><distortion><" + g_name + "> ignored");
           }
         }
+      } else if (n == "lens" && c->wide_angle) {
+        parseLens(child, &c->lens);
       } else if (n == "save" || n == "depth_camera" || n == "lens" || n == "pose" ||
                  n == "visualize" || n == "triggered" || n == "trigger_topic") {
         warn("<camera><" + n + "> is not supported; ignored");
@@ -217,7 +303,26 @@ class Parser {
       fail("<image> " + std::to_string(c->width) + " x " + std::to_string(c->height) +
            " pixels is out of range (<= " + std::to_string(static_cast<long>(limits::kImagePixels)) +
            " pixels, e.g. 7680 x 4320)");
-    if (!(c->horizontal_fov > 0.0 && c->horizontal_fov < M_PI)) {
+    if (c->wide_angle) {
+      // camera.sdf's range for horizontal_fov; the cube map sees every direction.
+      if (!(c->horizontal_fov > 0.0 && c->horizontal_fov <= 2.0 * M_PI)) {
+        fail("<horizontal_fov> " + str(c->horizontal_fov) + " rad outside (0, 2 pi]");
+      }
+      if (c->lens.type == "gnomonical" && c->horizontal_fov > M_PI / 2.0) {
+        // WideAngleCamera::Load's gzerr.
+        warn("<lens><type> gnomonical with <horizontal_fov> " + str(c->horizontal_fov) +
+             " rad: Gazebo recommends a horizontal FOV <= pi/2 for it");
+      }
+      const double focal = c->lens.focal(c->horizontal_fov);
+      if (!(focal > 0.0) || !std::isfinite(focal)) {
+        fail("<lens> " + c->lens.type + " with <horizontal_fov> " + str(c->horizontal_fov) +
+             " rad has no image (f = 1 / (c1 fun(hfov/2 / c2 + c3)) = " + str(focal) + ")");
+      }
+      if (c->distortion.enabled()) {
+        warn("<camera><distortion> is not applied to a wideanglecamera's images (its <lens> is)");
+        c->distortion = LensDistortion();
+      }
+    } else if (!(c->horizontal_fov > 0.0 && c->horizontal_fov < M_PI)) {
       fail("<horizontal_fov> " + str(c->horizontal_fov) + " rad outside (0, pi)");
     }
     if (!(c->near_clip > 0.0)) fail("<clip><near> " + str(c->near_clip) + " must be > 0");
@@ -276,11 +381,11 @@ class Parser {
     c->has_plugin = true;
     c->plugin_filename = p.filename;
     c->triggered = endsWith(p.filename, "libgazebo_ros_triggered_camera.so");
-    // An empty <robotNamespace/> is the root here. gazebo_ros's GetRobotNamespace
-    // (gazebo_ros_utils.h) makes it the model's name; tianracer.gazebo's default
-    // sensor_namespace "" relies on the root (the seed's /rrbot/camera1/...), and none of
-    // gazebo_ros_pkgs' registered tests depends on it (docs/model_and_sensors.md).
-    r.text("robotNamespace", &c->robot_namespace);
+    // An empty <robotNamespace/> is the model's name: gazebo_ros_camera_utils.cpp Load calls
+    // GetRobotNamespace (gazebo_ros_utils.h), which gives the model's name when the element is
+    // there but empty, and "" when it is missing. Resolved by applyModelNamespace().
+    if (r.text("robotNamespace", &c->robot_namespace))
+      c->namespace_from_model = trimText(c->robot_namespace).empty();
     r.text("cameraName", &c->camera_name);
     r.text("imageTopicName", &c->image_topic);
     r.text("cameraInfoTopicName", &c->camera_info_topic);
@@ -387,6 +492,10 @@ DepthCameraConfig parseDepthCameraConfig(const SensorSpec& sensor, const Warning
     r.finish();
   }
   return d;
+}
+
+void applyModelNamespace(CameraConfig* c, const std::string& model_name) {
+  if (c->namespace_from_model) c->robot_namespace = model_name;
 }
 
 CameraInfo makeCameraInfo(const CameraConfig& c) {

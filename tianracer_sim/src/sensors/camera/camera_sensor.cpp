@@ -110,6 +110,11 @@ CameraSensor::CameraSensor(CameraConfig config, Renderer& renderer)
     distortion_ = DistortionMap(config_.distortion, intrinsics_);
     undistorted_.resize(pixels * 3);
   }
+  if (config_.wide_angle) {
+    wide_angle_ = WideAngleMap(config_.lens, config_.horizontal_fov, config_.width, config_.height);
+    const std::size_t n = static_cast<std::size_t>(wide_angle_.faceSize());
+    cube_faces_.resize(kCubeFaces * n * n * 3);
+  }
 }
 
 void CameraSensor::render(const Scene& scene, const Eigen::Isometry3d& X_WL) {
@@ -117,7 +122,23 @@ void CameraSensor::render(const Scene& scene, const Eigen::Isometry3d& X_WL) {
   const std::size_t pixels = static_cast<std::size_t>(config_.width) * config_.height;
   const bool direct = config_.format == ImageFormat::kR8G8B8;
   uint8_t* rgb = direct ? image_.data() : rgb_scratch_.data();
-  if (distortion_.empty()) {
+  if (!wide_angle_.empty()) {
+    // WideAngleCamera: six 90-degree square views (its env cameras), then each pixel's lookup.
+    const int n = wide_angle_.faceSize();
+    CameraIntrinsics face;
+    face.width = face.height = n;
+    face.fx = face.fy = n / 2.0;
+    face.cx = face.cy = (n - 1) / 2.0;
+    face.near_clip = config_.near_clip;
+    face.far_clip = config_.far_clip;
+    const std::size_t face_bytes = static_cast<std::size_t>(n) * n * 3;
+    for (int i = 0; i < kCubeFaces; ++i) {
+      Eigen::Isometry3d X_WF = X_WC;
+      X_WF.linear() = X_WC.linear() * cubeFaceRotation(i).toRotationMatrix();
+      renderer_->renderView(scene, X_WF, face, cube_faces_.data() + i * face_bytes, nullptr);
+    }
+    wide_angle_.apply(cube_faces_.data(), rgb);
+  } else if (distortion_.empty()) {
     renderer_->renderView(scene, X_WC, intrinsics_, rgb, nullptr);
   } else {
     // The lens distorts the rendered image before the noise (per output pixel) is added.

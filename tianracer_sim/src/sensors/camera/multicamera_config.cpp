@@ -227,7 +227,11 @@ class MultiCameraParser {
 
 MultiCameraConfig parseMultiCameraConfig(const SensorSpec& sensor, const std::string& model_name,
                                          const WarningSink& warn) {
-  return MultiCameraParser(sensor, model_name, warn).parse();
+  MultiCameraConfig config = MultiCameraParser(sensor, model_name, warn).parse();
+  // gazebo_ros_multicamera loads a GazeboRosCameraUtils per camera: an empty
+  // <robotNamespace/> is the model's name there too.
+  for (CameraConfig& c : config.cameras) applyModelNamespace(&c, model_name);
+  return config;
 }
 
 }  // namespace tianracer_sim

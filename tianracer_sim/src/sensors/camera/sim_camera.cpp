@@ -15,9 +15,10 @@ namespace {
 
 // libgazebo_ros_camera: <robotNamespace>/<cameraName>/{image, camera_info} at updateRate (0 =
 // the sensor rate). Without a plugin Gazebo renders but publishes nothing.
-std::vector<SensorTopic> cameraTopics(const SensorSpec& sensor, const std::string& /*model_name*/,
+std::vector<SensorTopic> cameraTopics(const SensorSpec& sensor, const std::string& model_name,
                                       const WarningSink& warn) {
   CameraConfig c = parseCameraConfig(sensor, warn);
+  applyModelNamespace(&c, model_name);
   if (!c.has_plugin) return {};
   const std::string ns = resolveTopic(c.robot_namespace, c.camera_name);
   return {{resolveTopic(ns, c.image_topic), "sensor_msgs/Image", c.publishRate()},
@@ -26,9 +27,10 @@ std::vector<SensorTopic> cameraTopics(const SensorSpec& sensor, const std::strin
 
 // libgazebo_ros_openni_kinect / libgazebo_ros_depth_camera: images and cloud at the sensor
 // rate, both camera_infos at the plugin's updateRate.
-std::vector<SensorTopic> depthCameraTopics(const SensorSpec& sensor, const std::string& /*model_name*/,
+std::vector<SensorTopic> depthCameraTopics(const SensorSpec& sensor, const std::string& model_name,
                                            const WarningSink& warn) {
   DepthCameraConfig d = parseDepthCameraConfig(sensor, warn);
+  applyModelNamespace(&d.camera, model_name);
   const CameraConfig& c = d.camera;
   if (!c.has_plugin) return {};
   const std::string ns = resolveTopic(c.robot_namespace, c.camera_name);
@@ -57,6 +59,7 @@ Renderer* cameraRenderer(const SimSensorSetup& setup, CameraConfig& camera, uint
   if (!renderer) return nullptr;
   useOwnOpticalFrame(setup, camera);
   camera.frame_name = resolveFrame(setup.tf_prefix, camera.frame_name);
+  applyModelNamespace(&camera, setup.model_name);
   if (!camera.noise_seed)
     camera.noise_seed = static_cast<uint32_t>(setup.seed + seed_offset + setup.index);
   return renderer;
@@ -107,7 +110,7 @@ std::unique_ptr<SimSensor> makeMultiCamera(const SimSensorSetup& setup) {
 }  // namespace
 
 const SensorKind& cameraKind() {
-  static const SensorKind kind = {"camera", {"camera"},
+  static const SensorKind kind = {"camera", {"camera", "wideanglecamera"},
       {"libgazebo_ros_camera.so", "libgazebo_ros_triggered_camera.so"}, &cameraTopics, &makeCamera};
   return kind;
 }

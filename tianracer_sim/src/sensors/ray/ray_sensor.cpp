@@ -141,7 +141,9 @@ RaySensorConfig ConfigReader::read() {
     PluginReader r(p, what_, warn_);
     r.text("topicName", &c.topic_name);
     c.frame_name = r.frame("frameName", c.frame_name);
-    r.text("robotNamespace", &c.robot_namespace);
+    // gazebo_ros_laser.cpp / gazebo_ros_gpu_laser.cpp Load: GetRobotNamespace.
+    if (r.text("robotNamespace", &c.robot_namespace))
+      c.namespace_from_model = c.robot_namespace.find_first_not_of(" \t\r\n") == std::string::npos;
     r.finish();
   }
   if (c.vertical_samples == 1 && (c.vertical_min_angle != 0.0 || c.vertical_max_angle != 0.0) &&

@@ -8,8 +8,16 @@ namespace tianracer_sim {
 
 namespace {
 
+// An empty <robotNamespace/> on gazebo_ros_laser is the model's name (RaySensorConfig).
+RaySensorConfig parseLidar(const SensorSpec& sensor, const std::string& model_name,
+                           const WarningSink& warn) {
+  RaySensorConfig config = parseRaySensorConfig(sensor, warn);
+  if (config.namespace_from_model) config.robot_namespace = model_name;
+  return config;
+}
+
 std::unique_ptr<SimSensor> makeLidar(const SimSensorSetup& setup) {
-  RaySensorConfig config = parseRaySensorConfig(*setup.spec, setup.warn);
+  RaySensorConfig config = parseLidar(*setup.spec, setup.model_name, setup.warn);
   config.seed = setup.seed + static_cast<std::uint64_t>(setup.index);
   config.frame_name = resolveFrame(setup.tf_prefix, config.frame_name);
   return std::make_unique<SimLidar>(setup, std::move(config));
@@ -37,7 +45,7 @@ const SensorKind& lidarKind() {
   static const SensorKind kind = {"lidar", {"ray", "gpu_ray"},
        {"libgazebo_ros_laser.so", "libgazebo_ros_gpu_laser.so", "libgazebo_ros_velodyne_laser.so",
         "libgazebo_ros_velodyne_gpu_laser.so"},
-       &topicsOf<parseRaySensorConfig>, &makeLidar, /*type_default=*/true};
+       &topicsOf<parseLidar>, &makeLidar, /*type_default=*/true};
   return kind;
 }
 TIANRACER_SENSOR_KIND(lidarKind);

@@ -15,6 +15,7 @@
 #include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/render/camera_intrinsics.h"
 #include "tianracer_sim/sensors/camera/lens_distortion.h"
+#include "tianracer_sim/sensors/camera/wide_angle_lens.h"
 
 namespace tianracer_sim {
 
@@ -75,6 +76,10 @@ struct CameraConfig {
   double noise_mean = 0.0;   // [0, 1] colour units
   double noise_stddev = 0.0;
   uint32_t noise_seed = 0;  // 0: derived from the sensor name (runs are repeatable)
+  /// <sensor type="wideanglecamera">: rendered through a cube map and its <lens>
+  /// (wide_angle_lens.h); horizontal_fov may then be up to 2 pi.
+  bool wide_angle = false;
+  WideAngleLens lens;
 
   // libgazebo_ros_camera (and the shared part of openni_kinect)
   bool has_plugin = false;  // without one, Gazebo renders but publishes nothing
@@ -85,6 +90,9 @@ struct CameraConfig {
   bool triggered = false;
   std::string trigger_topic = "image_trigger";  // triggerTopicName
   std::string robot_namespace;
+  /// <robotNamespace/> given but empty: gazebo_ros's GetRobotNamespace (gazebo_ros_utils.h,
+  /// used by gazebo_ros_camera_utils) makes it the model's name; applyModelNamespace() does.
+  bool namespace_from_model = false;
   std::string camera_name;           // topics live under <robotNamespace>/<cameraName>/
   std::string image_topic = "image_raw";
   std::string camera_info_topic = "camera_info";
@@ -137,6 +145,10 @@ struct DepthCameraConfig {
 CameraConfig parseCameraConfig(const SensorSpec& sensor, const WarningSink& warn = {});
 /// The same for type "depth" (also accepts "camera" sensors with an openni plugin).
 DepthCameraConfig parseDepthCameraConfig(const SensorSpec& sensor, const WarningSink& warn = {});
+
+/// Gives an empty <robotNamespace/> the model's name (CameraConfig::namespace_from_model);
+/// a no-op otherwise.
+void applyModelNamespace(CameraConfig* config, const std::string& model_name);
 
 /// sensor_msgs/CameraInfo as gazebo_ros fills it, frame = the optical frame:
 /// f = W / (2 tan(hfov/2)), cx = (W+1)/2, cy = (H+1)/2 (gazebo_ros's values, kept so that

@@ -14,6 +14,7 @@
 #include "tianracer_sim/sensors/camera/camera_config.h"
 #include "tianracer_sim/sensors/camera/image_noise.h"
 #include "tianracer_sim/sensors/camera/lens_distortion.h"
+#include "tianracer_sim/sensors/camera/wide_angle_lens.h"
 #include "tianracer_sim/render/renderer.h"
 
 namespace tianracer_sim {
@@ -33,7 +34,8 @@ class CameraSensor {
  public:
   CameraSensor(CameraConfig config, Renderer& renderer);
 
-  /// Renders the view of the sensor on link pose X_WL (X_WC = X_WL * X_LS), applies noise.
+  /// Renders the view of the sensor on link pose X_WL (X_WC = X_WL * X_LS), applies noise. A
+  /// wideanglecamera renders its six cube faces and maps them through its lens.
   void render(const Scene& scene, const Eigen::Isometry3d& X_WL);
 
   const CameraConfig& config() const { return config_; }
@@ -53,6 +55,8 @@ class CameraSensor {
   ImageNoise noise_;
   DistortionMap distortion_;          // empty without <distortion>
   std::vector<uint8_t> undistorted_;  // the rendered image, before the lens
+  WideAngleMap wide_angle_;           // wideanglecamera: cube map -> image
+  std::vector<uint8_t> cube_faces_;   // its six N x N views
   std::vector<uint8_t> image_;
   std::vector<uint8_t> rgb_scratch_;  // formats other than R8G8B8
   uint64_t renders_ = 0;

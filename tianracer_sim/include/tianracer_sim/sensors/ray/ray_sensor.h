@@ -57,6 +57,9 @@ struct RaySensorConfig {
   std::string topic_name = "/world";  // gazebo_ros_laser's default
   std::string frame_name;             // default: the link name (gazebo_ros_laser says "/world")
   std::string robot_namespace;        // "" unless given
+  /// gazebo_ros_laser / gpu_laser with <robotNamespace/> given but empty: GetRobotNamespace
+  /// (gazebo_ros_utils.h) makes it the model's name (set where the model is known).
+  bool namespace_from_model = false;
   /// Noise seed (not in SDF: set by the node, e.g. from a ~seed parameter).
   std::uint64_t seed = 0;
 
