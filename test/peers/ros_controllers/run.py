@@ -34,7 +34,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 OPTIONAL_DEPS = ['roscpp', 'rostest', 'std_msgs', 'std_srvs', 'geometry_msgs', 'nav_msgs', 'tf',
                  'control_msgs', 'controller_manager_msgs', 'rosgraph_msgs', 'actionlib',
                  'dynamic_reconfigure', 'trajectory_msgs', 'sensor_msgs', 'four_wheel_steering_msgs',
-                 'ackermann_msgs', 'realtime_tools', 'urdf']
+                 'ackermann_msgs', 'realtime_tools', 'urdf', 'angles']
 
 
 def git(gitdir, *args, binary=False):
@@ -168,13 +168,17 @@ def main():
     os.makedirs(os.path.join(ws, 'bin'), exist_ok=True)
     if not os.path.exists(os.path.join(ws, 'bin', 'python')):
         os.symlink('/usr/bin/python3', os.path.join(ws, 'bin', 'python'))
-    archive = subprocess.Popen(['git', '--git-dir=' + up, 'archive', commit] + [p + '/test' for p in pkgs],
+    # include/ too: some test helpers (joint_trajectory_controller/test/test_common.h) include
+    # upstream's header-only types; the controllers' sources are not exported.
+    incs = [p + '/include' for p in pkgs if any(f.startswith(p + '/include/') for f in files)]
+    archive = subprocess.Popen(['git', '--git-dir=' + up, 'archive', commit] + [p + '/test' for p in pkgs] + incs,
                                stdout=subprocess.PIPE)
     subprocess.check_call(['tar', '-x', '-C', os.path.join(ws, 'src')], stdin=archive.stdout)
     if archive.wait():
         sys.exit('git archive failed')
     # Byte for byte: every exported file against its blob.
-    exported = [f for f in files if any(f.startswith(p + '/test/') for p in pkgs)]
+    exported = [f for f in files if any(f.startswith(p + '/test/') or f.startswith(p + '/include/')
+                                        for p in pkgs)]
     bad = []
     for f in exported:
         blob = git(up, 'cat-file', 'blob', '%s:%s' % (commit, f), binary=True)
@@ -189,7 +193,9 @@ def main():
     for p in pkgs:
         hw, gtests, _, _ = plan[p]
         test_dirs = sorted({os.path.dirname(f)[len(p) + 1:] for f in exported
-                            if f.startswith(p + '/') and f.endswith('.h')} | {'test'})
+                            if f.startswith(p + '/test/') and f.endswith('.h')} | {'test'})
+        if os.path.isdir(os.path.join(ws, 'src', p, 'include')):
+            test_dirs.append('include')
         pkgxml, cml = harness_files(p, gtests, test_dirs)
         for name, text in (('package.xml', pkgxml), ('CMakeLists.txt', cml)):
             path = os.path.join(ws, 'src', p, name)

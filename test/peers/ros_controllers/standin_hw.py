@@ -111,7 +111,8 @@ def main():
                                     'tianracer_sim_node'], text=True).strip()
     private = '/' + name.strip('/') + '/'
     for key, value in (('robot_param', param), ('world', 'empty'), ('controllers', []),
-                       ('robot_name', name.strip('/'))):
+                       ('robot_name', name.strip('/')),
+                       ('odom_frame', '')):  # no world -> odom TF: neither Gazebo nor the node has one
         master.setParam(private + key, value)
     os.execv(node, [node] + ros_args)
 
