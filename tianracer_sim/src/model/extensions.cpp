@@ -282,9 +282,12 @@ TransmissionSpec parseTransmission(const XMLElement* t, const std::string& sourc
   const XMLElement* type = t->FirstChildElement("type");
   s.type = type ? text(type) : trimText(attr(t, "type"));
   if (s.type.empty()) throw ModelError(mi::at(source, t) + what + ": no <type>");
+  // gazebo_ros_control reads <type> as any text (DefaultRobotHWSim treats every one-joint
+  // transmission as simple); ros_controllers' test robots write it without the namespace.
+  if (s.type == "SimpleTransmission") s.type = kSimpleTransmission;
   if (s.type != kSimpleTransmission)
     throw ModelError(mi::at(source, type ? type : t) + what + ": unsupported type '" + s.type +
-                     "' (only " + kSimpleTransmission + ")");
+                     "' (only " + kSimpleTransmission + ", or SimpleTransmission)");
 
   const XMLElement* joint = nullptr;
   const XMLElement* actuator = nullptr;

@@ -82,7 +82,11 @@ RobotSetup setUpRobot(const RobotModel& model, const RobotSetupRequest& request,
     }
   }
   if (out.name.empty()) out.name = model.urdf->getName();
-  out.ns = "/" + trimSlashes(model_ns.empty() ? out.name : model_ns);
+  // robotNamespace "/" is the root namespace in gazebo_ros_control (NodeHandle("/")); only an
+  // absent or empty one means the model's name.
+  const bool root_ns = model.ext.ros_control && !model.ext.ros_control->robot_namespace.empty() &&
+                       model_ns.empty();
+  out.ns = root_ns ? "/" : "/" + trimSlashes(model_ns.empty() ? out.name : model_ns);
 
   ControlConfigKeys config;
   std::string control_ns;

@@ -277,6 +277,35 @@ TEST(Extensions, TransmissionFormsAndErrors) {
               HasSubstr("transmission 'u': joint 'wheel_joint' already has transmission 't'"));
 }
 
+// ros_controllers' test robots (diffbot.xacro's wheel.xacro): the type without the
+// transmission_interface/ namespace, as an attribute or a <type> element; gazebo_ros_control
+// takes any <type> text for a one-joint transmission and hardware interfaces with or without
+// hardware_interface/. Other transmission types stay refused, in either spelling.
+TEST(Extensions, TransmissionTypeWithoutNamespace) {
+  Parser p;
+  for (const std::string& open : {std::string("<transmission name='t'><type>SimpleTransmission</type>"),
+                                  std::string("<transmission name='t' type='SimpleTransmission'>")}) {
+    for (const std::string& iface : {std::string("VelocityJointInterface"),
+                                     std::string("hardware_interface/VelocityJointInterface")}) {
+      auto ext = p.parse(robot(open + "<joint name='wheel_joint'><hardwareInterface>" + iface +
+                               "</hardwareInterface></joint><actuator name='m'>"
+                               "<mechanicalReduction>1</mechanicalReduction></actuator>"
+                               "</transmission>"));
+      ASSERT_EQ(ext.transmissions.size(), 1u) << open << iface;
+      EXPECT_EQ(ext.transmissions[0].type, "transmission_interface/SimpleTransmission");
+      EXPECT_THAT(ext.transmissions[0].joint_interfaces, ElementsAre(JointInterface::kVelocity));
+    }
+  }
+  EXPECT_THAT(p.error(robot("<transmission name='t'><type>DifferentialTransmission</type>"
+                            "<joint name='wheel_joint'><hardwareInterface>VelocityJointInterface"
+                            "</hardwareInterface></joint><actuator name='m'/></transmission>")),
+              HasSubstr("transmission 't': unsupported type 'DifferentialTransmission' (only "
+                        "transmission_interface/SimpleTransmission, or SimpleTransmission)"));
+  EXPECT_THAT(p.error(robot("<transmission name='t'><type>simpletransmission</type>"
+                            "<joint name='wheel_joint'/><actuator name='m'/></transmission>")),
+              HasSubstr("unsupported type 'simpletransmission'"));
+}
+
 TEST(Extensions, SyntaxAndEmptyInput) {
   Parser p;
   EXPECT_EQ(p.error(""), "test.urdf: robot_description is empty");

@@ -104,6 +104,11 @@ TEST(SetUpRobot, NameAndNamespace) {
   s = setUpRobot(robot(""), request, none);
   EXPECT_EQ(s.name, "car");
   EXPECT_EQ(s.ns, "/car");
+  // robotNamespace "/": the root namespace, as gazebo_ros_control's NodeHandle("/") (the
+  // ros_controllers test robots' controller manager); the robot is named after the URDF.
+  s = setUpRobot(robot("/"), request, none);
+  EXPECT_EQ(s.name, "car");
+  EXPECT_EQ(s.ns, "/");
   // ~robot_name other than the namespace: a warning, the controllers stay under the namespace.
   request.robot_name = "other";
   s = setUpRobot(robot("/racer"), request, none);
