@@ -5,6 +5,8 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
+#include <stdexcept>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -320,10 +322,18 @@ inline void judgeInWorld(Judged* r, double seconds, double window) {
   }
 }
 
+// Thrown by runWorld when its wall-clock budget is spent (a tool's guard, not a verdict on motion).
+struct OutOfTime : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 // Every model of `world` simulated together for `seconds` of sim (poses sampled every 10 ms),
-// judged by judgeInWorld. Throws what Simulation or addWorldToPhysics throw.
+// judged by judgeInWorld. Throws what Simulation or addWorldToPhysics throw, and OutOfTime
+// after `wall_limit` seconds of wall clock (0: none).
 inline std::vector<Judged> runWorld(const WorldDescription& world, double seconds, double window,
-                                    const std::function<void(const std::string&)>& warn_out = {}) {
+                                    const std::function<void(const std::string&)>& warn_out = {},
+                                    double wall_limit = 0.0) {
+  const auto t0 = std::chrono::steady_clock::now();
   std::vector<Judged> out(world.models.size());
   for (std::size_t i = 0; i < world.models.size(); ++i) describe(world.models[i], &out[i]);
   const auto warn = [&](const std::string& w) {
@@ -346,6 +356,11 @@ inline std::vector<Judged> runWorld(const WorldDescription& world, double second
   for (int k = 1; k <= steps; ++k) {
     sim.step();
     if (k % every != 0 && k != window_start && k != steps) continue;
+    if (wall_limit > 0.0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > wall_limit) {
+      throw OutOfTime("stopped after " + fmt(k * sim.dt(), 1) + " s of sim: " + fmt(wall_limit, 0) +
+                      " s of wall clock spent");
+    }
     for (std::size_t i = 0; i < out.size(); ++i)
       if (bodies[i]) track(bodies[i]->basePose(), k > window_start, &out[i]);
   }

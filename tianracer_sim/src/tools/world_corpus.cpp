@@ -2,13 +2,15 @@
 // a second corpus beside model_corpus (docs/gazebo_worlds.md). Run by hand, not in CI (it needs
 // the mirrors):
 //   world_corpus <gazebo source git dir> <gazebo_models git dir> [--only NAME]... [--seconds S]
-//                [--markdown FILE]
+//                [--wall-limit S] [--markdown FILE]
 // Both arguments are bare git dirs (or work trees); their HEAD is extracted into a temp dir:
 // the Gazebo source's worlds/, models/ and media/ (models/ on the model path, as Gazebo installs
 // it into share/gazebo-11/models) and the model library (on the model path, as ~/.gazebo/models).
 // For every world: whether it loads, what was left out (each error, and each warning that names
 // an element not simulated), and every model's verdict over --seconds (30) of sim
-// (corpus_judge.h: judgeInWorld, the last 10 s as the window).
+// (corpus_judge.h: judgeInWorld, the last 10 s as the window). A world whose sim takes more
+// than --wall-limit seconds (20) of wall clock is stopped and called slow (the run stays within
+// ~15 minutes on one core).
 #include <unistd.h>  // getpid
 
 #include <algorithm>
@@ -93,7 +95,7 @@ struct WorldResult {
 };
 
 WorldResult run(const fs::path& file, const std::string& name, const std::vector<std::string>& model_paths,
-                double seconds, double window) {
+                double seconds, double window, double wall_limit) {
   WorldResult r;
   r.name = name;
   ts::WorldLoadOptions options;
@@ -113,7 +115,12 @@ WorldResult run(const fs::path& file, const std::string& name, const std::vector
   r.loads = true;
   const auto t1 = std::chrono::steady_clock::now();
   try {
-    r.models = runWorld(world, seconds, window, [&](const std::string& w) { r.warnings.push_back(w); });
+    r.models = runWorld(world, seconds, window, [&](const std::string& w) { r.warnings.push_back(w); },
+                        wall_limit);
+  } catch (const OutOfTime& e) {
+    r.verdict = "slow";
+    r.why = e.what();
+    return r;
   } catch (const std::exception& e) {
     r.verdict = "fails";
     r.why = std::string("physics: ") + e.what();
@@ -134,7 +141,7 @@ WorldResult run(const fs::path& file, const std::string& name, const std::vector
 int main(int argc, char** argv) {
   std::vector<std::string> dirs, only;
   std::string markdown;
-  double seconds = 30.0, window = 10.0;
+  double seconds = 30.0, window = 10.0, wall_limit = 20.0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -147,12 +154,13 @@ int main(int argc, char** argv) {
     if (a == "--only") only.push_back(next());
     else if (a == "--seconds") seconds = std::stod(next());
     else if (a == "--markdown") markdown = next();
+    else if (a == "--wall-limit") wall_limit = std::stod(next());
     else if (!a.empty() && a[0] == '-') dirs.clear(), dirs.push_back("-");
     else dirs.push_back(a);
   }
   if (dirs.size() != 2 || !fs::is_directory(dirs[0]) || !fs::is_directory(dirs[1]) || seconds <= window) {
     std::cerr << "usage: world_corpus <gazebo source git dir> <gazebo_models git dir> [--only NAME]... "
-                 "[--seconds S > 10] [--markdown FILE]\n";
+                 "[--seconds S > 10] [--wall-limit S] [--markdown FILE]\n";
     return 2;
   }
   const fs::path tmp = fs::temp_directory_path() / ("world_corpus." + std::to_string(::getpid()));
@@ -183,7 +191,7 @@ int main(int argc, char** argv) {
   const std::string root = tmp.string();
   for (const auto& [n, path] : worlds) {
     std::cerr << n << "... " << std::flush;
-    results.push_back(run(path, n, model_paths, seconds, window));
+    results.push_back(run(path, n, model_paths, seconds, window, wall_limit));
     const WorldResult& r = results.back();
     ++counts[r.verdict];
     for (const Judged& m : r.models) ++model_counts[m.verdict];
