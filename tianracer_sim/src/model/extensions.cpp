@@ -217,7 +217,10 @@ RosControlSpec rosControl(const PluginSpec& p, XmlReader& warner) {
       type && *type != "gazebo_ros_control/DefaultRobotHWSim")
     r.warn("robotSimType '" + *type +
            "' is not supported; the built-in DefaultRobotHWSim behaviour is used");
-  r.ignore({"legacyModeNS", "eStopTopic"});
+  if (const auto topic = r.text("eStopTopic"))
+    r.warn("eStopTopic '" + *topic +
+           "' is not supported (DefaultRobotHWSim's emergency stop); no stop topic is subscribed");
+  r.ignore({"legacyModeNS"});
   r.finish();
   return s;
 }
