@@ -4,9 +4,10 @@
 
 #include <Eigen/Geometry>
 
-// Bullet's headers trip -Wunused-parameter; keep our own warnings meaningful.
+// Bullet's headers trip -Wunused-parameter (and GImpact's btAABB -Wdeprecated-copy); keep our own warnings meaningful.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-parameter"
+#pragma GCC diagnostic ignored "-Wdeprecated-copy"
 #include <btBulletDynamicsCommon.h>
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>

@@ -9,6 +9,81 @@
 
 namespace tianracer_sim {
 
+namespace {
+
+/// A movable concave mesh (btGImpactMeshShape) against a plane, as ODE's dCollideTrimeshPlane
+/// (Gazebo 11's deps/opende/src/collision_trimesh_plane.cpp) does it: a contact for every mesh
+/// vertex below the plane. Bullet's gimpacttrimeshpart_vs_plane_collision does the same per
+/// vertex, but first drops the pair unless the mesh's AABB straddles the plane within 1e-6 m
+/// (btAABB::plane_classify): a flat plate (an AABB of zero thickness, no margin) never got a
+/// contact and fell through the ground plane (issue 40; test_sim_movable_plate).
+class MeshPlaneAlgorithm : public btActivatingCollisionAlgorithm {
+ public:
+  MeshPlaneAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* a,
+                     const btCollisionObjectWrapper* b, bool swapped)
+      : btActivatingCollisionAlgorithm(ci, a, b), swapped_(swapped) {
+    manifold_ = m_dispatcher->getNewManifold(a->getCollisionObject(), b->getCollisionObject());
+  }
+  ~MeshPlaneAlgorithm() override {
+    if (manifold_) m_dispatcher->releaseManifold(manifold_);
+  }
+
+  void processCollision(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b,
+                        const btDispatcherInfo&, btManifoldResult* out) override {
+    const btCollisionObjectWrapper* mesh_w = swapped_ ? b : a;
+    const btCollisionObjectWrapper* plane_w = swapped_ ? a : b;
+    const auto* mesh = static_cast<const btGImpactMeshShape*>(mesh_w->getCollisionShape());
+    const auto* plane = static_cast<const btStaticPlaneShape*>(plane_w->getCollisionShape());
+    const btTransform& X_WM = mesh_w->getWorldTransform();
+    const btTransform& X_WP = plane_w->getWorldTransform();
+    const btVector3 n = X_WP.getBasis() * plane->getPlaneNormal();
+    const btScalar d = plane->getPlaneConstant() + n.dot(X_WP.getOrigin());
+    const btScalar margin = mesh->getMargin() + plane->getMargin();
+    out->setPersistentManifold(manifold_);
+    for (int p = 0; p < mesh->getMeshPartCount(); ++p) {
+      const btGImpactMeshShapePart* part = mesh->getMeshPart(p);
+      part->lockChildShapes();
+      btVector3 v;
+      for (int i = 0; i < part->getVertexCount(); ++i) {
+        part->getVertex(i, v);
+        const btVector3 v_W = X_WM(v);
+        const btScalar dist = n.dot(v_W) - d - margin;
+        if (dist >= 0) continue;
+        // btManifoldResult wants the normal on its second body and the point on it.
+        if (!swapped_) out->addContactPoint(n, v_W - n * dist, dist);
+        else out->addContactPoint(-n, v_W, dist);
+      }
+      part->unlockChildShapes();
+    }
+    out->refreshContactPoints();
+  }
+
+  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
+                                 btManifoldResult*) override {
+    return 1;
+  }
+  void getAllContactManifolds(btManifoldArray& arr) override {
+    if (manifold_) arr.push_back(manifold_);
+  }
+
+  struct CreateFunc : public btCollisionAlgorithmCreateFunc {
+    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                   const btCollisionObjectWrapper* a,
+                                                   const btCollisionObjectWrapper* b) override {
+      void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(MeshPlaneAlgorithm));
+      return new (mem) MeshPlaneAlgorithm(ci, a, b, m_swapped);
+    }
+  };
+
+ private:
+  btPersistentManifold* manifold_ = nullptr;
+  bool swapped_;
+};
+
+MeshPlaneAlgorithm::CreateFunc g_mesh_plane, g_plane_mesh;
+
+}  // namespace
+
 PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
   if (!(options.dt > 0.0) || !std::isfinite(options.dt)) {
     throw PhysicsError("physics: dt must be positive, got " + std::to_string(options.dt));
@@ -37,6 +112,10 @@ PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
   dispatcher = std::make_unique<btCollisionDispatcher>(config.get());
   // Concave meshes of world models (btGImpactMeshShape) against everything.
   btGImpactCollisionAlgorithm::registerAlgorithm(dispatcher.get());
+  // ... except against planes: ODE's every vertex below the plane (MeshPlaneAlgorithm above).
+  g_plane_mesh.m_swapped = true;
+  dispatcher->registerCollisionCreateFunc(GIMPACT_SHAPE_PROXYTYPE, STATIC_PLANE_PROXYTYPE, &g_mesh_plane);
+  dispatcher->registerCollisionCreateFunc(STATIC_PLANE_PROXYTYPE, GIMPACT_SHAPE_PROXYTYPE, &g_plane_mesh);
   broadphase = std::make_unique<btDbvtBroadphase>();
   solver = std::make_unique<btMultiBodyConstraintSolver>();
   auto mbw = std::make_unique<MultiBodyWorld>(dispatcher.get(), broadphase.get(), solver.get(),
