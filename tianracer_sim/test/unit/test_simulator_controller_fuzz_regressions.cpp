@@ -82,6 +82,14 @@ TEST(ControllerFuzzRegressions, EachCaseGivesItsMessage) {
                "wheel_separation must be positive, got 0");
   EXPECT_PRED2(contains, replay("steerbot_wheelbase_zero.yaml").error,
                "wheel_separation_h must be positive, got 0");
+  // A key that is not a string: yaml-cpp's bad conversion used to escape (the process ended).
+  EXPECT_EQ(replay("tianracer_fuzz_key_is_a_dictionary.yaml").error,
+            kCorpus + "tianracer_fuzz_key_is_a_dictionary.yaml:13: a dictionary key must be a string, got a dictionary");
+  EXPECT_EQ(replay("tianracer_key_is_a_list.yaml").error,
+            kCorpus + "tianracer_key_is_a_list.yaml:3: a dictionary key must be a string, got a list");
+  // 2^30 values once aliases are expanded: refused before they are.
+  EXPECT_PRED2(contains, replay("tianracer_aliases_2_to_the_30.yaml").error,
+               "aliases expand it to more than 1000000 values");
   // Gains of 1e308: the effort is clamped to the joint's limit, nothing overflows.
   EXPECT_EQ(replay("tianracer_pid_gains_1e308.yaml").error, "");
 }
