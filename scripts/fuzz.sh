@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer harnesses (tianracer_sim/fuzz) with clang and runs each in turn.
 #   scripts/fuzz.sh [seconds]        seconds per harness, default 600
-#   FUZZ_TARGETS="mesh" scripts/fuzz.sh 1200   only those harnesses (default: extensions world mesh)
+#   FUZZ_TARGETS="mesh" scripts/fuzz.sh 1200   only those harnesses (default: extensions world mesh
+#                                   sim controllers)
 #   scripts/fuzz.sh 600 --merge      afterwards, minimise the committed corpora
 #                                   (-set_cover_merge=1: fewest files
 #                                   that keep every feature)
@@ -25,7 +26,7 @@ say "building with $CXX_BIN in $OUT/build"
 mkdir -p "$OUT/build" "$OUT/crashes"
 cmake -S "$FUZZ" -B "$OUT/build" -DCMAKE_CXX_COMPILER="$CXX_BIN" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   >"$OUT/cmake.log" 2>&1 || { tail -20 "$OUT/cmake.log" >&2; exit 1; }
-TARGETS="${FUZZ_TARGETS:-extensions world mesh}"
+TARGETS="${FUZZ_TARGETS:-extensions world mesh sim controllers}"
 targets=(); for name in $TARGETS; do targets+=(--target "fuzz_$name"); done
 cmake --build "$OUT/build" -j"${JOBS:-2}" "${targets[@]}" >"$OUT/build.log" 2>&1 || { tail -30 "$OUT/build.log" >&2; exit 1; }
 
@@ -45,6 +46,8 @@ for name in $TARGETS; do
   # without LeakSanitizer, so that those do not stop it; crashes and memory limits stay.
   dict="$FUZZ/xml.dict"; extra=()
   leaks=1; [[ "$name" == mesh ]] && { dict="$FUZZ/mesh.dict"; extra=(-detect_leaks=0); leaks=0; }
+  # fuzz_controllers: YAML keys and values; fuzz_sim (URDF and SDF) keeps xml.dict.
+  [[ "$name" == controllers ]] && dict="$FUZZ/controllers.dict"
   # (-detect_leaks=0 is per input; ASAN_OPTIONS also spares the exit-time report.)
   ASAN_OPTIONS="detect_leaks=$leaks${ASAN_OPTIONS:+:$ASAN_OPTIONS}" "$bin" "$work" "${extra[@]}" -dict="$dict" -max_total_time="$SECONDS_PER" -max_len=65536 \
     -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 \

@@ -150,12 +150,45 @@ std::vector<std::string> splitNamespace(const std::string& ns) {
   return parts;
 }
 
+/// What the parameter server could not hold ("" none), with its line in *line: a dictionary key
+/// that is not a plain value (`? {a: 1}: x`; rosparam's names are strings), or a tree that
+/// aliases expand beyond kMaxYamlValues values (`&a [*a, *a]` nested: each level doubles).
+constexpr long kMaxYamlValues = 1000000;
+std::string unusableYaml(const YAML::Node& n, long* values, int* line) {
+  if (++*values > kMaxYamlValues) {
+    *line = n.Mark().line + 1;
+    return "aliases expand it to more than " + std::to_string(kMaxYamlValues) + " values";
+  }
+  if (n.IsMap()) {
+    for (const auto& kv : n) {
+      if (!kv.first.IsScalar() && !kv.first.IsNull()) {
+        *line = kv.first.Mark().line + 1;
+        return std::string("a dictionary key must be a string, got ") + kindName(kindOf(kv.first));
+      }
+      const std::string e = unusableYaml(kv.second, values, line);
+      if (!e.empty()) return e;
+    }
+  } else if (n.IsSequence()) {
+    for (const auto& item : n) {
+      const std::string e = unusableYaml(item, values, line);
+      if (!e.empty()) return e;
+    }
+  }
+  return "";
+}
+
 YAML::Node parseYaml(const std::string& yaml, const std::string& source) {
+  YAML::Node root;
   try {
-    return YAML::Load(yaml);
+    root = YAML::Load(yaml);
   } catch (const YAML::Exception& e) {
     throw ControllerError({source, e.mark.line + 1, ""}, "not valid YAML: " + e.msg);
   }
+  long values = 0;
+  int line = 0;
+  const std::string unusable = unusableYaml(root, &values, &line);
+  if (!unusable.empty()) throw ControllerError({source, line, ""}, unusable);
+  return root;
 }
 
 /// The node at key path `ns` ("" = the root); a null node when a key is missing. *path receives
@@ -231,6 +264,13 @@ ControlConfigKeys readControlConfigKeys(const std::string& file) {
   }
   if (!root.IsMap()) {
     out.error = "its top level is not a dictionary";
+    return out;
+  }
+  long values = 0;
+  int line = 0;
+  const std::string unusable = unusableYaml(root, &values, &line);
+  if (!unusable.empty()) {
+    out.error = "line " + std::to_string(line) + ": " + unusable;
     return out;
   }
   for (const auto& entry : root) {

@@ -5,14 +5,17 @@
 
 namespace tianracer_control {
 
-PidGains toPidGains(const std::string& controller, const PidParams& params,
-                    const WarningSink& warn) {
-  const std::string pre = controllerPrefix(controller);
-  if (!params.p) throw ControllerError(pre + "pid/p is missing (pid gains are required)");
+namespace {
+
+// toPidGains's checks; `pre` starts each message ("c.yaml:7: controller 'x': " when the YAML
+// place is known), `ns` is where the gains are ("pid").
+PidGains checkedPidGains(const std::string& pre, const std::string& ns, const PidParams& params,
+                         const WarningSink& warn) {
+  if (!params.p) throw ControllerError(pre + ns + "/p is missing (pid gains are required)");
   auto finite = [&](const std::optional<double>& v, const char* key) {
     if (v && !std::isfinite(*v)) {
       std::ostringstream os;
-      os << pre << "pid/" << key << " must be finite, got " << *v;
+      os << pre << ns << "/" << key << " must be finite, got " << *v;
       throw ControllerError(os.str());
     }
   };
@@ -30,15 +33,22 @@ PidGains toPidGains(const std::string& controller, const PidParams& params,
   if (params.i_clamp_max) g.i_clamp_max = *params.i_clamp_max;
   if (g.i_clamp_min > g.i_clamp_max) {
     std::ostringstream os;
-    os << pre << "pid/i_clamp_min (" << g.i_clamp_min << ") is greater than pid/i_clamp_max ("
+    os << pre << ns << "/i_clamp_min (" << g.i_clamp_min << ") is greater than " << ns << "/i_clamp_max ("
        << g.i_clamp_max << ")";
     throw ControllerError(os.str());
   }
   if (warn && g.i != 0.0 && g.i_clamp_min == 0.0 && g.i_clamp_max == 0.0) {
-    warn(pre + "pid/i is " + std::to_string(g.i) +
-         " but the integral clamp is 0, so the integral term is always 0 (set pid/i_clamp)");
+    warn(pre + ns + "/i is " + std::to_string(g.i) +
+         " but the integral clamp is 0, so the integral term is always 0 (set " + ns + "/i_clamp)");
   }
   return g;
+}
+
+}  // namespace
+
+PidGains toPidGains(const std::string& controller, const PidParams& params,
+                    const WarningSink& warn) {
+  return checkedPidGains(controllerPrefix(controller), "pid", params, warn);
 }
 
 PidGains readPidGains(ControllerParams& params, const WarningSink& warn, const std::string& ns) {
@@ -54,7 +64,8 @@ PidGains readPidGains(ControllerParams& params, const WarningSink& warn, const s
     throw ControllerError(params.prefix() + ns + "/p is missing (" + params.type() +
                           " needs pid gains)");
   }
-  return toPidGains(params.name(), pid, warn);
+  // The YAML's file and line first, as every other message of the controller's keys.
+  return checkedPidGains(params.prefix(), ns, pid, warn);
 }
 
 }  // namespace tianracer_control
