@@ -141,7 +141,9 @@ def main(argv=None):
     if args.address:
         ray.init(address=args.address, logging_level=logging.WARNING, log_to_driver=False)
     else:
-        ray.init(num_cpus=args.cpus or os.cpu_count(), include_dashboard=False,
+        # address='local': always a Ray of its own, never one left running on this machine
+        # (ray.init() with no address joins an existing local cluster, refusing num_cpus).
+        ray.init(address='local', num_cpus=args.cpus or os.cpu_count(), include_dashboard=False,
                  logging_level=logging.WARNING, log_to_driver=False)
     try:
         cpus = ray.cluster_resources().get('CPU', 1.0)
