@@ -152,15 +152,19 @@ class DiffDriveControllerTest(unittest.TestCase):
         self.assertAlmostEqual(self.cmd_out.latest().twist.linear.x, 0.0)
 
         # A NaN command: ignored with upstream's warning; the last good command stays.
+        # Measured only while the last good command is inside cmd_vel_timeout (0.5 s): that
+        # command reaches the simulator at or after t0 of this process's clock, so the window
+        # [t0, t0 + 0.45] ends before the timeout however late the NaN loop wakes.
         drive_twist(self.cmd, 1.0, 0.4, 0.0, wall_timeout=WALL_TIMEOUT)
         bad = Twist()
         bad.linear.x = float('nan')
         t0 = rospy.get_time()
-        sim_sleep(0.4, each=lambda: self.cmd.publish(bad), poll=0.05)  # within the timeout
-        t1 = rospy.get_time()
+        sim_sleep(0.3, each=lambda: self.cmd.publish(bad), poll=0.02)
+        t1 = min(rospy.get_time(), t0 + 0.45)
         self.truth.first_stamped(t1)
-        speed, _ = motion([(m.header.stamp.to_sec(), m.pose.pose)
-                           for m in self.truth.between(t0, t1)])
+        window = self.truth.between(t0, t1)
+        self.assertGreater(len(window), 10)
+        speed, _ = motion([(m.header.stamp.to_sec(), m.pose.pose) for m in window])
         self.assertAlmostEqual(speed, 0.4, delta=0.06 * 0.4)
         wait_for(lambda: any('Received NaN in velocity command. Ignoring.' in m for m in self.log),
                  'the warning about the NaN command on /rosout', WALL_TIMEOUT)
