@@ -55,7 +55,9 @@ int main(int argc, char** argv) {
   setUseSimTimeForOthers();
   std::unique_ptr<tianracer_sim::SimNode> node;
   try {
-    node = std::make_unique<tianracer_sim::SimNode>(ros::NodeHandle(), ros::NodeHandle("~"));
+    const ros::NodeHandle pnh("~");
+    node = std::make_unique<tianracer_sim::SimNode>(ros::NodeHandle(), pnh,
+                                                    tianracer_sim::makeSimNodeCore(pnh));
   } catch (const std::exception& e) {
     ROS_FATAL("tianracer_sim: %s", e.what());
     return 1;

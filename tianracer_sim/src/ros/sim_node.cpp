@@ -25,57 +25,33 @@ Pacer::Hooks servingQueue(ros::CallbackQueue* queue) {
 
 }  // namespace
 
-void SimNode::warnOnce(const std::string& text) {
-  static WarnOnce once([](const std::string& w) { ROS_WARN_STREAM(w); });
-  once(text);
-}
+void SimNode::warnOnce(const std::string& text) { warnOnceOnRosout(text); }
 
-SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
-    : nh_(nh), pnh_(pnh), root_("/"), pacer_(servingQueue(&queue_)) {
+SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh, SimNodeCore core)
+    : nh_(nh),
+      pnh_(pnh),
+      profile_(std::move(core.profile)),
+      startup_(std::move(core.startup)),
+      root_("/"),
+      world_options_(std::move(core.world_options)),
+      sim_(std::move(core.sim)),
+      real_time_factor_(core.real_time_factor),
+      pacer_(servingQueue(&queue_)) {
+  if (!sim_) throw std::invalid_argument("SimNode: no Simulator given");
   nh_.setCallbackQueue(&queue_);
   pnh_.setCallbackQueue(&queue_);
   root_.setCallbackQueue(&queue_);
   checkSensorPublishers();  // every sensor kind has its publisher (registered beside each)
   setUpProfile();
 
-  const NodeParams params = readNodeParams(pnh_);
-  // The world: a shipped name or a .world path. Its <physics> gives the step and gravity.
-  world_options_.warn = [](const std::string& w) { warnOnce(w); };
-  // A model or mesh that cannot be used is an error and the rest loads, as in Gazebo;
-  // ~strict_world:=true stops instead (CI).
-  world_options_.error = [](const std::string& e) { ROS_ERROR_STREAM(e); };
-  world_options_.strict = params.strict_world;
-  world_options_.find_package = [](const std::string& pkg) { return ros::package::getPath(pkg); };
-  WorldDescription world = loadWorldFile(
-      resolveWorld(params.world, ros::package::getPath("tianracer_sim") + "/worlds"), world_options_);
-  startupMark("world file and its meshes");
-
-  SimulatorOptions options;
-  options.max_step_size = params.max_step_size.value_or(physicsOptionsFor(world).dt);
-  real_time_factor_ = params.real_time_factor.value_or(world.physics.real_time_factor);
-  checkPace(options.max_step_size, real_time_factor_);
+  const NodeParams& params = core.params;
   // /clock every 5 ms of sim time by default: running 10x faster than real time, 1 kHz would
   // be 10,000 messages a second to every node, more than a rospy node can read.
   clock_schedule_.period = params.clock_rate > 0.0 ? 1.0 / params.clock_rate : 0.0;
   ground_truth_rate_ = params.ground_truth_rate;
-  options.seed = static_cast<std::uint64_t>(params.seed);
   status_period_ = params.status_period;
-  options.log.info = [](const std::string& m) { ROS_INFO_STREAM(m); };
-  options.log.warn = [](const std::string& w) { warnOnce(w); };
-  options.log.error = [](const std::string& m) { ROS_ERROR_STREAM(m); };
-  options.log.frame_error = [](const std::string& m) { ROS_ERROR_STREAM_THROTTLE(10.0, m); };
   // Sensors on the world's models (and spawn_sdf_model's) publish as a robot's do.
-  options.attach_world_sensor = [this](SimSensor& sensor) { attachWorldSensor(sensor); };
-  options.profile = profile_.get();
-  sim_ = std::make_unique<Simulator>(std::move(world), std::move(options));
-  startupMark("simulator (the world's physics, scene, sensors)");
-  sim_->setPaused(params.paused);
-  {
-    // The pace as Gazebo holds it (set_physics_properties' max_update_rate changes it).
-    PhysicsProperties physics = sim_->physicsProperties();
-    physics.max_update_rate = real_time_factor_ / sim_->dt();
-    sim_->setPhysicsProperties(physics);
-  }
+  sim_->attachWorldSensors([this](SimSensor& sensor) { attachWorldSensor(sensor); });
 
   // /clock first, so that nodes waiting for sim time see it as soon as we step.
   nh_.setParam("/use_sim_time", true);

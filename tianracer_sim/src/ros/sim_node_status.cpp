@@ -90,25 +90,8 @@ void SimNode::publishStatus() {
 }
 
 void SimNode::setUpProfile() {
-  bool profile = false;
-  pnh_.param("profile", profile, false);
-  if (!profile) return;
-  profile_ = std::make_unique<StepProfile>();
-  StepProfile& p = *profile_;
-  // The rows in the order the loop runs them; the Simulator, the robots' bridges and the
-  // sensors add theirs as they are set up (row() keeps the first registration's place).
-  rows_.step = p.row(StepProfile::kStep);
-  rows_.callbacks = p.row(std::string(StepProfile::kBetweenSteps) + "callbacks (commands, services)");
-  rows_.status = p.row(std::string(StepProfile::kBetweenSteps) + "status and /diagnostics");
-  rows_.commands = p.row("ros: commands in (controllers' topics, efforts, wrenches)");
-  p.row(StepProfile::kControllers);
-  p.row(StepProfile::kBullet);
-  p.row(StepProfile::kContactScan);
-  rows_.contact_msgs = p.row("ros: contact messages");
-  rows_.clock = p.row("ros: /clock");
-  for (const char* name : RobotBridge::kProfileRows) p.row(name);
-  rows_.lockstep = p.row("lockstep: waiting for replies and ticks");
-  rows_.gazebo_states = p.row("ros: /gazebo/model_states and link_states");
+  if (!profile_) return;
+  rows_ = nodeProfileRows(*profile_);  // registered first by makeNodeProfile()
   profile_service_ = pnh_.advertiseService<std_srvs::Trigger::Request, std_srvs::Trigger::Response>(
       "profile", [this](std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
         sim_->waitFrames();  // the frame worker's rows are complete

@@ -69,6 +69,28 @@ std::string SensorHost::add(SimSensorSetup setup, const std::string& owner,
   }
 }
 
+std::map<std::string, std::string> SensorHost::attachModel(
+    ModelId id, const std::string& owner, const std::function<void(SimSensor&)>& attach) {
+  std::map<std::string, std::string> left_out;
+  for (auto it = sensors_.begin(); it != sensors_.end();) {
+    SimSensor& sensor = **it;
+    if (sensor.link().model != id) {
+      ++it;
+      continue;
+    }
+    try {
+      attach(sensor);
+      ++it;
+    } catch (const std::exception& e) {
+      say(log_.error, owner + ": sensor '" + sensor.name() + "' left out: " + e.what());
+      left_out[sensor.name()] = e.what();
+      waitFrames();  // the frame in flight may be its own
+      it = sensors_.erase(it);
+    }
+  }
+  return left_out;
+}
+
 void SensorHost::removeModel(ModelId id) {
   waitFrames();  // the frame in flight may be one of its cameras'
   sensors_.erase(std::remove_if(sensors_.begin(), sensors_.end(),

@@ -116,6 +116,19 @@ ModelId Simulator::addWorldModel(ModelDescription model) {
   return id;
 }
 
+void Simulator::attachWorldSensors(std::function<void(SimSensor&)> attach) {
+  world_attach_ = std::move(attach);
+  if (!world_attach_) return;
+  for (std::size_t i = 0; i < models_.size(); ++i) {
+    Model& m = models_[i];
+    if (m.robot || m.name.empty()) continue;
+    for (auto& [name, why] :
+         sensors_->attachModel(static_cast<ModelId>(i), "model '" + m.name + "'", world_attach_)) {
+      m.left_out[name] = why;
+    }
+  }
+}
+
 void Simulator::removeModel(const std::string& name) {
   const ModelId id = findModel(name);
   if (id == kNoModel) {
@@ -244,7 +257,7 @@ void Simulator::setUpWorldModelSensors(ModelId id) {
     if (d.name != name) continue;
     for (const LinkDescription& link : d.links) {
       for (const SensorSpec& spec : link.sensors) {
-        setUpSensor(id, spec, "", options_.attach_world_sensor);
+        setUpSensor(id, spec, "", world_attach_);
       }
     }
     // Model plugins that publish like sensors (ground truth, an IMU plugin), as for a robot.
@@ -257,7 +270,7 @@ void Simulator::setUpWorldModelSensors(ModelId id) {
                                    ") is not simulated; ignored" + (why.empty() ? "" : ": " + why));
         continue;
       }
-      setUpSensor(id, spec, "", options_.attach_world_sensor);
+      setUpSensor(id, spec, "", world_attach_);
     }
   }
 }

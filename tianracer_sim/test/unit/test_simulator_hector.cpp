@@ -105,9 +105,9 @@ TEST(SimulatorHector, NoiseDoesNotDependOnWhoListensAndAResetStartsAgain) {
   bool heard = true, unheard = false;
   SimulatorOptions a_options, b_options;
   a_options.seed = b_options.seed = 17;
-  a_options.attach_world_sensor = [&](SimSensor& s) { s.setListener(std::make_unique<Switch>(&heard)); };
-  b_options.attach_world_sensor = [&](SimSensor& s) { s.setListener(std::make_unique<Switch>(&unheard)); };
   Simulator a(world(), a_options), b(world(), b_options);
+  a.attachWorldSensors([&](SimSensor& s) { s.setListener(std::make_unique<Switch>(&heard)); });
+  b.attachWorldSensors([&](SimSensor& s) { s.setListener(std::make_unique<Switch>(&unheard)); });
   a.step(200);
   b.step(200);  // nobody listens to b's sensors: skip() runs their models all the same
   unheard = true;

@@ -104,7 +104,6 @@ TEST(SimulatorProperties, BumpersAndAnImuFollowANewStepAndGravity) {
   // doubles the step and changes gravity, they read the new values (a bumper's force is
   // impulse / the step now in force; Gazebo's ImuSensor reads the gravity at each update).
   SimulatorOptions options;
-  options.attach_world_sensor = [](SimSensor& s) { s.setListener(std::make_unique<WantsAll>()); };
   Simulator sim(
       loadWorldString(
           "<sdf version='1.6'><world name='w'><include><uri>model://ground_plane</uri></include>"
@@ -124,6 +123,7 @@ TEST(SimulatorProperties, BumpersAndAnImuFollowANewStepAndGravity) {
               "</link></model></world></sdf>",
           "bumper_imu.world", "."),
       options);
+  sim.attachWorldSensors([](SimSensor& s) { s.setListener(std::make_unique<WantsAll>()); });
   const ModelId box = sim.findModel("box");
   const auto* box_bumper = dynamic_cast<const SimBumper*>(sim.findSensor(box, "box_bumper"));
   const auto* pad_bumper =
@@ -160,7 +160,6 @@ TEST(SimulatorProperties, ACollisionWithoutContactIsTouchedButPushesNothing) {
   // Gazebo's mud.world: a static mud pit with <collide_without_contact> and a contact sensor.
   // A crate dropped through it falls on to the ground; the pit's bumper sees it pass.
   SimulatorOptions options;
-  options.attach_world_sensor = [](SimSensor& s) { s.setListener(std::make_unique<WantsAll>()); };
   std::vector<std::string> warnings;
   options.log.warn = [&](const std::string& w) { warnings.push_back(w); };
   Simulator sim(
@@ -184,6 +183,7 @@ TEST(SimulatorProperties, ACollisionWithoutContactIsTouchedButPushesNothing) {
               "</contact></surface></collision></link></model></world></sdf>",
           "mud.world", "."),
       options);
+  sim.attachWorldSensors([](SimSensor& s) { s.setListener(std::make_unique<WantsAll>()); });
   ASSERT_EQ(warnings.size(), 1u) << ::testing::PrintToString(warnings);
   EXPECT_NE(warnings[0].find("model 'floater': collision 'c': <collide_without_contact> is "
                              "simulated on static models only; on a link that moves it collides"),

@@ -32,13 +32,14 @@ TEST(WorldModelSensors, AStaticModelsLidarAndCamerasSeeAnotherModel) {
   std::vector<std::string> attached;
   int calls = 0;
   SimulatorOptions options;
-  options.attach_world_sensor = [&](SimSensor& s) {
-    attached.push_back(s.modelName() + "/" + s.name());
-    s.setListener(std::make_unique<Counter>(&calls));
-  };
   std::vector<std::string> warnings;
   options.log.warn = [&](const std::string& w) { warnings.push_back(w); };
   Simulator sim(loadWorldFile(kWorld), options);
+  // The publishers' owner comes after the Simulator (the ROS node is given one built before it).
+  sim.attachWorldSensors([&](SimSensor& s) {
+    attached.push_back(s.modelName() + "/" + s.name());
+    s.setListener(std::make_unique<Counter>(&calls));
+  });
   EXPECT_EQ(attached, (std::vector<std::string>{"sensor_post/post_lidar", "sensor_post/post_camera",
                                                 "sensor_post/post_depth", "faller/faller_beam",
                                                 "faller/faller_bumper", "faller/faller_truth"}));
@@ -146,11 +147,15 @@ TEST(WorldModelSensors, ASpawnedModelBringsItsSensorsAndTakesThemAway) {
 }
 
 TEST(WorldModelSensors, AnAttachThatThrowsLeavesTheSensorOutWithTheReason) {
+  std::vector<std::string> errors;
   SimulatorOptions options;
-  options.attach_world_sensor = [](SimSensor& s) {
-    if (s.name() == "post_camera") throw std::runtime_error("/post_camera is taken");
-  };
+  options.log.error = [&](const std::string& e) { errors.push_back(e); };
   Simulator sim(loadWorldFile(kWorld), options);
+  sim.attachWorldSensors([](SimSensor& s) {
+    if (s.name() == "post_camera") throw std::runtime_error("/post_camera is taken");
+  });
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0], "model 'sensor_post': sensor 'post_camera' left out: /post_camera is taken");
   const ModelId post = sim.findModel("sensor_post");
   EXPECT_EQ(sim.findSensor(post, "post_camera"), nullptr);
   ASSERT_EQ(sim.leftOut(post).count("post_camera"), 1u);

@@ -67,6 +67,7 @@
 #include "tianracer_sim/ros/gazebo_interface.h"
 #include "tianracer_sim/ros/lockstep.h"
 #include "tianracer_sim/ros/robot_bridge.h"
+#include "tianracer_sim/ros/sim_node_core.h"
 #include "tianracer_sim/ros/step_bridge.h"
 #include "tianracer_sim/simulator/robot_setup.h"
 #include "tianracer_sim/simulator/simulator.h"
@@ -75,10 +76,11 @@ namespace tianracer_sim {
 
 class SimNode : private ModelSpawner {
  public:
-  /// Reads parameters, loads the world and the robots and starts their controllers. Throws
-  /// std::exception with a message naming the parameter, file or controller on a
-  /// configuration error.
-  SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh);
+  /// Runs `core` (its Simulator built outside, ros/sim_node_core.h: makeSimNodeCore reads the
+  /// world parameters): reads the robots' parameters, loads the robots and starts their
+  /// controllers, offers Gazebo's topics and services. Throws std::exception with a message
+  /// naming the parameter, file or controller on a configuration error.
+  SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh, SimNodeCore core);
   ~SimNode();
 
   /// Steps until ros::ok() is false.
@@ -112,7 +114,7 @@ class SimNode : private ModelSpawner {
   void updateCommandTopics();
   /// Advertises `topic` for a robot's sensor; throws when another sensor publishes there.
   void claimTopic(const std::string& topic, const std::string& owner);
-  /// The publisher of a world model's sensor (SimulatorOptions::attach_world_sensor): the same
+  /// The publisher of a world model's sensor (Simulator::attachWorldSensors): the same
   /// as a robot's sensor of its kind, without tf_prefix; a camera's optical frame hangs from
   /// its frameName.
   void attachWorldSensor(SimSensor& sensor);
@@ -125,8 +127,8 @@ class SimNode : private ModelSpawner {
   /// so that what connects while it is paused gets them too.
   void publishInitial();
   void publishStatus();  // sim_node_status.cpp
-  /// ~profile: the StepProfile, its rows in the step's order, the ~profile service
-  /// (sim_node_status.cpp). Before the Simulator, which adds its rows.
+  /// ~profile: the node's rows of the StepProfile given with the core and the ~profile service
+  /// (sim_node_status.cpp).
   void setUpProfile();
   /// Start-up: the wall time since the last mark goes to `what` (until the start-up line is
   /// logged; spawns later are not start-up). sim_node_status.cpp.
@@ -139,10 +141,7 @@ class SimNode : private ModelSpawner {
   ros::NodeHandle nh_, pnh_;
   ros::CallbackQueue queue_;  // commands and services run between steps, in this thread
   std::unique_ptr<StepProfile> profile_;  // ~profile; null when not profiling
-  struct {
-    int step = -1, callbacks = -1, status = -1, commands = -1, contact_msgs = -1, clock = -1;
-    int gazebo_states = -1, lockstep = -1;
-  } rows_;
+  NodeProfileRows rows_;
   ros::ServiceServer profile_service_;
   std::chrono::steady_clock::time_point startup_last_ = std::chrono::steady_clock::now();
   std::vector<std::pair<std::string, double>> startup_;  // (what, ms); cleared once logged

@@ -41,6 +41,11 @@ class SensorHost {
   /// `owner` ("robot 'x'" or "model 'x'").
   std::string add(SimSensorSetup setup, const std::string& owner,
                   const std::function<void(SimSensor&)>& attach);
+  /// Attaches each sensor of model `id` (made by add() without an attach) through `attach`;
+  /// one that throws is logged with `owner`, left out and taken away. Returns {sensor name:
+  /// why} for those left out.
+  std::map<std::string, std::string> attachModel(ModelId id, const std::string& owner,
+                                                 const std::function<void(SimSensor&)>& attach);
   /// Takes the sensors of model `id` out (after the frame in flight).
   void removeModel(ModelId id);
   /// The sensor called `name` on model `id` (model plugins by their plugin name); nullptr if none.

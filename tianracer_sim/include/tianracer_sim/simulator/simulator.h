@@ -65,10 +65,6 @@ struct SimulatorOptions {
   /// Seed of the sensors' noise: same seed, same noise.
   std::uint64_t seed = 0;
   SimulatorLog log;
-  /// Called for each sensor of a world model (the world's, in the constructor, and
-  /// addWorldModel's) before it first runs, as RobotSpawn::attach is for a robot's. A throw
-  /// leaves the sensor out, with the message as the reason.
-  std::function<void(SimSensor&)> attach_world_sensor;
   /// Where each step's time goes (common/step_profile.h): the physics, the contact scan, each
   /// sensor's update, sample and publication, the frame worker's renders. Null: not timed.
   /// Owned by the caller; it outlives the Simulator.
@@ -170,6 +166,12 @@ class Simulator : public SensorWorld {
   /// (as the world's models get theirs). Throws naming the model; nothing of it stays then. A
   /// bad sensor is left out (leftOut()), not thrown.
   ModelId addWorldModel(ModelDescription model);
+  /// From now on each sensor of a world model goes through `attach` before it first runs, as
+  /// RobotSpawn::attach does for a robot's: those the world brought (made in the constructor,
+  /// unattached until now) at once, addWorldModel's as they come. A throw leaves the sensor
+  /// out, with the message as the reason (leftOut()). Lets the owner of the publishers (the
+  /// ROS node) take a Simulator built before it.
+  void attachWorldSensors(std::function<void(SimSensor&)> attach);
   /// Takes a robot or world model out with everything of it (sensors, scene, physics). Throws
   /// std::runtime_error for an unknown name or the ground plane.
   void removeModel(const std::string& name);
@@ -324,7 +326,7 @@ class Simulator : public SensorWorld {
   };
   const Model* model(ModelId id) const;
   void setUpSensors(ModelId id, const RobotSpawn& spawn);
-  /// The sensors of world model `id`'s links, attached through options_.attach_world_sensor.
+  /// The sensors of world model `id`'s links, attached through world_attach_.
   void setUpWorldModelSensors(ModelId id);
   /// One sensor of robot or world model `id`; a bad one is reported and left out.
   void setUpSensor(ModelId id, const SensorSpec& spec, const std::string& tf_prefix,
@@ -333,6 +335,7 @@ class Simulator : public SensorWorld {
   void updateScene();
 
   SimulatorOptions options_;
+  std::function<void(SimSensor&)> world_attach_;  // attachWorldSensors()
   std::unique_ptr<WorldDescription> world_;
   Simulation sim_;
   std::vector<Model> models_;
