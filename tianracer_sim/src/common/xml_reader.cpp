@@ -250,6 +250,18 @@ int XmlReader::integer(const XMLElement* e, const std::string& what) const {
   return v;
 }
 
+std::uint32_t XmlReader::unsignedInteger(const XMLElement* e, const std::string& what) const {
+  const std::string t = text(e);
+  const bool hex = t.size() > 2 && t[0] == '0' && (t[1] == 'x' || t[1] == 'X');
+  const char* begin = t.data() + (hex ? 2 : 0);
+  const char* end = t.data() + t.size();
+  std::uint64_t v = 0;
+  const auto r = std::from_chars(begin, end, v, hex ? 16 : 10);
+  if (t.empty() || r.ec != std::errc() || r.ptr != end || v > 0xffffffffull)
+    fail(e, lead(what, e) + " '" + t + "' is not an unsigned integer (decimal, or hex after 0x) of 32 bits");
+  return static_cast<std::uint32_t>(v);
+}
+
 bool XmlReader::boolean(const XMLElement* e, const std::string& what) const {
   const auto b = parseBool(text(e));
   if (!b) fail(e, lead(what, e) + " '" + text(e) + "' is not a boolean (true/false/1/0)");

@@ -153,6 +153,17 @@ bool WorldModelFilter::needBroadphaseCollision(btBroadphaseProxy* p0, btBroadpha
   const auto* o0 = static_cast<const btCollisionObject*>(p0->m_clientObject);
   const auto* o1 = static_cast<const btCollisionObject*>(p1->m_clientObject);
   if (o0 == nullptr || o1 == nullptr) return true;
+  // Gazebo's masks (ODEPhysics::Collide): no shared bit in collide_bitmask, or, when either
+  // collides without contact, none in collide_without_contact_bitmask: they never meet.
+  const auto* s0 = static_cast<const ColliderSurfaces*>(o0->getUserPointer());
+  const auto* s1 = static_cast<const ColliderSurfaces*>(o1->getUserPointer());
+  if (s0 && s1) {
+    if (!(s0->collide_bitmask & s1->collide_bitmask)) return false;
+    if ((s0->without_contact || s1->without_contact) &&
+        !(s0->without_contact_bitmask & s1->without_contact_bitmask)) {
+      return false;
+    }
+  }
   if (o0->getUserIndex() > -2 || o0->getUserIndex() != o1->getUserIndex()) return true;
   return o0->getUserIndex3() == 1 || o1->getUserIndex3() == 1;
 }

@@ -145,8 +145,14 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
       all_wheels = all_wheels && is_wheel;
       compound->addChildShape(toBt(Eigen::Isometry3d(X_CB * X_BS)), shape.get());
       const Eigen::Matrix3d R_CL = X_CB.linear() * body.X_BL.at(g.link).linear();
-      surfaces->children.push_back(
-          toSurface(surface_of(g, collision_index++), R_CL, options.contact_max_vel));
+      const SurfaceParams params = surface_of(g, collision_index++);
+      surfaces->children.push_back(toSurface(params, R_CL, options.contact_max_vel));
+      // The object's masks: the union of its collisions' (PhysicsWorld's filter).
+      const bool first = surfaces->children.size() == 1;
+      surfaces->collide_bitmask = (first ? 0u : surfaces->collide_bitmask) | params.collide_bitmask;
+      surfaces->without_contact_bitmask =
+          (first ? 0u : surfaces->without_contact_bitmask) | params.collide_without_contact_bitmask;
+      surfaces->without_contact = (first || surfaces->without_contact) && params.collide_without_contact;
       r->shapes.push_back(std::move(shape));
     }
     surfaces->body = !welded;
@@ -154,7 +160,10 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
     col->setCollisionShape(compound.get());
     setAnisotropy(col.get(), *surfaces);
     col->setCollisionFlags(col->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK |
-                           (welded ? btCollisionObject::CF_STATIC_OBJECT : 0));
+                           (welded ? btCollisionObject::CF_STATIC_OBJECT : 0) |
+                           // Every collision of the body collides without contact: Bullet finds
+                           // its contacts (bumpers read them) but solves none.
+                           (surfaces->without_contact ? btCollisionObject::CF_NO_CONTACT_RESPONSE : 0));
     col->setActivationState(DISABLE_DEACTIVATION);
     col->setFriction(surfaces->children[0].mu1);
     col->setRestitution(0.0);

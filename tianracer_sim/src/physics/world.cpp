@@ -185,6 +185,9 @@ std::unique_ptr<PhysicsWorld::Impl::StaticBody> PhysicsWorld::Impl::makeStatic(
   makeStaticShape(s, options.collision_margin, &body->shape);
   body->surfaces = std::make_unique<ColliderSurfaces>();
   body->surfaces->children.push_back(toSurface(s.surface, Eigen::Matrix3d::Identity(), options.contact_max_vel));
+  body->surfaces->collide_bitmask = s.surface.collide_bitmask;
+  body->surfaces->without_contact_bitmask = s.surface.collide_without_contact_bitmask;
+  body->surfaces->without_contact = s.surface.collide_without_contact;
   body->object = std::make_unique<btCollisionObject>();
   body->object->setCollisionShape(body->shape.shape.get());
   body->object->setWorldTransform(toBt(s.X_WS));

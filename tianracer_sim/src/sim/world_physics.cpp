@@ -118,6 +118,8 @@ SurfaceParams surfaceOf(const CollisionDescription& c) {
   s.max_vel = c.contact.max_vel;
   if (c.contact.min_depth) s.min_depth = *c.contact.min_depth;
   s.collide_without_contact = c.contact.collide_without_contact;
+  s.collide_without_contact_bitmask = c.contact.collide_without_contact_bitmask;
+  s.collide_bitmask = c.contact.collide_bitmask;
   return s;
 }
 
@@ -186,10 +188,6 @@ RigidTree worldModelTree(const WorldDescription& world, const ModelDescription& 
           warnAt(c.line, "collision '" + c.name + "' is a plane, which cannot move: left out of the physics");
           continue;
         }
-        if (c.contact.collide_without_contact) {
-          warnAt(c.line, "collision '" + c.name + "': <collide_without_contact> is simulated on "
-                         "static models only; on a link that moves it collides");
-        }
         CollisionGeometry geom;
         geom.link = l.name;
         geom.X_BG = X_BL * c.X_LS;
@@ -247,6 +245,30 @@ RigidTree worldModelTree(const WorldDescription& world, const ModelDescription& 
     visit(r, static_cast<int>(tree.bodies.size()) - 1);
   }
 
+  // Gazebo filters each pair of collisions (ODEPhysics::Collide); Bullet filters and answers
+  // per collision object, here a body (links joined by fixed joints): its masks are the union
+  // of its collisions', and it collides without contact only when all of them do.
+  for (std::size_t b = 0; b < body_surfaces.size(); ++b) {
+    const std::vector<SurfaceParams>& bs = body_surfaces[b];
+    if (bs.size() < 2) continue;
+    bool any_without = false, all_without = true, masks_differ = false;
+    for (const SurfaceParams& s : bs) {
+      any_without = any_without || s.collide_without_contact;
+      all_without = all_without && s.collide_without_contact;
+      masks_differ = masks_differ || s.collide_bitmask != bs[0].collide_bitmask ||
+                     s.collide_without_contact_bitmask != bs[0].collide_without_contact_bitmask;
+    }
+    const std::string link = "link '" + tree.bodies[b].link + "'";
+    if (any_without && !all_without) {
+      warnAt(model.line, link + ": <collide_without_contact> on some of the collisions that move "
+                         "with it, not all: they push as the others do (Bullet answers contacts "
+                         "per body)");
+    }
+    if (masks_differ) {
+      warnAt(model.line, link + ": its collisions (with the links fixed to it) have different "
+                         "collide bitmasks: each collides as their union (OR)");
+    }
+  }
   for (const auto& bs : body_surfaces) surfaces->insert(surfaces->end(), bs.begin(), bs.end());
   if (surfaces->empty()) {
     warnAt(model.line, "is dynamic but has no collision: nothing holds it up, it falls through "

@@ -599,6 +599,14 @@ Friction Parser::parseSurface(const XMLElement* e, const std::string& what,
         contact->collide_without_contact = boolean(k, what + " contact");
         continue;
       }
+      if (ctag == "contact" && std::string(k->Name()) == "collide_without_contact_bitmask") {
+        contact->collide_without_contact_bitmask = unsignedInteger(k, what + " contact");
+        continue;
+      }
+      if (ctag == "contact" && std::string(k->Name()) == "collide_bitmask") {
+        contact->collide_bitmask = unsignedInteger(k, what + " contact");
+        continue;
+      }
       if (std::string(k->Name()) != "ode") {
         unsupported(k);
         continue;

@@ -4,6 +4,7 @@
 #ifndef TIANRACER_SIM_COMMON_XML_READER_H
 #define TIANRACER_SIM_COMMON_XML_READER_H
 
+#include <cstdint>
 #include <optional>
 #include <map>
 #include <set>
@@ -107,6 +108,10 @@ class XmlReader {
   double positive(const tinyxml2::XMLElement* e, const std::string& what) const;
   double nonNegative(const tinyxml2::XMLElement* e, const std::string& what) const;
   int integer(const tinyxml2::XMLElement* e, const std::string& what) const;
+  /// SDF's "unsigned int" as sdformat reads it (Param.cc, ValueFromString: std::stoul, base 16
+  /// after a "0x" prefix, else 10): a bitmask such as <collide_bitmask>0x01</collide_bitmask>.
+  /// Fails for a sign, other text or a value above 0xffffffff.
+  std::uint32_t unsignedInteger(const tinyxml2::XMLElement* e, const std::string& what) const;
   bool boolean(const tinyxml2::XMLElement* e, const std::string& what) const;
   Eigen::Vector3d vector3(const tinyxml2::XMLElement* e, const std::string& what) const;
   /// "r g b [a]" (alpha 1 when left out).

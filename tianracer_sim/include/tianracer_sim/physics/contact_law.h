@@ -4,6 +4,7 @@
 #ifndef TIANRACER_SIM_PHYSICS_CONTACT_LAW_H
 #define TIANRACER_SIM_PHYSICS_CONTACT_LAW_H
 
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -23,8 +24,12 @@ struct SurfaceParams {
   std::optional<double> max_vel;
   double min_depth = 0.0;
   /// Found by the narrowphase (contact sensors see it) but never solved: it pushes nothing
-  /// (Gazebo's <collide_without_contact>). Static shapes only.
+  /// (Gazebo's <collide_without_contact>). On a moving body, when every collision of the body
+  /// has it (Bullet's response is per collision object).
   bool collide_without_contact = false;
+  /// Gazebo's <collide_without_contact_bitmask> and <collide_bitmask> (ColliderSurfaces).
+  std::uint32_t collide_without_contact_bitmask = 1;
+  std::uint32_t collide_bitmask = 0xffff;
 };
 
 /// SDF's default kp (1e12) and above count as a rigid contact.
@@ -46,6 +51,12 @@ struct ColliderSurfaces {
   /// A collider whose shapes are all fitted wheels has a tyre (PhysicsOptions::tyre_*).
   bool wheel = false;
   double tyre_stiffness = 0.0, tyre_damping = 0.0;
+  /// Which objects meet at all (WorldModelFilter), Gazebo's per-collision masks
+  /// (ODEPhysics::Collide) for the whole object: the union (OR) of its collisions' masks;
+  /// `without_contact` when any of them collides without contact.
+  std::uint32_t collide_bitmask = 0xffff;
+  std::uint32_t without_contact_bitmask = 1;
+  bool without_contact = false;
   const Surface& at(int index) const {
     return (index >= 0 && index < static_cast<int>(children.size())) ? children[index] : children[0];
   }

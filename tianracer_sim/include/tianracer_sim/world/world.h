@@ -17,6 +17,7 @@
 #ifndef TIANRACER_SIM_WORLD_WORLD_H
 #define TIANRACER_SIM_WORLD_WORLD_H
 
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <optional>
@@ -55,8 +56,15 @@ struct Friction {
 struct ContactDescription {
   std::optional<double> kp, kd, max_vel, min_depth;
   /// <contact><collide_without_contact>: touched (contact sensors see it) but pushes nothing,
-  /// as a mud pit or a trigger zone (Gazebo's mud.world). Static shapes only (world_physics).
+  /// as a mud pit or a trigger zone (Gazebo's mud.world).
   bool collide_without_contact = false;
+  /// <contact><collide_without_contact_bitmask> (sdformat's default 1): with
+  /// collide_without_contact on either side, two collisions meet only when their masks share a
+  /// bit (gazebo/physics/ode/ODEPhysics.cc, ODEPhysics::Collide).
+  std::uint32_t collide_without_contact_bitmask = 1;
+  /// <contact><collide_bitmask> (sdformat's default 0xffff): two collisions collide only when
+  /// their masks share a bit (ODEPhysics::Collide; BulletPhysics.cc's broadphase filter alike).
+  std::uint32_t collide_bitmask = 0xffff;
 };
 
 /// <inertial>: mass, inertia about the centre of mass, and the CoM frame in the link frame.
