@@ -1,7 +1,7 @@
 // The regression corpus of issue 43 (test/data/fuzz_regressions/{model,world}/): every file
 // that once crashed, hung, blew up or left non-finite state. Each is replayed as the simulator
 // uses it: loaded, built into the physics and the ray-casting scene, stepped 200 times with a
-// ray fan cast every 20 steps. It must either stay finite throughout, or end in a clean error
+// ray fan cast every 20 steps, with the fuzz harness's checks (fuzz/sim_replay.h). It must either stay finite throughout, or end in a clean error
 // (InputError / PhysicsError / MeshError) that names its file; nothing may crash or hang.
 // The comment at the top of each file says what it once did.
 #include <gtest/gtest.h>
@@ -11,11 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "../../fuzz/sim_replay.h"
 #include "sim_test_support.h"
-#include "tianracer_sim/lidar/ray_caster.h"
-#include "tianracer_sim/scene/scene.h"
-#include "tianracer_sim/sim/robot_scene.h"
-#include "tianracer_sim/sim/world_physics.h"
 #include "tianracer_sim/world/world.h"
 
 namespace tianracer_sim {
@@ -33,26 +30,14 @@ std::vector<std::string> corpus(const std::string& kind) {
   return files;
 }
 
-bool finite(const Eigen::Isometry3d& X) { return X.matrix().allFinite(); }
-
-/// A fan of 360 rays from `origin` in the scene; every distance must be a number (+inf: no hit).
-void castFan(RayCaster* caster, const Scene& scene, const Eigen::Vector3d& origin) {
-  caster->update(scene);
-  std::vector<Eigen::Vector3f> dirs;
-  for (int i = 0; i < 360; ++i) {
-    const float a = static_cast<float>(i * M_PI / 180.0);
-    dirs.emplace_back(std::cos(a), std::sin(a), -0.05f);
-  }
-  std::vector<float> d(dirs.size());
-  caster->castRays(origin, dirs, 0.0f, 30.0f, d.data());
-  for (float x : d) ASSERT_FALSE(std::isnan(x));
-}
-
 /// What happened to one file: "" (loaded, stayed finite), or the clean error's text.
 struct Outcome {
   std::string error;
   std::vector<std::string> warnings;
 };
+
+/// The harness's checks (fuzz/sim_replay.h), here with 360 rays every 20 steps.
+const tianracer_sim_fuzz::SimReplay kReplay{kSteps, 20, 360};
 
 Outcome replayModel(const std::string& file) {
   Outcome out;
@@ -64,29 +49,8 @@ Outcome replayModel(const std::string& file) {
     config.name = "cart";
     config.model = loadRobotModelFile(file, options);
     config.X_WB_spawn.translation() = Eigen::Vector3d(0, 0, 0.2);
-    const WorldDescription world = test::groundWorld();
-    Simulation sim(physicsOptionsFor(world), warn);
-    addWorldToPhysics(world, &sim.physics(), warn);
-    Scene scene;
-    addToScene(world, scene);
-    SimRobot& robot = sim.addRobot(config);
-    const RobotSceneBodies bodies = addRobotToScene(robot.model, robot.name, &scene);
-    RayCaster caster;
-    const PhysicsRobot& r = sim.physics().robot(robot.id);
-    for (int k = 1; k <= kSteps; ++k) {
-      sim.step();
-      EXPECT_TRUE(finite(r.basePose())) << file << " step " << k;
-      for (std::size_t j = 0; j < r.joints().size(); ++j) {
-        EXPECT_TRUE(std::isfinite(r.jointPosition(static_cast<int>(j))) &&
-                    std::isfinite(r.jointVelocity(static_cast<int>(j))))
-            << file << " step " << k << " joint " << j;
-      }
-      if (k % 20 == 0) {
-        updateRobotScene(r, bodies, &scene);
-        castFan(&caster, scene, Eigen::Vector3d(-1.0, 0.0, 0.3));
-      }
-      if (::testing::Test::HasFailure()) break;
-    }
+    EXPECT_EQ(tianracer_sim_fuzz::replayRobot(std::move(config), test::groundWorld(), warn, kReplay), "")
+        << file;
   } catch (const InputError& e) {
     out.error = e.what();
   } catch (const PhysicsError& e) {
@@ -101,24 +65,7 @@ Outcome replayWorld(const std::string& file) {
   try {
     WorldLoadOptions options;
     options.warn = warn;
-    const WorldDescription world = loadWorldFile(file, options);
-    Simulation sim(physicsOptionsFor(world), warn);
-    addWorldToPhysics(world, &sim.physics(), warn);
-    Scene scene;
-    addToScene(world, scene);
-    RayCaster caster;
-    for (int k = 1; k <= kSteps; ++k) {
-      sim.step();
-      for (int b = 0; b < sim.physics().freeBodyCount(); ++b) {
-        if (!sim.physics().hasFreeBody(b)) continue;
-        EXPECT_TRUE(finite(sim.physics().freeBody(b).basePose())) << file << " step " << k;
-      }
-      if (k % 20 == 0) {
-        updateFreeBodyScene(sim.physics(), &scene);
-        castFan(&caster, scene, Eigen::Vector3d(-1.0, 0.0, 0.3));
-      }
-      if (::testing::Test::HasFailure()) break;
-    }
+    EXPECT_EQ(tianracer_sim_fuzz::replayWorld(loadWorldFile(file, options), warn, kReplay), "") << file;
   } catch (const InputError& e) {
     out.error = e.what();
   } catch (const PhysicsError& e) {
