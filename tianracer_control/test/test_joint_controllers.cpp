@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "tianracer_control/controllers/effort_joint_position_controller.h"
+#include "tianracer_control/controllers/pid_state.h"
 #include "tianracer_control/joint_controllers.h"
 
 #include "control_test_support.h"
@@ -161,6 +162,73 @@ TEST(EffortJointVelocityController, PidOnVelocityError) {
   car.update(0.01);
   // P = 3, D = 0.01 * (3 - 4) / 0.01 = -1
   EXPECT_NEAR(car.left_rear.command, 2.0, 1e-12);
+}
+
+TEST(PidControllers, StateIsSampledOnEveryTenthUpdateWithTheUnclampedOutput) {
+  // effort_controllers' joint_position_controller.cpp: loop_count_ % 10 == 0, then
+  // loop_count_++: updates 0, 10, 20, ... since the controller was made; the command before the
+  // hardware's effort limit; getGains' i_clamp (i_clamp_max) and antiwindup.
+  Car car;
+  ControllerSpec spec_ = hingeSpec(100.0, 1.0, 0.0);
+  spec_.params["pid"]["i_clamp"] = 0.5;
+  auto& c = car.load(spec_);
+  const auto* source = dynamic_cast<const PidStateSource*>(&c);
+  ASSERT_NE(source, nullptr);
+  EXPECT_EQ(source->pidState().seq, 0u);
+  car.left_hinge.position = 0.1;
+  car.left_hinge.velocity = 0.25;
+  ASSERT_TRUE(c.setCommand(0.3));
+  car.update(0.002);  // update 0: sampled
+  const PidStateSample& s = source->pidState();
+  EXPECT_EQ(s.seq, 1u);
+  EXPECT_DOUBLE_EQ(s.set_point, 0.3);
+  EXPECT_DOUBLE_EQ(s.process_value, 0.1);
+  EXPECT_DOUBLE_EQ(s.process_value_dot, 0.25);
+  EXPECT_DOUBLE_EQ(s.error, 0.2);
+  EXPECT_DOUBLE_EQ(s.time_step, 0.002);
+  EXPECT_GT(s.command, 10.0);                  // P alone is 20 N m...
+  EXPECT_EQ(car.left_hinge.command, 10.0);     // ... the joint gets the 10 N m limit
+  EXPECT_EQ(s.gains.p, 100.0);
+  EXPECT_EQ(s.gains.i_clamp_max, 0.5);
+  for (int k = 1; k <= 9; ++k) car.update(0.002);
+  EXPECT_EQ(source->pidState().seq, 1u);  // updates 1..9: none
+  car.update(0.002);
+  EXPECT_EQ(source->pidState().seq, 2u);  // update 10
+  c.starting(0.0);  // a restart does not reset the count
+  for (int k = 11; k <= 20; ++k) car.update(0.002);
+  EXPECT_EQ(source->pidState().seq, 3u);  // update 20
+
+  // effort_controllers/JointVelocityController: the velocity is the process value, its
+  // derivative left 0 as upstream leaves it; velocity_controllers/JointPositionController.
+  Car v;
+  v.left_rear.interface = JointHandle::Interface::kEffort;
+  ControllerSpec vs = spec("v", "effort_controllers/JointVelocityController", "left_rear_wheel_joint");
+  vs.params["pid"]["p"] = 2.0;
+  auto& vc = v.load(vs);
+  vc.setCommand(3.0);
+  v.left_rear.velocity = 1.0;
+  v.update(0.01);
+  const PidStateSample& vsample = dynamic_cast<const PidStateSource&>(vc).pidState();
+  EXPECT_EQ(vsample.seq, 1u);
+  EXPECT_DOUBLE_EQ(vsample.process_value, 1.0);
+  EXPECT_DOUBLE_EQ(vsample.process_value_dot, 0.0);
+  EXPECT_DOUBLE_EQ(vsample.error, 2.0);
+  EXPECT_DOUBLE_EQ(vsample.command, 4.0);
+  Car p;
+  p.left_rear.interface = JointHandle::Interface::kVelocity;
+  ControllerSpec ps = spec("p", "velocity_controllers/JointPositionController", "left_rear_wheel_joint");
+  ps.params["pid"]["p"] = 3.0;
+  auto& pc = p.load(ps);
+  pc.setCommand(0.5);
+  p.update(0.01);
+  const PidStateSample& psample = dynamic_cast<const PidStateSource&>(pc).pidState();
+  EXPECT_EQ(psample.seq, 1u);
+  EXPECT_DOUBLE_EQ(psample.set_point, 0.5);
+  EXPECT_DOUBLE_EQ(psample.command, 1.5);
+  // A forwarding controller has no PID and no `state`.
+  Car f;
+  auto& fc = f.load(spec("f", "velocity_controllers/JointVelocityController", "left_rear_wheel_joint"));
+  EXPECT_EQ(dynamic_cast<const PidStateSource*>(&fc), nullptr);
 }
 
 TEST(ForwardCommandController, VelocityPassesThroughClamped) {

@@ -139,8 +139,10 @@ void VelocityJointPositionController::starting(double) {
 }
 
 void VelocityJointPositionController::update(double dt) {
-  joint_->command = clampSymmetric(pid_.computeCommand(positionError(*joint_, command_), dt),
-                                   joint_->velocity_limit);
+  const double error = positionError(*joint_, command_);
+  const double velocity = pid_.computeCommand(error, dt);
+  joint_->command = clampSymmetric(velocity, joint_->velocity_limit);
+  recordPidState(command_, joint_->position, joint_->velocity, error, dt, velocity, pid_.gains());
 }
 
 bool VelocityJointPositionController::setCommand(double value) {

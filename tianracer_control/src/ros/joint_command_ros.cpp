@@ -2,11 +2,14 @@
 // for one joint (forward_command_controller.h, effort_controllers' and velocity_controllers'
 // JointPositionController / JointVelocityController), std_msgs/Float64MultiArray for a group
 // (forward_joint_group_command_controller.h, effort_controllers/JointGroupPositionController).
+// The PID ones also publish <controller>/state, control_msgs/JointControllerState, every 10th
+// update (controllers/pid_state.h), stamped with the update's sim time.
 #include <cmath>
 #include <mutex>
 #include <optional>
 #include <sstream>
 
+#include <control_msgs/JointControllerState.h>
 #include <ros/console.h>
 #include <ros/subscriber.h>
 #include <std_msgs/Float64.h>
@@ -27,9 +30,32 @@ class Float64CommandRos : public ControllerRosSide {
   static std::unique_ptr<ControllerRosSide> create(RosSideContext& context) {
     return std::make_unique<Float64CommandRos>(context);
   }
-  explicit Float64CommandRos(RosSideContext& context) : controller_(context.controller) {
+  explicit Float64CommandRos(RosSideContext& context)
+      : controller_(context.controller),
+        pid_state_(dynamic_cast<const PidStateSource*>(&context.controller)) {
     sub_ = context.controller_nh.subscribe<std_msgs::Float64>(
         "command", 10, [this](const std_msgs::Float64::ConstPtr& msg) { onCommand(msg->data); });
+    // A RealtimePublisher of queue 1 upstream.
+    if (pid_state_) state_pub_ = context.controller_nh.advertise<control_msgs::JointControllerState>("state", 1);
+  }
+  void publish(double t) override {
+    if (!pid_state_ || pid_state_->pidState().seq == published_seq_) return;
+    const PidStateSample& s = pid_state_->pidState();
+    published_seq_ = s.seq;
+    control_msgs::JointControllerState msg;
+    msg.header.stamp = ros::Time(t);
+    msg.set_point = s.set_point;
+    msg.process_value = s.process_value;
+    msg.process_value_dot = s.process_value_dot;
+    msg.error = s.error;
+    msg.time_step = s.time_step;
+    msg.command = s.command;
+    msg.p = s.gains.p;
+    msg.i = s.gains.i;
+    msg.d = s.gains.d;
+    msg.i_clamp = s.gains.i_clamp_max;
+    msg.antiwindup = s.gains.antiwindup;
+    state_pub_.publish(msg);
   }
   void apply() override {
     std::optional<double> pending;
@@ -59,7 +85,10 @@ class Float64CommandRos : public ControllerRosSide {
   }
 
   Controller& controller_;
+  const PidStateSource* pid_state_;  // null: not a PID controller, no `state`
   ros::Subscriber sub_;
+  ros::Publisher state_pub_;
+  std::uint64_t published_seq_ = 0;
   std::mutex mutex_;
   std::optional<double> pending_;
   ThrottledWarning ignored_;

@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
 """rostest: the sim node publishes /clock and the seed's joint_states, obeys controller
 commands, and serves Gazebo's pause and reset services (pause_physics puts the paused time on
-/clock once more, so that a client can wait for it). Times are sim time."""
+/clock once more, so that a client can wait for it); a PID controller publishes its `state`
+as ros_controllers' does. Times are sim time."""
 import math
 import unittest
 
 import rospy
 import rostest
+from control_msgs.msg import JointControllerState
 from gazebo_msgs.srv import GetWorldProperties
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
@@ -125,6 +127,30 @@ class SimBasics(unittest.TestCase):
         p = self.truth.latest().pose.pose
         self.assertTrue(all(math.isfinite(v) for v in (p.position.x, p.position.y, p.position.z,
                                                         p.orientation.w)))
+
+    def test_6_a_pid_controller_publishes_its_state(self):
+        # effort_controllers/JointPositionController's `state` (control_msgs/JointControllerState):
+        # every 10th control update, the set point commanded, the error, the YAML's gains.
+        name = '/tianracer/left_steering_hinge_position_controller/'
+        state = Stream(name + 'state', JointControllerState)
+        cmd = rospy.Publisher(name + 'command', Float64, queue_size=1)
+        wait_connected(cmd)
+        cmd.publish(Float64(0.2))
+        _, t0, _ = state.first(lambda s, m: abs(m.set_point - 0.2) < 1e-12,
+                               'a state with the new set point')
+        state.first_stamped(t0 + 1.0)
+        msgs = state.between(t0, t0 + 1.0)
+        last = msgs[-1]
+        rate = published_rate(msgs)
+        rospy.loginfo('state rate %.2f Hz (sim time), time_step %g s', rate, last.time_step)
+        self.assertGreater(last.time_step, 0.0)
+        self.assertAlmostEqual(rate, 1.0 / (10 * last.time_step), delta=0.02 * rate)
+        self.assertEqual((last.p, last.i, last.d), (20.0, 0.0, 0.2))
+        self.assertAlmostEqual(last.set_point, 0.2, delta=1e-12)
+        self.assertAlmostEqual(last.process_value, 0.2, delta=0.02)
+        self.assertAlmostEqual(last.error, last.set_point - last.process_value, delta=1e-9)
+        self.assertTrue(all(math.isfinite(x) for x in (last.command, last.process_value_dot)))
+        cmd.publish(Float64(0.0))
 
 
 if __name__ == '__main__':

@@ -19,6 +19,9 @@ class EffortJointPositionController
   double startTarget() const { return clampTarget(joint_->position); }
   double clampTarget(double target) const { return clampToPositionLimits(*joint_, target); }
   double pidOutput(double dt);
+  double pidError() const;
+  double processValue() const { return joint_->position; }
+  double processValueDot() const { return joint_->velocity; }
 };
 
 }  // namespace tianracer_control

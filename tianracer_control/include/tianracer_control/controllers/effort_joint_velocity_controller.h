@@ -17,7 +17,10 @@ class EffortJointVelocityController
   /// Starts at rest.
   double startTarget() const { return 0.0; }
   double clampTarget(double target) const { return clampSymmetric(target, joint_->velocity_limit); }
-  double pidOutput(double dt) { return pid_.computeCommand(command_ - joint_->velocity, dt); }
+  double pidOutput(double dt) { return pid_.computeCommand(pidError(), dt); }
+  double pidError() const { return command_ - joint_->velocity; }
+  double processValue() const { return joint_->velocity; }
+  double processValueDot() const { return 0.0; }
 };
 
 }  // namespace tianracer_control

@@ -5,6 +5,9 @@
 //   double startTarget() const;           the target on starting()
 //   double clampTarget(double) const;     a commanded target, clamped
 //   double pidOutput(double dt);          the PID's effort for the current target, unclamped
+//   double pidError() const;              the error it was given (the `state` topic's)
+//   double processValue() const;          the controlled value, and its derivative
+//   double processValueDot() const;       (upstream leaves it 0 for a velocity)
 #ifndef TIANRACER_CONTROL_CONTROLLERS_EFFORT_PID_CONTROLLER_H
 #define TIANRACER_CONTROL_CONTROLLERS_EFFORT_PID_CONTROLLER_H
 
@@ -14,13 +17,14 @@
 #include <utility>
 
 #include "tianracer_control/controller.h"
+#include "tianracer_control/controllers/pid_state.h"
 #include "tianracer_control/pid.h"
 #include "tianracer_control/pid_params.h"
 
 namespace tianracer_control {
 
 template <class Derived>
-class EffortPidController : public SingleJointController {
+class EffortPidController : public SingleJointController, public PidStateSource {
  public:
   /// Reads joint (an effort joint) and pid/{p,i,d,i_clamp,i_clamp_min,i_clamp_max,antiwindup}.
   static std::unique_ptr<Controller> create(ControllerContext& context) {
@@ -37,7 +41,10 @@ class EffortPidController : public SingleJointController {
     pid_.reset();
   }
   void update(double dt) override {
-    joint_->command = clampSymmetric(derived().pidOutput(dt), joint_->effort_limit);
+    const double effort = derived().pidOutput(dt);
+    joint_->command = clampSymmetric(effort, joint_->effort_limit);
+    recordPidState(command_, derived().processValue(), derived().processValueDot(),
+                   derived().pidError(), dt, effort, pid_.gains());
   }
   void reset() override { pid_.reset(); }
   bool setCommand(double value) override {

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "tianracer_control/controller.h"
+#include "tianracer_control/controllers/pid_state.h"
 #include "tianracer_control/pid.h"
 
 namespace tianracer_control {
@@ -63,7 +64,7 @@ class JointGroupController : public Controller {
 /// way round for a continuous joint), derivative from successive errors (control_toolbox's
 /// computeCommand(error, dt), as upstream calls it for a position-only command); the target
 /// clamped to the position limits, the velocity to +-velocity_limit. Gains under pid/.
-class VelocityJointPositionController : public SingleJointController {
+class VelocityJointPositionController : public SingleJointController, public PidStateSource {
  public:
   static constexpr const char* kType = "velocity_controllers/JointPositionController";
   static std::unique_ptr<Controller> create(ControllerContext& context);
