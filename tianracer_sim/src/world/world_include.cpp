@@ -12,6 +12,41 @@
 #include <tianracer_assets/paths.h>
 
 namespace tianracer_sim {
+
+namespace {
+
+/// A shape scaled by a model's <state> <scale> as Gazebo 11 scales it (Model::SetScale ->
+/// Link::SetScale -> Collision::SetScale and Link::UpdateVisualGeomSDF, from scale 1): a box's
+/// size times the scale; a sphere's radius times its largest component; a cylinder's radius
+/// times max(x, y), its length times z (SphereShape.cc, CylinderShape.cc); a mesh's <scale>
+/// replaced by it (MeshShape::SetScale sets, not multiplies); a plane's size times x and y.
+/// Placements, masses and inertias stay as they are, as in Gazebo.
+Shape scaledAsGazebo(Shape s, const Eigen::Vector3d& scale) {
+  switch (s.type) {
+    case ShapeType::kBox:
+      s.size = s.size.cwiseProduct(scale);
+      break;
+    case ShapeType::kSphere:
+      s.radius *= scale.maxCoeff();
+      break;
+    case ShapeType::kCylinder:
+      s.radius *= std::max(scale.x(), scale.y());
+      s.length *= scale.z();
+      break;
+    case ShapeType::kMesh:
+      s.scale = scale;
+      break;
+    case ShapeType::kPlane:
+      s.size.x() *= scale.x();
+      s.size.y() *= scale.y();
+      break;
+    default:
+      break;
+  }
+  return s;
+}
+
+}  // namespace
 namespace world_internal {
 
 bool isFile(const std::string& path) {
@@ -124,7 +159,17 @@ void Parser::applyState(const XMLElement* e, WorldDescription& world,
         if (ktag == "pose") continue;
         if (ktag == "scale") {
           const Eigen::Vector3d scale = vector3(k, what);
-          if (!scale.isApprox(Eigen::Vector3d::Ones())) warn(k, what + ": <scale> is not applied");
+          if (!(scale.minCoeff() > 0.0) || scale.maxCoeff() > 1e3) {
+            // Gazebo's shapes ignore a negative scale (BoxShape::SetScale returns); a zero one
+            // would leave nothing to collide with.
+            leftOut(k, what + ": <scale> '" + text(k) + "' must be > 0 and <= 1000 in x, y and z",
+                    "the model keeps its size");
+            continue;
+          }
+          for (LinkDescription& l : m->links) {
+            for (CollisionDescription& col : l.collisions) col.shape = scaledAsGazebo(col.shape, scale);
+            for (VisualDescription& v : l.visuals) v.shape = scaledAsGazebo(v.shape, scale);
+          }
         } else if (ktag == "link") {
           const std::string lname = k->Attribute("name") ? trimText(k->Attribute("name")) : "";
           auto l = std::find_if(m->links.begin(), m->links.end(),

@@ -439,6 +439,41 @@ TEST(WorldLoader, StateNamingAMissingModelOrLinkIsReportedAndIgnored) {
   EXPECT_TRUE(w.models[0].X_WM.translation().isApprox(Eigen::Vector3d(1, 2, 3)));  // the rest
 }
 
+TEST(WorldLoader, StateScaleResizesShapesAsGazebo) {
+  // A world saved after resizing models in Gazebo's editor: <state><model><scale> scales each
+  // shape as Model::SetScale does (box size x scale; sphere radius x max; cylinder radius x
+  // max(x, y), length x z; a mesh's scale replaced); placements and masses stay.
+  std::vector<std::string> errors;
+  WorldLoadOptions o;
+  o.error = [&](const std::string& m) { errors.push_back(m); };
+  o.require_meshes = false;
+  const WorldDescription w = loadWorldString(
+      "<sdf version='1.6'><world name='w'><model name='m'><pose>0 0 0.5 0 0 0</pose>"
+      "<link name='a'><pose>0.1 0 0 0 0 0</pose>"
+      "<collision name='box'><geometry><box><size>1 2 3</size></box></geometry></collision>"
+      "<collision name='ball'><geometry><sphere><radius>0.5</radius></sphere></geometry></collision>"
+      "<collision name='can'><geometry><cylinder><radius>0.5</radius><length>2</length></cylinder>"
+      "</geometry></collision>"
+      "<visual name='v'><geometry><mesh><uri>file://m.dae</uri><scale>2 2 2</scale></mesh></geometry>"
+      "</visual></link></model>\n<model name='bad'><static>1</static><link name='a'>"
+      "<collision name='c'><geometry><box><size>1 1 1</size></box></geometry></collision></link></model>"
+      "<state world_name='w'><model name='m'><pose>0 0 0.5 0 0 0</pose><scale>2 0.5 4</scale>"
+      "</model>\n<model name='bad'><scale>-1 1 1</scale></model></state></world></sdf>",
+      "scaled.world", kData, o);
+  ASSERT_EQ(errors.size(), 1u) << ::testing::PrintToString(errors);
+  EXPECT_EQ(errors[0], "scaled.world:3: <state> of model 'bad': <scale> '-1 1 1' must be > 0 and "
+                       "<= 1000 in x, y and z; the model keeps its size");
+  const LinkDescription& l = w.models[0].links[0];
+  EXPECT_TRUE(l.collisions[0].shape.size.isApprox(Eigen::Vector3d(2, 1, 12)));
+  EXPECT_DOUBLE_EQ(l.collisions[1].shape.radius, 2.0);   // 0.5 x 4
+  EXPECT_DOUBLE_EQ(l.collisions[2].shape.radius, 1.0);   // 0.5 x max(2, 0.5)
+  EXPECT_DOUBLE_EQ(l.collisions[2].shape.length, 8.0);   // 2 x 4
+  EXPECT_TRUE(l.visuals[0].shape.scale.isApprox(Eigen::Vector3d(2, 0.5, 4)));  // replaced
+  EXPECT_TRUE(l.X_ML.translation().isApprox(Eigen::Vector3d(0.1, 0, 0)));     // not scaled
+  EXPECT_DOUBLE_EQ(l.inertial.mass, 1.0);
+  EXPECT_TRUE(w.models[1].links[0].collisions[0].shape.size.isApprox(Eigen::Vector3d::Ones()));
+}
+
 TEST(WorldLoader, StateNamingAMissingModelOrLinkIsAnErrorWhenStrict) {
   std::string e = errorWithModels(
       "<sdf version='1.6'><world name='w'>\n<state world_name='w'>\n<model name='ghost'>"
