@@ -45,6 +45,13 @@ Simulator::Simulator(WorldDescription world, SimulatorOptions options)
     shapes += entry.bodies.shapes;
     models_.push_back(std::move(entry));
   }
+  for (std::size_t i = 0; i < world_->actors.size(); ++i) {
+    Model entry;
+    entry.name = world_->actors[i].model.name;
+    entry.actor = static_cast<int>(i);
+    models_.push_back(std::move(entry));
+  }
+  actor_players_ = actorPlayers(*world_, sim_.dt());
   addToScene(*world_, scene_);
   // The run loop's pace: Gazebo's real-time factor is real_time_update_rate * max_step_size.
   max_update_rate_ = world_->physics.real_time_factor / sim_.dt();
@@ -128,7 +135,7 @@ void Simulator::removeModel(const std::string& name) {
   if (m.robot) {
     contacts_.removeRobot(m.robot->id);
     sim_.removeRobot(name);
-  } else {
+  } else if (m.actor < 0) {
     removeModelFromPhysics(m.bodies, &sim_.physics());
     world_->models.erase(std::find_if(world_->models.begin(), world_->models.end(),
                                       [&](const ModelDescription& d) { return d.name == name; }));
@@ -355,6 +362,11 @@ EntityState Simulator::modelState(ModelId id) const {
     s.V_WE = p->baseTwist();
     return s;
   }
+  if (models_[id].actor >= 0) {
+    // Moved by SetWorldPose only, its links have no velocity in Gazebo (Actor::Update).
+    s.X_WE = actor_players_[models_[id].actor].poseAt(sim_.physics().time());
+    return s;
+  }
   for (const ModelDescription& d : world_->models) {
     if (d.name == models_[id].name) s.X_WE = d.X_WM;
   }
@@ -414,6 +426,7 @@ void Simulator::updateScene() {
     if (m.robot) updateRobotScene(sim_.physics().robot(m.robot->id), m.scene_bodies, &scene_);
   }
   updateFreeBodyScene(sim_.physics(), &scene_);
+  updateActorScene(*world_, &actor_players_, sim_.physics().time(), &scene_);
   scene_step_ = sim_.stepCount();
 }
 
@@ -425,6 +438,12 @@ const Scene& Simulator::scene() {
 
 Eigen::Isometry3d Simulator::linkPose(const LinkRef& link) const {
   if (const PhysicsRobot* p = physicsOf(link.model)) return p->linkPose(link.link);
+  if (const int a = models_[link.model].actor; a >= 0) {
+    for (const LinkDescription& l : world_->actors[a].model.links) {
+      if (l.name == link.link)
+        return actor_players_[a].poseAt(sim_.physics().time()) * l.X_ML;
+    }
+  }
   // A static world model: where the world file put it.
   for (const ModelDescription& d : world_->models) {
     if (d.name != models_[link.model].name) continue;

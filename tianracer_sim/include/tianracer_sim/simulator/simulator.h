@@ -320,6 +320,7 @@ class Simulator : public SensorWorld {
     SimRobot* robot = nullptr;
     RobotSceneBodies scene_bodies;  // robots
     WorldModelBodies bodies;        // world models
+    int actor = -1;                 // <actor>: its index in world_->actors (actor_players_)
     LeftOut left_out;
   };
   const Model* model(ModelId id) const;
@@ -340,6 +341,8 @@ class Simulator : public SensorWorld {
   Scene scene_;  // what sensors see: the world's models and every robot's links
   std::uint64_t scene_step_ = ~0ull;  // step count the scene's poses belong to
   RayCaster caster_;
+  // The world's <actor>s (world/actor.h), played to the sim time asked (modelState, the scene).
+  mutable std::vector<ActorPlayer> actor_players_;
   // After scene_ and caster_, which its sensors read; made in the constructor (its profile rows
   // after the Simulator's), reset first in ~Simulator.
   std::unique_ptr<SensorHost> sensors_;
