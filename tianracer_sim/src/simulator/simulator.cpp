@@ -49,9 +49,29 @@ Simulator::Simulator(WorldDescription world, SimulatorOptions options)
     Model entry;
     entry.name = world_->actors[i].model.name;
     entry.actor = static_cast<int>(i);
+    // Gazebo's actors are static models (sdf/1.6/actor.sdf: <static> defaults to true; Model::
+    // Load) whose links Actor::Update moves: their collisions are static shapes moved each step.
+    const ModelDescription& a = world_->actors[i].model;
+    for (const LinkDescription& l : a.links) {
+      for (const CollisionDescription& c : l.collisions) {
+        StaticShape s;
+        s.name = a.name + "::" + l.name + "::" + c.name;
+        s.X_WS = a.X_WM * l.X_ML * c.X_LS;
+        s.surface = surfaceOf(c);
+        s.shape = c.shape;
+        ActorShape as;
+        as.actor = static_cast<int>(i);
+        as.X_AS = l.X_ML * c.X_LS;
+        as.shape = sim_.physics().addStaticShape(s);
+        entry.bodies.statics.push_back(as.shape);
+        actor_shapes_.push_back(as);
+        ++shapes;
+      }
+    }
     models_.push_back(std::move(entry));
   }
   actor_players_ = actorPlayers(*world_, sim_.dt());
+  actor_physics_players_ = actor_players_;
   addToScene(*world_, scene_);
   // The run loop's pace: Gazebo's real-time factor is real_time_update_rate * max_step_size.
   max_update_rate_ = world_->physics.real_time_factor / sim_.dt();
@@ -135,7 +155,12 @@ void Simulator::removeModel(const std::string& name) {
   if (m.robot) {
     contacts_.removeRobot(m.robot->id);
     sim_.removeRobot(name);
-  } else if (m.actor < 0) {
+  } else if (m.actor >= 0) {
+    removeModelFromPhysics(m.bodies, &sim_.physics());
+    for (ActorShape& s : actor_shapes_) {
+      if (s.actor == m.actor) s.shape = -1;
+    }
+  } else {
     removeModelFromPhysics(m.bodies, &sim_.physics());
     world_->models.erase(std::find_if(world_->models.begin(), world_->models.end(),
                                       [&](const ModelDescription& d) { return d.name == name; }));
@@ -296,6 +321,16 @@ void Simulator::setUpSensor(ModelId id, const SensorSpec& spec, const std::strin
 // --- time -----------------------------------------------------------------------------------------
 
 StepWaits Simulator::advance() {
+  if (!actor_shapes_.empty()) {
+    // Gazebo: World::Step advances the sim time, then Actor::Update places the actor for it,
+    // then the physics steps.
+    const double t = sim_.time() + sim_.dt();
+    for (const ActorShape& s : actor_shapes_) {
+      if (s.shape < 0) continue;
+      sim_.physics().setStaticShapePose(s.shape,
+                                        actor_physics_players_[s.actor].poseAt(t) * s.X_AS);
+    }
+  }
   sim_.step();
   if (track_contacts_) {
     StepProfile::Scope timed(options_.profile, contacts_row_);

@@ -191,7 +191,8 @@ void ActorPlayer::play() {
 }
 
 const Eigen::Isometry3d& ActorPlayer::poseAt(double t) {
-  const std::int64_t target = std::llround(t * 1e9) / dt_ns_;
+  if (!(t >= 0.0)) t = 0.0;
+  const std::int64_t target = std::llround(std::min(t, 1e9) * 1e9) / dt_ns_;
   if (target < step_) reset();
   while (step_ < target) {
     ++step_;

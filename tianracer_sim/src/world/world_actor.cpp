@@ -36,6 +36,11 @@ ActorDescription Parser::parseActor(const XMLElement* e) {
     } else if (tag == "script") {
       if (script) fail(c, what + ": a second <script>");
       script = c;
+    } else if (tag == "static") {
+      // Gazebo's actors are static by default (sdf/1.6/actor.sdf); a dynamic one is not.
+      if (!boolean(c, what))
+        warn(c, what + ": <static>false</static> is not simulated (Gazebo's dynamic actor links "
+                       "fall between frames): the actor is moved kinematically");
     } else if (tag == "skin" || tag == "animation") {
       // Skeletal meshes (COLLADA/BVH) are not loaded: the actor is its <link>s.
       warn(c, "<" + tag + "> in <actor> is not simulated (no skeletal animation): " + what +
@@ -55,7 +60,8 @@ ActorDescription Parser::parseActor(const XMLElement* e) {
     if (tag == "loop") {
       s.loop = boolean(c, what + " <script>");
     } else if (tag == "delay_start") {
-      s.delay_start = number(c, what + " <script>");  // Gazebo takes any value
+      // Gazebo takes any value, a negative one too; bounded as waypoint times are.
+      s.delay_start = bounded(c, what + " <script>", limits::kPosition, "s");
     } else if (tag == "auto_start") {
       s.auto_start = boolean(c, what + " <script>");
     } else if (tag == "trajectory") {

@@ -297,6 +297,7 @@ TEST(ActorScript, EachBrokenFormIsAnErrorAtItsLineAndTheRestLoads) {
   for (const BadCase& c : cases) {
     const Loaded l = load(worldWith(c.script));
     ASSERT_EQ(l.errors.size(), 1u) << c.name;
+    RecordProperty(c.name, l.errors[0]);  // docs/bad_input.md copies these (--gtest_output=xml)
     EXPECT_NE(l.errors[0].find(c.expect), std::string::npos) << c.name << ": " << l.errors[0];
     EXPECT_NE(l.errors[0].find("the actor is left out"), std::string::npos) << c.name;
     EXPECT_TRUE(l.world.actors.empty()) << c.name;

@@ -16,20 +16,20 @@ namespace {
 
 using ::testing::HasSubstr;
 
-WorldDescription actorWorld() {
+WorldDescription actorWorld(const std::string& extra = "", const std::string& surface = "") {
   // The walker goes from y = -2 to y = 2 along x = 3 in 4 s, then stops (loop false).
   return loadWorldString(
-      "<sdf version='1.6'><world name='w'>"
+      std::string("<sdf version='1.6'><world name='w'>") +
       "<include><uri>model://ground_plane</uri></include>"
       "<actor name='walker'><pose>0 9 0 0 0 0</pose>"
       "<link name='body'><pose>0 0 1 0 0 0</pose><collision name='c'><geometry><box>"
-      "<size>0.4 0.4 2</size></box></geometry></collision><visual name='v'><geometry><box>"
+      "<size>0.4 0.4 2</size></box></geometry>" + surface + "</collision><visual name='v'><geometry><box>"
       "<size>0.4 0.4 2</size></box></geometry></visual></link>"
       "<script><loop>false</loop><trajectory id='0' type='walk'>"
       "<waypoint><time>0</time><pose>3 -2 0 0 0 0</pose></waypoint>"
       "<waypoint><time>4</time><pose>3 2 0 0 0 0</pose></waypoint>"
-      "</trajectory></script></actor>"
-      "</world></sdf>",
+      "</trajectory></script></actor>" +
+          extra + "</world></sdf>",
       "actor.world", ".");
 }
 
@@ -87,6 +87,41 @@ TEST(SimulatorActor, TheStateServicesFindItAndCannotMoveIt) {
     FAIL() << "an actor was moved";
   } catch (const InputError& err) {
     EXPECT_THAT(err.what(), HasSubstr("is an actor"));
+  }
+}
+
+TEST(SimulatorActor, ItsCollisionsPushWhatTheyMeetAndNothingPushesIt) {
+  // Gazebo's actor is a static model its script moves (teleported at 30 Hz, no velocity): a free
+  // box in its way is pushed out of it no faster than the contacts' max_vel (the smaller of the
+  // two surfaces', SDF default 0.01 m/s), as ODE's contact correction is capped.
+  const std::string fast = "<surface><contact><ode><max_vel>100</max_vel></ode></contact></surface>";
+  auto boxModel = [](const std::string& surface) {
+    return "<model name='box'><pose>3 0 0.15 0 0 0</pose><link name='l'><inertial><mass>1</mass>"
+           "<inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia></inertial>"
+           "<collision name='c'><geometry><box><size>0.3 0.3 0.3</size></box></geometry>" +
+           surface + "</collision></link></model>";
+  };
+  {
+    Simulator sim(actorWorld(boxModel(fast), fast), {});
+    const ModelId box = sim.findModel("box");
+    const ModelId walker = sim.findModel("walker");
+    sim.step(1000);  // t = 1: the walker (y about -1.2) has not reached the box
+    EXPECT_NEAR(sim.modelState(box).X_WE.translation().y(), 0.0, 1e-3);
+    sim.step(2500);  // t = 3.5: the walker is past y = 1, the box went ahead of it
+    const double walker_y = sim.modelState(walker).X_WE.translation().y();
+    const double box_y = std::abs(sim.modelState(box).X_WE.translation().y());
+    EXPECT_GT(walker_y, 1.0);
+    EXPECT_GT(box_y, 0.5) << "the box was not pushed";
+    // The walker is exactly where its script says (nothing pushed it back).
+    EXPECT_NEAR(sim.modelState(walker).X_WE.translation().x(), 3.0, 1e-12);
+  }
+  {
+    // SDF's default max_vel 0.01 m/s: the walker (1 m/s) passes through, the box creeps.
+    Simulator sim(actorWorld(boxModel("")), {});
+    sim.step(3500);
+    const Eigen::Vector3d p = sim.modelState(sim.findModel("box")).X_WE.translation();
+    EXPECT_GT((p - Eigen::Vector3d(3, 0, 0.15)).norm(), 0.002);
+    EXPECT_LT((p - Eigen::Vector3d(3, 0, 0.15)).norm(), 0.05);
   }
 }
 
