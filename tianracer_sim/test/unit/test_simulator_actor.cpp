@@ -125,5 +125,24 @@ TEST(SimulatorActor, ItsCollisionsPushWhatTheyMeetAndNothingPushesIt) {
   }
 }
 
+TEST(SimulatorActor, DeletedItIsGoneFromStatesSceneAndPhysics) {
+  const std::string box =
+      "<model name='box'><pose>3 0 0.15 0 0 0</pose><link name='l'><inertial><mass>1</mass>"
+      "<inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia></inertial>"
+      "<collision name='c'><geometry><box><size>0.3 0.3 0.3</size></box></geometry><surface>"
+      "<contact><ode><max_vel>100</max_vel></ode></contact></surface></collision></link></model>";
+  Simulator sim(actorWorld(box, "<surface><contact><ode><max_vel>100</max_vel></ode></contact>"
+                                "</surface>"),
+                {});
+  sim.step(500);
+  sim.removeModel("walker");
+  EXPECT_EQ(sim.findModel("walker"), kNoModel);
+  const std::vector<std::string> names = sim.entities().modelNames();
+  EXPECT_EQ(std::find(names.begin(), names.end(), "walker"), names.end());
+  sim.step(3000);  // it would have pushed the box by now
+  EXPECT_NEAR(sim.modelState(sim.findModel("box")).X_WE.translation().y(), 0.0, 1e-3);
+  for (const SceneBody& b : sim.scene().bodies) EXPECT_NE(b.model, "walker");
+}
+
 }  // namespace
 }  // namespace tianracer_sim
