@@ -351,6 +351,26 @@ void PhysicsWorld::removeStaticShape(int index) {
   impl_->statics[index].reset();
 }
 
+void PhysicsWorld::setStaticShapePose(int index, const Eigen::Isometry3d& X_WS) {
+  if (index < 0 || index >= static_cast<int>(impl_->statics.size()) || !impl_->statics[index]) {
+    throw PhysicsError("no static shape with index " + std::to_string(index));
+  }
+  if (!X_WS.matrix().allFinite()) return;
+  btCollisionObject* o = impl_->statics[index]->object.get();
+  if (!o->isKinematicObject()) {
+    // A moving static: Bullet's kinematic object (infinite mass, never asleep), whose contacts
+    // wake what it meets (btSimulationIslandManager::buildIslands) where a sleeping static's
+    // would be skipped.
+    o->setCollisionFlags((o->getCollisionFlags() & ~btCollisionObject::CF_STATIC_OBJECT) |
+                         btCollisionObject::CF_KINEMATIC_OBJECT);
+    o->forceActivationState(DISABLE_DEACTIVATION);
+  }
+  impl_->wakeTouching(o);  // what rested on it where it was
+  o->setWorldTransform(toBt(X_WS));
+  impl_->world->updateSingleAabb(o);  // static AABBs are not recomputed each step
+  impl_->wakeTouching(o);
+}
+
 void PhysicsWorld::removeRobot(RobotId id) {
   if (!hasRobot(id)) throw PhysicsError("no robot with id " + std::to_string(id));
   impl_->wakeTouching(impl_->robots[id].get());  // what rested on it falls

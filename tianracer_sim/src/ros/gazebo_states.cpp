@@ -217,6 +217,16 @@ void GazeboInterface::rebuildStateMessages() {
     // Every link, as Gazebo lists a world model's links (each moves on its own).
     for (const LinkDescription& l : m.links) add_link(m.name + "::" + l.name, body, l.name, m.X_WM * l.X_ML);
   }
+  for (const ActorDescription& a : world_.actors) {
+    const ModelId id = simulator_.findModel(a.model.name);
+    if (id == kNoModel) continue;  // deleted
+    add_model(a.model.name, nullptr, a.model.X_WM);
+    model_slots_.back().actor = id;
+    for (const LinkDescription& l : a.model.links) {
+      add_link(a.model.name + "::" + l.name, nullptr, l.name, a.model.X_WM * l.X_ML);
+      link_slots_.back().actor = id;
+    }
+  }
   const std::vector<ModelId> robots = simulator_.robotIds();
   for (const ModelId id : robots) {
     const std::string& name = simulator_.modelName(id);
@@ -252,6 +262,7 @@ void GazeboInterface::afterStep() {
   if (want_models) {
     for (std::size_t i = 0; i < model_slots_.size(); ++i) {
       const Slot& s = model_slots_[i];
+      if (s.actor != kNoModel) model_states_.pose[i] = toPose(simulator_.modelState(s.actor).X_WE);
       if (!s.body) continue;
       model_states_.pose[i] = toPose(s.body->basePose());
       model_states_.twist[i] = toTwistMsg(s.body->baseTwist());
@@ -261,6 +272,7 @@ void GazeboInterface::afterStep() {
   if (want_links) {
     for (std::size_t i = 0; i < link_slots_.size(); ++i) {
       const Slot& s = link_slots_[i];
+      if (s.actor != kNoModel) link_states_.pose[i] = toPose(simulator_.linkPose({s.actor, s.link}));
       if (!s.body) continue;
       link_states_.pose[i] = toPose(s.body->linkPose(s.link));
       link_states_.twist[i] = toTwistMsg(s.body->linkTwist(s.link));

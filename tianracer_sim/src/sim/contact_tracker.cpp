@@ -16,6 +16,12 @@ std::vector<std::pair<std::string, std::string>> staticShapeOwners(const WorldDe
       for (size_t k = 0; k < link.collisions.size(); ++k) out.emplace_back(model.name, link.name);
     }
   }
+  // Then the actors' collisions, static shapes the Simulator moves (in this order).
+  for (const ActorDescription& a : world.actors) {
+    for (const LinkDescription& link : a.model.links) {
+      for (size_t k = 0; k < link.collisions.size(); ++k) out.emplace_back(a.model.name, link.name);
+    }
+  }
   return out;
 }
 

@@ -48,6 +48,17 @@ Entity Entities::find(const std::string& name, bool allow_model) const {
     }
     return e;
   }
+  for (const ActorDescription& a : world.actors) {
+    if (a.model.name != n.model) continue;
+    e.model = &a.model;
+    e.actor = true;
+    if (!n.link.empty() &&
+        std::none_of(a.model.links.begin(), a.model.links.end(),
+                     [&](const LinkDescription& l) { return l.name == n.link; })) {
+      throw InputError("actor '" + n.model + "' has no link '" + n.link + "'");
+    }
+    return e;
+  }
   std::string known;
   for (const std::string& m : modelNames()) known += (known.empty() ? "" : ", ") + m;
   throw InputError("no model named '" + n.model + "' (models: " + known + ")");
@@ -65,6 +76,9 @@ EntityState Entities::state(const Entity& e) const {
     }
   } else if (e.ground_plane) {
     s.X_WE = sim_.world().X_WG;
+  } else if (e.actor && e.id != kNoModel) {
+    // Where its script has put it (velocity 0, as Gazebo's SetWorldPose leaves its links).
+    s.X_WE = e.link.empty() ? sim_.modelState(e.id).X_WE : sim_.linkPose({e.id, e.link});
   } else if (e.model) {
     s.X_WE = e.model->X_WM;
     for (const LinkDescription& l : e.model->links) {
@@ -84,6 +98,7 @@ EntityState Entities::frame(const std::string& reference_frame) const {
 }
 
 void Entities::setBase(const Entity& e, const EntityState& base, bool stop_joints) const {
+  if (e.actor) throw InputError("'" + e.model_name + "' is an actor: its <script> moves it");
   if (!e.body) throw InputError("model '" + e.model_name + "' is static and cannot be moved");
   if (const std::string bad = checkModelState(base.X_WE, base.V_WE); !bad.empty()) {
     throw InputError(bad);
@@ -122,6 +137,9 @@ std::vector<std::string> Entities::modelNames() const {
   const WorldDescription& world = sim_.world();
   if (world.ground_plane) names.push_back("ground_plane");
   for (const ModelDescription& m : world.models) names.push_back(m.name);
+  for (const ActorDescription& a : world.actors) {
+    if (sim_.findModel(a.model.name) != kNoModel) names.push_back(a.model.name);  // not deleted
+  }
   for (const ModelId id : sim_.robotIds()) names.push_back(sim_.modelName(id));
   return names;
 }

@@ -45,6 +45,33 @@ Simulator::Simulator(WorldDescription world, SimulatorOptions options)
     shapes += entry.bodies.shapes;
     models_.push_back(std::move(entry));
   }
+  for (std::size_t i = 0; i < world_->actors.size(); ++i) {
+    Model entry;
+    entry.name = world_->actors[i].model.name;
+    entry.actor = static_cast<int>(i);
+    // Gazebo's actors are static models (sdf/1.6/actor.sdf: <static> defaults to true; Model::
+    // Load) whose links Actor::Update moves: their collisions are static shapes moved each step.
+    const ModelDescription& a = world_->actors[i].model;
+    for (const LinkDescription& l : a.links) {
+      for (const CollisionDescription& c : l.collisions) {
+        StaticShape s;
+        s.name = a.name + "::" + l.name + "::" + c.name;
+        s.X_WS = a.X_WM * l.X_ML * c.X_LS;
+        s.surface = surfaceOf(c);
+        s.shape = c.shape;
+        ActorShape as;
+        as.actor = static_cast<int>(i);
+        as.X_AS = l.X_ML * c.X_LS;
+        as.shape = sim_.physics().addStaticShape(s);
+        entry.bodies.statics.push_back(as.shape);
+        actor_shapes_.push_back(as);
+        ++shapes;
+      }
+    }
+    models_.push_back(std::move(entry));
+  }
+  actor_players_ = actorPlayers(*world_, sim_.dt());
+  actor_physics_players_ = actor_players_;
   addToScene(*world_, scene_);
   // The run loop's pace: Gazebo's real-time factor is real_time_update_rate * max_step_size.
   max_update_rate_ = world_->physics.real_time_factor / sim_.dt();
@@ -141,6 +168,11 @@ void Simulator::removeModel(const std::string& name) {
   if (m.robot) {
     contacts_.removeRobot(m.robot->id);
     sim_.removeRobot(name);
+  } else if (m.actor >= 0) {
+    removeModelFromPhysics(m.bodies, &sim_.physics());
+    for (ActorShape& s : actor_shapes_) {
+      if (s.actor == m.actor) s.shape = -1;
+    }
   } else {
     removeModelFromPhysics(m.bodies, &sim_.physics());
     world_->models.erase(std::find_if(world_->models.begin(), world_->models.end(),
@@ -302,6 +334,16 @@ void Simulator::setUpSensor(ModelId id, const SensorSpec& spec, const std::strin
 // --- time -----------------------------------------------------------------------------------------
 
 StepWaits Simulator::advance() {
+  if (!actor_shapes_.empty()) {
+    // Gazebo: World::Step advances the sim time, then Actor::Update places the actor for it,
+    // then the physics steps.
+    const double t = sim_.time() + sim_.dt();
+    for (const ActorShape& s : actor_shapes_) {
+      if (s.shape < 0) continue;
+      sim_.physics().setStaticShapePose(s.shape,
+                                        actor_physics_players_[s.actor].poseAt(t) * s.X_AS);
+    }
+  }
   sim_.step();
   if (track_contacts_) {
     StepProfile::Scope timed(options_.profile, contacts_row_);
@@ -368,6 +410,11 @@ EntityState Simulator::modelState(ModelId id) const {
     s.V_WE = p->baseTwist();
     return s;
   }
+  if (models_[id].actor >= 0) {
+    // Moved by SetWorldPose only, its links have no velocity in Gazebo (Actor::Update).
+    s.X_WE = actor_players_[models_[id].actor].poseAt(sim_.physics().time());
+    return s;
+  }
   for (const ModelDescription& d : world_->models) {
     if (d.name == models_[id].name) s.X_WE = d.X_WM;
   }
@@ -427,6 +474,7 @@ void Simulator::updateScene() {
     if (m.robot) updateRobotScene(sim_.physics().robot(m.robot->id), m.scene_bodies, &scene_);
   }
   updateFreeBodyScene(sim_.physics(), &scene_);
+  updateActorScene(*world_, &actor_players_, sim_.physics().time(), &scene_);
   scene_step_ = sim_.stepCount();
 }
 
@@ -438,6 +486,12 @@ const Scene& Simulator::scene() {
 
 Eigen::Isometry3d Simulator::linkPose(const LinkRef& link) const {
   if (const PhysicsRobot* p = physicsOf(link.model)) return p->linkPose(link.link);
+  if (const int a = models_[link.model].actor; a >= 0) {
+    for (const LinkDescription& l : world_->actors[a].model.links) {
+      if (l.name == link.link)
+        return actor_players_[a].poseAt(sim_.physics().time()) * l.X_ML;
+    }
+  }
   // A static world model: where the world file put it.
   for (const ModelDescription& d : world_->models) {
     if (d.name != models_[link.model].name) continue;

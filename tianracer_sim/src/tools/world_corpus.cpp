@@ -133,6 +133,20 @@ WorldResult run(const fs::path& file, const std::string& name, const std::vector
     if (m.verdict == "differs") r.why += (r.why.empty() ? "" : "; ") + m.name + " " + m.why;
   }
   r.verdict = counts["differs"] ? "differs" : (r.left_out.empty() ? "loads" : "partly");
+  // Actors are played by their script (world/actor.h), not judged: say what each does.
+  for (const ts::ActorDescription& a : world.actors) {
+    std::ostringstream os;
+    os << "actor " << a.model.name << ": ";
+    if (a.script.trajectories.empty()) {
+      os << "no <trajectory>, stands at its <pose>";
+    } else {
+      ts::ActorPlayer player(a.script, a.model.X_WM, world.physics.max_step_size);
+      os << a.script.trajectories.size() << " trajectory(ies), " << player.scriptLength() << " s"
+         << (a.script.loop ? " looped" : "") << (a.script.auto_start ? "" : ", waits for Play()");
+    }
+    os << ", " << a.model.links.size() << " link(s)";
+    r.why += (r.why.empty() ? "" : "; ") + os.str();
+  }
   return r;
 }
 

@@ -98,6 +98,16 @@ WorldDescription Parser::parse(const std::string& xml) {
       if (!model_names.insert(m.name).second) fail(c, "duplicate model name '" + m.name + "'");
       world.models.push_back(std::move(m));
       checkModelCount(c, world);
+    } else if (tag == "actor") {
+      // A broken actor is left out with its error and the rest of the world loads.
+      try {
+        ActorDescription a = parseActor(c);
+        if (!model_names.insert(a.model.name).second)
+          fail(c, "duplicate model name '" + a.model.name + "'");
+        world.actors.push_back(std::move(a));
+      } catch (const InputError& err) {
+        leftOutError(err, "the actor is left out");
+      }
     } else {
       unsupported(c);
     }
@@ -769,7 +779,12 @@ std::map<std::string, int> addToScene(const WorldDescription& world, Scene& scen
     item.collision = true;
     scene.items.push_back(item);
   }
-  for (const ModelDescription& m : world.models) {
+  // The actors' links are moving bodies too (updateActorScene moves them).
+  std::vector<const ModelDescription*> models;
+  for (const ModelDescription& m : world.models) models.push_back(&m);
+  for (const ActorDescription& a : world.actors) models.push_back(&a.model);
+  for (const ModelDescription* model : models) {
+    const ModelDescription& m = *model;
     for (const LinkDescription& l : m.links) {
       SceneBody body;
       body.name = m.name + "::" + l.name;
@@ -800,6 +815,31 @@ std::map<std::string, int> addToScene(const WorldDescription& world, Scene& scen
     }
   }
   return added;
+}
+
+}  // namespace tianracer_sim
+
+namespace tianracer_sim {
+
+std::vector<ActorPlayer> actorPlayers(const WorldDescription& world, double dt) {
+  std::vector<ActorPlayer> players;
+  for (const ActorDescription& a : world.actors) players.emplace_back(a.script, a.model.X_WM, dt);
+  return players;
+}
+
+void updateActorScene(const WorldDescription& world, std::vector<ActorPlayer>* players, double t,
+                      Scene* scene) {
+  for (std::size_t i = 0; i < world.actors.size() && i < players->size(); ++i) {
+    const ModelDescription& m = world.actors[i].model;
+    const Eigen::Isometry3d& X_WA = (*players)[i].poseAt(t);
+    for (SceneBody& body : scene->bodies) {
+      if (body.model != m.name || body.name.size() <= m.name.size() + 2) continue;
+      const std::string link = body.name.substr(m.name.size() + 2);
+      for (const LinkDescription& l : m.links) {
+        if (l.name == link) body.X_WB = X_WA * l.X_ML;
+      }
+    }
+  }
 }
 
 }  // namespace tianracer_sim

@@ -56,6 +56,8 @@ class Parser : public XmlReader {
   void parseInclude(const XMLElement* e, WorldDescription& world);
   void parseLight(const XMLElement* e, WorldDescription& world);
   ModelDescription parseModel(const XMLElement* e);
+  /// <actor> (world_actor.cpp); throws WorldError at a broken element.
+  ActorDescription parseActor(const XMLElement* e);
   LinkDescription parseLink(const XMLElement* e, const std::string& model);
   InertialDescription parseInertial(const XMLElement* e, const std::string& what);
   /// The shape, or nullopt when it is left out (leftOut() has reported why).

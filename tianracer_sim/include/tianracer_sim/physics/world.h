@@ -261,6 +261,10 @@ class PhysicsWorld {
   /// Takes a static body out of the world (delete_model); the free bodies touching it wake.
   /// Indices of the others stay.
   void removeStaticShape(int index);
+  /// Moves a static body to X_WS (an <actor>'s link, as Gazebo's SetWorldPose moves a static
+  /// link: it pushes what it meets, nothing pushes it); what touches it wakes. A pose that is
+  /// not finite is ignored.
+  void setStaticShapePose(int index, const Eigen::Isometry3d& X_WS);
 
   /// Adds a world's dynamic model (a "free body"): its RigidTree, possibly a forest (links
   /// that no joint joins are separate bodies; a tree whose root is fixed to the world, as

@@ -220,6 +220,7 @@ class GazeboInterface {
   struct Slot {
     const PhysicsRobot* body = nullptr;
     std::string link;
+    ModelId actor = kNoModel;  // an <actor>: its pose from Simulator::modelState / linkPose
   };
   std::vector<Slot> model_slots_, link_slots_;
 };

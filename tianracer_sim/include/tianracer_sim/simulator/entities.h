@@ -25,6 +25,7 @@ struct Entity {
   const SimRobot* robot = nullptr;          // a robot, or
   const ModelDescription* model = nullptr;  // a world-file or spawned SDF model, or
   bool ground_plane = false;                // model://ground_plane
+  bool actor = false;                       // an <actor> (model: its links), moved by its script
   /// What moves it: the robot's or the free body's physics; null for a static model.
   PhysicsRobot* body = nullptr;
   std::string model_name;

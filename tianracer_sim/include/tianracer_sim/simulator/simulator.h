@@ -322,6 +322,7 @@ class Simulator : public SensorWorld {
     SimRobot* robot = nullptr;
     RobotSceneBodies scene_bodies;  // robots
     WorldModelBodies bodies;        // world models
+    int actor = -1;                 // <actor>: its index in world_->actors (actor_players_)
     LeftOut left_out;
   };
   const Model* model(ModelId id) const;
@@ -343,6 +344,18 @@ class Simulator : public SensorWorld {
   Scene scene_;  // what sensors see: the world's models and every robot's links
   std::uint64_t scene_step_ = ~0ull;  // step count the scene's poses belong to
   RayCaster caster_;
+  // The world's <actor>s (world/actor.h), played to the sim time asked (modelState, the scene).
+  mutable std::vector<ActorPlayer> actor_players_;
+  /// Each actor's collisions as static shapes: (actor index, X_AS in the actor frame, shape).
+  struct ActorShape {
+    int actor = 0;
+    Eigen::Isometry3d X_AS = Eigen::Isometry3d::Identity();
+    int shape = -1;
+  };
+  std::vector<ActorShape> actor_shapes_;
+  /// The same scripts for the physics, a step ahead of the sim time (a player replays from 0
+  /// when asked for an earlier time, so each reader keeps its own).
+  std::vector<ActorPlayer> actor_physics_players_;
   // After scene_ and caster_, which its sensors read; made in the constructor (its profile rows
   // after the Simulator's), reset first in ~Simulator.
   std::unique_ptr<SensorHost> sensors_;

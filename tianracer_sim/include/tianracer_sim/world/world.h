@@ -30,6 +30,7 @@
 #include "tianracer_sim/common/sdf_pose.h"
 #include "tianracer_sim/model/robot_model.h"  // WarningSink
 #include "tianracer_sim/scene/scene.h"
+#include "tianracer_sim/world/actor.h"
 
 namespace tianracer_sim {
 
@@ -146,6 +147,15 @@ struct ModelDescription {
   int line = 0;
 };
 
+/// <actor> without its skin (world/actor.h, docs/actors.md): `model` holds its name, its
+/// <pose> (X_WM, where it stands until its script moves it) and its <link>s, moved together by
+/// `script` in sim time, gravity off, as kinematic bodies.
+struct ActorDescription {
+  ModelDescription model;
+  ActorScript script;
+  int line = 0;
+};
+
 struct WorldDescription {
   std::string name;    // <world name=...>
   std::string source;  // the file (or the name given to loadWorldString)
@@ -160,6 +170,8 @@ struct WorldDescription {
   std::optional<Eigen::Vector4f> ambient;     // <scene><ambient>
   std::optional<Eigen::Vector4f> background;  // <scene><background>
   std::vector<ModelDescription> models;
+  /// <actor>s; an actor whose <script> is broken is left out (WorldLoadOptions::error).
+  std::vector<ActorDescription> actors;
 };
 
 struct WorldLoadOptions {
@@ -216,6 +228,14 @@ std::string resolveWorld(const std::string& arg, const std::string& worlds_dir);
 /// "ground_plane::link" with an infinite collision plane, so rays hit the ground.
 /// Returns the index of each body added, by name.
 std::map<std::string, int> addToScene(const WorldDescription& world, Scene& scene);
+
+/// One player per world.actors entry (same order), for physics steps of `dt` s.
+std::vector<ActorPlayer> actorPlayers(const WorldDescription& world, double dt);
+
+/// Moves each actor's scene bodies ("<actor>::<link>", added by addToScene) to where its script
+/// puts them at sim time `t`: the actor's pose times the link's <pose>.
+void updateActorScene(const WorldDescription& world, std::vector<ActorPlayer>* players, double t,
+                      Scene* scene);
 
 }  // namespace tianracer_sim
 
