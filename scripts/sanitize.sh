@@ -41,6 +41,13 @@ set +u
 # shellcheck disable=SC1091
 source "$WS/devel/setup.bash"
 set -u
+# Some gtests are rostest nodes (test_node_core, tianracer_control's test_nodes_wiring): they
+# need a master, or they wait for one until the timeout. One roscore serves the whole run.
+port="${ROS_MASTER_URI##*:}"
+roscore -p "$port" >"$WS/logs/roscore.log" 2>&1 &
+ROSCORE_PID=$!
+trap 'kill "$ROSCORE_PID" 2>/dev/null; wait "$ROSCORE_PID" 2>/dev/null' EXIT
+for _ in $(seq 100); do rostopic list >/dev/null 2>&1 && break; sleep 0.1; done
 passed=0; failed=0; failures=()
 for t in "${targets[@]}"; do
   bin=$(find "$WS/devel/lib" -type f -name "$t" -perm -u+x | head -1)
