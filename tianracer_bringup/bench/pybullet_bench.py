@@ -8,7 +8,8 @@ targets (rear wheels by velocity with force 10, hinges by position) and the same
 rayTestBatch of 1081 rays every 40 ms (lidar) and of 16 x 1800 rays every 100 ms turned into the
 velodyne plugin's cloud with numpy (lidar3d); getCameraImage with ER_TINY_RENDERER at 800x800
 every 1/30 s and at 640x480 every 1/20 s, the latter turned into a point cloud with numpy. Prints
-one JSON object (rtf, wall, counts, how many free models moved) on stdout.
+one JSON object (rtf, wall, counts, how many free models moved, each car's lap from its base
+track: bench/lap.py) on stdout. --poses puts one car at each pose, each with its own sensors.
 
     pybullet_bench.py --urdf robot.urdf --world racetrack.world --sensors lidar,camera,depth --duration 20
 """
@@ -22,6 +23,9 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 import pybullet as p
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import lap  # noqa: E402
 
 STEP = 0.001
 LIDAR = dict(samples=1081, min_angle=-2.3561944902, max_angle=2.3561944902, min_range=0.1,
@@ -45,6 +49,7 @@ VELODYNE_POINT = np.dtype(dict(names=["x", "y", "z", "intensity", "ring"],
 EYE_OFFSET = 0.02
 SENSORS = ("lidar", "lidar3d", "camera", "depth")
 MOVED = 0.01  # m: a free model moved when its first link went farther than this from its start
+TRACK_PERIOD = 0.02  # s: each car's base pose is sampled at ground truth odometry's 50 Hz
 
 
 def parse_pose(text):
@@ -246,11 +251,13 @@ def add_world(world_file):
     return n, free
 
 
-def load_robot(urdf):
-    robot = p.loadURDF(urdf, [0, 0, 1.0], flags=p.URDF_USE_INERTIA_FROM_FILE)
+def load_robot(urdf, pose=(0.0, 0.0, 0.0)):
+    x, y, yaw = pose
+    orn = p.getQuaternionFromEuler([0.0, 0.0, yaw])
+    robot = p.loadURDF(urdf, [x, y, 1.0], orn, flags=p.URDF_USE_INERTIA_FROM_FILE)
     # Wheels on the ground, as the simulator's z:=auto does.
     min_z = min(p.getAABB(robot, i)[0][2] for i in range(-1, p.getNumJoints(robot)))
-    p.resetBasePositionAndOrientation(robot, [0, 0, 1.0 - min_z + 1e-4], [0, 0, 0, 1])
+    p.resetBasePositionAndOrientation(robot, [x, y, 1.0 - min_z + 1e-4], orn)
     joints, links = {}, {}
     for j in range(p.getNumJoints(robot)):
         info = p.getJointInfo(robot, j)
@@ -359,32 +366,36 @@ class Camera:
         return cloud, packed
 
 
-def run(urdf, world, kinds, duration, wheel_omega, steer, max_wall):
+def run(urdf, world, kinds, duration, wheel_omega, steer, max_wall, poses=((0.0, 0.0, 0.0),)):
     p.connect(p.DIRECT)
     p.setGravity(0, 0, -9.8)
     p.setPhysicsEngineParameter(fixedTimeStep=STEP, numSolverIterations=20)
     n_world, free = add_world(world)
-    robot, joints, links = load_robot(urdf)
-    for name, j in joints.items():
-        if p.getJointInfo(robot, j)[2] != p.JOINT_FIXED:  # free joints: no default motor
-            p.setJointMotorControl2(robot, j, p.VELOCITY_CONTROL, targetVelocity=0, force=0)
-    for name in ("left_rear_wheel_joint", "right_rear_wheel_joint"):
-        p.setJointMotorControl2(robot, joints[name], p.VELOCITY_CONTROL, targetVelocity=wheel_omega, force=10)
-    for name in ("left_steering_hinge_joint", "right_steering_hinge_joint"):
-        p.setJointMotorControl2(robot, joints[name], p.POSITION_CONTROL, targetPosition=steer, force=10)
-    sensors = []
-    if "lidar" in kinds:
-        sensors.append(["lidar", LIDAR["period"], Lidar(robot, links[LIDAR["link"]]).scan])
-    if "lidar3d" in kinds:
-        lidar3d = Lidar3D(robot, links[LIDAR3D["link"]])
-        sensors.append(["lidar3d", LIDAR3D["period"], lidar3d.scan])
-    if "camera" in kinds:
-        sensors.append(["camera", CAMERA["period"], Camera(robot, links[CAMERA["link"]], CAMERA, False).render])
-    if "depth" in kinds:
-        sensors.append(["depth", DEPTH["period"], Camera(robot, links[DEPTH["link"]], DEPTH, True).render])
+    robots, sensors, lidar3ds = [], [], []
+    for pose in poses:
+        robot, joints, links = load_robot(urdf, pose)
+        robots.append(robot)
+        for name, j in joints.items():
+            if p.getJointInfo(robot, j)[2] != p.JOINT_FIXED:  # free joints: no default motor
+                p.setJointMotorControl2(robot, j, p.VELOCITY_CONTROL, targetVelocity=0, force=0)
+        for name in ("left_rear_wheel_joint", "right_rear_wheel_joint"):
+            p.setJointMotorControl2(robot, joints[name], p.VELOCITY_CONTROL, targetVelocity=wheel_omega, force=10)
+        for name in ("left_steering_hinge_joint", "right_steering_hinge_joint"):
+            p.setJointMotorControl2(robot, joints[name], p.POSITION_CONTROL, targetPosition=steer, force=10)
+        if "lidar" in kinds:
+            sensors.append(["lidar", LIDAR["period"], Lidar(robot, links[LIDAR["link"]]).scan])
+        if "lidar3d" in kinds:
+            lidar3ds.append(Lidar3D(robot, links[LIDAR3D["link"]]))
+            sensors.append(["lidar3d", LIDAR3D["period"], lidar3ds[-1].scan])
+        if "camera" in kinds:
+            sensors.append(["camera", CAMERA["period"], Camera(robot, links[CAMERA["link"]], CAMERA, False).render])
+        if "depth" in kinds:
+            sensors.append(["depth", DEPTH["period"], Camera(robot, links[DEPTH["link"]], DEPTH, True).render])
     counts = {s[0]: 0 for s in sensors}
     sensor_cpu = {s[0]: 0.0 for s in sensors}
-    next_due = {s[0]: 0.0 for s in sensors}
+    next_due = [0.0] * len(sensors)
+    tracks = [[] for _ in robots]
+    every = int(round(TRACK_PERIOD / STEP))
     steps = int(round(duration / STEP))
     cpu0, wall0 = time.process_time(), time.perf_counter()
     i = 0
@@ -392,28 +403,34 @@ def run(urdf, world, kinds, duration, wheel_omega, steer, max_wall):
         i += 1
         p.stepSimulation()
         t = i * STEP
-        for name, period, fn in sensors:
-            if t + 1e-9 >= next_due[name]:
-                next_due[name] += period
+        for k, (name, period, fn) in enumerate(sensors):
+            if t + 1e-9 >= next_due[k]:
+                next_due[k] += period
                 c = time.process_time()
                 fn()
                 sensor_cpu[name] += time.process_time() - c
                 counts[name] += 1
+        if i % every == 0:
+            for robot, track in zip(robots, tracks):
+                pos, orn = p.getBasePositionAndOrientation(robot)
+                track.append((t, pos[0], pos[1], lap.up_z(orn[0], orn[1])))
         # A wall-time cap (checked every 0.1 s of sim): the rate is measured over what ran.
         if max_wall and i % 100 == 0 and time.perf_counter() - wall0 > max_wall:
             break
     wall = time.perf_counter() - wall0
     cpu = time.process_time() - cpu0
-    base, _ = p.getBasePositionAndOrientation(robot)
+    base, _ = p.getBasePositionAndOrientation(robots[0])
     moved = [name for name, body, start in free
              if np.linalg.norm(np.array(p.getBasePositionAndOrientation(body)[0]) - start) > MOVED]
     p.disconnect()
-    return dict(sensors=list(kinds), sim_seconds=i * STEP, requested_sim_seconds=steps * STEP, wall_seconds=wall,
+    laps = [lap.lap(tr) for tr in tracks]
+    return dict(cars=len(robots), laps=laps, lap=lap.summary(laps), sensors=list(kinds), sim_seconds=i * STEP, requested_sim_seconds=steps * STEP, wall_seconds=wall,
                 rtf=i * STEP / wall, cpu_seconds=cpu, cpu_cores=cpu / wall, counts=counts,
                 sensor_cpu_ms_each={k: 1000 * v / max(1, counts[k]) for k, v in sensor_cpu.items()},
                 world_shapes=n_world, final_base_xy=list(base[:2]), pybullet_version=p.getAPIVersion(),
                 free_models=len(free), free_models_moved=len(moved), moved_threshold_m=MOVED,
-                lidar3d_points_per_scan=(lidar3d.points / max(1, counts["lidar3d"])) if "lidar3d" in kinds else None)
+                lidar3d_points_per_scan=(sum(x.points for x in lidar3ds) / max(1, counts["lidar3d"]))
+                if "lidar3d" in kinds else None)
 
 
 def main():
@@ -425,12 +442,17 @@ def main():
     ap.add_argument("--wheel-omega", type=float, default=1.0 / 0.032, help="rear wheel rad/s")
     ap.add_argument("--steer", type=float, default=0.2, help="hinge angle, rad")
     ap.add_argument("--max-wall", type=float, default=0.0, help="stop after this many wall seconds (0: never)")
+    ap.add_argument("--poses", default="0,0,0", help="one car per 'x,y,yaw' (space separated; default one at the origin)")
     a = ap.parse_args()
     kinds = [k for k in a.sensors.split(",") if k]
     for k in kinds:
         if k not in SENSORS:
             ap.error("unknown sensor '%s' (known: %s)" % (k, ", ".join(SENSORS)))
-    res = run(a.urdf, a.world, kinds, a.duration, a.wheel_omega, a.steer, a.max_wall)
+    try:
+        poses = lap.parse_poses(a.poses)
+    except ValueError as e:
+        ap.error("--poses: %s" % e)
+    res = run(a.urdf, a.world, kinds, a.duration, a.wheel_omega, a.steer, a.max_wall, poses)
     with open("/proc/self/status") as f:
         for line in f:
             if line.startswith("VmHWM:"):
