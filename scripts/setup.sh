@@ -94,11 +94,11 @@ for spec in "${PIP_PACKAGES[@]}"; do
 done
 command -v xacro >/dev/null || fail "step 'pip': xacro is not on PATH after installing it"
 
-# The benchmark's PyBullet (tianracer_bringup/bench/requirements.txt, pinned) in a virtual
+# The benchmark's PyBullet and MuJoCo (tianracer_bringup/bench/requirements.txt, pinned) in a virtual
 # environment of its own under .build/, whatever python3 is on PATH; a no-op once installed.
 if ! /usr/bin/python3 "$REPO/tianracer_bringup/bench/run_benchmarks" --install-only 2>&1 \
      | sed 's/^/==> [setup] pip: /'; then
-  fail "step 'pip': the benchmark's PyBullet environment (.build/bench_venv) could not be installed"
+  fail "step 'pip': the benchmark's PyBullet and MuJoCo environment (.build/bench_venv) could not be installed"
 fi
 
 ((BUILD)) || exit 0
