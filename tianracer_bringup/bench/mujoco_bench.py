@@ -322,13 +322,16 @@ def run(urdf, world, kinds, duration, wheel_omega, steer, max_wall, poses):
     cpu = time.process_time() - cpu0
     moved = [name for name, b in free if np.linalg.norm(d.xpos[b] - start[name]) > MOVED]
     laps = [lap.lap(tr) for tr in tracks]
+    # MuJoCo resets the state when its accelerations blow up (and only warns): a run that did
+    # measures something else, which the harness refuses.
+    unstable = int(d.warning[mujoco.mjtWarning.mjWARN_BADQACC].number)
     base = d.qpos[cars[0]["qpos"]:cars[0]["qpos"] + 2]
     return dict(sensors=list(kinds), sim_seconds=i * STEP, requested_sim_seconds=steps * STEP, wall_seconds=wall,
                 rtf=i * STEP / wall, cpu_seconds=cpu, cpu_cores=cpu / wall,
                 counts=counts,
                 sensor_cpu_ms_each={k: 1000 * v / max(1, counts[k]) for k, v in sensor_cpu.items()},
                 world_shapes=n_world, final_base_xy=[float(v) for v in base], mujoco_version=mujoco.__version__,
-                cars=len(cars), laps=laps, lap=lap.summary(laps),
+                cars=len(cars), laps=laps, lap=lap.summary(laps), unstable=unstable,
                 free_models=len(free), free_models_moved=len(moved), moved_threshold_m=MOVED,
                 model_sizes=dict(nbody=int(m.nbody), ngeom=int(m.ngeom), nv=int(m.nv)))
 
