@@ -38,6 +38,8 @@ class Examples(unittest.TestCase):
         r = run('gym_bench.py', '--steps', '20', '--quick')
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn('env-steps/s', r.stdout)
+        # Last, the one figure issue 41 asks for, in its form.
+        self.assertRegex(r.stdout.strip().splitlines()[-1], r'^1 env \+ lidar: [1-9]\d* env-steps/s$')
 
 
 if __name__ == '__main__':
