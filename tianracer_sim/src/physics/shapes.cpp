@@ -118,7 +118,7 @@ std::unique_ptr<btCollisionShape> makeLinkShape(const TreeBody& body, const Coll
     const auto mesh = meshOf(g.shape);
     auto owned = std::make_unique<OwnedShape>();
     storeTriangles(*mesh, owned.get());
-    auto gimpact = std::make_unique<btGImpactMeshShape>(owned->mesh_interface.get());
+    auto gimpact = std::make_unique<MovableMeshShape>(owned->mesh_interface.get());
     gimpact->setMargin(0.0);
     gimpact->updateBound();
     *mesh_out = std::move(owned);

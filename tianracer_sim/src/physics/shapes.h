@@ -33,6 +33,25 @@ struct OwnedShape {
   std::vector<int> mesh_indices;
 };
 
+/// How near a movable mesh's triangles and a static mesh's are paired (m): more than a body
+/// falls in one step at 1 ms (3 mm from 0.5 m), so that meshes meet before they cross.
+constexpr btScalar kMeshPairPad = 0.005;
+
+/// A movable concave mesh: GImpact with no margin (as ODE's trimesh), whose AABB is padded by
+/// kMeshPairPad. A flat mesh's AABB has no thickness, and Bullet drops a compound's child whose
+/// AABB misses the other object's (btCompoundCollisionAlgorithm), so a flat plate that sank by
+/// a step's fall below a flat static mesh was never collided with it (issue 40). Only the
+/// pairing sees the pad: contacts are found from the triangles themselves.
+class MovableMeshShape : public btGImpactMeshShape {
+ public:
+  using btGImpactMeshShape::btGImpactMeshShape;
+  void getAabb(const btTransform& t, btVector3& aabb_min, btVector3& aabb_max) const override {
+    btGImpactMeshShape::getAabb(t, aabb_min, aabb_max);
+    aabb_min -= btVector3(kMeshPairPad, kMeshPairPad, kMeshPairPad);
+    aabb_max += btVector3(kMeshPairPad, kMeshPairPad, kMeshPairPad);
+  }
+};
+
 /// A box, cylinder or sphere; nullptr for a plane or a mesh.
 std::unique_ptr<btCollisionShape> makePrimitive(const Shape& s, double margin,
                                                 const std::string& what);
@@ -43,7 +62,7 @@ void makeStaticShape(const StaticShape& s, double margin, OwnedShape* out);
 /// The shape of one collision of a robot body, placed at X_BS in the body frame. A mesh (or a
 /// cylinder along the axis) on the child of a continuous joint that fits a wheel gets
 /// `wheel_shape` (*is_wheel set unless that is kMeshHull); other meshes become hulls, or with
-/// `concave` (world models) keep their triangles: a btGImpactMeshShape with no margin (as ODE's
+/// `concave` (world models) keep their triangles: a MovableMeshShape (GImpact) with no margin (as ODE's
 /// trimesh in Gazebo), its triangles in the geometry frame and stored in *mesh.
 std::unique_ptr<btCollisionShape> makeLinkShape(const TreeBody& body, const CollisionGeometry& g,
                                                 double margin, WheelShape wheel_shape,

@@ -82,6 +82,153 @@ class MeshPlaneAlgorithm : public btActivatingCollisionAlgorithm {
 
 MeshPlaneAlgorithm::CreateFunc g_mesh_plane, g_plane_mesh;
 
+/// A movable concave mesh (btGImpactMeshShape) against a static one (btBvhTriangleMeshShape),
+/// triangle against triangle as ODE collides two trimeshes (Gazebo 11's
+/// deps/opende/src/collision_trimesh_trimesh_new.cpp, FindTriangleTriangleCollision): each
+/// triangle clipped by the other's edge planes, the deepest clipped points against the other's
+/// plane, and of the two directions the one of least depth. GImpact's own routine for two
+/// GImpact meshes does the same (btPrimitiveTriangle::find_triangle_collision_clip_method); we
+/// call its parts and choose the normal's sign ourselves, so that it always points from the
+/// static mesh to the movable one's side. Like ODE's, the test is one-sided: behind a triangle is
+/// inside its mesh. Bullet's GImpact-vs-concave path culled a flat plate on a flat static mesh by
+/// their AABBs of zero thickness, and the plate fell through (issue 40); the pairs are found here
+/// with AABBs padded by kMeshPairPad (MovableMeshShape pads its own the same).
+class MeshTriMeshAlgorithm : public btActivatingCollisionAlgorithm {
+ public:
+  MeshTriMeshAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* a,
+                       const btCollisionObjectWrapper* b, bool swapped)
+      : btActivatingCollisionAlgorithm(ci, a, b), swapped_(swapped) {
+    manifold_ = m_dispatcher->getNewManifold(a->getCollisionObject(), b->getCollisionObject());
+  }
+  ~MeshTriMeshAlgorithm() override {
+    if (manifold_) m_dispatcher->releaseManifold(manifold_);
+  }
+
+  void processCollision(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b,
+                        const btDispatcherInfo&, btManifoldResult* out) override {
+    const btCollisionObjectWrapper* mesh_w = swapped_ ? b : a;
+    const btCollisionObjectWrapper* fixed_w = swapped_ ? a : b;
+    const auto* mesh = static_cast<const btGImpactMeshShape*>(mesh_w->getCollisionShape());
+    const auto* fixed = static_cast<const btConcaveShape*>(fixed_w->getCollisionShape());
+    out->setPersistentManifold(manifold_);
+    TrianglePairs pairs(this, mesh_w->getWorldTransform(), fixed_w->getWorldTransform(), out);
+    const btTransform X_FM = fixed_w->getWorldTransform().inverse() * mesh_w->getWorldTransform();
+    for (int p = 0; p < mesh->getMeshPartCount(); ++p) {
+      pairs.part = mesh->getMeshPart(p);
+      pairs.part->lockChildShapes();
+      btAABB box = pairs.part->getBoxSet()->getGlobalBox();
+      box.appy_transform(X_FM);
+      box.increment_margin(kMeshPairPad);
+      fixed->processAllTriangles(&pairs, box.m_min, box.m_max);
+      pairs.part->unlockChildShapes();
+    }
+    out->refreshContactPoints();
+  }
+
+  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
+                                 btManifoldResult*) override {
+    return 1;
+  }
+  void getAllContactManifolds(btManifoldArray& arr) override {
+    if (manifold_) arr.push_back(manifold_);
+  }
+
+  struct CreateFunc : public btCollisionAlgorithmCreateFunc {
+    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                   const btCollisionObjectWrapper* a,
+                                                   const btCollisionObjectWrapper* b) override {
+      void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(MeshTriMeshAlgorithm));
+      return new (mem) MeshTriMeshAlgorithm(ci, a, b, m_swapped);
+    }
+  };
+
+ private:
+  /// Called by the static mesh for each of its triangles near a part of the movable mesh.
+  struct TrianglePairs : public btTriangleCallback {
+    TrianglePairs(const MeshTriMeshAlgorithm* algo, const btTransform& X_WM, const btTransform& X_WF,
+                  btManifoldResult* out)
+        : swapped(algo->swapped_), X_WM(X_WM), X_WF(X_WF), X_MW(X_WM.inverse()), out(out) {}
+
+    void processTriangle(btVector3* v, int, int) override {
+      btPrimitiveTriangle fixed;  // in the world frame
+      for (int i = 0; i < 3; ++i) fixed.m_vertices[i] = X_WF(v[i]);
+      if (degenerate(fixed)) return;  // no plane
+      fixed.buildTriPlane();
+      btAABB box(X_MW(fixed.m_vertices[0]), X_MW(fixed.m_vertices[1]), X_MW(fixed.m_vertices[2]), kMeshPairPad);
+      near.resize(0);
+      if (!part->getBoxSet()->boxQuery(box, near)) return;
+      for (int k = 0; k < near.size(); ++k) {
+        btPrimitiveTriangle moving;
+        part->getPrimitiveTriangle(near[k], moving);
+        moving.applyTransform(X_WM);
+        if (degenerate(moving)) continue;
+        moving.buildTriPlane();
+        collide(fixed, moving);
+      }
+    }
+
+    static bool degenerate(const btPrimitiveTriangle& t) {
+      const btVector3 n = (t.m_vertices[1] - t.m_vertices[0]).cross(t.m_vertices[2] - t.m_vertices[0]);
+      return !(n.length2() > SIMD_EPSILON * SIMD_EPSILON);
+    }
+
+    /// The least-depth direction of the two, as find_triangle_collision_clip_method chooses it;
+    /// but two triangles that face the same way (a plate lying on a floor) have no depth along
+    /// the moving one's normal (a sheet has no inside: sunk below the floor, the floor is in
+    /// front of it), so they are taken in the fixed triangle's direction only, the floor's solid
+    /// side behind its face.
+    void collide(btPrimitiveTriangle& fixed, btPrimitiveTriangle& moving) {
+      btVector3 points[MAX_TRI_CLIPPING];
+      GIM_TRIANGLE_CONTACT on_fixed, on_moving;  // the moving triangle's points against the fixed plane, and back
+      int n = fixed.clip_triangle(moving, points);
+      if (n == 0) return;
+      on_fixed.merge_points(fixed.m_plane, kMeshPairPad, points, n);
+      if (on_fixed.m_point_count == 0) return;
+      const bool same_facing = fixed.m_plane.dot(moving.m_plane) > 0;  // btVector3::dot: xyz only
+      if (!same_facing) {
+        n = moving.clip_triangle(fixed, points);
+        if (n == 0) return;
+        on_moving.merge_points(moving.m_plane, kMeshPairPad, points, n);
+        if (on_moving.m_point_count == 0) return;
+      }
+      // merge_points' depth is kMeshPairPad minus the signed distance to the plane.
+      if (same_facing || on_fixed.m_penetration_depth <= on_moving.m_penetration_depth) {
+        // Moving points p, the fixed plane's normal n pointing from the fixed mesh to them.
+        const btVector3 n_f = fixed.m_plane;
+        const btScalar dist = kMeshPairPad - on_fixed.m_penetration_depth;
+        if (dist >= 0) return;
+        for (int i = 0; i < on_fixed.m_point_count; ++i) {
+          const btVector3& p = on_fixed.m_points[i];
+          // btManifoldResult wants the normal on its second body and the point on it.
+          if (!swapped) out->addContactPoint(n_f, p - n_f * dist, dist);
+          else out->addContactPoint(-n_f, p, dist);
+        }
+      } else {
+        // Fixed points q, in front of the moving plane: from the fixed mesh to the moving one is -n_m.
+        const btVector3 n_m = moving.m_plane;
+        const btScalar dist = kMeshPairPad - on_moving.m_penetration_depth;
+        if (dist >= 0) return;
+        for (int i = 0; i < on_moving.m_point_count; ++i) {
+          const btVector3& q = on_moving.m_points[i];
+          if (!swapped) out->addContactPoint(-n_m, q, dist);
+          else out->addContactPoint(n_m, q - n_m * dist, dist);
+        }
+      }
+    }
+
+    const bool swapped;
+    const btTransform X_WM, X_WF, X_MW;
+    btManifoldResult* out;
+    const btGImpactMeshShapePart* part = nullptr;
+    btAlignedObjectArray<int> near;
+  };
+
+  btPersistentManifold* manifold_ = nullptr;
+  bool swapped_;
+};
+
+MeshTriMeshAlgorithm::CreateFunc g_mesh_trimesh, g_trimesh_mesh;
+
 }  // namespace
 
 PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
@@ -116,6 +263,10 @@ PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
   g_plane_mesh.m_swapped = true;
   dispatcher->registerCollisionCreateFunc(GIMPACT_SHAPE_PROXYTYPE, STATIC_PLANE_PROXYTYPE, &g_mesh_plane);
   dispatcher->registerCollisionCreateFunc(STATIC_PLANE_PROXYTYPE, GIMPACT_SHAPE_PROXYTYPE, &g_plane_mesh);
+  // ... and against static meshes: ODE's triangle against triangle (MeshTriMeshAlgorithm above).
+  g_trimesh_mesh.m_swapped = true;
+  dispatcher->registerCollisionCreateFunc(GIMPACT_SHAPE_PROXYTYPE, TRIANGLE_MESH_SHAPE_PROXYTYPE, &g_mesh_trimesh);
+  dispatcher->registerCollisionCreateFunc(TRIANGLE_MESH_SHAPE_PROXYTYPE, GIMPACT_SHAPE_PROXYTYPE, &g_trimesh_mesh);
   broadphase = std::make_unique<btDbvtBroadphase>();
   solver = std::make_unique<btMultiBodyConstraintSolver>();
   auto mbw = std::make_unique<MultiBodyWorld>(dispatcher.get(), broadphase.get(), solver.get(),
