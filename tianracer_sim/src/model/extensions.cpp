@@ -192,6 +192,10 @@ void parseLinkExtension(const XMLElement* g, const std::string& link, LinkExtens
       ext.material = valueOf(c);
     } else if (tag == "selfCollide") {
       ext.self_collide = toBool(c, what, source);
+    } else if (tag == "gravity") {
+      ext.gravity = toBool(c, what, source);
+    } else if (tag == "turnGravityOff") {
+      ext.gravity = !toBool(c, what, source);
     } else if (tag == "sensor") {
       ext.sensors.push_back(parseSensor(c, link, source));
     } else {

@@ -41,7 +41,7 @@ ContactLaw contactLaw(const ColliderSurfaces& c0, const Surface& s0, const Colli
       law.kd += tyre.tyre_damping;
     }
   }
-  law.soft = law.kp < 0.5 * kRigidKp;
+  law.soft = law.kp < 0.5 * kRigidKp || law.kd >= kDampedKd;
   bool first = true;
   for (const auto& side : {std::make_pair(&c0, &s0), std::make_pair(&c1, &s1)}) {
     if (!side.first->body) continue;

@@ -176,6 +176,15 @@ class TreeBuilder {
 
 }  // namespace
 
+void setLinkGravityFree(const urdf::ModelInterface& urdf, const std::string& link, RigidTree* tree) {
+  const auto it = tree->links.find(link);
+  const urdf::LinkConstSharedPtr l = urdf.getLink(link);
+  if (it == tree->links.end() || !l) return;
+  TreeBody& body = tree->bodies[it->second.first];
+  body.gravity_free =
+      combineMassProperties(body.gravity_free, transformMassProperties(linkMassProperties(*l), it->second.second));
+}
+
 RigidTree buildRigidTree(const urdf::ModelInterface& urdf,
                          const std::map<std::string, std::string>& mesh_paths,
                          const ElementLines& lines, const WarningSink& warn) {

@@ -63,6 +63,35 @@ void RobotState::syncColliders() {
   }
 }
 
+/// Links that feel no gravity (TreeBody::gravity_free): Bullet gives every body m g at its COM,
+/// so -m_free g is added at the gravity-free links' COM, a force and its moment about the body's
+/// COM. Bullet applies gravity only to awake bodies (and clears forces only of those), so a
+/// sleeping body gets nothing here either.
+void PhysicsWorld::Impl::applyGravityFree(RobotState* r) {
+  if (!r->has_gravity_free) return;
+  const btVector3 g = toBt(options.gravity);
+  for (std::size_t b = 0; b < r->tree.bodies.size(); ++b) {
+    const MassProperties& free = r->tree.bodies[b].gravity_free;
+    if (!(free.mass > 0.0)) continue;
+    btMultiBody* mb = r->mbOfBody(static_cast<int>(b));
+    const btCollisionObject* base = mb->getBaseCollider();
+    if (base != nullptr && base->getActivationState() == ISLAND_SLEEPING) continue;
+    const btTransform X_WC = r->comFrame(static_cast<int>(b));
+    // The body frame B is C moved by X_BC^-1: the free mass's COM in C, then in the world.
+    const Eigen::Vector3d c_C = r->X_BC[b].inverse() * free.com;
+    const btVector3 arm = X_WC.getBasis() * toBt(c_C);
+    const btVector3 f = -free.mass * g;
+    const int link = r->body_link[b];
+    if (link < 0) {
+      mb->addBaseForce(f);
+      mb->addBaseTorque(arm.cross(f));
+    } else {
+      mb->addLinkForce(link, f);
+      mb->addLinkTorque(link, arm.cross(f));
+    }
+  }
+}
+
 void PhysicsWorld::Impl::applyCommands(RobotState* r) {
   const double dt = options.dt;
   // A limit constraint costs two solver rows every step, also far from the limit: it joins the
@@ -109,6 +138,7 @@ void PhysicsWorld::Impl::applyCommands(RobotState* r) {
       }
     }
   }
+  applyGravityFree(r);
   for (std::size_t i = 0; i < r->joints.size(); ++i) {
     const JointInfo& j = r->joints[i];
     const RobotState::Command& c = r->commands[i];
@@ -527,6 +557,11 @@ double PhysicsRobot::potentialEnergy() const {
   for (std::size_t b = 0; b < s_->tree.bodies.size(); ++b) {
     const Eigen::Vector3d p = toEigen(s_->comFrame(static_cast<int>(b)).getOrigin());
     e -= s_->tree.bodies[b].mass.mass * g.dot(p);
+    const MassProperties& free = s_->tree.bodies[b].gravity_free;  // feels no gravity
+    if (free.mass > 0.0) {
+      const btTransform X_WC = s_->comFrame(static_cast<int>(b));
+      e += free.mass * g.dot(toEigen(X_WC(toBt(Eigen::Vector3d(s_->X_BC[b].inverse() * free.com)))));
+    }
   }
   return e;
 }

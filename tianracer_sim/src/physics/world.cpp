@@ -397,6 +397,7 @@ RobotId PhysicsWorld::addRobot(RigidTree tree, const LinkSurfaces& surfaces,
   r->user_index = r->id;
   r->name = name;
   r->tree = std::move(tree);
+  for (const TreeBody& b : r->tree.bodies) r->has_gravity_free = r->has_gravity_free || b.gravity_free.mass > 0.0;
   r->spawn = X_WB_spawn;
   static const SurfaceParams kDefault;  // Gazebo's defaults: mu 1, kp 1e12, kd 1
   impl_->add(std::move(r),
@@ -434,6 +435,7 @@ int PhysicsWorld::addFreeBody(RigidTree tree, const std::vector<SurfaceParams>& 
   r->world_model = true;
   r->name = name;
   r->tree = std::move(tree);
+  for (const TreeBody& b : r->tree.bodies) r->has_gravity_free = r->has_gravity_free || b.gravity_free.mass > 0.0;
   r->spawn = X_WM;
   static const SurfaceParams kDefault;
   impl_->add(std::move(r),
@@ -534,7 +536,7 @@ void PhysicsWorld::step() {
     if (r) impl_->applyCommands(r.get());
   // A free body without joints: only an external wrench (apply_body_wrench) acts through it.
   for (auto& b : impl_->free_bodies) {
-    if (b && (b->has_ext_wrench || !b->joints.empty())) impl_->applyCommands(b.get());
+    if (b && (b->has_ext_wrench || b->has_gravity_free || !b->joints.empty())) impl_->applyCommands(b.get());
   }
   // maxSubSteps = 0: exactly one internal step of dt (no accumulator, no interpolation).
   impl_->world->stepSimulation(impl_->options.dt, 0, impl_->options.dt);

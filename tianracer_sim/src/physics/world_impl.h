@@ -77,6 +77,7 @@ struct RobotState {
   /// External wrench per body (world frame, force through the COM); applied every step.
   std::vector<Eigen::Vector3d> ext_force, ext_torque;
   bool has_ext_wrench = false;
+  bool has_gravity_free = false;  // a body with TreeBody::gravity_free (applyGravityFree)
 
   PhysicsRobot handle{this};
 
@@ -148,6 +149,7 @@ struct PhysicsWorld::Impl {
   /// Takes everything of r out of the Bullet world (constraints, colliders, multibody).
   void removeFromWorld(RobotState* r);
   void applyCommands(RobotState* r);
+  void applyGravityFree(RobotState* r);
   /// Wakes the free bodies in contact with o, or with any body of r (o or r is being removed).
   void wakeTouching(const btCollisionObject* o);
   void wakeTouching(const RobotState* r);

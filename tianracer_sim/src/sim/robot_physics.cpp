@@ -24,8 +24,11 @@ RobotId addRobotModel(PhysicsWorld* physics, const RobotModel& model,
                       const Eigen::Isometry3d& X_WB_spawn, const std::string& name,
                       const WarningSink& warn) {
   if (!model.urdf) throw PhysicsError("robot '" + name + "': model has no URDF");
-  return physics->addRobot(buildRigidTree(*model.urdf, model.mesh_paths, model.lines, warn),
-                           linkSurfaces(model), X_WB_spawn, name);
+  RigidTree tree = buildRigidTree(*model.urdf, model.mesh_paths, model.lines, warn);
+  for (const auto& [link, e] : model.ext.links) {
+    if (e.gravity && !*e.gravity) setLinkGravityFree(*model.urdf, link, &tree);
+  }
+  return physics->addRobot(std::move(tree), linkSurfaces(model), X_WB_spawn, name);
 }
 
 }  // namespace tianracer_sim

@@ -182,6 +182,10 @@ RigidTree worldModelTree(const WorldDescription& world, const ModelDescription& 
             l.inertial.X_LI.linear() * l.inertial.inertia * l.inertial.X_LI.linear().transpose();
         tree.bodies[b].mass =
             combineMassProperties(tree.bodies[b].mass, transformMassProperties(m_L, X_BL));
+        if (!l.gravity) {
+          tree.bodies[b].gravity_free =
+              combineMassProperties(tree.bodies[b].gravity_free, transformMassProperties(m_L, X_BL));
+        }
       }
       for (const CollisionDescription& c : l.collisions) {
         if (c.shape.type == ShapeType::kPlane) {

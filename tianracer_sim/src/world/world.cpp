@@ -349,6 +349,8 @@ LinkDescription Parser::parseLink(const XMLElement* e, const std::string& model)
       l.inertial = parseInertial(c, what);
     } else if (tag == "self_collide") {
       l.self_collide = boolean(c, what);
+    } else if (tag == "gravity") {
+      l.gravity = boolean(c, what);
     } else if (tag == "collision" || tag == "visual") {
       const std::string name = c->Attribute("name") ? c->Attribute("name") : "";
       const std::string cwhat = what + " " + tag + " '" + name + "'";

@@ -73,6 +73,7 @@ TEST(Extensions, SurfaceValuesInBothForms) {
   EXPECT_TRUE(*w.self_collide);
   EXPECT_EQ(*w.max_vel, 0.01);
   EXPECT_EQ(*w.min_depth, 0.0);
+  EXPECT_FALSE(w.gravity.has_value());  // not given: Gazebo's default (true)
   EXPECT_TRUE(p.warnings.empty());
   // A negative mu is Gazebo's "no limit" (contact_law.cpp toSurface), not an error.
   EXPECT_EQ(*p.parse(robot("<gazebo reference='wheel'><mu1>-1</mu1></gazebo>")).links.at("wheel").mu1,
@@ -97,6 +98,20 @@ TEST(Extensions, BadSurfaceValuesNameElementAndValue) {
     EXPECT_THAT(p.error(robot(std::string("<gazebo reference='wheel'>") + body + "</gazebo>")),
                 HasSubstr(message));
   }
+}
+
+// sdformat's parser_urdf.cc: <turnGravityOff> (inverted) and <gravity> both become the link's
+// <gravity>.
+TEST(Extensions, GravityAndTurnGravityOff) {
+  Parser p;
+  EXPECT_FALSE(*p.parse(robot("<gazebo reference='wheel'><gravity>0</gravity></gazebo>")).links.at("wheel").gravity);
+  EXPECT_TRUE(*p.parse(robot("<gazebo reference='wheel'><gravity>true</gravity></gazebo>")).links.at("wheel").gravity);
+  EXPECT_FALSE(
+      *p.parse(robot("<gazebo reference='wheel'><turnGravityOff>true</turnGravityOff></gazebo>")).links.at("wheel").gravity);
+  EXPECT_TRUE(
+      *p.parse(robot("<gazebo reference='wheel'><turnGravityOff>false</turnGravityOff></gazebo>")).links.at("wheel").gravity);
+  EXPECT_THAT(p.error(robot("<gazebo reference='wheel'><turnGravityOff>off</turnGravityOff></gazebo>")),
+              HasSubstr("<turnGravityOff> value 'off' is not a boolean"));
 }
 
 TEST(Extensions, ReferencesToJointsAndMissingLinksAreWarnings) {

@@ -46,6 +46,19 @@ TEST(ContactLaw, RigidDefaultsStayRigid) {
   EXPECT_FALSE(law.soft);  // two rigid surfaces: Bullet's rigid contact
 }
 
+// Gazebo's depth_camera2.world: a box of kp 1e15, kd 1e13 on the default ground. The damping
+// makes it soft (ODE's erp 1e-4 at 1 ms), though its kp is rigid.
+TEST(ContactLaw, RigidStiffnessWithHugeDampingIsSoft) {
+  const Surface box = surface(1e15, 1e13), ground = surface(kRigidKp, 1.0);
+  const ContactLaw law = contactLaw(collider(box, true), box, collider(ground, false), ground);
+  EXPECT_TRUE(law.soft);
+  const ErpCfm r = softErpCfm(law.kp, law.kd, 1e-3);
+  EXPECT_NEAR(r.erp, 1e-4, 1e-6);
+  // Below the threshold a rigid kp stays Bullet's rigid contact.
+  const Surface damped = surface(kRigidKp, 0.5 * kDampedKd);
+  EXPECT_FALSE(contactLaw(collider(damped, true), damped, collider(ground, false), ground).soft);
+}
+
 TEST(ContactLaw, TyreIsOneMoreSpringAndDamperOnOneSideOnly) {
   const Surface wheel = surface(1e7, 1.0), ground = surface(kRigidKp, 1.0);
   const ColliderSurfaces w = collider(wheel, true, true, 1e5, 40.0);

@@ -67,6 +67,9 @@ struct LinkExtension {
   std::optional<double> mu1, mu2, kp, kd, max_vel, min_depth;
   std::optional<Eigen::Vector3d> fdir1;
   std::optional<bool> self_collide;
+  /// <gravity> (or the older <turnGravityOff>, inverted): false, the link feels no gravity
+  /// (sdformat's parser_urdf.cc makes either the link's <gravity>).
+  std::optional<bool> gravity;
   std::string material;  // e.g. "Gazebo/Red"
   std::vector<SensorSpec> sensors;
 };

@@ -64,6 +64,10 @@ struct TreeBody {
   /// World models: collides with the other bodies of its model (SDF <self_collide>; joined
   /// bodies never collide).
   bool self_collide = false;
+  /// The merged links that feel no gravity (SDF's link <gravity>false</gravity>; a robot's
+  /// <gazebo reference> <gravity> or <turnGravityOff>): their mass and COM in B (mass 0: none).
+  /// The physics cancels gravity on that mass at that point (Gazebo: Link::SetGravityMode).
+  MassProperties gravity_free;
 };
 
 /// A robot is one tree. A world model may be a forest: every body with parent == -1 roots a
@@ -96,6 +100,10 @@ bool shapeFromUrdf(const urdf::Geometry& geometry,
 /// joint and starts with its place in `lines` ("<file>:<line>: "). A body whose principal
 /// moments violate the triangle inequality is simulated as given and reported to `warn`, as
 /// Gazebo does (ODE's dMassCheck asks positive definite only) and as for world models.
+/// Marks `link` of `urdf` (in `tree`, built from it) as feeling no gravity: its inertial is
+/// added to its body's gravity_free. A link the tree does not have is ignored.
+void setLinkGravityFree(const urdf::ModelInterface& urdf, const std::string& link, RigidTree* tree);
+
 RigidTree buildRigidTree(const urdf::ModelInterface& urdf,
                          const std::map<std::string, std::string>& mesh_paths,
                          const ElementLines& lines = ElementLines(),

@@ -101,6 +101,8 @@ struct LinkDescription {
   /// <self_collide>: collides with the model's other links (Gazebo: a pair collides when
   /// either link says so and no joint joins them).
   bool self_collide = false;
+  /// <gravity>: false, the link feels no gravity (Gazebo's Link::SetGravityMode).
+  bool gravity = true;
   std::vector<CollisionDescription> collisions;
   std::vector<VisualDescription> visuals;
   /// <sensor>s, in the form robots' <gazebo reference> sensors take (SensorSpec::link is this
