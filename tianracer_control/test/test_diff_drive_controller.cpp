@@ -329,3 +329,50 @@ TEST(DiffDriveController, ItsUnknownKeysAreWarnedAndItsOwnAreNot) {
                           "controller 'dd': key 'wheel_radious' is not used by "
                           "diff_drive_controller/DiffDriveController, ignored"}));
 }
+
+// publish_wheel_joint_controller_state: upstream's publishWheelData() every update, left wheels
+// then right, term for term (its desired acceleration is (v - v_prev) * dt, and with several
+// wheels a side every pair after the first reports 0: it saves "previous" inside the loop).
+TEST(DiffDriveController, WheelJointControllerStateAsUpstreamFillsIt) {
+  {
+    Bot bot;
+    DiffDriveController& dd = bot.load(ddSpec());  // off by default
+    dd.setCommand(0.5, 1.0);
+    bot.step(0.01, 0.01);
+    EXPECT_TRUE(dd.takeWheelStates().empty());
+  }
+  Bot bot;
+  ControllerSpec s = ddSpec();
+  s.params["left_wheel"] = list({"left_wheel_joint", "left_rear_joint"});
+  s.params["right_wheel"] = list({"right_wheel_joint", "right_rear_joint"});
+  s.params["publish_wheel_joint_controller_state"] = true;
+  DiffDriveController& dd = bot.load(s);
+  EXPECT_EQ(dd.wheelJointNames(),
+            (std::vector<std::string>{"left_wheel_joint", "left_rear_joint", "right_wheel_joint", "right_rear_joint"}));
+  dd.setCommand(0.5, 1.0);
+  bot.step(0.01, 0.01);
+  bot.step(0.02, 0.01);
+  const std::vector<DiffDriveController::WheelState> states = dd.takeWheelStates();
+  ASSERT_EQ(states.size(), 2u);
+  const DiffDriveController::WheelState& w = states[1];
+  EXPECT_DOUBLE_EQ(w.t, 0.02);
+  const double vl = (0.5 - 1.0 * 0.24 / 2) / 0.05, vr = (0.5 + 1.0 * 0.24 / 2) / 0.05;
+  const std::vector<double> v_desired{vl, vl, vr, vr};
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_DOUBLE_EQ(w.desired.velocities[k], v_desired[k]) << k;
+    EXPECT_NEAR(w.desired.positions[k], 2 * v_desired[k] * 0.01, 1e-12) << k;  // integrated over two updates
+    EXPECT_EQ(w.desired.accelerations[k], 0.0) << k;  // the command did not change
+    EXPECT_TRUE(std::isnan(w.desired.effort[k]));
+    EXPECT_TRUE(std::isnan(w.error.effort[k]));
+    // Actual: the wheels turned at the first update's command for 0.01 s.
+    EXPECT_DOUBLE_EQ(w.actual.velocities[k], v_desired[k]) << k;
+    EXPECT_NEAR(w.actual.accelerations[k], v_desired[k] / 0.01, 1e-9) << k;
+    EXPECT_NEAR(w.error.positions[k], w.desired.positions[k] - w.actual.positions[k], 1e-15);
+    EXPECT_NEAR(w.error.velocities[k], 0.0, 1e-12);
+  }
+  // The first update: the front pair's desired acceleration (v - 0) * dt, the rear pair's 0.
+  EXPECT_NEAR(states[0].desired.accelerations[0], vl * 0.01, 1e-12);
+  EXPECT_NEAR(states[0].desired.accelerations[2], vr * 0.01, 1e-12);
+  EXPECT_EQ(states[0].desired.accelerations[1], 0.0);
+  EXPECT_EQ(states[0].desired.accelerations[3], 0.0);
+}

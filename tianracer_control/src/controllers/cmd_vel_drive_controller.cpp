@@ -162,6 +162,7 @@ void CmdVelDriveController::update(double dt) {
   last1_ = last0_;
   last0_ = cmd;
   if (common_.publish_cmd) post(&cmd_out_, {time, cmd.lin, cmd.ang});
+  update_dt_ = dt;
   drive(cmd.lin, cmd.ang);
 }
 

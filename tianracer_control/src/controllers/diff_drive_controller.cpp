@@ -1,6 +1,7 @@
 #include "tianracer_control/controllers/diff_drive_controller.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include <urdf_model/model.h>
@@ -71,10 +72,6 @@ std::unique_ptr<Controller> DiffDriveController::create(ControllerContext& conte
   }
   p.publish_wheel_joint_controller_state =
       params.boolean("publish_wheel_joint_controller_state").value_or(false);
-  if (p.publish_wheel_joint_controller_state && context.warn) {
-    context.warn(pre + "publish_wheel_joint_controller_state: not published here "
-                 "(control_msgs/JointTrajectoryControllerState is not available)");
-  }
 
   // setOdomParamsFromUrdf(): what is not given comes from the first wheel of each side.
   const std::optional<double> separation = params.number("wheel_separation");
@@ -183,6 +180,77 @@ bool DiffDriveController::updateOdometry(double time) {
 void DiffDriveController::drive(double lin, double ang) {
   const double ws = wheelSeparation();
   setWheels((lin - ang * ws / 2.0) / leftWheelRadius(), (lin + ang * ws / 2.0) / rightWheelRadius());
+  publishWheelData(lin, ang);
+  time_previous_ = now();
+}
+
+void DiffDriveController::starting(double time) {
+  CmdVelDriveController::starting(time);
+  time_previous_ = time;
+}
+
+std::vector<std::string> DiffDriveController::wheelJointNames() const {
+  std::vector<std::string> names;
+  for (const JointHandle* j : left_) names.push_back(j->name);
+  for (const JointHandle* j : right_) names.push_back(j->name);
+  return names;
+}
+
+std::vector<DiffDriveController::WheelState> DiffDriveController::takeWheelStates() {
+  std::vector<WheelState> out;
+  out.swap(wheel_states_);
+  return out;
+}
+
+// Upstream's publishWheelData (diff_drive_controller.cpp), term for term.
+void DiffDriveController::publishWheelData(double lin, double ang) {
+  if (!params_.publish_wheel_joint_controller_state) return;
+  const std::size_t n = left_.size(), all = 2 * n;
+  if (desired_positions_.size() != all) {
+    desired_positions_.assign(all, 0.0);
+    vel_previous_.assign(all, 0.0);
+  }
+  const double time = now(), cmd_dt = update_dt_;
+  const double ws = wheelSeparation();
+  const double vel_left_desired = (lin - ang * ws / 2.0) / leftWheelRadius();
+  const double vel_right_desired = (lin + ang * ws / 2.0) / rightWheelRadius();
+  const double control_duration = time - time_previous_;
+  WheelState s;
+  s.t = time;
+  for (WheelState::Point* p : {&s.desired, &s.actual, &s.error}) {
+    p->positions.resize(all);
+    p->velocities.resize(all);
+    p->accelerations.resize(all);
+    p->effort.resize(all);
+  }
+  // Wheel pair by pair, left k = i then right k = i + n, as upstream; it saves the desired
+  // velocities as "previous" inside that loop, so with several wheels a side every pair after
+  // the first reports a desired acceleration of 0.
+  for (std::size_t i = 0; i < n; ++i) {
+    for (const std::size_t k : {i, i + n}) {
+      const JointHandle& j = k < n ? *left_[k] : *right_[k - n];
+      const double v_desired = k < n ? vel_left_desired : vel_right_desired;
+      const double v_desired_previous = k < n ? vel_left_desired_previous_ : vel_right_desired_previous_;
+      s.actual.positions[k] = j.position;
+      s.actual.velocities[k] = j.velocity;
+      s.actual.accelerations[k] = (j.velocity - vel_previous_[k]) / control_duration;
+      s.actual.effort[k] = j.effort;
+      desired_positions_[k] += v_desired * cmd_dt;
+      s.desired.positions[k] = desired_positions_[k];
+      s.desired.velocities[k] = v_desired;
+      s.desired.accelerations[k] = (v_desired - v_desired_previous) * cmd_dt;
+      s.desired.effort[k] = std::numeric_limits<double>::quiet_NaN();
+      s.error.positions[k] = s.desired.positions[k] - s.actual.positions[k];
+      s.error.velocities[k] = s.desired.velocities[k] - s.actual.velocities[k];
+      s.error.accelerations[k] = s.desired.accelerations[k] - s.actual.accelerations[k];
+      s.error.effort[k] = s.desired.effort[k] - s.actual.effort[k];
+      vel_previous_[k] = j.velocity;
+    }
+    vel_left_desired_previous_ = vel_left_desired;
+    vel_right_desired_previous_ = vel_right_desired;
+  }
+  if (wheel_states_.size() >= 100) wheel_states_.erase(wheel_states_.begin());
+  wheel_states_.push_back(std::move(s));
 }
 
 }  // namespace tianracer_control

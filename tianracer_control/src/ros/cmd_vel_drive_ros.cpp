@@ -8,6 +8,9 @@
 //   /tf                       tf2_msgs/TFMessage odom_frame_id -> base_frame_id (enable_odom_tf);
 //   <controller>/cmd_vel_out  geometry_msgs/TwistStamped, the limited command (diff drive's
 //                             publish_cmd);
+//   <controller>/wheel_joint_controller_state  control_msgs/JointTrajectoryControllerState
+//                             every update (diff drive's publish_wheel_joint_controller_state;
+//                             publishWheelData());
 //   <controller>/set_parameters, ...  the diff drive's dynamic_reconfigure
 //                             (cfg/DiffDriveController.cfg; reconfCallback: taken at the next
 //                             update, as upstream's realtime buffer).
@@ -18,6 +21,7 @@
 
 #include <boost/thread/recursive_mutex.hpp>
 #include <dynamic_reconfigure/server.h>
+#include <control_msgs/JointTrajectoryControllerState.h>
 #include <geometry_msgs/Twist.h>
 #include <geometry_msgs/TwistStamped.h>
 #include <nav_msgs/Odometry.h>
@@ -78,7 +82,14 @@ class CmdVelDriveRos : public ControllerRosSide {
     tf_.transforms[0].child_frame_id = p.base_frame_id;
     sub_ = nh.subscribe<geometry_msgs::Twist>(
         "cmd_vel", 1, [this](const geometry_msgs::Twist::ConstPtr& msg) { onCmdVel(*msg); });
-    if (auto* dd = dynamic_cast<DiffDriveController*>(&controller_)) startReconfigure(*dd, nh);
+    if (auto* dd = dynamic_cast<DiffDriveController*>(&controller_)) {
+      startReconfigure(*dd, nh);
+      if (dd->params().publish_wheel_joint_controller_state) {
+        wheel_state_pub_ =
+            nh.advertise<control_msgs::JointTrajectoryControllerState>("wheel_joint_controller_state", 100);
+        wheel_state_.joint_names = dd->wheelJointNames();
+      }
+    }
   }
 
   void apply() override {
@@ -126,6 +137,22 @@ class CmdVelDriveRos : public ControllerRosSide {
       msg.twist.linear.x = s.linear;
       msg.twist.angular.z = s.angular;
       cmd_vel_out_.publish(msg);
+    }
+    if (auto* dd = dynamic_cast<DiffDriveController*>(&controller_)) {
+      for (DiffDriveController::WheelState& s : dd->takeWheelStates()) {
+        if (!wheel_state_pub_) continue;
+        wheel_state_.header.stamp = ros::Time(s.t);
+        const auto fill = [](trajectory_msgs::JointTrajectoryPoint* p, DiffDriveController::WheelState::Point& q) {
+          p->positions.swap(q.positions);
+          p->velocities.swap(q.velocities);
+          p->accelerations.swap(q.accelerations);
+          p->effort.swap(q.effort);
+        };
+        fill(&wheel_state_.desired, s.desired);
+        fill(&wheel_state_.actual, s.actual);
+        fill(&wheel_state_.error, s.error);
+        wheel_state_pub_.publish(wheel_state_);
+      }
     }
   }
 
@@ -193,7 +220,8 @@ class CmdVelDriveRos : public ControllerRosSide {
   CmdVelDriveController& controller_;
   const ControllerSet& set_;
   ros::Subscriber sub_;
-  ros::Publisher odom_pub_, tf_pub_, cmd_vel_out_;
+  ros::Publisher odom_pub_, tf_pub_, cmd_vel_out_, wheel_state_pub_;
+  control_msgs::JointTrajectoryControllerState wheel_state_;
   nav_msgs::Odometry odom_;
   tf2_msgs::TFMessage tf_;
   std::mutex mutex_;

@@ -15,6 +15,7 @@ import unittest
 
 import dynamic_reconfigure.client
 import rospy
+from control_msgs.msg import JointTrajectoryControllerState
 import rostest
 from controller_manager_msgs.srv import ListControllers, LoadController
 from geometry_msgs.msg import Twist, TwistStamped
@@ -42,6 +43,8 @@ class DiffDriveControllerTest(unittest.TestCase):
         self.odom = Stream(CONTROLLER + '/odom', Odometry)
         self.truth = Stream(NS + '/ground_truth/odom', Odometry)
         self.cmd_out = Stream(CONTROLLER + '/cmd_vel_out', TwistStamped)
+        self.wheel_state = Stream(CONTROLLER + '/wheel_joint_controller_state',
+                                  JointTrajectoryControllerState, keep=10)
         self.tf = {}
         self.log = []
         rospy.Subscriber('/tf', TFMessage, self.on_tf)
@@ -141,6 +144,20 @@ class DiffDriveControllerTest(unittest.TestCase):
         last = self.cmd_out.latest()
         self.assertAlmostEqual(last.twist.linear.x, 0.3, delta=1e-9)
         self.assertAlmostEqual(last.twist.angular.z, 0.6, delta=1e-9)
+        # wheel_joint_controller_state (publish_wheel_joint_controller_state): every update,
+        # the wheels' desired (from the limited command), actual and error.
+        ws = self.wheel_state.latest()
+        self.assertEqual(list(ws.joint_names), ['left_wheel_joint', 'right_wheel_joint'])
+        for point in (ws.desired, ws.actual, ws.error):
+            self.assertEqual(len(point.positions), 2)
+            self.assertEqual(len(point.velocities), 2)
+        self.assertLess(ws.desired.velocities[0], ws.desired.velocities[1])  # turning left
+        for k in range(2):
+            self.assertTrue(math.isnan(ws.desired.effort[k]))
+            self.assertAlmostEqual(ws.actual.velocities[k], ws.desired.velocities[k],
+                                   delta=0.05 * abs(ws.desired.velocities[k]))
+            self.assertAlmostEqual(ws.error.velocities[k],
+                                   ws.desired.velocities[k] - ws.actual.velocities[k], delta=1e-9)
 
         # No command for longer than cmd_vel_timeout: it stops.
         drive_twist(self.cmd, 0.5, 0.5, 0.0, wall_timeout=WALL_TIMEOUT)

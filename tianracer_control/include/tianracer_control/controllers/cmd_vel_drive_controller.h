@@ -85,6 +85,7 @@ class CmdVelDriveController : public Controller {
 
   Common common_;
   DiffDriveOdometry odometry_;
+  double update_dt_ = 0.0;  // the period of the update that calls drive()
 
  private:
   struct Command {

@@ -51,6 +51,25 @@ class DiffDriveController : public CmdVelDriveController {
   DiffDriveController(std::string name, Common common, Params params,
                       std::vector<JointHandle*> left, std::vector<JointHandle*> right);
 
+  /// One wheel_joint_controller_state publication (publish_wheel_joint_controller_state:
+  /// control_msgs/JointTrajectoryControllerState), as upstream's publishWheelData() fills it
+  /// every update: the left wheels, then the right. Desired: velocities from the limited
+  /// command, positions their running integral, accelerations (v - v_prev) * dt (upstream
+  /// multiplies by the period), effort NaN; actual: the joints', accelerations from the change
+  /// of velocity since the last update; error = desired - actual.
+  struct WheelState {
+    struct Point {
+      std::vector<double> positions, velocities, accelerations, effort;
+    };
+    double t = 0.0;
+    Point desired, actual, error;
+  };
+  /// Joint names of a WheelState, in its order.
+  std::vector<std::string> wheelJointNames() const;
+  /// The publications since the last call, oldest first (at most 100 kept).
+  std::vector<WheelState> takeWheelStates();
+
+  void starting(double time) override;
   std::vector<const JointHandle*> claimedJoints() const override;
   void brake() override;
   void setDynamicParams(const DynamicParams& p);
@@ -76,8 +95,15 @@ class DiffDriveController : public CmdVelDriveController {
  private:
   void setWheels(double left, double right);
 
+  void publishWheelData(double lin, double ang);
+
   Params params_;
   std::vector<JointHandle*> left_, right_;
+  // publishWheelData()'s state: the desired positions it integrates and what it differences.
+  std::vector<double> desired_positions_, vel_previous_;
+  double vel_left_desired_previous_ = 0.0, vel_right_desired_previous_ = 0.0;
+  double time_previous_ = 0.0;
+  std::vector<WheelState> wheel_states_;
 };
 
 }  // namespace tianracer_control
