@@ -82,25 +82,27 @@ TEST(ShortestAngularDistance, Wraps) {
   EXPECT_NEAR(shortestAngularDistance(0.0, 4.0 * M_PI + 0.5), 0.5, 1e-12);
 }
 
-TEST(EffortJointPositionController, PidOnPositionErrorWithVelocityAsDerivative) {
+// effort_controllers' update(): computeCommand(error, period), so the derivative is the change
+// of the error between updates: a step of the target kicks the D term for one update, as in
+// Gazebo; while the target holds it is -velocity's finite difference.
+TEST(EffortJointPositionController, PidOnPositionErrorWithTheErrorsChangeAsDerivative) {
   Car car;
   car.left_hinge.position = 0.1;
-  auto& c = car.load(hingeSpec(2.0, 0.0, 0.1));
+  auto& c = car.load(hingeSpec(2.0, 0.0, 0.001));
   // starting(): target = current position, so nothing moves.
   EXPECT_EQ(c.command(), 0.1);
   car.update(0.001);
   EXPECT_EQ(car.left_hinge.command, 0.0);
 
   ASSERT_TRUE(c.setCommand(0.5));
-  car.left_hinge.velocity = 0.0;
   car.update(0.001);
-  // error = 0.4 -> P = 0.8; derivative input = -velocity = 0 (no kick from the step)
-  EXPECT_NEAR(car.left_hinge.command, 0.8, 1e-12);
+  // error 0.4 (was 0): P = 0.8, D = 0.001 * 0.4 / 0.001 = 0.4: the kick
+  EXPECT_NEAR(car.left_hinge.command, 1.2, 1e-9);
 
-  car.left_hinge.velocity = 1.0;
+  car.left_hinge.position = 0.11;  // moved 0.01 in the update
   car.update(0.001);
-  // P = 0.8, D = 0.1 * (0 - 1) = -0.1
-  EXPECT_NEAR(car.left_hinge.command, 0.7, 1e-12);
+  // error 0.39: P = 0.78, D = 0.001 * (0.39 - 0.4) / 0.001 = -0.01
+  EXPECT_NEAR(car.left_hinge.command, 0.77, 1e-9);
 }
 
 TEST(EffortJointPositionController, ClampsTargetToLimitsAndEffortToLimit) {

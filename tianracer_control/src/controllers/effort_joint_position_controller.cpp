@@ -7,9 +7,9 @@ double EffortJointPositionController::pidError() const {
                             : command_ - joint_->position;
 }
 
-double EffortJointPositionController::pidOutput(double dt) {
-  const double error_dot = 0.0 - joint_->velocity;
-  return pid_.computeCommand(pidError(), error_dot, dt);
-}
+// effort_controllers/src/joint_position_controller.cpp, update(): a command from `command` has
+// no velocity, so upstream calls computeCommand(error, period): the derivative is the change of
+// the error (a step of the target kicks the D term for one update, as in Gazebo).
+double EffortJointPositionController::pidOutput(double dt) { return pid_.computeCommand(pidError(), dt); }
 
 }  // namespace tianracer_control
