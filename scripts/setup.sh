@@ -108,7 +108,7 @@ fi
 export PATH="/usr/bin:$PATH"
 mkdir -p "$LOG_DIR"
 # Our stand-ins (gazebo_msgs, ackermann_msgs, xacro, controller_manager(_msgs), gazebo_ros,
-# control_msgs) only
+# control_msgs, four_wheel_steering_msgs) only
 # where the system has none: never shadow the real ones.
 stand_ins="$("$REPO/scripts/stand_in_packages.sh" "$REPO")" \
   || fail "step 'build': scripts/stand_in_packages.sh failed"

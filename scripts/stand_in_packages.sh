@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Our stand-ins for ROS packages Debian 12 does not ship (gazebo_msgs, ackermann_msgs, xacro,
-# controller_manager_msgs, controller_manager, gazebo_ros, control_msgs) are built only where the system has
-# none. Where the system has one (a stock Noetic in /opt/ros, or any package that rospack finds
-# outside this workspace), ours gets a CATKIN_IGNORE so it never shadows it.
+# controller_manager_msgs, controller_manager, gazebo_ros, control_msgs,
+# four_wheel_steering_msgs) are built only where the system has none. Where the system has one
+# (a stock Noetic in /opt/ros, or any package that rospack finds outside this workspace), ours
+# gets a CATKIN_IGNORE so it never shadows it.
 #   scripts/stand_in_packages.sh [SOURCE_ROOT]    (default: the repo root)
 # Prints one line per package. For tests, the places looked at can be replaced:
 #   TIANRACER_ROS_PREFIXES  space-separated install prefixes (default: /opt/ros/*)
@@ -41,7 +42,7 @@ system_package() {
 }
 
 STAND_INS=(gazebo_msgs ackermann_msgs xacro controller_manager_msgs controller_manager gazebo_ros
-  control_msgs)
+  control_msgs four_wheel_steering_msgs)
 for pkg in "${STAND_INS[@]}"; do
   dir="$ROOT/$pkg"
   [[ -f "$dir/package.xml" ]] || continue

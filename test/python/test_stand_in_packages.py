@@ -12,7 +12,7 @@ import unittest
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), '..', '..'))
 SCRIPT = os.path.join(REPO, 'scripts', 'stand_in_packages.sh')
 STAND_INS = ('gazebo_msgs', 'ackermann_msgs', 'xacro', 'controller_manager_msgs',
-             'controller_manager', 'gazebo_ros', 'control_msgs')
+             'controller_manager', 'gazebo_ros', 'control_msgs', 'four_wheel_steering_msgs')
 
 # Published md5sums. Messages: the values stated for ROS Noetic's gazebo_msgs 2.9 and
 # ackermann_msgs 1.0 (the ModelStates/LinkStates without a header). Services: read from
@@ -110,6 +110,12 @@ CONTROL_MSG_MD5 = {
     'PointHeadAction': '7252920f1243de1b741f14f214125371',
     'SingleJointPositionAction': 'c4a786b7d53e5d0983decf967a5a779e',
 }
+# four_wheel_steering_msgs 1.1.1: the values in the code genlisp generated from the real
+# package (roslisp-msg-protocol:md5sum), found in public repositories by content search.
+FOUR_WS_MSG_MD5 = {
+    'FourWheelSteering': '04dd0f55e1f168668af1e2587a7cdd2a',
+    'FourWheelSteeringStamped': '9226582df815bc6df9e3206bc05923af',
+}
 CONTROL_SRV_MD5 = {
     'QueryTrajectoryState': 'ec93cdecbd8062d761aa52b7c90cd44b',
     'QueryCalibrationState': '28af3beedcb84986b8e470dc5470507d',
@@ -125,6 +131,13 @@ class Md5sumTest(unittest.TestCase):
             cls = getattr({'ackermann_msgs': ackermann_msgs.msg, 'gazebo_msgs': gazebo_msgs.msg}[pkg], typ)
             self.assertEqual(cls._md5sum, md5, name)
             self.assertEqual(cls._type, name)
+
+    def test_four_wheel_steering_msgs(self):
+        import four_wheel_steering_msgs.msg
+        for name, md5 in FOUR_WS_MSG_MD5.items():
+            cls = getattr(four_wheel_steering_msgs.msg, name)
+            self.assertEqual(cls._md5sum, md5, name)
+            self.assertEqual(cls._type, 'four_wheel_steering_msgs/' + name)
 
     def test_services(self):
         import gazebo_msgs.srv

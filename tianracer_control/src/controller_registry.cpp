@@ -6,6 +6,7 @@
 #include "tianracer_control/controllers/diff_drive_controller.h"
 #include "tianracer_control/controllers/effort_joint_position_controller.h"
 #include "tianracer_control/controllers/effort_joint_velocity_controller.h"
+#include "tianracer_control/controllers/four_wheel_steering_controller.h"
 #include "tianracer_control/controllers/gripper_action_controller.h"
 #include "tianracer_control/controllers/forward_command_controller.h"
 #include "tianracer_control/controllers/joint_group_controller.h"
@@ -33,6 +34,7 @@ const ControllerRegistry& builtinControllers() {
     r.add(JointGroupController::kEffortPositionType, &JointGroupController::createEffortPosition);
     r.add(DiffDriveController::kType, &DiffDriveController::create);
     r.add(AckermannSteeringController::kType, &AckermannSteeringController::create);
+    r.add(FourWheelSteeringController::kType, &FourWheelSteeringController::create);
     r.add(JointTrajectoryController::kPositionType,
           &JointTrajectoryController::create<Iface::kPosition>);
     r.add(JointTrajectoryController::kVelocityType,

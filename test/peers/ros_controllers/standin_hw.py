@@ -78,6 +78,13 @@ def augment(urdf, rule, params):
         ET.SubElement(ET.SubElement(t, 'joint', name=name), 'hardwareInterface').text = iface
         ET.SubElement(t, 'actuator', name=name + '_standin_motor')
         notes.append('%s: %s (added transmission)' % (name, iface))
+    # The upstream hardware node runs its ControllerManager in its own (root) namespace: a test
+    # URDF's own gazebo_ros_control without robotNamespace (four_wheel_steering.urdf.xacro) would
+    # put it under the model's name, as Gazebo does.
+    for plugin in root.iter('plugin'):
+        if plugin.get('filename') == 'libgazebo_ros_control.so' and plugin.find('robotNamespace') is None:
+            ET.SubElement(plugin, 'robotNamespace').text = '/'
+            notes.append('its gazebo_ros_control plugin given robotNamespace /')
     if not any(p.get('filename') == 'libgazebo_ros_control.so' for p in root.iter('plugin')):
         plugin = ET.SubElement(ET.SubElement(root, 'gazebo'), 'plugin',
                                name='gazebo_ros_control', filename='libgazebo_ros_control.so')
