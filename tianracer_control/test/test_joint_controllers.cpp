@@ -489,6 +489,7 @@ TEST(ControllerRegistry, ListsTheTypesInRegistrationOrderAndTakesNewOnes) {
       "effort_controllers/JointGroupPositionController",
       "diff_drive_controller/DiffDriveController",
       "ackermann_steering_controller/AckermannSteeringController",
+      "four_wheel_steering_controller/FourWheelSteeringController",
       "position_controllers/JointTrajectoryController",
       "velocity_controllers/JointTrajectoryController",
       "effort_controllers/JointTrajectoryController",
