@@ -91,27 +91,24 @@ void FourWheelSteeringOdometry::init(double time) {
 bool FourWheelSteeringOdometry::update(double fl_speed, double fr_speed, double rl_speed, double rr_speed,
                                        double front_steering, double rear_steering, double time) {
   const double st = steering_track_, b = wheel_base_, off = wheel_steering_y_offset_;
-  const double front_tmp = std::cos(front_steering) * (std::tan(front_steering) - std::tan(rear_steering)) / b;
-  const double front_left_tmp =
-      front_tmp / std::sqrt(1 - st * front_tmp * std::cos(front_steering) + std::pow(st * front_tmp / 2, 2));
-  const double front_right_tmp =
-      front_tmp / std::sqrt(1 + st * front_tmp * std::cos(front_steering) + std::pow(st * front_tmp / 2, 2));
-  const double fl_speed_tmp = fl_speed * (1 / (1 - off * front_left_tmp));
-  const double fr_speed_tmp = fr_speed * (1 / (1 - off * front_right_tmp));
-  const double front_linear_speed = wheel_radius_ * std::copysign(1.0, fl_speed_tmp + fr_speed_tmp) *
-                                    std::sqrt((std::pow(fl_speed, 2) + std::pow(fr_speed, 2)) /
-                                              (2 + std::pow(st * front_tmp, 2) / 2.0));
-
-  const double rear_tmp = std::cos(rear_steering) * (std::tan(front_steering) - std::tan(rear_steering)) / b;
-  const double rear_left_tmp =
-      rear_tmp / std::sqrt(1 - st * rear_tmp * std::cos(rear_steering) + std::pow(st * rear_tmp / 2, 2));
-  const double rear_right_tmp =
-      rear_tmp / std::sqrt(1 + st * rear_tmp * std::cos(rear_steering) + std::pow(st * rear_tmp / 2, 2));
-  const double rl_speed_tmp = rl_speed * (1 / (1 - off * rear_left_tmp));
-  const double rr_speed_tmp = rr_speed * (1 / (1 - off * rear_right_tmp));
-  const double rear_linear_speed = wheel_radius_ * std::copysign(1.0, rl_speed_tmp + rr_speed_tmp) *
-                                   std::sqrt((std::pow(rl_speed_tmp, 2) + std::pow(rr_speed_tmp, 2)) /
-                                             (2 + std::pow(st * rear_tmp, 2) / 2.0));
+  // One axle: its yaw-rate factor (tmp) and its linear speed. The norm takes the raw wheel speeds
+  // at the front and the offset-corrected ones at the rear, as upstream writes them.
+  struct Axle {
+    double tmp, linear_speed;
+  };
+  const auto axle = [&](double l_speed, double r_speed, double steering, bool raw_norm) {
+    const double tmp = std::cos(steering) * (std::tan(front_steering) - std::tan(rear_steering)) / b;
+    const double left_tmp = tmp / std::sqrt(1 - st * tmp * std::cos(steering) + std::pow(st * tmp / 2, 2));
+    const double right_tmp = tmp / std::sqrt(1 + st * tmp * std::cos(steering) + std::pow(st * tmp / 2, 2));
+    const double l_tmp = l_speed * (1 / (1 - off * left_tmp)), r_tmp = r_speed * (1 / (1 - off * right_tmp));
+    const double nl = raw_norm ? l_speed : l_tmp, nr = raw_norm ? r_speed : r_tmp;
+    return Axle{tmp, wheel_radius_ * std::copysign(1.0, l_tmp + r_tmp) *
+                         std::sqrt((nl * nl + nr * nr) / (2 + std::pow(st * tmp, 2) / 2.0))};
+  };
+  const Axle front = axle(fl_speed, fr_speed, front_steering, true);
+  const Axle rear = axle(rl_speed, rr_speed, rear_steering, false);
+  const double front_tmp = front.tmp, rear_tmp = rear.tmp;
+  const double front_linear_speed = front.linear_speed, rear_linear_speed = rear.linear_speed;
 
   angular_ = (front_linear_speed * front_tmp + rear_linear_speed * rear_tmp) / 2.0;
   linear_x_ = (front_linear_speed * std::cos(front_steering) + rear_linear_speed * std::cos(rear_steering)) / 2.0;

@@ -11,22 +11,51 @@ namespace tianracer_sim {
 
 namespace {
 
+/// A pair algorithm of ours with a manifold of its own (as Bullet's GImpact algorithm has): the
+/// construction, the manifold's lifetime and the create function, shared by the mesh pairs below.
+/// `swapped_`: the mesh is the second object of the pair.
+template <class Derived>
+class OwnManifoldAlgorithm : public btActivatingCollisionAlgorithm {
+ public:
+  OwnManifoldAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* a,
+                       const btCollisionObjectWrapper* b, bool swapped)
+      : btActivatingCollisionAlgorithm(ci, a, b), swapped_(swapped) {
+    manifold_ = m_dispatcher->getNewManifold(a->getCollisionObject(), b->getCollisionObject());
+  }
+  ~OwnManifoldAlgorithm() override {
+    if (manifold_) m_dispatcher->releaseManifold(manifold_);
+  }
+  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
+                                 btManifoldResult*) override {
+    return 1;
+  }
+  void getAllContactManifolds(btManifoldArray& arr) override {
+    if (manifold_) arr.push_back(manifold_);
+  }
+
+  struct CreateFunc : public btCollisionAlgorithmCreateFunc {
+    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                   const btCollisionObjectWrapper* a,
+                                                   const btCollisionObjectWrapper* b) override {
+      void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(Derived));
+      return new (mem) Derived(ci, a, b, m_swapped);
+    }
+  };
+
+ protected:
+  btPersistentManifold* manifold_ = nullptr;
+  bool swapped_;
+};
+
 /// A movable concave mesh (btGImpactMeshShape) against a plane, as ODE's dCollideTrimeshPlane
 /// (Gazebo 11's deps/opende/src/collision_trimesh_plane.cpp) does it: a contact for every mesh
 /// vertex below the plane. Bullet's gimpacttrimeshpart_vs_plane_collision does the same per
 /// vertex, but first drops the pair unless the mesh's AABB straddles the plane within 1e-6 m
 /// (btAABB::plane_classify): a flat plate (an AABB of zero thickness, no margin) never got a
 /// contact and fell through the ground plane (issue 40; test_sim_movable_plate).
-class MeshPlaneAlgorithm : public btActivatingCollisionAlgorithm {
+class MeshPlaneAlgorithm : public OwnManifoldAlgorithm<MeshPlaneAlgorithm> {
  public:
-  MeshPlaneAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* a,
-                     const btCollisionObjectWrapper* b, bool swapped)
-      : btActivatingCollisionAlgorithm(ci, a, b), swapped_(swapped) {
-    manifold_ = m_dispatcher->getNewManifold(a->getCollisionObject(), b->getCollisionObject());
-  }
-  ~MeshPlaneAlgorithm() override {
-    if (manifold_) m_dispatcher->releaseManifold(manifold_);
-  }
+  using OwnManifoldAlgorithm::OwnManifoldAlgorithm;
 
   void processCollision(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b,
                         const btDispatcherInfo&, btManifoldResult* out) override {
@@ -57,27 +86,6 @@ class MeshPlaneAlgorithm : public btActivatingCollisionAlgorithm {
     }
     out->refreshContactPoints();
   }
-
-  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
-                                 btManifoldResult*) override {
-    return 1;
-  }
-  void getAllContactManifolds(btManifoldArray& arr) override {
-    if (manifold_) arr.push_back(manifold_);
-  }
-
-  struct CreateFunc : public btCollisionAlgorithmCreateFunc {
-    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
-                                                   const btCollisionObjectWrapper* a,
-                                                   const btCollisionObjectWrapper* b) override {
-      void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(MeshPlaneAlgorithm));
-      return new (mem) MeshPlaneAlgorithm(ci, a, b, m_swapped);
-    }
-  };
-
- private:
-  btPersistentManifold* manifold_ = nullptr;
-  bool swapped_;
 };
 
 MeshPlaneAlgorithm::CreateFunc g_mesh_plane, g_plane_mesh;
@@ -93,16 +101,9 @@ MeshPlaneAlgorithm::CreateFunc g_mesh_plane, g_plane_mesh;
 /// inside its mesh. Bullet's GImpact-vs-concave path culled a flat plate on a flat static mesh by
 /// their AABBs of zero thickness, and the plate fell through (issue 40); the pairs are found here
 /// with AABBs padded by kMeshPairPad (MovableMeshShape pads its own the same).
-class MeshTriMeshAlgorithm : public btActivatingCollisionAlgorithm {
+class MeshTriMeshAlgorithm : public OwnManifoldAlgorithm<MeshTriMeshAlgorithm> {
  public:
-  MeshTriMeshAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* a,
-                       const btCollisionObjectWrapper* b, bool swapped)
-      : btActivatingCollisionAlgorithm(ci, a, b), swapped_(swapped) {
-    manifold_ = m_dispatcher->getNewManifold(a->getCollisionObject(), b->getCollisionObject());
-  }
-  ~MeshTriMeshAlgorithm() override {
-    if (manifold_) m_dispatcher->releaseManifold(manifold_);
-  }
+  using OwnManifoldAlgorithm::OwnManifoldAlgorithm;
 
   void processCollision(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b,
                         const btDispatcherInfo&, btManifoldResult* out) override {
@@ -124,23 +125,6 @@ class MeshTriMeshAlgorithm : public btActivatingCollisionAlgorithm {
     }
     out->refreshContactPoints();
   }
-
-  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
-                                 btManifoldResult*) override {
-    return 1;
-  }
-  void getAllContactManifolds(btManifoldArray& arr) override {
-    if (manifold_) arr.push_back(manifold_);
-  }
-
-  struct CreateFunc : public btCollisionAlgorithmCreateFunc {
-    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
-                                                   const btCollisionObjectWrapper* a,
-                                                   const btCollisionObjectWrapper* b) override {
-      void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(MeshTriMeshAlgorithm));
-      return new (mem) MeshTriMeshAlgorithm(ci, a, b, m_swapped);
-    }
-  };
 
  private:
   /// Called by the static mesh for each of its triangles near a part of the movable mesh.
@@ -223,8 +207,6 @@ class MeshTriMeshAlgorithm : public btActivatingCollisionAlgorithm {
     btAlignedObjectArray<int> near;
   };
 
-  btPersistentManifold* manifold_ = nullptr;
-  bool swapped_;
 };
 
 MeshTriMeshAlgorithm::CreateFunc g_mesh_trimesh, g_trimesh_mesh;
