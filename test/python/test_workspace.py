@@ -11,7 +11,7 @@ EXPECTED = {'tianracer', 'tianracer_description', 'tianracer_sim', 'tianracer_co
 # Stand-ins for packages the system may lack; scripts/stand_in_packages.sh leaves each out
 # (CATKIN_IGNORE) where the system has the real one.
 STAND_INS = {'gazebo_msgs', 'ackermann_msgs', 'xacro', 'controller_manager_msgs',
-             'controller_manager', 'gazebo_ros', 'control_msgs'}
+             'controller_manager', 'gazebo_ros', 'control_msgs', 'four_wheel_steering_msgs'}
 
 
 class WorkspaceTest(unittest.TestCase):
