@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "tianracer_control/ros/msg_conversion.h"
+#include "tianracer_control/ros/odom_tf_publisher.h"
 
 using namespace tianracer_control;  // NOLINT: test file
 
@@ -94,4 +95,48 @@ TEST(MsgConversion, OdometryAndTransform) {
   EXPECT_EQ(t.transform.translation.x, odo.x());
   EXPECT_EQ(t.transform.rotation.z, m.pose.pose.orientation.z);
   EXPECT_EQ(t.child_frame_id, "base_link");
+}
+
+// The drive controllers' odom and /tf (diff drive, ackermann, 4WS): frames and covariance
+// diagonals set once, pose, yaw quaternion and twist written per publication.
+TEST(MsgConversion, DriveControllerOdomAndTf) {
+  CmdVelDriveController::Common p;
+  p.base_frame_id = "chassis";
+  p.pose_covariance_diagonal = {1, 2, 3, 4, 5, 6};
+  p.twist_covariance_diagonal = {7, 8, 9, 10, 11, 12};
+  OdomTfPublisher pub("odom_a", p);
+  const nav_msgs::Odometry& m = pub.fillOdom(2.5, 1.0, -2.0, 0.6, 0.3, -0.1, 0.4);
+  EXPECT_EQ(m.header.stamp, ros::Time(2.5));
+  EXPECT_EQ(m.header.frame_id, "odom_a");
+  EXPECT_EQ(m.child_frame_id, "chassis");
+  EXPECT_EQ(m.pose.pose.position.x, 1.0);
+  EXPECT_EQ(m.pose.pose.position.y, -2.0);
+  EXPECT_EQ(m.pose.pose.position.z, 0.0);
+  EXPECT_EQ(m.pose.pose.orientation.x, 0.0);
+  EXPECT_EQ(m.pose.pose.orientation.y, 0.0);
+  EXPECT_EQ(m.pose.pose.orientation.z, std::sin(0.3));
+  EXPECT_EQ(m.pose.pose.orientation.w, std::cos(0.3));
+  EXPECT_EQ(m.twist.twist.linear.x, 0.3);
+  EXPECT_EQ(m.twist.twist.linear.y, -0.1);
+  EXPECT_EQ(m.twist.twist.angular.z, 0.4);
+  for (int i = 0; i < 36; ++i) {
+    EXPECT_EQ(m.pose.covariance[i], i % 7 == 0 ? 1.0 + i / 7 : 0.0) << i;
+    EXPECT_EQ(m.twist.covariance[i], i % 7 == 0 ? 7.0 + i / 7 : 0.0) << i;
+  }
+  const tf2_msgs::TFMessage& tf = pub.fillTf(3.0, 4.0, 5.0, -1.0);
+  ASSERT_EQ(tf.transforms.size(), 1u);
+  const geometry_msgs::TransformStamped& t = tf.transforms[0];
+  EXPECT_EQ(t.header.stamp, ros::Time(3.0));
+  EXPECT_EQ(t.header.frame_id, "odom_a");
+  EXPECT_EQ(t.child_frame_id, "chassis");
+  EXPECT_EQ(t.transform.translation.x, 4.0);
+  EXPECT_EQ(t.transform.translation.y, 5.0);
+  EXPECT_EQ(t.transform.translation.z, 0.0);
+  EXPECT_EQ(t.transform.rotation.z, std::sin(-0.5));
+  EXPECT_EQ(t.transform.rotation.w, std::cos(-0.5));
+  // The next odometry keeps the frames and covariances.
+  const nav_msgs::Odometry& n = pub.fillOdom(2.6, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+  EXPECT_EQ(n.header.frame_id, "odom_a");
+  EXPECT_EQ(n.pose.covariance[35], 6.0);
+  EXPECT_EQ(n.pose.pose.orientation.w, 1.0);
 }

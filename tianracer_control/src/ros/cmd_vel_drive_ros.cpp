@@ -24,27 +24,19 @@
 #include <control_msgs/JointTrajectoryControllerState.h>
 #include <geometry_msgs/Twist.h>
 #include <geometry_msgs/TwistStamped.h>
-#include <nav_msgs/Odometry.h>
 #include <ros/console.h>
 #include <ros/publisher.h>
 #include <ros/subscriber.h>
-#include <tf2_msgs/TFMessage.h>
 
 #include "tianracer_control/controllers/ackermann_steering_controller.h"
 #include "tianracer_control/DiffDriveControllerConfig.h"
 #include "tianracer_control/controllers/diff_drive_controller.h"
 #include "tianracer_control/ros/controller_ros.h"
+#include "tianracer_control/ros/odom_tf_publisher.h"
 
 namespace tianracer_control {
 
 namespace {
-
-geometry_msgs::Quaternion yawQuaternion(double yaw) {
-  geometry_msgs::Quaternion q;  // tf::createQuaternionMsgFromYaw
-  q.z = std::sin(yaw / 2.0);
-  q.w = std::cos(yaw / 2.0);
-  return q;
-}
 
 class CmdVelDriveRos : public ControllerRosSide {
  public:
@@ -53,7 +45,9 @@ class CmdVelDriveRos : public ControllerRosSide {
   }
 
   explicit CmdVelDriveRos(RosSideContext& context)
-      : controller_(dynamic_cast<CmdVelDriveController&>(context.controller)), set_(context.set) {
+      : controller_(dynamic_cast<CmdVelDriveController&>(context.controller)),
+        set_(context.set),
+        odom_(controller_.common().odom_frame_id, controller_.common()) {
     const CmdVelDriveController::Common& p = controller_.common();
     std::ostringstream geometry;
     if (auto* dd = dynamic_cast<const DiffDriveController*>(&controller_)) {
@@ -69,17 +63,7 @@ class CmdVelDriveRos : public ControllerRosSide {
                           << p.base_frame_id << (p.enable_odom_tf ? " on /tf" : ""));
     ros::NodeHandle& nh = context.controller_nh;
     if (p.publish_cmd) cmd_vel_out_ = nh.advertise<geometry_msgs::TwistStamped>("cmd_vel_out", 100);
-    odom_pub_ = nh.advertise<nav_msgs::Odometry>("odom", 100);
-    odom_.header.frame_id = p.odom_frame_id;
-    odom_.child_frame_id = p.base_frame_id;
-    for (int i = 0; i < 6; ++i) {
-      odom_.pose.covariance[i * 7] = p.pose_covariance_diagonal[i];
-      odom_.twist.covariance[i * 7] = p.twist_covariance_diagonal[i];
-    }
-    tf_pub_ = context.root_nh.advertise<tf2_msgs::TFMessage>("/tf", 100);
-    tf_.transforms.resize(1);
-    tf_.transforms[0].header.frame_id = p.odom_frame_id;
-    tf_.transforms[0].child_frame_id = p.base_frame_id;
+    odom_.advertise(nh, context.root_nh);
     sub_ = nh.subscribe<geometry_msgs::Twist>(
         "cmd_vel", 1, [this](const geometry_msgs::Twist::ConstPtr& msg) { onCmdVel(*msg); });
     if (auto* dd = dynamic_cast<DiffDriveController*>(&controller_)) {
@@ -114,21 +98,8 @@ class CmdVelDriveRos : public ControllerRosSide {
 
   void publish(double) override {
     for (const CmdVelDriveController::OdomSample& s : controller_.takeOdom()) {
-      const geometry_msgs::Quaternion q = yawQuaternion(s.heading);
-      odom_.header.stamp = ros::Time(s.t);
-      odom_.pose.pose.position.x = s.x;
-      odom_.pose.pose.position.y = s.y;
-      odom_.pose.pose.orientation = q;
-      odom_.twist.twist.linear.x = s.linear;
-      odom_.twist.twist.angular.z = s.angular;
-      odom_pub_.publish(odom_);
-      if (!s.tf) continue;
-      geometry_msgs::TransformStamped& tf = tf_.transforms[0];
-      tf.header.stamp = ros::Time(s.t);
-      tf.transform.translation.x = s.x;
-      tf.transform.translation.y = s.y;
-      tf.transform.rotation = q;
-      tf_pub_.publish(tf_);
+      odom_.publishOdom(s.t, s.x, s.y, s.heading, s.linear, 0.0, s.angular);
+      if (s.tf) odom_.publishTf(s.t, s.x, s.y, s.heading);
     }
     for (const CmdVelDriveController::CmdSample& s : controller_.takeCmdOut()) {
       if (!cmd_vel_out_) continue;
@@ -220,10 +191,9 @@ class CmdVelDriveRos : public ControllerRosSide {
   CmdVelDriveController& controller_;
   const ControllerSet& set_;
   ros::Subscriber sub_;
-  ros::Publisher odom_pub_, tf_pub_, cmd_vel_out_, wheel_state_pub_;
+  ros::Publisher cmd_vel_out_, wheel_state_pub_;
   control_msgs::JointTrajectoryControllerState wheel_state_;
-  nav_msgs::Odometry odom_;
-  tf2_msgs::TFMessage tf_;
+  OdomTfPublisher odom_;
   std::mutex mutex_;
   std::optional<geometry_msgs::Twist> pending_;
   std::optional<DiffDriveController::DynamicParams> reconfigured_;

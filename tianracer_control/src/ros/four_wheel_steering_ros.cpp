@@ -10,21 +10,19 @@
 //                                         speed, acceleration, jerk, the axles' angles and rates;
 //   /tf                                   "odom" -> base_frame_id (enable_odom_tf).
 // Upstream's odom frame is "odom" whatever odom_frame_id says.
-#include <cmath>
 #include <mutex>
 #include <optional>
 
 #include <four_wheel_steering_msgs/FourWheelSteering.h>
 #include <four_wheel_steering_msgs/FourWheelSteeringStamped.h>
 #include <geometry_msgs/Twist.h>
-#include <nav_msgs/Odometry.h>
 #include <ros/console.h>
 #include <ros/publisher.h>
 #include <ros/subscriber.h>
-#include <tf2_msgs/TFMessage.h>
 
 #include "tianracer_control/controllers/four_wheel_steering_controller.h"
 #include "tianracer_control/ros/controller_ros.h"
+#include "tianracer_control/ros/odom_tf_publisher.h"
 
 namespace tianracer_control {
 
@@ -37,9 +35,10 @@ class FourWheelSteeringRos : public ControllerRosSide {
   }
 
   explicit FourWheelSteeringRos(RosSideContext& context)
-      : controller_(dynamic_cast<FourWheelSteeringController&>(context.controller)), set_(context.set) {
+      : controller_(dynamic_cast<FourWheelSteeringController&>(context.controller)),
+        set_(context.set),
+        odom_("odom", controller_.common()) {
     const FourWheelSteeringController::Params& g = controller_.params();
-    const CmdVelDriveController::Common& p = controller_.common();
     ROS_INFO_STREAM_NAMED(controller_.name(), "controller '" << controller_.name() << "': Odometry params : track "
                           << g.track << ", wheel radius " << g.wheel_radius << ", wheel base " << g.wheel_base
                           << ", wheel steering offset " << g.wheel_steering_y_offset);
@@ -49,19 +48,9 @@ class FourWheelSteeringRos : public ControllerRosSide {
     nh.setParam("wheel_steering_y_offset", g.wheel_steering_y_offset);
     nh.setParam("wheel_radius", g.wheel_radius);
     nh.setParam("wheel_base", g.wheel_base);
-    odom_pub_ = nh.advertise<nav_msgs::Odometry>("odom", 100);
-    odom_.header.frame_id = "odom";
-    odom_.child_frame_id = p.base_frame_id;
-    for (int i = 0; i < 6; ++i) {
-      odom_.pose.covariance[i * 7] = p.pose_covariance_diagonal[i];
-      odom_.twist.covariance[i * 7] = p.twist_covariance_diagonal[i];
-    }
+    odom_.advertise(nh, context.root_nh);
     steer_pub_ = nh.advertise<four_wheel_steering_msgs::FourWheelSteeringStamped>("odom_steer", 100);
     steer_.header.frame_id = "odom";
-    tf_pub_ = context.root_nh.advertise<tf2_msgs::TFMessage>("/tf", 100);
-    tf_.transforms.resize(1);
-    tf_.transforms[0].header.frame_id = "odom";
-    tf_.transforms[0].child_frame_id = p.base_frame_id;
     twist_sub_ = nh.subscribe<geometry_msgs::Twist>("cmd_vel", 1, [this](const geometry_msgs::Twist::ConstPtr& m) {
       std::lock_guard<std::mutex> lock(mutex_);
       twist_ = *m;
@@ -98,17 +87,7 @@ class FourWheelSteeringRos : public ControllerRosSide {
 
   void publish(double) override {
     for (const FourWheelSteeringController::OdomSample& s : controller_.takeOdom()) {
-      geometry_msgs::Quaternion q;  // tf::createQuaternionMsgFromYaw
-      q.z = std::sin(s.heading / 2.0);
-      q.w = std::cos(s.heading / 2.0);
-      odom_.header.stamp = ros::Time(s.t);
-      odom_.pose.pose.position.x = s.x;
-      odom_.pose.pose.position.y = s.y;
-      odom_.pose.pose.orientation = q;
-      odom_.twist.twist.linear.x = s.linear_x;
-      odom_.twist.twist.linear.y = s.linear_y;
-      odom_.twist.twist.angular.z = s.angular;
-      odom_pub_.publish(odom_);
+      odom_.publishOdom(s.t, s.x, s.y, s.heading, s.linear_x, s.linear_y, s.angular);
       steer_.header.stamp = ros::Time(s.t);
       steer_.data.speed = s.speed;
       steer_.data.acceleration = s.acceleration;
@@ -118,13 +97,7 @@ class FourWheelSteeringRos : public ControllerRosSide {
       steer_.data.rear_steering_angle = s.rear_steering;
       steer_.data.rear_steering_angle_velocity = s.rear_steering_velocity;
       steer_pub_.publish(steer_);
-      if (!s.tf) continue;
-      geometry_msgs::TransformStamped& tf = tf_.transforms[0];
-      tf.header.stamp = ros::Time(s.t);
-      tf.transform.translation.x = s.x;
-      tf.transform.translation.y = s.y;
-      tf.transform.rotation = q;
-      tf_pub_.publish(tf_);
+      if (s.tf) odom_.publishTf(s.t, s.x, s.y, s.heading);
     }
   }
 
@@ -141,10 +114,9 @@ class FourWheelSteeringRos : public ControllerRosSide {
   FourWheelSteeringController& controller_;
   const ControllerSet& set_;
   ros::Subscriber twist_sub_, four_ws_sub_;
-  ros::Publisher odom_pub_, steer_pub_, tf_pub_;
-  nav_msgs::Odometry odom_;
+  OdomTfPublisher odom_;
+  ros::Publisher steer_pub_;
   four_wheel_steering_msgs::FourWheelSteeringStamped steer_;
-  tf2_msgs::TFMessage tf_;
   std::mutex mutex_;
   std::optional<geometry_msgs::Twist> twist_;
   std::optional<four_wheel_steering_msgs::FourWheelSteering> four_ws_;
