@@ -207,6 +207,37 @@ TEST(DiffDriveController, VelocityAccelerationAndJerkLimits) {
   EXPECT_NEAR(v, 0.2, 1e-12);
 }
 
+// An outbox nobody takes (a host without ROS) keeps the latest 100 publications.
+TEST(DiffDriveController, AnOutboxNobodyTakesKeepsTheLatestHundred) {
+  Bot bot;
+  ControllerSpec s = ddSpec();
+  s.params["publish_cmd"] = true;
+  s.params["cmd_vel_timeout"] = 100.0;
+  DiffDriveController& dd = bot.load(s);
+  dd.setCommand(0.1, 0.0);
+  for (int i = 1; i <= 150; ++i) bot.step(i * 0.01, 0.01);
+  const std::vector<CmdVelDriveController::CmdSample> out = dd.takeCmdOut();
+  ASSERT_EQ(out.size(), 100u);
+  EXPECT_DOUBLE_EQ(out.front().t, 0.51);  // updates 51..150
+  EXPECT_DOUBLE_EQ(out.back().t, 1.5);
+  EXPECT_TRUE(dd.takeCmdOut().empty());
+}
+
+TEST(Outbox, TakeEmptiesClearDropsPostBeyondTheLimitDropsTheOldest) {
+  Outbox<int> box;
+  for (int i = 0; i < 3; ++i) box.post(i);
+  EXPECT_EQ(box.take(), (std::vector<int>{0, 1, 2}));
+  EXPECT_EQ(box.size(), 0u);
+  box.post(7);
+  box.clear();
+  EXPECT_TRUE(box.take().empty());
+  for (int i = 0; i < static_cast<int>(Outbox<int>::kLimit) + 5; ++i) box.post(i);
+  const std::vector<int> kept = box.take();
+  ASSERT_EQ(kept.size(), Outbox<int>::kLimit);
+  EXPECT_EQ(kept.front(), 5);
+  EXPECT_EQ(kept.back(), static_cast<int>(Outbox<int>::kLimit) + 4);
+}
+
 TEST(DiffDriveController, OdometryFromTheWheelsAtThePublishRate) {
   Bot bot;
   ControllerSpec s = ddSpec();

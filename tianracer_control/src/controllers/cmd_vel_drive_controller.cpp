@@ -9,14 +9,6 @@ namespace tianracer_control {
 
 namespace {
 
-// An outbox nobody empties (a host without ROS) keeps the latest samples only.
-constexpr std::size_t kOutboxLimit = 100;
-template <class T>
-void post(std::vector<T>* box, const T& sample) {
-  if (box->size() >= kOutboxLimit) box->erase(box->begin());
-  box->push_back(sample);
-}
-
 std::string str(double x) {
   std::ostringstream os;
   os << x;
@@ -149,8 +141,8 @@ void CmdVelDriveController::update(double dt) {
   const double period = 1.0 / common_.publish_rate;
   if (last_publish_ + period < time) {
     last_publish_ += period;
-    post(&odom_out_, {time, odometry_.x(), odometry_.y(), odometry_.heading(), odometry_.linear(),
-                      odometry_.angular(), common_.enable_odom_tf});
+    odom_out_.post({time, odometry_.x(), odometry_.y(), odometry_.heading(), odometry_.linear(),
+                     odometry_.angular(), common_.enable_odom_tf});
   }
   Command cmd = command_;
   if (time - cmd.stamp > common_.cmd_vel_timeout) {
@@ -161,21 +153,17 @@ void CmdVelDriveController::update(double dt) {
   common_.limiter_ang.limit(cmd.ang, last0_.ang, last1_.ang, dt);
   last1_ = last0_;
   last0_ = cmd;
-  if (common_.publish_cmd) post(&cmd_out_, {time, cmd.lin, cmd.ang});
+  if (common_.publish_cmd) cmd_out_.post({time, cmd.lin, cmd.ang});
   update_dt_ = dt;
   drive(cmd.lin, cmd.ang);
 }
 
 std::vector<CmdVelDriveController::OdomSample> CmdVelDriveController::takeOdom() {
-  std::vector<OdomSample> out;
-  out.swap(odom_out_);
-  return out;
+  return odom_out_.take();
 }
 
 std::vector<CmdVelDriveController::CmdSample> CmdVelDriveController::takeCmdOut() {
-  std::vector<CmdSample> out;
-  out.swap(cmd_out_);
-  return out;
+  return cmd_out_.take();
 }
 
 }  // namespace tianracer_control

@@ -197,9 +197,7 @@ std::vector<std::string> DiffDriveController::wheelJointNames() const {
 }
 
 std::vector<DiffDriveController::WheelState> DiffDriveController::takeWheelStates() {
-  std::vector<WheelState> out;
-  out.swap(wheel_states_);
-  return out;
+  return wheel_states_.take();
 }
 
 // Upstream's publishWheelData (diff_drive_controller.cpp), term for term.
@@ -249,8 +247,7 @@ void DiffDriveController::publishWheelData(double lin, double ang) {
     vel_left_desired_previous_ = vel_left_desired;
     vel_right_desired_previous_ = vel_right_desired;
   }
-  if (wheel_states_.size() >= 100) wheel_states_.erase(wheel_states_.begin());
-  wheel_states_.push_back(std::move(s));
+  wheel_states_.post(std::move(s));
 }
 
 }  // namespace tianracer_control

@@ -12,8 +12,6 @@ namespace tianracer_control {
 
 namespace {
 
-constexpr std::size_t kOutboxLimit = 100;
-
 std::string str(double x) {
   std::ostringstream os;
   os << x;
@@ -289,8 +287,7 @@ void FourWheelSteeringController::updateOdometry(double time) {
                odometry_.frontSteerVel(),
                rear,
                odometry_.rearSteerVel()};
-  if (odom_out_.size() >= kOutboxLimit) odom_out_.erase(odom_out_.begin());
-  odom_out_.push_back(s);
+  odom_out_.post(s);
 }
 
 // updateCommand(), term for term.
@@ -373,9 +370,7 @@ void FourWheelSteeringController::updateCommand(double time, double cmd_dt) {
 }
 
 std::vector<FourWheelSteeringController::OdomSample> FourWheelSteeringController::takeOdom() {
-  std::vector<OdomSample> out;
-  out.swap(odom_out_);
-  return out;
+  return odom_out_.take();
 }
 
 }  // namespace tianracer_control

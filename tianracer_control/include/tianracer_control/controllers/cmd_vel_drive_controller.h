@@ -21,6 +21,7 @@
 
 #include "tianracer_control/controller.h"
 #include "tianracer_control/controllers/diff_drive_odometry.h"
+#include "tianracer_control/controllers/outbox.h"
 #include "tianracer_control/controllers/speed_limiter.h"
 
 namespace tianracer_control {
@@ -95,8 +96,8 @@ class CmdVelDriveController : public Controller {
   bool stamp_pending_ = false;
   Command last0_, last1_;  // the last two limited commands
   double last_publish_ = 0.0;
-  std::vector<OdomSample> odom_out_;
-  std::vector<CmdSample> cmd_out_;
+  Outbox<OdomSample> odom_out_;
+  Outbox<CmdSample> cmd_out_;
 };
 
 /// The wheel link's radius from its first collision cylinder (or sphere, when `sphere_ok`), as

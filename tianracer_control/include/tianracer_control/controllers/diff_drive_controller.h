@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "tianracer_control/controllers/cmd_vel_drive_controller.h"
+#include "tianracer_control/controllers/outbox.h"
 
 namespace tianracer_control {
 
@@ -103,7 +104,7 @@ class DiffDriveController : public CmdVelDriveController {
   std::vector<double> desired_positions_, vel_previous_;
   double vel_left_desired_previous_ = 0.0, vel_right_desired_previous_ = 0.0;
   double time_previous_ = 0.0;
-  std::vector<WheelState> wheel_states_;
+  Outbox<WheelState> wheel_states_;
 };
 
 }  // namespace tianracer_control

@@ -16,6 +16,7 @@
 
 #include "tianracer_control/controllers/cmd_vel_drive_controller.h"
 #include "tianracer_control/controllers/diff_drive_odometry.h"
+#include "tianracer_control/controllers/outbox.h"
 
 namespace tianracer_control {
 
@@ -122,7 +123,7 @@ class FourWheelSteeringController : public Controller {
   bool twist_pending_ = false, four_ws_pending_ = false;
   Twist last0_, last1_;  // the last two limited commands (lin_x, ang)
   double last_publish_ = 0.0;
-  std::vector<OdomSample> odom_out_;
+  Outbox<OdomSample> odom_out_;
 };
 
 }  // namespace tianracer_control
