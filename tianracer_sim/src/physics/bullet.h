@@ -51,6 +51,20 @@ inline btQuaternion toBtQuat(const Eigen::Matrix3d& R) {
   return btQuaternion(q.x(), q.y(), q.z(), q.w());
 }
 
+/// Bullet's rule for a sleeping multibody (btMultiBodyDynamicsWorld: applyGravity /
+/// solveConstraints' addForce, clearMultiBodyForces, predictMultiBodyTransforms): any of its
+/// colliders, base or link, ISLAND_SLEEPING. Bullet adds gravity to, integrates and clears the
+/// forces of only a multibody that is not.
+inline bool multiBodyAsleep(const btMultiBody& mb) {
+  const btCollisionObject* base = mb.getBaseCollider();
+  if (base != nullptr && base->getActivationState() == ISLAND_SLEEPING) return true;
+  for (int i = 0; i < mb.getNumLinks(); ++i) {
+    const btCollisionObject* c = mb.getLink(i).m_collider;
+    if (c != nullptr && c->getActivationState() == ISLAND_SLEEPING) return true;
+  }
+  return false;
+}
+
 /// A rotation taking +Y to `axis` (unit), for Bullet's Y-up cylinders.
 inline Eigen::Matrix3d rotationYTo(const Eigen::Vector3d& axis) {
   return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), axis).toRotationMatrix();

@@ -37,8 +37,7 @@ void RobotState::wake() {
   if (!world_model) return;  // robots never sleep
   for (const Part& part : parts) {
     if (!part.mb->getCanSleep()) continue;
-    const btCollisionObject* base = part.mb->getBaseCollider();
-    if (base != nullptr && base->getActivationState() == ISLAND_SLEEPING) {
+    if (multiBodyAsleep(*part.mb)) {
       // Bullet adds gravity at the start of a step and clears forces at its end only for
       // bodies awake then: one that fell asleep within the step keeps that step's gravity,
       // which the next step's would double. (Woken by a contact instead, Bullet skips that
@@ -65,8 +64,8 @@ void RobotState::syncColliders() {
 
 /// Links that feel no gravity (TreeBody::gravity_free): Bullet gives every body m g at its COM,
 /// so -m_free g is added at the gravity-free links' COM, a force and its moment about the body's
-/// COM. Bullet applies gravity only to awake bodies (and clears forces only of those), so a
-/// sleeping body gets nothing here either.
+/// COM. Bullet applies gravity only to a multibody that is not asleep (and clears forces only of
+/// those; multiBodyAsleep), so a sleeping one gets nothing here either.
 void PhysicsWorld::Impl::applyGravityFree(RobotState* r) {
   if (!r->has_gravity_free) return;
   const btVector3 g = toBt(options.gravity);
@@ -74,12 +73,10 @@ void PhysicsWorld::Impl::applyGravityFree(RobotState* r) {
     const MassProperties& free = r->tree.bodies[b].gravity_free;
     if (!(free.mass > 0.0)) continue;
     btMultiBody* mb = r->mbOfBody(static_cast<int>(b));
-    const btCollisionObject* base = mb->getBaseCollider();
-    if (base != nullptr && base->getActivationState() == ISLAND_SLEEPING) continue;
+    if (multiBodyAsleep(*mb)) continue;
     const btTransform X_WC = r->comFrame(static_cast<int>(b));
-    // The body frame B is C moved by X_BC^-1: the free mass's COM in C, then in the world.
-    const Eigen::Vector3d c_C = r->X_BC[b].inverse() * free.com;
-    const btVector3 arm = X_WC.getBasis() * toBt(c_C);
+    // The free mass's COM in C (precomputed), then in the world.
+    const btVector3 arm = X_WC.getBasis() * toBt(r->gravity_free_com_C[b]);
     const btVector3 f = -free.mass * g;
     const int link = r->body_link[b];
     if (link < 0) {
@@ -560,7 +557,7 @@ double PhysicsRobot::potentialEnergy() const {
     const MassProperties& free = s_->tree.bodies[b].gravity_free;  // feels no gravity
     if (free.mass > 0.0) {
       const btTransform X_WC = s_->comFrame(static_cast<int>(b));
-      e += free.mass * g.dot(toEigen(X_WC(toBt(Eigen::Vector3d(s_->X_BC[b].inverse() * free.com)))));
+      e += free.mass * g.dot(toEigen(X_WC(toBt(s_->gravity_free_com_C[b]))));
     }
   }
   return e;

@@ -23,6 +23,15 @@ void PhysicsWorld::Impl::buildRobot(RobotState* r, const SurfaceOf& surface_of) 
       moments[b].setZero();
     }
   }
+  // The gravity-free masses' COMs in C (applyGravityFree).
+  r->gravity_free_com_C.assign(nb, Eigen::Vector3d::Zero());
+  r->has_gravity_free = false;
+  for (int b = 0; b < nb; ++b) {
+    const MassProperties& free = tree.bodies[b].gravity_free;
+    if (!(free.mass > 0.0)) continue;
+    r->has_gravity_free = true;
+    r->gravity_free_com_C[b] = r->X_BC[b].inverse() * free.com;
+  }
 
   // One multibody per tree: parts[k] has its base at a body with parent == -1 and the
   // bodies after it (up to the next root) as links.

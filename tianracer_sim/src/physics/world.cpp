@@ -379,7 +379,6 @@ RobotId PhysicsWorld::addRobot(RigidTree tree, const LinkSurfaces& surfaces,
   r->user_index = r->id;
   r->name = name;
   r->tree = std::move(tree);
-  for (const TreeBody& b : r->tree.bodies) r->has_gravity_free = r->has_gravity_free || b.gravity_free.mass > 0.0;
   r->spawn = X_WB_spawn;
   static const SurfaceParams kDefault;  // Gazebo's defaults: mu 1, kp 1e12, kd 1
   impl_->add(std::move(r),
@@ -417,7 +416,6 @@ int PhysicsWorld::addFreeBody(RigidTree tree, const std::vector<SurfaceParams>& 
   r->world_model = true;
   r->name = name;
   r->tree = std::move(tree);
-  for (const TreeBody& b : r->tree.bodies) r->has_gravity_free = r->has_gravity_free || b.gravity_free.mass > 0.0;
   r->spawn = X_WM;
   static const SurfaceParams kDefault;
   impl_->add(std::move(r),

@@ -78,6 +78,9 @@ struct RobotState {
   std::vector<Eigen::Vector3d> ext_force, ext_torque;
   bool has_ext_wrench = false;
   bool has_gravity_free = false;  // a body with TreeBody::gravity_free (applyGravityFree)
+  /// Per body: the COM of its TreeBody::gravity_free mass in its COM frame C (X_BC^-1 com);
+  /// set by buildRobot, used by applyGravityFree every step.
+  std::vector<Eigen::Vector3d> gravity_free_com_C;
 
   PhysicsRobot handle{this};
 
