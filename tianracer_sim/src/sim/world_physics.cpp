@@ -123,6 +123,16 @@ SurfaceParams surfaceOf(const CollisionDescription& c) {
   return s;
 }
 
+StaticShape staticShapeOf(const ModelDescription& model, const LinkDescription& link,
+                          const CollisionDescription& c) {
+  StaticShape s;
+  s.name = model.name + "::" + link.name + "::" + c.name;
+  s.X_WS = model.X_WM * link.X_ML * c.X_LS;
+  s.surface = surfaceOf(c);
+  s.shape = c.shape;
+  return s;
+}
+
 bool isHeldStatic(const ModelDescription& model) {
   if (model.is_static || model.links.empty()) return true;
   // Gazebo: a model welded to the world (every link reaches it through fixed joints) never
@@ -366,12 +376,7 @@ WorldModelBodies addModelToPhysics(const WorldDescription& world, const ModelDes
   try {
     for (const LinkDescription& link : model.links) {
       for (const CollisionDescription& c : link.collisions) {
-        StaticShape s;
-        s.name = model.name + "::" + link.name + "::" + c.name;
-        s.X_WS = model.X_WM * link.X_ML * c.X_LS;
-        s.surface = surfaceOf(c);
-        s.shape = c.shape;
-        added.statics.push_back(physics->addStaticShape(s));
+        added.statics.push_back(physics->addStaticShape(staticShapeOf(model, link, c)));
         ++added.shapes;
       }
     }

@@ -54,15 +54,10 @@ Simulator::Simulator(WorldDescription world, SimulatorOptions options)
     const ModelDescription& a = world_->actors[i].model;
     for (const LinkDescription& l : a.links) {
       for (const CollisionDescription& c : l.collisions) {
-        StaticShape s;
-        s.name = a.name + "::" + l.name + "::" + c.name;
-        s.X_WS = a.X_WM * l.X_ML * c.X_LS;
-        s.surface = surfaceOf(c);
-        s.shape = c.shape;
         ActorShape as;
         as.actor = static_cast<int>(i);
         as.X_AS = l.X_ML * c.X_LS;
-        as.shape = sim_.physics().addStaticShape(s);
+        as.shape = sim_.physics().addStaticShape(staticShapeOf(a, l, c));
         entry.bodies.statics.push_back(as.shape);
         actor_shapes_.push_back(as);
         ++shapes;

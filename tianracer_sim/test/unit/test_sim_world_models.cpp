@@ -506,6 +506,27 @@ TEST(WorldModels, ModelWeldedToTheWorldStaysStatic) {
   EXPECT_TRUE(w.warnings.empty()) << w.allWarnings();
 }
 
+// A static model's collision (and an actor's, which Simulator then moves): named
+// model::link::collision, at X_WM X_ML X_LS, with the collision's surface and shape.
+TEST(WorldModels, StaticShapeOfACollisionIsAtTheModelPose) {
+  const WorldDescription desc = world(
+      "<model name='wall'><static>true</static><pose>1 2 0 0 0 1.5707963267948966</pose>"
+      "<link name='l'><pose>0.5 0 0 0 0 0</pose><collision name='c'><pose>0 0 0.25 0 0 0</pose>"
+      "<geometry><box><size>0.1 0.2 0.5</size></box></geometry><surface><friction><ode>"
+      "<mu>0.3</mu><mu2>0.4</mu2></ode></friction></surface></collision></link></model>");
+  const ModelDescription& m = desc.models.back();
+  ASSERT_EQ(m.name, "wall");
+  const StaticShape s = staticShapeOf(m, m.links[0], m.links[0].collisions[0]);
+  EXPECT_EQ(s.name, "wall::l::c");
+  EXPECT_TRUE(s.X_WS.translation().isApprox(Eigen::Vector3d(1.0, 2.5, 0.25), 1e-12))
+      << s.X_WS.translation().transpose();
+  EXPECT_TRUE(s.X_WS.isApprox(m.X_WM * m.links[0].X_ML * m.links[0].collisions[0].X_LS));
+  EXPECT_EQ(s.shape.type, ShapeType::kBox);
+  EXPECT_EQ(s.shape.size, Eigen::Vector3d(0.1, 0.2, 0.5));
+  EXPECT_EQ(s.surface.mu1, 0.3);
+  EXPECT_EQ(s.surface.mu2, 0.4);
+}
+
 TEST(WorldModels, JointNamingAMissingLinkIsLeftOutAndTheWorldLoads) {
   ModelWorld w(twoBoxes(0.5).substr(0, twoBoxes(0.5).size() - 8) +
                "<joint name='glue' type='fixed'>\n<parent>low</parent><child>nowhere</child>"

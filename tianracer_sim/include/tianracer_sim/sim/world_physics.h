@@ -20,6 +20,12 @@ PhysicsOptions physicsOptionsFor(const WorldDescription& world, PhysicsOptions b
 /// kp/kd/max_vel/min_depth (unset: SurfaceParams' defaults).
 SurfaceParams surfaceOf(const CollisionDescription& c);
 
+/// Collision `c` of `link` of `model` as a static shape at the model's pose X_WM: named
+/// "model::link::collision", its surface surfaceOf(c). Static models and actors (whose shapes
+/// Simulator then moves each step) are made of these.
+StaticShape staticShapeOf(const ModelDescription& model, const LinkDescription& link,
+                          const CollisionDescription& c);
+
 /// True for a model that never moves: <static>, no links, or every link welded to the world
 /// through fixed joints (Gazebo).
 bool isHeldStatic(const ModelDescription& model);
