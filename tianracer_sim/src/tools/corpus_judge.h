@@ -8,7 +8,9 @@
 #include <chrono>
 #include <stdexcept>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
+#include <iostream>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -369,6 +371,16 @@ inline std::vector<Judged> runWorld(const WorldDescription& world, double second
     judgeInWorld(&out[i], seconds, window);
   }
   return out;
+}
+
+/// The command line: the value of option argv[*i], the next word (*i is moved onto it); with
+/// none, "<option> needs a value" on stderr and exit status 2.
+inline std::string optionValue(int argc, char** argv, int* i) {
+  if (*i + 1 >= argc) {
+    std::cerr << argv[*i] << " needs a value\n";
+    std::exit(2);
+  }
+  return argv[++*i];
 }
 
 }  // namespace corpus

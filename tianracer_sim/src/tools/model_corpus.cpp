@@ -154,13 +154,7 @@ int main(int argc, char** argv) {
   bool load_only = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::cerr << a << " needs a value\n";
-        std::exit(2);
-      }
-      return argv[++i];
-    };
+    auto next = [&]() { return optionValue(argc, argv, &i); };
     if (a == "--only") only.push_back(next());
     else if (a == "--settle") settle = std::stod(next());
     else if (a == "--hold") hold = std::stod(next());

@@ -158,13 +158,7 @@ int main(int argc, char** argv) {
   double seconds = 30.0, window = 10.0, wall_limit = 20.0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::cerr << a << " needs a value\n";
-        std::exit(2);
-      }
-      return argv[++i];
-    };
+    auto next = [&]() { return optionValue(argc, argv, &i); };
     if (a == "--only") only.push_back(next());
     else if (a == "--seconds") seconds = std::stod(next());
     else if (a == "--markdown") markdown = next();

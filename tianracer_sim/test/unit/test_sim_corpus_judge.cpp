@@ -72,3 +72,20 @@ TEST(CorpusJudge, StillMovingDiffersOnlyWithAFlatBase) {
 
 }  // namespace
 }  // namespace tianracer_sim
+
+namespace tianracer_sim {
+namespace {
+
+// model_corpus and world_corpus read an option's value through optionValue.
+TEST(CorpusJudge, OptionValueTakesTheNextWordOrExitsNamingTheOption) {
+  char prog[] = "tool", only[] = "--only", name[] = "box", hold[] = "--hold";
+  char* argv[] = {prog, only, name, hold};
+  int i = 1;
+  EXPECT_EQ(corpus::optionValue(4, argv, &i), "box");
+  EXPECT_EQ(i, 2);
+  i = 3;
+  EXPECT_EXIT(corpus::optionValue(4, argv, &i), ::testing::ExitedWithCode(2), "--hold needs a value");
+}
+
+}  // namespace
+}  // namespace tianracer_sim
