@@ -1,5 +1,8 @@
 #include "tianracer_control/controller_params.h"
 
+#include <cmath>
+#include <sstream>
+
 namespace tianracer_control {
 
 ParamValue ParamValue::list(List items) {
@@ -65,6 +68,20 @@ const ParamValue* ControllerParams::lookup(const std::string& key) {
     if (slash == std::string::npos) return node;
     start = slash + 1;
   }
+}
+
+std::string numberText(double x) {
+  std::ostringstream os;
+  os << x;
+  return os.str();
+}
+
+double ControllerParams::positiveNumber(const std::string& key, double fallback) {
+  const double x = number(key).value_or(fallback);
+  if (!(x > 0.0) || !std::isfinite(x)) {
+    throw ControllerError(prefix() + key + " must be a positive number, got " + numberText(x));
+  }
+  return x;
 }
 
 std::optional<double> ControllerParams::number(const std::string& key) {

@@ -58,6 +58,11 @@ class InputError : public std::runtime_error {
 /// empty: warnings are then dropped.
 using WarningSink = std::function<void(const std::string&)>;
 
+/// Sends `text` to `sink` when there is one (an empty sink drops it).
+inline void say(const WarningSink& sink, const std::string& text) {
+  if (sink) sink(text);
+}
+
 /// Forwards a warning to its sink the first time it is seen. Not thread-safe: one per parser
 /// or one per thread of use.
 class WarnOnce {

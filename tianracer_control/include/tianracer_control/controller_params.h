@@ -82,6 +82,9 @@ struct ControllerSpec {
   int line = 0;        // source line where known (0 = unknown)
 };
 
+/// A number as parameter errors quote it (operator<<'s default: 6 significant digits).
+std::string numberText(double x);
+
 /// What a controller class reads its parameters through (controller_nh.getParam without ROS).
 /// Keys are paths, "pid/p". A key of the wrong kind throws ControllerError naming the
 /// controller and the key ("controller 'c': pid/p must be a number, got a string"); every key
@@ -97,6 +100,9 @@ class ControllerParams {
 
   /// An int or a double; nullopt when absent.
   std::optional<double> number(const std::string& key);
+  /// A number > 0 (`fallback` when absent); throws ControllerError "... <key> must be a
+  /// positive number, got <x>" for zero, a negative or a non-finite value.
+  double positiveNumber(const std::string& key, double fallback);
   std::optional<std::string> text(const std::string& key);
   std::optional<bool> boolean(const std::string& key);
   /// A list of strings (upstream's getParam(key, std::vector<std::string>)); nullopt when

@@ -7,20 +7,6 @@
 
 namespace tianracer_control {
 
-namespace {
-
-double positive(ControllerParams& params, const std::string& key, double fallback) {
-  const double x = params.number(key).value_or(fallback);
-  if (!(x > 0.0) || !std::isfinite(x)) {
-    std::ostringstream os;
-    os << params.prefix() << key << " must be a positive number, got " << x;
-    throw ControllerError(os.str());
-  }
-  return x;
-}
-
-}  // namespace
-
 std::unique_ptr<Controller> AckermannSteeringController::create(ControllerContext& context) {
   ControllerParams& params = context.params;
   const std::string pre = params.prefix();
@@ -28,8 +14,8 @@ std::unique_ptr<Controller> AckermannSteeringController::create(ControllerContex
   p.rear_wheel = params.text("rear_wheel").value_or(p.rear_wheel);
   p.front_steer = params.text("front_steer").value_or(p.front_steer);
   Common common = readCommon(params);
-  p.wheel_separation_h_multiplier = positive(params, "wheel_separation_h_multiplier", 1.0);
-  p.wheel_radius_multiplier = positive(params, "wheel_radius_multiplier", 1.0);
+  p.wheel_separation_h_multiplier = params.positiveNumber("wheel_separation_h_multiplier", 1.0);
+  p.wheel_radius_multiplier = params.positiveNumber("wheel_radius_multiplier", 1.0);
   p.steer_pos_multiplier = params.number("steer_pos_multiplier").value_or(1.0);
   if (!std::isfinite(p.steer_pos_multiplier)) {
     throw ControllerError(pre + "steer_pos_multiplier must be a finite number");

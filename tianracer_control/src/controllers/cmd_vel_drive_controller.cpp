@@ -9,12 +9,6 @@ namespace tianracer_control {
 
 namespace {
 
-std::string str(double x) {
-  std::ostringstream os;
-  os << x;
-  return os.str();
-}
-
 // setOdomPubFields(): a list of 6 numbers (upstream asserts it; absent gives zeros).
 std::array<double, 6> readCovariance(ControllerParams& params, const std::string& key) {
   std::array<double, 6> out{};
@@ -48,13 +42,13 @@ CmdVelDriveController::Common CmdVelDriveController::readCommon(ControllerParams
   c.publish_rate = params.number("publish_rate").value_or(c.publish_rate);
   if (!(c.publish_rate >= 0.0) || !std::isfinite(c.publish_rate)) {
     throw ControllerError(pre + "publish_rate must be a non-negative number, got " +
-                          str(c.publish_rate));
+                          numberText(c.publish_rate));
   }
   c.open_loop = params.boolean("open_loop").value_or(c.open_loop);
   const double window = params.number("velocity_rolling_window_size").value_or(10);
   if (!(window >= 1.0) || window != std::floor(window) || window > 1e6) {
     throw ControllerError(pre + "velocity_rolling_window_size must be a positive integer, got " +
-                          str(window));
+                          numberText(window));
   }
   c.velocity_rolling_window_size = static_cast<int>(window);
   c.cmd_vel_timeout = params.number("cmd_vel_timeout").value_or(c.cmd_vel_timeout);

@@ -8,24 +8,6 @@
 
 namespace tianracer_control {
 
-namespace {
-
-std::string str(double x) {
-  std::ostringstream os;
-  os << x;
-  return os.str();
-}
-
-double positive(ControllerParams& params, const std::string& key, double fallback) {
-  const double x = params.number(key).value_or(fallback);
-  if (!(x > 0.0) || !std::isfinite(x)) {
-    throw ControllerError(params.prefix() + key + " must be a positive number, got " + str(x));
-  }
-  return x;
-}
-
-}  // namespace
-
 std::vector<std::string> readWheelNames(ControllerParams& params, const std::string& key) {
   const std::string pre = params.prefix();
   const ParamValue* v = params.value(key);
@@ -62,13 +44,13 @@ std::unique_ptr<Controller> DiffDriveController::create(ControllerContext& conte
   Common common = readCommon(params);
   common.publish_cmd = params.boolean("publish_cmd").value_or(false);
   p.wheel_separation_multiplier =
-      positive(params, "wheel_separation_multiplier", p.wheel_separation_multiplier);
+      params.positiveNumber("wheel_separation_multiplier", p.wheel_separation_multiplier);
   if (params.value("wheel_radius_multiplier")) {
     p.left_wheel_radius_multiplier = p.right_wheel_radius_multiplier =
-        positive(params, "wheel_radius_multiplier", 1.0);
+        params.positiveNumber("wheel_radius_multiplier", 1.0);
   } else {
-    p.left_wheel_radius_multiplier = positive(params, "left_wheel_radius_multiplier", 1.0);
-    p.right_wheel_radius_multiplier = positive(params, "right_wheel_radius_multiplier", 1.0);
+    p.left_wheel_radius_multiplier = params.positiveNumber("left_wheel_radius_multiplier", 1.0);
+    p.right_wheel_radius_multiplier = params.positiveNumber("right_wheel_radius_multiplier", 1.0);
   }
   p.publish_wheel_joint_controller_state =
       params.boolean("publish_wheel_joint_controller_state").value_or(false);
@@ -102,11 +84,11 @@ std::unique_ptr<Controller> DiffDriveController::create(ControllerContext& conte
   if (radius) p.wheel_radius = *radius;
   if (!(p.wheel_separation > 0.0) || !std::isfinite(p.wheel_separation)) {
     throw ControllerError(pre + "wheel_separation must be positive, got " +
-                          str(p.wheel_separation) +
+                          numberText(p.wheel_separation) +
                           (separation ? "" : " (from the wheel joints' origins in the URDF)"));
   }
   if (!(p.wheel_radius > 0.0) || !std::isfinite(p.wheel_radius)) {
-    throw ControllerError(pre + "wheel_radius must be positive, got " + str(p.wheel_radius));
+    throw ControllerError(pre + "wheel_radius must be positive, got " + numberText(p.wheel_radius));
   }
 
   std::vector<JointHandle*> left, right;

@@ -12,12 +12,6 @@ namespace tianracer_control {
 
 namespace {
 
-std::string str(double x) {
-  std::ostringstream os;
-  os << x;
-  return os.str();
-}
-
 // urdf_geometry_parser's getTransformVector(): the joint's origin plus its ancestors' origins up
 // to `base_link` (positions only, as upstream sums them).
 urdf::Vector3 transformVector(const urdf::ModelInterface& urdf, const std::string& joint_name,
@@ -173,7 +167,7 @@ std::unique_ptr<Controller> FourWheelSteeringController::create(ControllerContex
   for (const auto& [value, key] : {std::pair(p.track, "track"), std::pair(p.wheel_radius, "wheel_radius"),
                                    std::pair(p.wheel_base, "wheel_base")}) {
     if (!(value > 0.0) || !std::isfinite(value)) {
-      throw ControllerError(pre + key + " must be positive, got " + str(value));
+      throw ControllerError(pre + key + " must be positive, got " + numberText(value));
     }
   }
 

@@ -12,6 +12,7 @@
 
 #include <tianracer_assets/paths.h>
 
+#include "tianracer_sim/common/text.h"
 #include "tianracer_sim/sensors/camera/sim_camera.h"
 #include "tianracer_sim/simulator/robot_setup.h"
 #include "tianracer_sim/sensors/imu/sim_imu.h"
@@ -33,10 +34,6 @@ double threadCpu() {
 std::string dirName(const std::string& path) {
   const auto slash = path.find_last_of('/');
   return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
-}
-
-bool endsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 std::string join(const std::vector<std::string>& items) {

@@ -16,6 +16,7 @@
 namespace tianracer_sim {
 
 namespace mi = model_internal;
+using model_internal::attr;
 using tinyxml2::XMLElement;
 
 namespace model_internal {
@@ -56,11 +57,6 @@ namespace {
 constexpr const char* kRosControl = "libgazebo_ros_control.so";
 constexpr const char* kJointStatePublisher = "libgazebo_ros_joint_state_publisher.so";
 constexpr const char* kSimpleTransmission = "transmission_interface/SimpleTransmission";
-
-std::string attr(const XMLElement* e, const char* name) {
-  const char* v = e->Attribute(name);
-  return v ? v : "";
-}
 
 std::string text(const XMLElement* e) {
   const char* t = e->GetText();

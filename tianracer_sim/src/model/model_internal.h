@@ -17,6 +17,13 @@ namespace model_internal {
 /// The model loader's reader: warnings once, ModelErrors, places as "<source>:<line>: ".
 XmlReader modelReader(const std::string& source, WarningSink warn);
 
+/// An attribute's value as written (not trimmed: URDF names are taken as they are); "" when
+/// absent or `e` is null.
+inline std::string attr(const tinyxml2::XMLElement* e, const char* name) {
+  const char* v = e ? e->Attribute(name) : nullptr;
+  return v ? v : "";
+}
+
 /// "<source>:<line>: " for an element ("<source>: " when its line is unknown).
 std::string at(const std::string& source, const tinyxml2::XMLElement* e);
 

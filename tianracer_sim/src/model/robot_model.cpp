@@ -21,14 +21,10 @@
 namespace tianracer_sim {
 
 namespace mi = model_internal;
+using model_internal::attr;
 using tinyxml2::XMLElement;
 
 namespace {
-
-std::string attr(const XMLElement* e, const char* name) {
-  const char* v = e ? e->Attribute(name) : nullptr;
-  return v ? v : "";
-}
 
 std::string lines(const XMLElement* a, const XMLElement* b) {
   return "lines " + std::to_string(a->GetLineNum()) + " and " + std::to_string(b->GetLineNum());

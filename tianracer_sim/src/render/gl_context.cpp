@@ -1,8 +1,6 @@
 #include "gl_context.h"
 
-#define GL_GLEXT_PROTOTYPES
-#include <GL/gl.h>
-#include <GL/glext.h>
+#include "gl_api.h"
 
 #include "tianracer_sim/render/renderer.h"  // RenderError
 

@@ -2,7 +2,7 @@
 #ifndef TIANRACER_SIM_SRC_RENDER_GL_CONTEXT_H
 #define TIANRACER_SIM_SRC_RENDER_GL_CONTEXT_H
 
-#include <GL/osmesa.h>
+#include "gl_api.h"
 
 #include <cstdint>
 #include <memory>

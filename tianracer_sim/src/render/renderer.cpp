@@ -1,9 +1,6 @@
 #include "tianracer_sim/render/renderer.h"
 
-#define GL_GLEXT_PROTOTYPES
-#include <GL/osmesa.h>
-#include <GL/gl.h>
-#include <GL/glext.h>
+#include "gl_api.h"
 
 #include <cctype>
 #include <cmath>

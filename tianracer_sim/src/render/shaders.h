@@ -2,9 +2,7 @@
 #ifndef TIANRACER_SIM_SRC_RENDER_SHADERS_H
 #define TIANRACER_SIM_SRC_RENDER_SHADERS_H
 
-#define GL_GLEXT_PROTOTYPES
-#include <GL/gl.h>
-#include <GL/glext.h>
+#include "gl_api.h"
 
 #include <string>
 

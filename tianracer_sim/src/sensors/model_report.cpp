@@ -16,7 +16,6 @@
 namespace tianracer_sim {
 namespace {
 
-std::string fmt(double v) { return formatShort(v); }
 
 // Differences of a sensor type (docs/simulator.md, Known differences and limits); a camera's
 // by its frame (sensors/camera/optical_frame.h).
@@ -92,7 +91,7 @@ void simulate(const RobotModel& model, const SensorSpec& s, const std::string& r
     for (const SensorTopic& t : topics) {
       const bool in = t.msg_type.find("(subscribed)") != std::string::npos;  // a command topic
       // Rate 0 is Gazebo's "as often as it can": every step here.
-      const std::string rate = t.rate > 0.0 ? " @ " + fmt(t.rate) + " Hz" : " every step";
+      const std::string rate = t.rate > 0.0 ? " @ " + formatShort(t.rate) + " Hz" : " every step";
       row->topics.push_back(t.topic + " " + t.msg_type + (in ? "" : rate));
     }
     if (topics.empty()) row->topics.push_back("(no gazebo_ros plugin: nothing published)");
@@ -135,7 +134,7 @@ std::vector<ReportRow> modelReport(const RobotModel& model, const std::string& r
                model.ext.joint_state_publisher) {
       const auto& jsp = *model.ext.joint_state_publisher;
       row.topics.push_back(resolveTopic(jsp.robot_namespace, "joint_states") +
-                           " sensor_msgs/JointState @ " + fmt(jsp.update_rate) + " Hz");
+                           " sensor_msgs/JointState @ " + formatShort(jsp.update_rate) + " Hz");
     } else if (findSensorKind(as_sensor)) {
       simulate(model, as_sensor, robot_name, left_out, &row);
     } else {

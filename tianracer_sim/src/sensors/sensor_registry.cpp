@@ -14,7 +14,6 @@
 namespace tianracer_sim {
 namespace {
 
-std::string fmt(double v) { return formatShort(v); }
 
 bool contains(const std::vector<std::string>& list, const std::string& s) {
   return std::find(list.begin(), list.end(), s) != list.end();
@@ -147,14 +146,14 @@ std::string describeRobotModel(const RobotModel& model) {
     if (link->inertial) total_mass += link->inertial->mass;
   }
   out << "robot '" << urdf.getName() << "' from " << model.source << ": " << urdf.links_.size()
-      << " links, " << urdf.joints_.size() << " joints, total mass " << fmt(total_mass)
+      << " links, " << urdf.joints_.size() << " joints, total mass " << formatShort(total_mass)
       << " kg\n\nlink/joint tree (mass; joint type, axis, limits):\n";
 
   std::function<void(const urdf::LinkConstSharedPtr&, const std::string&)> walk =
       [&](const urdf::LinkConstSharedPtr& link, const std::string& indent) {
         out << indent << link->name;
         if (link->inertial) {
-          out << "  [" << fmt(link->inertial->mass) << " kg]";
+          out << "  [" << formatShort(link->inertial->mass) << " kg]";
         } else {
           out << "  [massless]";
         }
@@ -164,17 +163,17 @@ std::string describeRobotModel(const RobotModel& model) {
                                          "floating", "planar", "fixed"};
           out << indent << "  +- " << joint->name << " (" << kTypes[joint->type];
           if (joint->type != urdf::Joint::FIXED) {
-            out << ", axis " << fmt(joint->axis.x) << " " << fmt(joint->axis.y) << " "
-                << fmt(joint->axis.z);
+            out << ", axis " << formatShort(joint->axis.x) << " " << formatShort(joint->axis.y) << " "
+                << formatShort(joint->axis.z);
           }
           if (joint->limits && (joint->type == urdf::Joint::REVOLUTE ||
                                 joint->type == urdf::Joint::PRISMATIC)) {
-            out << ", limits [" << fmt(joint->limits->lower) << ", " << fmt(joint->limits->upper)
+            out << ", limits [" << formatShort(joint->limits->lower) << ", " << formatShort(joint->limits->upper)
                 << "]";
           }
           if (joint->limits && joint->type != urdf::Joint::FIXED) {
-            out << ", effort " << fmt(joint->limits->effort) << ", velocity "
-                << fmt(joint->limits->velocity);
+            out << ", effort " << formatShort(joint->limits->effort) << ", velocity "
+                << formatShort(joint->limits->velocity);
           }
           out << ")\n";
           walk(urdf.getLink(joint->child_link_name), indent + "  |  ");
@@ -189,7 +188,7 @@ std::string describeRobotModel(const RobotModel& model) {
     for (size_t i = 0; i < t.joint_interfaces.size(); ++i) {
       out << (i ? ", " : "") << toString(t.joint_interfaces[i]);
     }
-    out << "], actuator " << t.actuator << ", reduction " << fmt(t.mechanical_reduction) << "\n";
+    out << "], actuator " << t.actuator << ", reduction " << formatShort(t.mechanical_reduction) << "\n";
   }
 
   // What the simulator publishes for a sensor, or why it leaves it out.
@@ -207,7 +206,7 @@ std::string describeRobotModel(const RobotModel& model) {
       const std::vector<SensorTopic> topics = kind->topics(s, urdf.getName(), {});
       if (topics.empty()) out << "    (no gazebo_ros plugin: nothing published)\n";
       for (const SensorTopic& t : topics) {
-        out << "    " << t.topic << "  " << t.msg_type << " @ " << fmt(t.rate) << " Hz\n";
+        out << "    " << t.topic << "  " << t.msg_type << " @ " << formatShort(t.rate) << " Hz\n";
       }
     } catch (const std::exception& e) {
       out << "    left out: " << e.what() << "\n";
@@ -227,7 +226,7 @@ std::string describeRobotModel(const RobotModel& model) {
   if (const auto& jsp = model.ext.joint_state_publisher) {
     out << "  joint_state_publisher: "
         << resolveTopic(jsp->robot_namespace, "joint_states") << " at "
-        << fmt(jsp->update_rate) << " Hz, joints:";
+        << formatShort(jsp->update_rate) << " Hz, joints:";
     for (const std::string& j : jsp->joint_names) out << " " << j;
     out << "\n";
   }
@@ -238,7 +237,7 @@ std::string describeRobotModel(const RobotModel& model) {
     for (const SensorSpec& s : ext.sensors) {
       any = true;
       out << "  " << s.name << " (" << s.type << ") on link " << link << ", "
-          << fmt(s.update_rate) << " Hz\n";
+          << formatShort(s.update_rate) << " Hz\n";
       printTopics(s);
     }
   }

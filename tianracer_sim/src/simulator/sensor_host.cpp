@@ -7,14 +7,6 @@
 
 namespace tianracer_sim {
 
-namespace {
-
-void say(const WarningSink& sink, const std::string& text) {
-  if (sink) sink(text);
-}
-
-}  // namespace
-
 SensorHost::SensorHost(SensorWorld& world, const Scene& scene, std::function<void()> update_scene,
                        const SimulatorLog& log, StepProfile* profile)
     : world_(world),

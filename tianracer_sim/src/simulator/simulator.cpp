@@ -19,9 +19,6 @@ PhysicsOptions physicsFor(const WorldDescription& world, double max_step_size) {
   return physics;
 }
 
-void say(const WarningSink& sink, const std::string& text) {
-  if (sink) sink(text);
-}
 
 }  // namespace
 

@@ -1,7 +1,5 @@
 #include "tianracer_sim/world/map_world.h"
 
-#include <sys/stat.h>
-
 #include <cmath>
 #include <sstream>
 
@@ -19,6 +17,7 @@
 #pragma GCC diagnostic pop
 
 #include "tianracer_sim/scene/materials.h"
+#include "world_parser.h"  // world_internal::isFile
 
 namespace tianracer_sim {
 
@@ -28,11 +27,6 @@ std::string dirOf(const std::string& path) {
   const auto slash = path.find_last_of('/');
   if (slash == std::string::npos) return ".";
   return slash == 0 ? "/" : path.substr(0, slash);
-}
-
-bool isFile(const std::string& path) {
-  struct stat st {};
-  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
 }
 
 }  // namespace
@@ -123,7 +117,7 @@ MapDescription loadMapYaml(const std::string& yaml_path, double default_wall_hei
 }
 
 OccupancyImage loadOccupancy(const MapDescription& map, const std::string& yaml_path) {
-  if (!isFile(map.image))
+  if (!world_internal::isFile(map.image))
     throw WorldError(yaml_path + ": map image '" + map.image + "' does not exist");
   int w = 0, h = 0, n = 0;
   unsigned char* data = stbi_load(map.image.c_str(), &w, &h, &n, 0);

@@ -15,6 +15,7 @@ using tianracer_assets::SourceLocation;
 /// Receives each warning once (unknown tag, unknown plugin, defaulted value, skipped visual...).
 /// May be empty: warnings are then dropped.
 using tianracer_assets::WarningSink;
+using tianracer_assets::say;
 using tianracer_assets::WarnOnce;
 
 }  // namespace tianracer_sim

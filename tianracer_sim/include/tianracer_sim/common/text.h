@@ -40,6 +40,11 @@ inline std::string formatShort(double v) {
   return buf;
 }
 
+/// Whether `s` ends with `suffix`.
+inline bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
 /// The last component of a path ("lib/libfoo.so" -> "libfoo.so").
 inline std::string baseName(const std::string& path) {
   const auto slash = path.find_last_of('/');

@@ -82,10 +82,6 @@ Eigen::Isometry3d CameraConfig::X_LO() const { return X_LS * opticalFromLinkRota
 
 namespace {
 
-bool endsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 using tinyxml2::XMLElement;
 
 // Text directly inside an element, trimmed ("" when none).

@@ -28,11 +28,6 @@ const std::set<std::string> kSharedCameraParams = {
     "distortion_k1",  "distortion_k2", "distortion_k3", "distortion_t1",       "distortion_t2",
     "Cx",             "Cy",           "CxPrime",        "focalLength",         "alwaysOn"};
 
-bool endsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() &&
-         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 std::vector<std::string> splitList(const std::string& text) {
   std::vector<std::string> out;
   std::stringstream ss(text);

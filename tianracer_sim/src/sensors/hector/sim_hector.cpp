@@ -38,7 +38,7 @@ std::uint64_t seedOf(const SimSensorSetup& setup, std::uint64_t kind) {
   return setup.seed + kind + static_cast<std::uint64_t>(setup.index);
 }
 
-std::unique_ptr<SimSensor> makeImu(const SimSensorSetup& setup) {
+std::unique_ptr<SimSensor> makeHectorImu(const SimSensorSetup& setup) {
   HectorImuConfig c = parseHectorImuConfig(*setup.spec, setup.model_name, setup.warn);
   if (c.topic_name.empty() && c.bias_topic_name.empty()) return nullptr;  // nothing advertised
   c.link = bodyLink(setup, c.link, "hector IMU plugin");
@@ -78,7 +78,7 @@ SensorOutputs imuOutputs(const HectorImuConfig& c) {
 
 const SensorKind& hectorImuKind() {
   static const SensorKind kind = {"hector_imu", {}, {"libhector_gazebo_ros_imu.so"},
-                                  &topicsOf<parseHectorImuConfig>, &makeImu};
+                                  &topicsOf<parseHectorImuConfig>, &makeHectorImu};
   return kind;
 }
 TIANRACER_SENSOR_KIND(hectorImuKind);

@@ -25,7 +25,6 @@ namespace {
 
 using tinyxml2::XMLElement;
 
-std::string fmt(double v) { return formatNumber(v); }
 
 // The reader reads a printed copy of the <sensor> (SensorSpec::xml), so its messages are placed
 // at the sensor's line of the model file (nullptr: no element of its own).
@@ -200,12 +199,12 @@ void validate(const ImuConfig& c) {
   const std::string what = (c.model_plugin ? "IMU plugin '" : "IMU sensor '") + c.name + "'";
   auto rate = [&](double v, const std::string& name) {
     if (!std::isfinite(v) || v < 0.0)
-      throw SensorError(what + ": " + name + " " + fmt(v) + " must be a finite number >= 0");
+      throw SensorError(what + ": " + name + " " + formatNumber(v) + " must be a finite number >= 0");
   };
   rate(c.update_rate, "<update_rate>");
   rate(c.plugin_rate, c.model_plugin ? "<updateRate>" : "<updateRateHZ>");
   if (!std::isfinite(c.gaussian_noise) || c.gaussian_noise < 0.0)
-    throw SensorError(what + ": <gaussianNoise> " + fmt(c.gaussian_noise) + " must be >= 0");
+    throw SensorError(what + ": <gaussianNoise> " + formatNumber(c.gaussian_noise) + " must be >= 0");
   if (!c.X_LS.matrix().allFinite()) throw SensorError(what + ": <pose> is not finite");
   if (!c.xyz_offset.allFinite() || !c.rpy_offset.allFinite())
     throw SensorError(what + ": <xyzOffset>/<rpyOffset> is not finite");
@@ -216,7 +215,7 @@ void validate(const ImuConfig& c) {
     if (n.type != "none" && n.type != "gaussian" && n.type != "gaussian_quantized")
       throw SensorError(what + ": " + where + " type '" + n.type + "' is not supported");
     for (double v : {n.mean, n.stddev, n.bias_mean, n.bias_stddev, n.precision})
-      if (!std::isfinite(v)) throw SensorError(what + ": " + where + " has a value " + fmt(v));
+      if (!std::isfinite(v)) throw SensorError(what + ": " + where + " has a value " + formatNumber(v));
     if (n.stddev < 0.0 || n.bias_stddev < 0.0 || n.precision < 0.0)
       throw SensorError(what + ": " + where + " stddev, bias_stddev and precision must be >= 0");
   }

@@ -47,7 +47,6 @@ namespace {
 
 using tinyxml2::XMLElement;
 
-std::string fmt(double v) { return formatNumber(v); }
 
 class ConfigReader {
  public:
@@ -230,7 +229,7 @@ void validate(const RaySensorConfig& c) {
       {c.noise.mean, "noise <mean>"},
       {c.noise.stddev, "noise <stddev>"}};
   for (const auto& [v, name] : numbers) {
-    if (!std::isfinite(v)) throw SensorError(what + ": " + name + " " + fmt(v) + " is not finite");
+    if (!std::isfinite(v)) throw SensorError(what + ": " + name + " " + formatNumber(v) + " is not finite");
   }
   if (!c.X_LS.matrix().allFinite()) throw SensorError(what + ": <pose> is not finite");
   if (c.samples <= 0)
@@ -245,32 +244,32 @@ void validate(const RaySensorConfig& c) {
                       std::to_string(c.vertical_samples) + " rays per scan is out of range (<= " +
                       limits::formatNumber(limits::kRaysPerScan) + ")");
   if (c.vertical_min_angle > c.vertical_max_angle)
-    throw SensorError(what + ": <vertical><min_angle> " + fmt(c.vertical_min_angle) +
-                      " > <vertical><max_angle> " + fmt(c.vertical_max_angle));
+    throw SensorError(what + ": <vertical><min_angle> " + formatNumber(c.vertical_min_angle) +
+                      " > <vertical><max_angle> " + formatNumber(c.vertical_max_angle));
   if (std::isnan(c.cloud_min_range) || std::isnan(c.cloud_max_range) ||
       !std::isfinite(c.cloud_noise) || c.cloud_noise < 0.0)
     throw SensorError(what + ": velodyne min_range, max_range or gaussianNoise is invalid");
   if (c.resolution <= 0.0)
     throw SensorError(what + ": <horizontal><resolution> must be > 0 (got " +
-                      fmt(c.resolution) + ")");
+                      formatNumber(c.resolution) + ")");
   if (c.min_angle > c.max_angle)
-    throw SensorError(what + ": <min_angle> " + fmt(c.min_angle) + " > <max_angle> " +
-                      fmt(c.max_angle));
+    throw SensorError(what + ": <min_angle> " + formatNumber(c.min_angle) + " > <max_angle> " +
+                      formatNumber(c.max_angle));
   if (c.range_min < 0.0)
-    throw SensorError(what + ": range <min> must be >= 0 (got " + fmt(c.range_min) + ")");
+    throw SensorError(what + ": range <min> must be >= 0 (got " + formatNumber(c.range_min) + ")");
   if (c.range_min >= c.range_max)
-    throw SensorError(what + ": range <min> " + fmt(c.range_min) + " must be < range <max> " +
-                      fmt(c.range_max));
+    throw SensorError(what + ": range <min> " + formatNumber(c.range_min) + " must be < range <max> " +
+                      formatNumber(c.range_max));
   if (c.range_resolution < 0.0)
     throw SensorError(what + ": range <resolution> must be >= 0 (got " +
-                      fmt(c.range_resolution) + ")");
+                      formatNumber(c.range_resolution) + ")");
   if (c.update_rate < 0.0)
-    throw SensorError(what + ": <update_rate> must be >= 0 (got " + fmt(c.update_rate) + ")");
+    throw SensorError(what + ": <update_rate> must be >= 0 (got " + formatNumber(c.update_rate) + ")");
   if (c.noise.type != "none" && c.noise.type != "gaussian")
     throw SensorError(what + ": noise <type> '" + c.noise.type +
                       "' is not supported (gaussian or none)");
   if (c.noise.stddev < 0.0)
-    throw SensorError(what + ": noise <stddev> must be >= 0 (got " + fmt(c.noise.stddev) + ")");
+    throw SensorError(what + ": noise <stddev> must be >= 0 (got " + formatNumber(c.noise.stddev) + ")");
 }
 
 std::vector<SensorTopic> publishedTopics(const RaySensorConfig& c) {
