@@ -3,9 +3,13 @@
 #   scripts/setup.sh            install missing dependencies, build (RelWithDebInfo: -O2 -g)
 #   scripts/setup.sh --no-build install only
 #   scripts/setup.sh --release  build without debug info (-O2, the same machine code), a
-#                               third less compile time; what ./run.sh uses on a new workspace.
-#   A workspace already built keeps its build type either way, so nothing is compiled again
-#   (./test.sh after ./run.sh; docs/performance.md, First build).
+#                               third less compile time.
+#   scripts/setup.sh --demo     what ./run.sh uses: --release, and on a new workspace only
+#                               what the demo runs (no Python bindings, benchmarks, corpus
+#                               tools; TIANRACER_EXTRAS=OFF), without the benchmark's venv.
+#   A workspace already built keeps its build type either way, so nothing is compiled again;
+#   without --demo the extras are built (./test.sh after ./run.sh compiles only those and the
+#   tests; docs/performance.md, First build).
 # Idempotent: installed packages are skipped; sudo is used when not root.
 # Build output: <repo>/.build/{build,devel} (hidden and git-ignored).
 set -euo pipefail
@@ -15,11 +19,13 @@ WS="$REPO/.build"
 LOG_DIR="$WS/logs"
 BUILD=1
 RELEASE=0
+DEMO=0
 for arg in "$@"; do
   case "$arg" in
     --no-build) BUILD=0 ;;
     --release) RELEASE=1 ;;
-    *) printf 'usage: %s [--no-build] [--release]\n' "$0" >&2; exit 2 ;;
+    --demo) DEMO=1; RELEASE=1 ;;
+    *) printf 'usage: %s [--no-build] [--release] [--demo]\n' "$0" >&2; exit 2 ;;
   esac
 done
 
@@ -96,7 +102,9 @@ command -v xacro >/dev/null || fail "step 'pip': xacro is not on PATH after inst
 
 # The benchmark's PyBullet and MuJoCo (tianracer_bringup/bench/requirements.txt, pinned) in a virtual
 # environment of its own under .build/, whatever python3 is on PATH; a no-op once installed.
-if ! /usr/bin/python3 "$REPO/tianracer_bringup/bench/run_benchmarks" --install-only 2>&1 \
+if ((DEMO)); then
+  say "pip: the benchmark's PyBullet and MuJoCo environment is not needed by the demo (./test.sh installs it)"
+elif ! /usr/bin/python3 "$REPO/tianracer_bringup/bench/run_benchmarks" --install-only 2>&1 \
      | sed 's/^/==> [setup] pip: /'; then
   fail "step 'pip': the benchmark's PyBullet and MuJoCo environment (.build/bench_venv) could not be installed"
 fi
@@ -120,15 +128,21 @@ while read -r line; do say "stand-ins: $line"; done <<<"$stand_ins"
 # ./run.sh builds only the test executables, not everything again with debug info.
 build_type=RelWithDebInfo
 ((RELEASE)) && build_type=Release
+# --demo (./run.sh) on a new workspace builds only what the demo runs (TIANRACER_EXTRAS=OFF:
+# no Python bindings, benchmarks or corpus tools); without it everything is built, which on a
+# workspace ./run.sh built compiles only what is missing.
+extras=(-DTIANRACER_EXTRAS=ON)
+((DEMO)) && extras=(-DTIANRACER_EXTRAS=OFF)
 if [[ -f "$WS/build/CMakeCache.txt" ]]; then
   cached="$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$WS/build/CMakeCache.txt")"
   build_type="${cached:-RelWithDebInfo}"  # none: the packages' own default
+  ((DEMO)) && extras=()  # keep what the workspace has
 fi
 say "build: catkin_make ($build_type) in $WS (log: $LOG_DIR/build.log)"
 start=$(date +%s)
 if ! catkin_make -C "$WS" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 \
       -DCMAKE_BUILD_TYPE="$build_type" -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" \
-      -DCMAKE_C_FLAGS_RELEASE="-O2 -DNDEBUG" -j"$(nproc)" >"$LOG_DIR/build.log" 2>&1; then
+      -DCMAKE_C_FLAGS_RELEASE="-O2 -DNDEBUG" "${extras[@]}" -j"$(nproc)" >"$LOG_DIR/build.log" 2>&1; then
   # Name the failing package and step: a CMake error follows the package's add_subdirectory
   # line; a compile error shows as 'make[N]: *** [<package>/CMakeFiles/...'.
   pkg="$(grep -oE 'make\[[0-9]+\]: \*\*\* \[[^/]+' "$LOG_DIR/build.log" | head -1 | sed 's/.*\[//' || true)"
