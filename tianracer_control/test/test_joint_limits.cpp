@@ -82,3 +82,58 @@ TEST(EffortSaturation, ClampsAndPushesNoFurtherPastALimit) {
   EXPECT_DOUBLE_EQ(enforceEffortSaturation(l, -5.0, 0.04, 0.6), -5.0);
   EXPECT_DOUBLE_EQ(enforceEffortSaturation(l, -5.0, 0.04, -0.6), 0.0);
 }
+
+// Soft limits (URDF <safety_controller>): the finger with soft limits 0.01 and 0.07 m,
+// k_position 10, k_velocity 5 (joint_limits_interface.h's *SoftLimitsHandle).
+namespace {
+tianracer_control::SoftJointLimits fingerSoft() {
+  tianracer_control::SoftJointLimits s;
+  s.min_position = 0.01;
+  s.max_position = 0.07;
+  s.k_position = 10.0;
+  s.k_velocity = 5.0;
+  return s;
+}
+}  // namespace
+
+TEST(PositionSoftLimits, SlowsTheCommandNearASoftLimitAndPushesItBackPastIt) {
+  tianracer_control::PositionSoftLimits s(finger(), fingerSoft());
+  // from the position 0.065: upward at most -10 * (0.065 - 0.07) = 0.05 m/s for 0.01 s
+  EXPECT_NEAR(s.enforce(0.2, 0.065, 0.01), 0.0655, 1e-12);
+  // then from the previous command: 0.045 m/s
+  EXPECT_NEAR(s.enforce(0.2, 0.0, 0.01), 0.06595, 1e-12);
+  s.reset();
+  // past the soft limit (0.075): the bound is -0.05 m/s, the command moves back in
+  EXPECT_NEAR(s.enforce(0.08, 0.075, 0.01), 0.0745, 1e-12);
+  // downward from 0.04: at most -10 * (0.04 - 0.01) = -0.3 m/s
+  s.reset();
+  EXPECT_NEAR(s.enforce(-1.0, 0.04, 0.01), 0.037, 1e-12);
+  // from 0.065 downward: -0.55 m/s is beyond max_velocity, so 0.5 m/s
+  s.reset();
+  EXPECT_NEAR(s.enforce(-1.0, 0.065, 0.01), 0.06, 1e-12);
+}
+
+TEST(EffortSoftLimits, BoundsTheEffortByTheSoftVelocityBounds) {
+  using tianracer_control::enforceEffortSoftLimits;
+  // at 0.075 m at rest: velocity bounds [-0.5, -0.05] -> effort bounds [-2.5, -0.25]
+  EXPECT_NEAR(enforceEffortSoftLimits(finger(), fingerSoft(), 10.0, 0.075, 0.0), -0.25, 1e-12);
+  EXPECT_NEAR(enforceEffortSoftLimits(finger(), fingerSoft(), -10.0, 0.075, 0.0), -2.5, 1e-12);
+  // in the middle (0.04) at rest: [-0.3, 0.3] m/s -> [-1.5, 1.5] N; within max_effort 20
+  EXPECT_NEAR(enforceEffortSoftLimits(finger(), fingerSoft(), 30.0, 0.04, 0.0), 1.5, 1e-12);
+  EXPECT_NEAR(enforceEffortSoftLimits(finger(), fingerSoft(), 1.0, 0.04, 0.0), 1.0, 1e-12);
+}
+
+TEST(VelocitySoftLimits, BoundsTheVelocityByPositionAndAcceleration) {
+  using tianracer_control::enforceVelocitySoftLimits;
+  // at 0.075: at most -0.05 m/s
+  EXPECT_NEAR(enforceVelocitySoftLimits(finger(), fingerSoft(), 0.3, 0.075, 0.1, 0.01), -0.05,
+              1e-12);
+  // in the middle with an acceleration limit of 2 m/s^2: within 0.02 m/s of the velocity 0.1
+  JointLimits l = finger();
+  l.has_acceleration_limits = true;
+  l.max_acceleration = 2.0;
+  EXPECT_NEAR(enforceVelocitySoftLimits(l, fingerSoft(), 0.3, 0.04, 0.1, 0.01), 0.12, 1e-12);
+  // no velocity and no position limits: unbounded
+  JointLimits none;
+  EXPECT_DOUBLE_EQ(enforceVelocitySoftLimits(none, fingerSoft(), 1e6, 0.5, 0.0, 0.01), 1e6);
+}
