@@ -114,6 +114,7 @@ void SimNode::addRobot(RobotModel model, const RobotSetup& setup, const Eigen::I
   bridge.ground_truth_rate = ground_truth_rate_;
   bridge.control_ns = setup.control_ns;
   bridge.controller_manager = model.ext.ros_control.has_value();
+  if (model.ext.ros_control) bridge.e_stop_topic = model.ext.ros_control->e_stop_topic;
   bridge.controllers_changed = [this] { updateCommandTopics(); };
 
   RobotSpawn spawn;
