@@ -268,7 +268,7 @@ JointDrive RobotHwSim::write(size_t k, tc::JointHandle& h, double period) {
   }
 
   JointDrive d;
-  const double cap = j.has_effort_limit ? j.effort_limit : -1.0;
+  const double cap = j.effort_limit;  // DRS SetParam("fmax", effort limit): DBL_MAX without one
   switch (j.method) {
     case Method::kEffort:
       d.mode = JointDrive::Mode::kEffort;

@@ -141,16 +141,9 @@ SimRobot& Simulation::addRobot(RobotConfig config) {
               std::to_string(robot->control_every * physics_.dt()) + " s");
       }
     }
+    // A velocity or position joint without an effort limit gets an unbounded motor, as
+    // DefaultRobotHWSim's SetParam("fmax", DBL_MAX) (sim/robot_hw_sim.h).
     robot->hw_sim.init(robot->model, robot->handles, config.hw_sim, warn_);
-    for (size_t k = 0; k < robot->handles.size(); ++k) {
-      const tc::JointHandle& h = robot->handles[k];
-      if (h.interface != tc::JointHandle::Interface::kEffort &&
-          !robot->hw_sim.joints()[k].has_effort_limit && warn_) {
-        warn_("robot '" + config.name + "': joint '" + h.name +
-              "' has no effort limit in the URDF; its motor is limited to the default " +
-              std::to_string(physics_.options().default_motor_effort) + " N m");
-      }
-    }
     controllers_.attach(*robot, config.controllers);
   } catch (...) {
     physics_.removeRobot(robot->id);  // nothing of a robot that failed stays

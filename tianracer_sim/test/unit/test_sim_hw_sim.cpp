@@ -5,6 +5,7 @@
 // (effort interface, soft limits), a continuous spinner (velocity, limited), a revolute hinge
 // (position) and a continuous free wheel (velocity, no <limit>).
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -291,6 +292,28 @@ TEST(RobotHwSimWrite, APidCommandIsClampedToTheEffortLimit) {
   d = hw.write(0, hinge, 0.001);
   EXPECT_DOUBLE_EQ(hinge.command, 0.0);  // 2 mm/ms below the previous command
   EXPECT_DOUBLE_EQ(d.value, -8.0);
+}
+
+TEST(RobotHwSimWrite, AMotorWithoutAnEffortLimitIsUnbounded) {
+  // DRS: SetParam("fmax", 0, DBL_MAX) for a joint with no effort limit (not our old 10 N m)
+  RobotModel model = loadRobotModel(kUrdf, "hw.urdf", LoadOptions());
+  tc::JointHandle wheel;
+  wheel.name = "free_wheel";
+  wheel.interface = tc::JointHandle::Interface::kVelocity;
+  RobotHwSim hw;
+  hw.init(model, {wheel}, RobotHwSimParams(), WarningSink());
+  wheel.command = 100.0;
+  const JointDrive d = hw.write(0, wheel, 0.001);
+  EXPECT_DOUBLE_EQ(d.value, 100.0);  // no velocity limit either
+  EXPECT_EQ(d.max_effort, std::numeric_limits<double>::max());
+}
+
+TEST_F(HwSim, AWheelWithoutAnEffortLimitFollowsItsCommandAtOnce) {
+  add();
+  command("wheel_controller", 50.0);
+  run(0.01);
+  // 50 rad/s in 10 ms of a 0.01 kg m^2 wheel takes 50 N m: beyond the old 10 N m cap
+  EXPECT_NEAR(velocity("free_wheel"), 50.0, 0.5);
 }
 
 TEST(RobotHwSimWrite, TheEStopWritesNoEffortAndNoVelocity) {
