@@ -2,8 +2,6 @@
 
 namespace tianracer_control {
 
-namespace {
-
 using XmlRpc::XmlRpcValue;
 
 // XmlRpcValue's conversions are non-const: read from a copy.
@@ -31,8 +29,6 @@ ParamValue toParamValue(XmlRpcValue v) {
       return ParamValue::other();
   }
 }
-
-}  // namespace
 
 ControllerSpec toControllerSpec(const std::string& name, const XmlRpcValue& params) {
   ControllerSpec spec;

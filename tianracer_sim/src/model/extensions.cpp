@@ -217,9 +217,7 @@ RosControlSpec rosControl(const PluginSpec& p, XmlReader& warner) {
       type && *type != "gazebo_ros_control/DefaultRobotHWSim")
     r.warn("robotSimType '" + *type +
            "' is not supported; the built-in DefaultRobotHWSim behaviour is used");
-  if (const auto topic = r.text("eStopTopic"))
-    r.warn("eStopTopic '" + *topic +
-           "' is not supported (DefaultRobotHWSim's emergency stop); no stop topic is subscribed");
+  r.text("eStopTopic", &s.e_stop_topic);
   r.ignore({"legacyModeNS"});
   r.finish();
   return s;

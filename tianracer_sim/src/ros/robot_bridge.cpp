@@ -5,6 +5,7 @@
 
 #include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/Odometry.h>
+#include <std_msgs/Bool.h>
 
 #include <tianracer_control/naming.h>
 
@@ -55,9 +56,23 @@ RobotBridge::RobotBridge(Simulator& sim, ModelId id, Options options, ros::NodeH
   ground_truth_ = robot_nh.advertise<nav_msgs::Odometry>("ground_truth/odom", 10);
   ground_truth_schedule_.period =
       options_.ground_truth_rate > 0.0 ? 1.0 / options_.ground_truth_rate : 0.0;
+  // GazeboRosControlPlugin::Load: model_nh_.subscribe(eStopTopic, 1, eStopCB).
+  if (!options_.e_stop_topic.empty()) {
+    e_stop_ = std::make_shared<std::atomic<bool>>(false);
+    auto flag = e_stop_;
+    e_stop_sub_ = robot_nh.subscribe<std_msgs::Bool>(
+        options_.e_stop_topic, 1, [flag](const std_msgs::BoolConstPtr& m) { *flag = m->data; });
+  }
   if (options_.controller_manager) {
     controller_manager_ = std::make_unique<ControllerManagerBridge>(
         robot_nh, options_.control_ns, sim_, id_, [this] { controllersChanged(); });
+  }
+}
+
+void RobotBridge::applyCommands() {
+  commands_->apply();
+  if (e_stop_) {
+    if (SimRobot* robot = sim_.robot(id_)) robot->hw_sim.setEStop(*e_stop_);
   }
 }
 

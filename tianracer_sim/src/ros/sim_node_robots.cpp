@@ -26,6 +26,19 @@ LoadOptions loadOptions(const ros::NodeHandle& rp) {
   return options;
 }
 
+/// gazebo_ros_control's parameters under the robot's namespace (DefaultRobotHWSim initSim:
+/// joint_limits/<joint>, gazebo_ros_control/pid_gains/<joint>).
+RobotHwSimParams readRobotHwSimParams(const std::string& ns) {
+  RobotHwSimParams p;
+  ros::NodeHandle nh(ns);
+  p.ns = nh.getNamespace();
+  XmlRpc::XmlRpcValue v;
+  if (nh.getParam("joint_limits", v)) p.joint_limits = tianracer_control::toParamValue(v);
+  if (nh.getParam("gazebo_ros_control/pid_gains", v))
+    p.pid_gains = tianracer_control::toParamValue(v);
+  return p;
+}
+
 }  // namespace
 
 void SimNode::loadRobot(const ros::NodeHandle& rp, const std::string& fixed_name) {
@@ -101,6 +114,7 @@ void SimNode::addRobot(RobotModel model, const RobotSetup& setup, const Eigen::I
   bridge.ground_truth_rate = ground_truth_rate_;
   bridge.control_ns = setup.control_ns;
   bridge.controller_manager = model.ext.ros_control.has_value();
+  if (model.ext.ros_control) bridge.e_stop_topic = model.ext.ros_control->e_stop_topic;
   bridge.controllers_changed = [this] { updateCommandTopics(); };
 
   RobotSpawn spawn;
@@ -109,6 +123,7 @@ void SimNode::addRobot(RobotModel model, const RobotSetup& setup, const Eigen::I
   spawn.drop_to_ground = auto_z;
   spawn.tf_prefix = bridge.tf_prefix;
   spawn.controllers = setup.controllers;
+  spawn.hw_sim = readRobotHwSimParams(setup.ns);
   bool given = false;
   spawn.disabled_sensors = getNameList(rp, "disable_sensors", &given);
   if (!given) spawn.disabled_sensors = getNameList(pnh_, "disable_sensors", &given);

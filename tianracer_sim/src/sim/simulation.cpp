@@ -141,13 +141,9 @@ SimRobot& Simulation::addRobot(RobotConfig config) {
               std::to_string(robot->control_every * physics_.dt()) + " s");
       }
     }
-    for (const tc::JointHandle& h : robot->handles) {
-      if (h.interface != tc::JointHandle::Interface::kEffort && h.effort_limit <= 0.0 && warn_) {
-        warn_("robot '" + config.name + "': joint '" + h.name +
-              "' has no effort limit in the URDF; its motor is limited to the default " +
-              std::to_string(physics_.options().default_motor_effort) + " N m");
-      }
-    }
+    // A velocity or position joint without an effort limit gets an unbounded motor, as
+    // DefaultRobotHWSim's SetParam("fmax", DBL_MAX) (sim/robot_hw_sim.h).
+    robot->hw_sim.init(robot->model, robot->handles, config.hw_sim, warn_);
     controllers_.attach(*robot, config.controllers);
   } catch (...) {
     physics_.removeRobot(robot->id);  // nothing of a robot that failed stays
@@ -185,25 +181,30 @@ void Simulation::read(SimRobot& robot) {
 
 void Simulation::write(SimRobot& robot) {
   PhysicsRobot& pr = physics_.robot(robot.id);
+  const double period = robot.control_every * physics_.dt();
+  // DefaultRobotHWSim writeSim (sim/robot_hw_sim.h): the e-stop's hold, the joint limits, the
+  // PID gains; then the command to the joint.
+  robot.hw_sim.beginWrite(robot.handles);
   for (size_t k = 0; k < robot.handles.size(); ++k) {
-    const tc::JointHandle& h = robot.handles[k];
+    tc::JointHandle& h = robot.handles[k];
     const int j = robot.handle_joint[k];
     if (!robot.claimed[k] || !std::isfinite(h.command)) continue;  // NaN never reaches Bullet
-    switch (h.interface) {
-      case tc::JointHandle::Interface::kEffort:
-        pr.setJointEffort(j, h.command);
+    const JointDrive d = robot.hw_sim.write(k, h, period);
+    if (!std::isfinite(d.value)) continue;
+    switch (d.mode) {
+      case JointDrive::Mode::kEffort:
+        pr.setJointEffort(j, d.value);
         break;
-      case tc::JointHandle::Interface::kVelocity:
-        // DefaultRobotHWSim: a velocity motor limited by the URDF effort.
-        pr.setJointVelocityTarget(j, h.command);
+      case JointDrive::Mode::kVelocity:
+        // A velocity motor limited by the effort limit.
+        pr.setJointVelocityTarget(j, d.value, d.max_effort);
         break;
-      case tc::JointHandle::Interface::kPosition: {
+      case JointDrive::Mode::kPosition: {
         // A position servo: the motor drives the joint to the target within one control
         // period, limited by the joint's velocity limit and effort.
-        const double period = robot.control_every * physics_.dt();
-        double omega = (h.command - h.position) / period;
+        double omega = (d.value - h.position) / period;
         if (h.velocity_limit > 0.0) omega = std::clamp(omega, -h.velocity_limit, h.velocity_limit);
-        pr.setJointVelocityTarget(j, omega);
+        pr.setJointVelocityTarget(j, omega, d.max_effort);
         break;
       }
     }
@@ -217,6 +218,8 @@ void Simulation::step() {
     for (auto& robot : robots_) {
       if (n % static_cast<std::uint64_t>(robot->control_every) != 0) continue;
       read(*robot);
+      // gazebo_ros_control: the controllers are reset on the first update after an e-stop.
+      if (robot->hw_sim.takeEStopReleased()) robot->controllers.reset(physics_.time());
       controllers_.update(*robot);
       write(*robot);
     }
@@ -252,6 +255,7 @@ void Simulation::resetSimulation() {
 void Simulation::resetWorld() {
   for (auto& robot : robots_) {
     physics_.robot(robot->id).resetToSpawn();
+    robot->hw_sim.reset();
     restartControllers(*robot);
   }
   // The world's free bodies back to their poses in the world file.

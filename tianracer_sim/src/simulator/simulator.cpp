@@ -89,6 +89,7 @@ ModelId Simulator::addRobot(RobotSpawn spawn) {
   config.X_WB_spawn = spawn.X_WB;
   config.drop_to_ground = spawn.drop_to_ground;
   config.controllers = spawn.controllers;
+  config.hw_sim = spawn.hw_sim;
   config.model = std::move(spawn.model);
   SimRobot& robot = sim_.addRobot(std::move(config));
   const ModelId id = static_cast<ModelId>(models_.size());

@@ -194,13 +194,15 @@ TEST(Extensions, RosControlPlugin) {
               ElementsAre(HasSubstr("robotSimType 'my/Sim' is not supported"),
                           HasSubstr("<colour> is not a parameter of libgazebo_ros_control.so")));
 
-  // eStopTopic (gazebo_ros_control_plugin.cpp's emergency stop) is not implemented: said, not
-  // silently dropped.
+  // eStopTopic (gazebo_ros_control_plugin.cpp's emergency stop): the topic, no warning; none
+  // without the element.
+  EXPECT_EQ(ext.ros_control->e_stop_topic, "");
   Parser stop;
   ext = stop.parse(robot("<gazebo><plugin name='rc' filename='libgazebo_ros_control.so'>"
                          "<eStopTopic>/e_stop</eStopTopic></plugin></gazebo>"));
   ASSERT_TRUE(ext.ros_control);
-  EXPECT_THAT(stop.warnings, ElementsAre(HasSubstr("eStopTopic '/e_stop' is not supported")));
+  EXPECT_EQ(ext.ros_control->e_stop_topic, "/e_stop");
+  EXPECT_TRUE(stop.warnings.empty());
 
   EXPECT_THAT(p.error(robot("<gazebo><plugin name='rc' filename='libgazebo_ros_control.so'>"
                             "<controlPeriod>fast</controlPeriod></plugin></gazebo>")),

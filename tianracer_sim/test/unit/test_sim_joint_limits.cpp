@@ -2,9 +2,9 @@
 // (Simulation::read/write): arm_control.urdf's finger (prismatic, 0 to 0.08 m, 0.5 m/s) under
 // position_controllers/JointPositionController is commanded past each limit; the command that
 // reaches the joint is the limit and the finger stops there (DefaultRobotHWSim's
-// PositionJointSaturationHandle bound; issue 39, point 3). Today the controller clamps the
-// command (clampToPositionLimits), not the hardware as in DefaultRobotHWSim; this test holds
-// either way.
+// PositionJointSaturationHandle bound; issue 39, point 3). The controller clamps the command
+// too (clampToPositionLimits), and the hardware (sim/robot_hw_sim.h) as DefaultRobotHWSim
+// does; this test holds either way (test_sim_hw_sim checks the hardware alone).
 #include <cmath>
 
 #include <gtest/gtest.h>

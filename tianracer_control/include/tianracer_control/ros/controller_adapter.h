@@ -15,6 +15,9 @@
 
 namespace tianracer_control {
 
+/// A parameter server value as a tree (XmlRpcValue's kinds).
+ParamValue toParamValue(XmlRpc::XmlRpcValue v);
+
 /// One controller's parameter tree (e.g. the value of /tianracer/joint_state_controller) ->
 /// spec: its type, and the whole tree for the controller class to read. Throws ControllerError
 /// naming the controller when the tree is not a struct or the type is not a string (the class

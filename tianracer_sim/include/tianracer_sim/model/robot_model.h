@@ -97,6 +97,8 @@ struct RosControlSpec {
   std::string robot_namespace;                    // e.g. "/tianracer"
   std::string robot_param = "robot_description";
   double control_period = 0.0;                    // seconds; 0 = every physics step
+  /// <eStopTopic>: a std_msgs/Bool topic under the namespace; "" = none.
+  std::string e_stop_topic;
 };
 
 /// libgazebo_ros_joint_state_publisher.so parameters (joint names with all whitespace removed).

@@ -18,6 +18,7 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 
 #include <tianracer_control/ros/controller_adapter.h>
+#include <atomic>
 
 #include "tianracer_sim/ros/controller_manager_bridge.h"
 #include "tianracer_sim/simulator/simulator.h"
@@ -42,6 +43,8 @@ class RobotBridge {
     /// parameters from control_ns/<name>.
     bool controller_manager = false;
     std::string control_ns;
+    /// gazebo_ros_control's <eStopTopic> (std_msgs/Bool under ns); "" = none.
+    std::string e_stop_topic;
     /// After a controller_manager call changed the controllers (the node's lockstep follows).
     std::function<void()> controllers_changed;
   };
@@ -55,8 +58,9 @@ class RobotBridge {
   RobotId physicsId() const { return physics_id_; }
   const std::string& ns() const { return options_.ns; }
   const std::string& tfPrefix() const { return options_.tf_prefix; }
-  /// Commands received since the last call go to the controllers (before each step).
-  void applyCommands() { commands_->apply(); }
+  /// Commands received since the last call go to the controllers, the e-stop's state to the
+  /// hardware (before each step).
+  void applyCommands();
   /// Drops commands not yet applied (reset_simulation).
   void clearCommands() { commands_->clear(); }
   std::vector<std::string> commandTopics() const { return commands_->topics(); }
@@ -91,6 +95,8 @@ class RobotBridge {
   nav_msgs::Odometry ground_truth_msg_;  // filled in place at each publication
   Schedule ground_truth_schedule_;
   std::vector<std::string> topics_;
+  ros::Subscriber e_stop_sub_;
+  std::shared_ptr<std::atomic<bool>> e_stop_;  // the last <eStopTopic> message's data
   // The step profile's rows (sim_.profile(); -1 when not profiling).
   struct {
     int joint_states = -1, joint_states_convert = -1, joint_states_send = -1;

@@ -17,6 +17,7 @@
 
 #include "tianracer_sim/common/step_profile.h"
 #include "tianracer_sim/sim/controller_manager.h"
+#include "tianracer_sim/sim/robot_hw_sim.h"
 #include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/physics/world.h"
 
@@ -30,6 +31,8 @@ struct RobotConfig {
   /// Replace the spawn height so that the lowest collision point (joints at 0) rests on z = 0.
   bool drop_to_ground = false;
   std::vector<tianracer_control::ControllerSpec> controllers;
+  /// gazebo_ros_control's joint_limits and pid_gains parameters (sim/robot_hw_sim.h).
+  RobotHwSimParams hw_sim;
 };
 
 /// One robot of the simulation with its hardware interface and controllers.
@@ -44,6 +47,8 @@ struct SimRobot {
   std::vector<bool> claimed;      // handle written by a controller (others stay free)
   tianracer_control::ControllerSet controllers;
   int control_every = 1;  // controllers run every control_every physics steps
+  /// DefaultRobotHWSim between the handles and the joints: limits, PID gains, e-stop.
+  RobotHwSim hw_sim;
 };
 
 class Simulation {

@@ -40,6 +40,7 @@
 #include "tianracer_sim/sim/contact_tracker.h"
 #include "tianracer_sim/sim/entity_state.h"
 #include "tianracer_sim/sim/frame_worker.h"
+#include "tianracer_sim/sim/robot_hw_sim.h"
 #include "tianracer_sim/sim/robot_scene.h"
 #include "tianracer_sim/common/schedule.h"
 #include "tianracer_sim/sim/simulation.h"
@@ -78,6 +79,8 @@ struct RobotSpawn {
   Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
   bool drop_to_ground = false;  // z such that the lowest collision point rests on z = 0
   std::vector<tianracer_control::ControllerSpec> controllers;
+  /// gazebo_ros_control's joint_limits and pid_gains parameters (sim/robot_hw_sim.h).
+  RobotHwSimParams hw_sim;
   std::string tf_prefix;  // prefixes the frames of its sensors' outputs
   /// Sensor types or names left out (~disable_sensors).
   std::vector<std::string> disabled_sensors;
