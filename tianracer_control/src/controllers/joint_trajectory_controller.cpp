@@ -19,7 +19,7 @@ constexpr int kInvalidGoal = -1;
 constexpr int kInvalidJoints = -2;
 
 // init()'s getStrings(controller_nh, "joints") and hw->getHandle().
-std::vector<JointHandle*> claimJoints(ControllerContext& context, JointHandle::Interface needs) {
+std::vector<JointHandle*> claimTrajectoryJoints(ControllerContext& context, JointHandle::Interface needs) {
   ControllerParams& params = context.params;
   const ParamValue* value = params.value("joints");
   if (!value) {
@@ -58,7 +58,7 @@ std::vector<JointHandle*> claimJoints(ControllerContext& context, JointHandle::I
 template <JointHandle::Interface I>
 std::unique_ptr<Controller> JointTrajectoryController::create(ControllerContext& context) {
   ControllerParams& params = context.params;
-  std::vector<JointHandle*> joints = claimJoints(context, I);
+  std::vector<JointHandle*> joints = claimTrajectoryJoints(context, I);
   std::vector<std::string> names;
   for (const JointHandle* j : joints) names.push_back(j->name);
   trajectory::TrajectoryControllerOptions options =

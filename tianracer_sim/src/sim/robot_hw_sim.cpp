@@ -9,6 +9,8 @@
 
 #include <tianracer_control/pid_params.h>
 
+#include "tianracer_sim/common/text.h"
+
 namespace tianracer_sim {
 
 namespace tc = tianracer_control;
@@ -17,11 +19,6 @@ namespace {
 
 constexpr double kUnbounded = std::numeric_limits<double>::max();
 
-std::string fmt(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
 
 /// Reads one joint's parameter dictionary as ros::NodeHandle::getParam does (an int is a
 /// double; another kind is not there); a value of another kind or a non-finite number is
@@ -51,7 +48,7 @@ class JointParams {
       return std::nullopt;
     }
     if (!std::isfinite(x)) {
-      bad(key, "is " + fmt(x) + ", not a finite number");
+      bad(key, "is " + formatShort(x) + ", not a finite number");
       return std::nullopt;
     }
     return x;

@@ -10,6 +10,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "tianracer_sim/common/text.h"
 #include "tianracer_sim/physics/mass_properties.h"
 
 namespace tianracer_sim {
@@ -20,11 +21,6 @@ std::string at(const WorldDescription& world, int line) {
   return world.source + ":" + std::to_string(line) + ": ";
 }
 
-std::string fmt(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
 
 bool movableType(const std::string& type) {
   return type == "revolute" || type == "continuous" || type == "prismatic";
@@ -234,8 +230,8 @@ RigidTree worldModelTree(const WorldDescription& world, const ModelDescription& 
           child.lower = std::max(j.lower, -kNoLimit);
           child.upper = std::min(j.upper, kNoLimit);
         } else {
-          warnAt(j.line, "joint '" + j.name + "': <limit> <lower> " + fmt(j.lower) +
-                             " is above <upper> " + fmt(j.upper) + ": the joint has no limits");
+          warnAt(j.line, "joint '" + j.name + "': <limit> <lower> " + formatShort(j.lower) +
+                             " is above <upper> " + formatShort(j.upper) + ": the joint has no limits");
         }
       }
       child.effort_limit = j.effort > 0.0 ? j.effort : 0.0;
@@ -305,16 +301,16 @@ RigidTree worldModelTree(const WorldDescription& world, const ModelDescription& 
       const int line = l.inertial.line > 0 ? l.inertial.line : l.line;
       const std::string lwhat = at(world, line) + what + " link '" + l.name + "': ";
       if (!(l.inertial.mass > 0.0) || !std::isfinite(l.inertial.mass)) {
-        throw PhysicsError(lwhat + "<mass> must be > 0 (got " + fmt(l.inertial.mass) +
+        throw PhysicsError(lwhat + "<mass> must be > 0 (got " + formatShort(l.inertial.mass) +
                            ") for a link that moves");
       }
       if (l.inertial.mass > limits::kMass) {
-        throw PhysicsError(lwhat + "<mass> " + fmt(l.inertial.mass) + " is out of range (<= " +
+        throw PhysicsError(lwhat + "<mass> " + formatShort(l.inertial.mass) + " is out of range (<= " +
                            limits::formatNumber(limits::kMass) + " kg) for a link that moves");
       }
       const Eigen::Matrix3d& I = l.inertial.inertia;
       if (I.allFinite() && I.cwiseAbs().maxCoeff() > limits::kInertia) {
-        throw PhysicsError(lwhat + "inertia component " + fmt(I.cwiseAbs().maxCoeff()) +
+        throw PhysicsError(lwhat + "inertia component " + formatShort(I.cwiseAbs().maxCoeff()) +
                            " is out of range (<= " + limits::formatNumber(limits::kInertia) +
                            " kg m^2) for a link that moves");
       }
