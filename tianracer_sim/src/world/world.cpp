@@ -85,9 +85,13 @@ WorldDescription Parser::parse(const std::string& xml) {
       const std::size_t before = world.models.size();
       parseInclude(c, world);
       checkModelCount(c, world);
-      for (std::size_t i = before; i < world.models.size(); ++i) {
-        if (!model_names.insert(world.models[i].name).second)
-          fail(c, "duplicate model name '" + world.models[i].name + "'");
+      for (std::size_t i = before; i < world.models.size();) {
+        if (model_names.insert(world.models[i].name).second) {
+          ++i;
+        } else {
+          duplicate(c, world.models[i].name);
+          world.models.erase(world.models.begin() + static_cast<std::ptrdiff_t>(i));
+        }
       }
     } else if (tag == "state") {
       states.push_back(c);
@@ -95,15 +99,20 @@ WorldDescription Parser::parse(const std::string& xml) {
       parseLight(c, world);
     } else if (tag == "model") {
       ModelDescription m = parseModel(c);
-      if (!model_names.insert(m.name).second) fail(c, "duplicate model name '" + m.name + "'");
+      if (!model_names.insert(m.name).second) {
+        duplicate(c, m.name);
+        continue;
+      }
       world.models.push_back(std::move(m));
       checkModelCount(c, world);
     } else if (tag == "actor") {
       // A broken actor is left out with its error and the rest of the world loads.
       try {
         ActorDescription a = parseActor(c);
-        if (!model_names.insert(a.model.name).second)
-          fail(c, "duplicate model name '" + a.model.name + "'");
+        if (!model_names.insert(a.model.name).second) {
+          duplicate(c, a.model.name, "actor");
+          continue;
+        }
         world.actors.push_back(std::move(a));
       } catch (const InputError& err) {
         leftOutError(err, "the actor is left out");
@@ -188,6 +197,10 @@ void Parser::parseLight(const XMLElement* e, WorldDescription& world) {
   double constant = 1.0, linear = 0.0, quadratic = 0.0;
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
+    // An empty value element keeps its default, as sdformat reads it (parser.cc readXml sets a
+    // value only from non-null text): Gazebo's actor_circle.world has <direction></direction>.
+    const bool empty = !c->GetText() && !c->FirstChildElement();
+    if (empty && (tag == "direction" || tag == "diffuse" || tag == "specular" || tag == "pose")) continue;
     if (tag == "direction") {
       light.direction = vector3(c, what);
     } else if (tag == "diffuse") {
@@ -266,8 +279,9 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
       ModelDescription sub;
       Eigen::Isometry3d X_MS;
       if (tag == "include") {
-        const IncludeSpec spec = parseIncludeSpec(c);
-        std::optional<ModelDescription> included = includeModel(c, spec);
+        const std::optional<IncludeSpec> spec = parseIncludeSpec(c);
+        std::optional<ModelDescription> included;
+        if (spec) included = includeModel(c, *spec);
         if (!included) {  // left out, reported
           ++left_out_includes;
           continue;
@@ -291,6 +305,18 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
   if (m.links.size() > limits::kLinksPerModel)
     fail(e, what + " has " + std::to_string(m.links.size()) + " links, more than " +
                 std::to_string(limits::kLinksPerModel) + " (limit of one model)");
+  // A joint may name a link by its world-scoped name, the model's own name first
+  // ("pioneer2dx::pioneer2dx::chassis" in model 'pioneer2dx', as pioneer2dx_camera.world does):
+  // Gazebo's Joint::Load (gazebo/physics/Joint.cc) looks the name up in the model, then in the
+  // world (World::BaseByName, scoped names), then scoped by each enclosing model.
+  const std::string own_scope = m.name + "::";
+  for (JointDescription& j : m.joints) {
+    for (std::string* end : {&j.parent, &j.child}) {
+      if (*end == "world" || link_names.count(*end) || end->rfind(own_scope, 0) != 0) continue;
+      const std::string local = end->substr(own_scope.size());
+      if (link_names.count(local)) *end = local;
+    }
+  }
   auto linkOf = [&](const std::string& name) -> const LinkDescription* {
     for (const LinkDescription& l : m.links)
       if (l.name == name) return &l;
@@ -436,6 +462,11 @@ std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::strin
     fail(g->NextSiblingElement(), what + ": <geometry> holds more than one shape");
   const std::string type = g->Name();
   Shape s;
+  // A shape of no size is left out with an error, and the rest of the world loads. Gazebo
+  // passes it to ODE as it is (ODEBoxShape::SetSize: dCreateBox(0, x, y, z)), where a zero
+  // box, sphere or cylinder collides as a point (worlds/collision_zero.world).
+  static const std::string kZeroShape = " (Gazebo's ODE collides a zero-size shape as a point)";
+  const std::string consequence = "the " + kind + " is left out";
   // Each shape reads only its own children; anything else is reported.
   auto children = [&](std::initializer_list<const char*> known,
                       const std::function<void(const XMLElement*, const std::string&)>& use) {
@@ -456,27 +487,45 @@ std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::strin
       have = true;
     });
     if (!have) fail(g, what + ": <box> has no <size>");
-    if (!(s.size.minCoeff() > 0.0))
-      fail(g, what + ": <box> <size> must be > 0 in x, y and z");
+    if (!(s.size.minCoeff() > 0.0)) {
+      leftOut(g, what + ": <box> <size> must be > 0 in x, y and z" + kZeroShape, consequence);
+      return std::nullopt;
+    }
   } else if (type == "cylinder") {
     s.type = ShapeType::kCylinder;
     bool r = false, l = false;
+    const XMLElement* not_positive = nullptr;
     children({"radius", "length"}, [&](const XMLElement* c, const std::string& tag) {
-      if (tag == "radius") s.radius = positive(c, what + " cylinder"), r = true;
-      else s.length = positive(c, what + " cylinder"), l = true;
-      checkSize(c, Eigen::Vector3d::Constant(tag == "radius" ? s.radius : s.length),
-                what + ": <cylinder> <" + tag + ">");
+      const double v = number(c, what + " cylinder");
+      if (!(v > 0.0) && !not_positive) not_positive = c;
+      if (tag == "radius") s.radius = v, r = true;
+      else s.length = v, l = true;
+      checkSize(c, Eigen::Vector3d::Constant(v), what + ": <cylinder> <" + tag + ">");
     });
     if (!r || !l) fail(g, what + ": <cylinder> needs <radius> and <length>");
+    if (not_positive) {
+      leftOut(not_positive, what + ": <cylinder> <" + not_positive->Name() + "> must be > 0 (got " +
+                                text(not_positive) + ")" + kZeroShape,
+              consequence);
+      return std::nullopt;
+    }
   } else if (type == "sphere") {
     s.type = ShapeType::kSphere;
     bool r = false;
+    const XMLElement* not_positive = nullptr;
     children({"radius"}, [&](const XMLElement* c, const std::string&) {
-      s.radius = positive(c, what + " sphere");
+      s.radius = number(c, what + " sphere");
+      if (!(s.radius > 0.0)) not_positive = c;
       checkSize(c, Eigen::Vector3d::Constant(s.radius), what + ": <sphere> <radius>");
       r = true;
     });
     if (!r) fail(g, what + ": <sphere> has no <radius>");
+    if (not_positive) {
+      leftOut(not_positive, what + ": <sphere> <radius> must be > 0 (got " + text(not_positive) + ")" +
+                                kZeroShape,
+              consequence);
+      return std::nullopt;
+    }
   } else if (type == "plane") {
     s.type = ShapeType::kPlane;
     s.size = Eigen::Vector3d::Zero();
@@ -517,7 +566,6 @@ std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::strin
       }
     });
     if (uri.empty()) fail(g, what + ": <mesh> has no <uri>");
-    const std::string consequence = "the " + kind + " is left out";
     if (bad_scale) {
       leftOut(bad_scale, what + ": <mesh> <scale> '" + text(bad_scale) +
                              "' must be > 0 in x, y and z (mesh '" + uri + "')",
@@ -550,6 +598,11 @@ void Parser::leftOut(const XMLElement* e, const std::string& problem,
   if (options_.strict) throw WorldError(message);
   const WarningSink& sink = options_.error ? options_.error : options_.warn;
   if (sink) sink(message + "; " + consequence);
+}
+
+void Parser::duplicate(const XMLElement* e, const std::string& name, const std::string& kind) {
+  leftOut(e, "duplicate model name '" + name + "' (Gazebo does not insert a second model of a name)",
+          "the " + kind + " is left out");
 }
 
 void Parser::leftOutError(const InputError& error, const std::string& consequence) {

@@ -193,7 +193,7 @@ void Parser::applyState(const XMLElement* e, WorldDescription& world,
   }
 }
 
-Parser::IncludeSpec Parser::parseIncludeSpec(const XMLElement* e) {
+std::optional<Parser::IncludeSpec> Parser::parseIncludeSpec(const XMLElement* e) {
   IncludeSpec spec;
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
@@ -211,12 +211,25 @@ Parser::IncludeSpec Parser::parseIncludeSpec(const XMLElement* e) {
     }
   }
   while (!spec.uri.empty() && spec.uri.back() == '/') spec.uri.pop_back();
-  if (spec.uri.empty()) fail(e, "<include> has no <uri>");
+  if (spec.uri.empty()) {
+    // sdformat 9 (parser.cc resolveFileNameFromUri) reports "<include> element missing 'uri'
+    // attribute" and skips the include; the rest loads. SDF 1.3's <include filename='...'>
+    // (Gazebo's deprecated_worlds) is such an include.
+    const char* filename = e->Attribute("filename");
+    leftOut(e, filename ? "<include filename='" + std::string(filename) +
+                              "'> has no <uri> (the filename attribute is SDF 1.3's, which sdformat "
+                              "no longer reads)"
+                        : std::string("<include> has no <uri>"),
+            "the include is left out");
+    return std::nullopt;
+  }
   return spec;
 }
 
 void Parser::parseInclude(const XMLElement* e, WorldDescription& world) {
-  const IncludeSpec spec = parseIncludeSpec(e);
+  const std::optional<IncludeSpec> given = parseIncludeSpec(e);
+  if (!given) return;  // left out, reported
+  const IncludeSpec& spec = *given;
   if (spec.uri == "model://ground_plane") {
     if (world.ground_plane) warn(e, "model://ground_plane included twice; using the last pose");
     world.ground_plane = true;

@@ -70,7 +70,8 @@ class Parser : public XmlReader {
     bool has_pose = false;
     std::optional<bool> is_static;
   };
-  IncludeSpec parseIncludeSpec(const XMLElement* e);
+  // Nothing when the include has no <uri> (left out, reported).
+  std::optional<IncludeSpec> parseIncludeSpec(const XMLElement* e);
   /// Resolves and parses the model an <include> names, with its <name>/<pose>/<static>;
   /// nullopt when its model is not found (left out, leftOut()).
   std::optional<ModelDescription> includeModel(const XMLElement* e, const IncludeSpec& spec);
@@ -97,6 +98,9 @@ class Parser : public XmlReader {
   /// As leftOut, for an error whose message names its place already (the robot loader's
   /// <sensor> and <plugin> parsers).
   void leftOutError(const InputError& error, const std::string& consequence);
+  // A second model (or actor) of a name the world already has: left out, as Gazebo's
+  // World::LoadModel does ("Model with name [...] already exists. Not inserting model.").
+  void duplicate(const XMLElement* e, const std::string& name, const std::string& kind = "model");
 
   std::string source_;
   std::string base_dir_;

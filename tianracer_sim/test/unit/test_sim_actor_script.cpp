@@ -312,6 +312,7 @@ TEST(ActorScript, AnActorNamedLikeAModelIsLeftOut) {
                                       "</script></actor>\n"));
   ASSERT_EQ(l.errors.size(), 1u);
   EXPECT_NE(l.errors[0].find("duplicate model name 'wall'"), std::string::npos) << l.errors[0];
+  EXPECT_NE(l.errors[0].find("the actor is left out"), std::string::npos) << l.errors[0];
   EXPECT_EQ(l.world.actors.size(), 1u);
 }
 

@@ -242,6 +242,107 @@ TEST(WorldLoader, OtherBadValues) {
             "(no error)");
 }
 
+// Gazebo's collision_zero.world: shapes of size 0 (ODE collides them as points). Each is left
+// out with an error at its line, and the rest of the world loads; ~strict_world stops.
+TEST(WorldLoader, AShapeOfNoSizeIsLeftOutAndTheRestLoads) {
+  const std::string xml =
+      "<sdf version='1.5'><world name='w'><model name='box'><link name='link'>\n"
+      "<collision name='c'><geometry><box><size>0 0 0</size></box></geometry></collision>"
+      "<visual name='v'><geometry><box><size>1 1 1</size></box></geometry></visual></link></model>\n"
+      "<model name='ball'><link name='link'><collision name='c'><geometry><sphere>\n"
+      "<radius>0</radius></sphere></geometry></collision></link></model>\n"
+      "<model name='can'><link name='link'><collision name='c'><geometry><cylinder><radius>0.5"
+      "</radius>\n<length>0</length></cylinder></geometry></collision></link></model>"
+      "<model name='ok'><link name='link'><collision name='c'><geometry><sphere><radius>0.5"
+      "</radius></sphere></geometry></collision></link></model></world></sdf>";
+  std::vector<std::string> errors;
+  WorldLoadOptions o;
+  o.error = [&](const std::string& m) { errors.push_back(m); };
+  const WorldDescription w = loadWorldString(xml, "zero.world", kData, o);
+  ASSERT_EQ(errors.size(), 3u) << ::testing::PrintToString(errors);
+  EXPECT_EQ(errors[0], "zero.world:2: model 'box' link 'link' collision 'c': <box> <size> must be > 0 "
+                       "in x, y and z (Gazebo's ODE collides a zero-size shape as a point); the "
+                       "collision is left out");
+  EXPECT_EQ(errors[1], "zero.world:4: model 'ball' link 'link' collision 'c': <sphere> <radius> must "
+                       "be > 0 (got 0) (Gazebo's ODE collides a zero-size shape as a point); the "
+                       "collision is left out");
+  EXPECT_EQ(errors[2], "zero.world:6: model 'can' link 'link' collision 'c': <cylinder> <length> must "
+                       "be > 0 (got 0) (Gazebo's ODE collides a zero-size shape as a point); the "
+                       "collision is left out");
+  ASSERT_EQ(w.models.size(), 4u);
+  EXPECT_TRUE(w.models[0].links[0].collisions.empty());
+  EXPECT_EQ(w.models[0].links[0].visuals.size(), 1u);  // the visual of its own size stays
+  EXPECT_EQ(w.models[3].links[0].collisions.size(), 1u);
+  EXPECT_NE(errorOfString(xml).find("<box> <size> must be > 0"), std::string::npos);  // strict
+}
+
+// Gazebo's robocup14_spl_field.world includes one goal model twice without a <name>: Gazebo's
+// World::LoadModel warns "Model with name [...] already exists. Not inserting model." and
+// loads the rest. So do we, with an error at the <include>'s line; ~strict_world stops.
+TEST(WorldLoader, ASecondModelOfANameIsLeftOutAndTheRestLoads) {
+  const std::string xml =
+      "<sdf version='1.5'><world name='w'>\n<include><uri>model://test_crate</uri></include>\n"
+      "<include><pose>4 0 0 0 0 0</pose><uri>model://test_crate</uri></include>\n"
+      "<model name='twin'><static>1</static><link name='a'/></model>\n"
+      "<model name='twin'><static>1</static><link name='b'/></model>\n"
+      "<model name='other'><static>1</static><link name='a'/></model></world></sdf>";
+  std::vector<std::string> errors;
+  WorldLoadOptions o;
+  o.model_paths = {kData + "gazebo_models"};
+  o.error = [&](const std::string& m) { errors.push_back(m); };
+  const WorldDescription w = loadWorldString(xml, "dup.world", kData, o);
+  ASSERT_EQ(errors.size(), 2u) << ::testing::PrintToString(errors);
+  ASSERT_EQ(w.models.size(), 3u);
+  const std::string crate = w.models[0].name;
+  EXPECT_EQ(errors[0], "dup.world:3: duplicate model name '" + crate +
+                           "' (Gazebo does not insert a second model of a name); the model is left out");
+  EXPECT_EQ(errors[1], "dup.world:5: duplicate model name 'twin' (Gazebo does not insert a second "
+                       "model of a name); the model is left out");
+  EXPECT_DOUBLE_EQ(w.models[0].X_WM.translation().x(), 0.0);  // the first include stays
+  EXPECT_EQ(w.models[1].name, "twin");
+  EXPECT_EQ(w.models[1].links[0].name, "a");  // the first of the name stays
+  EXPECT_EQ(w.models[2].name, "other");
+}
+
+// sdformat sets an element's value only from text it has: an empty <direction></direction>
+// (Gazebo's deprecated_worlds/actor_circle.world) keeps the default 0 0 -1; a wrong one is
+// still an error.
+TEST(WorldLoader, AnEmptyLightValueKeepsItsDefault) {
+  Collected c;
+  const WorldDescription w = loadWorldString(
+      "<sdf version='1.4'><world name='w'><light type='directional' name='sun'>"
+      "<direction></direction><diffuse/><pose></pose></light></world></sdf>",
+      "empty.world", kData, c.options());
+  ASSERT_EQ(w.lights.size(), 1u);
+  EXPECT_TRUE(w.lights[0].direction.isApprox(Eigen::Vector3d(0, 0, -1)));
+  EXPECT_TRUE(c.warnings.empty()) << ::testing::PrintToString(c.warnings);
+  EXPECT_NE(errorOfString("<sdf><world><light type='directional' name='sun'><direction>0 x 1"
+                          "</direction></light></world></sdf>")
+                .find("<direction>"),
+            std::string::npos);
+}
+
+// An <include> without <uri> (SDF 1.3's <include filename='...'>, as in Gazebo's
+// deprecated_worlds/weshare2012.world) is skipped by sdformat with an error; the rest loads.
+TEST(WorldLoader, AnIncludeWithoutUriIsLeftOutAndTheRestLoads) {
+  const std::string xml =
+      "<sdf version='1.5'><world name='w'>\n<include filename='old.model'/>\n"
+      "<model name='m'><include/><link name='a'/></model>\n"
+      "<model name='other'><static>1</static><link name='a'/></model></world></sdf>";
+  std::vector<std::string> errors;
+  WorldLoadOptions o;
+  o.error = [&](const std::string& m) { errors.push_back(m); };
+  const WorldDescription w = loadWorldString(xml, "old.world", kData, o);
+  ASSERT_EQ(errors.size(), 2u) << ::testing::PrintToString(errors);
+  EXPECT_EQ(errors[0], "old.world:2: <include filename='old.model'> has no <uri> (the filename "
+                       "attribute is SDF 1.3's, which sdformat no longer reads); the include is "
+                       "left out");
+  EXPECT_EQ(errors[1], "old.world:3: <include> has no <uri>; the include is left out");
+  ASSERT_EQ(w.models.size(), 2u);
+  EXPECT_EQ(w.models[0].links.size(), 1u);
+  EXPECT_NE(errorOfString(xml).find("has no <uri>"), std::string::npos);  // strict
+}
+
 TEST(WorldLoader, AbsoluteAndFileUris) {
   const std::string cube = kData + "meshes/unit_cube.stl";
   for (const std::string& uri : {cube, "file://" + cube}) {
@@ -403,6 +504,34 @@ TEST(WorldLoader, GazeboSavedWorldWithStateAndIncludes) {
   EXPECT_EQ(c.count("gazebo_saved.world:"), static_cast<int>(c.warnings.size()) - c.count("model.sdf:"))
       << ::testing::PrintToString(c.warnings);
   EXPECT_EQ(c.count("(point) is approximated"), 1);
+}
+
+// A joint of a model that names its nested models' links by their world-scoped names, the
+// model's own name first, as gazebo's pioneer2dx_camera.world does ("pioneer2dx::pioneer2dx::
+// chassis" in model 'pioneer2dx'): Gazebo finds them through World::BaseByName (Joint::Load).
+TEST(WorldLoader, AJointMayNameNestedLinksByTheirWorldScopedNames) {
+  Collected c;
+  WorldLoadOptions o = c.options();
+  o.error = [&c](const std::string& e) { c.warnings.push_back(e); };
+  const WorldDescription w = loadWorldString(
+      "<sdf version='1.5'><world name='w'><model name='robot'>"
+      "<model name='robot'><link name='chassis'><inertial><mass>1</mass></inertial></link></model>"
+      "<model name='camera'><pose>0.2 0 0.3 0 0 0</pose><link name='link'><inertial><mass>0.1</mass>"
+      "</inertial></link></model>\n"
+      "<joint name='camera_joint' type='revolute'><parent>robot::robot::chassis</parent>"
+      "<child>robot::camera::link</child><axis><xyz>0 0 1</xyz></axis></joint>\n"
+      "<joint name='bad' type='fixed'><parent>robot::robot::chassis</parent>"
+      "<child>other::camera::link</child></joint></model></world></sdf>",
+      "scoped.world", kData, o);
+  ASSERT_EQ(w.models.size(), 1u);
+  const ModelDescription& m = w.models[0];
+  ASSERT_EQ(m.joints.size(), 1u) << ::testing::PrintToString(c.warnings);
+  EXPECT_EQ(m.joints[0].name, "camera_joint");
+  EXPECT_EQ(m.joints[0].parent, "robot::chassis");
+  EXPECT_EQ(m.joints[0].child, "camera::link");
+  // Another model's scope is not this model's: that joint is left out, at its line.
+  EXPECT_EQ(c.count("scoped.world:3: model 'robot' joint 'bad': no link 'other::camera::link'"), 1)
+      << ::testing::PrintToString(c.warnings);
 }
 
 std::string errorWithModels(const std::string& xml) {
