@@ -54,10 +54,6 @@ double shortestAngularDistance(double from, double to) {
   return d - M_PI;
 }
 
-double clampSymmetric(double x, double limit) {
-  return limit > 0.0 ? std::min(std::max(x, -limit), limit) : x;
-}
-
 double clampToPositionLimits(const JointHandle& j, double x) {
   return j.has_position_limits ? std::min(std::max(x, j.lower), j.upper) : x;
 }

@@ -104,10 +104,11 @@ TEST(AckermannSteeringController, AngularZIsTheSteeringAngleAndOdometryIsTheBicy
   EXPECT_NEAR(c.odometry().x(), 0.6 / w * std::sin(w * span), 1e-9);
   EXPECT_NEAR(c.odometry().linear(), 0.6, 1e-9);
   EXPECT_NEAR(c.odometry().angular(), w, 1e-9);
-  // The steer target stays within the joint's limits; NaN is ignored.
+  // The steer target goes to the joint as it is (upstream's updateCommand sets
+  // front_steer_joint_.setCommand(angular)); the hardware enforces its limits. NaN is ignored.
   c.setCommand(0.6, 2.0);
   bot.step(t += dt, dt);
-  EXPECT_DOUBLE_EQ(bot.steer.command, 0.5);
+  EXPECT_DOUBLE_EQ(bot.steer.command, 2.0);
   EXPECT_FALSE(c.setCommand(std::numeric_limits<double>::quiet_NaN(), 0.0));
   // Timeout: both joints to rest.
   Bot quiet;

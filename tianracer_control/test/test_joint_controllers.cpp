@@ -105,7 +105,9 @@ TEST(EffortJointPositionController, PidOnPositionErrorWithTheErrorsChangeAsDeriv
   EXPECT_NEAR(car.left_hinge.command, 0.77, 1e-9);
 }
 
-TEST(EffortJointPositionController, ClampsTargetToLimitsAndEffortToLimit) {
+// Upstream's enforceJointLimits clamps the target to the URDF position limits; the effort goes
+// to the joint as the PID gives it (the hardware saturates it).
+TEST(EffortJointPositionController, ClampsTargetToLimitsAndPassesTheEffortOn) {
   Car car;
   auto& c = car.load(hingeSpec(2.0));
   ASSERT_TRUE(c.setCommand(5.0));
@@ -119,7 +121,7 @@ TEST(EffortJointPositionController, ClampsTargetToLimitsAndEffortToLimit) {
   auto& s = strong.load(hingeSpec(100.0));
   s.setCommand(0.5);
   strong.update(0.001);
-  EXPECT_EQ(strong.left_hinge.command, 10.0);  // 50 N m clamped to the effort limit
+  EXPECT_EQ(strong.left_hinge.command, 50.0);  // not clamped to the 10 N m effort limit here
 }
 
 TEST(EffortJointPositionController, RejectsNonFiniteCommands) {
@@ -156,14 +158,14 @@ TEST(EffortJointVelocityController, PidOnVelocityError) {
   auto& c = car.load(s);
   EXPECT_EQ(c.command(), 0.0);
   c.setCommand(10.0);
-  EXPECT_EQ(c.command(), 5.0);  // velocity limit
+  EXPECT_EQ(c.command(), 10.0);  // not clamped to the velocity limit, as upstream
   car.left_rear.velocity = 1.0;
   car.update(0.01);
-  EXPECT_NEAR(car.left_rear.command, 4.0, 1e-12);  // P = 4, D = 0 (first update)
+  EXPECT_NEAR(car.left_rear.command, 9.0, 1e-12);  // P = 9, D = 0 (first update)
   car.left_rear.velocity = 2.0;
   car.update(0.01);
-  // P = 3, D = 0.01 * (3 - 4) / 0.01 = -1
-  EXPECT_NEAR(car.left_rear.command, 2.0, 1e-12);
+  // P = 8, D = 0.01 * (8 - 9) / 0.01 = -1
+  EXPECT_NEAR(car.left_rear.command, 7.0, 1e-12);
 }
 
 TEST(PidControllers, StateIsSampledOnEveryTenthUpdateWithTheUnclampedOutput) {
@@ -188,8 +190,8 @@ TEST(PidControllers, StateIsSampledOnEveryTenthUpdateWithTheUnclampedOutput) {
   EXPECT_DOUBLE_EQ(s.process_value_dot, 0.25);
   EXPECT_DOUBLE_EQ(s.error, 0.2);
   EXPECT_DOUBLE_EQ(s.time_step, 0.002);
-  EXPECT_GT(s.command, 10.0);                  // P alone is 20 N m...
-  EXPECT_EQ(car.left_hinge.command, 10.0);     // ... the joint gets the 10 N m limit
+  EXPECT_GT(s.command, 10.0);                  // P alone is 20 N m, above the effort limit:
+  EXPECT_EQ(car.left_hinge.command, s.command);  // the hardware saturates it, not the controller
   EXPECT_EQ(s.gains.p, 100.0);
   EXPECT_EQ(s.gains.i_clamp_max, 0.5);
   for (int k = 1; k <= 9; ++k) car.update(0.002);
@@ -233,7 +235,9 @@ TEST(PidControllers, StateIsSampledOnEveryTenthUpdateWithTheUnclampedOutput) {
   EXPECT_EQ(dynamic_cast<const PidStateSource*>(&fc), nullptr);
 }
 
-TEST(ForwardCommandController, VelocityPassesThroughClamped) {
+// Forwarding controllers pass commands on as they are (upstream's ForwardCommandController);
+// the hardware enforces the joint's limits (tianracer_sim's test_sim_hw_sim).
+TEST(ForwardCommandController, VelocityPassesThrough) {
   Car car;
   auto& c = car.load(spec("w", "velocity_controllers/JointVelocityController",
                           "left_rear_wheel_joint"));
@@ -244,10 +248,10 @@ TEST(ForwardCommandController, VelocityPassesThroughClamped) {
   EXPECT_EQ(car.left_rear.command, 31.25);
   ASSERT_TRUE(c.setCommand(1e9));
   car.update(0.001);
-  EXPECT_EQ(car.left_rear.command, 100.0);
+  EXPECT_EQ(car.left_rear.command, 1e9);  // beyond the velocity limit 100: passed on
   EXPECT_FALSE(c.setCommand(kNan));
   car.update(0.001);
-  EXPECT_EQ(car.left_rear.command, 100.0);
+  EXPECT_EQ(car.left_rear.command, 1e9);
 }
 
 TEST(ForwardCommandController, VelocityWithNoLimitIsNotClamped) {
@@ -260,7 +264,7 @@ TEST(ForwardCommandController, VelocityWithNoLimitIsNotClamped) {
   EXPECT_EQ(car.left_rear.command, 1e6);
 }
 
-TEST(ForwardCommandController, PositionStartsAtCurrentPositionAndClamps) {
+TEST(ForwardCommandController, PositionStartsAtCurrentPositionAndPassesOn) {
   Car car;
   car.pos_joint.position = 0.7;
   auto& c = car.load(spec("p", "position_controllers/JointPositionController", "pos_joint"));
@@ -268,16 +272,16 @@ TEST(ForwardCommandController, PositionStartsAtCurrentPositionAndClamps) {
   EXPECT_EQ(car.pos_joint.command, 0.7);
   c.setCommand(3.0);
   car.update(0.001);
-  EXPECT_EQ(car.pos_joint.command, 2.0);
+  EXPECT_EQ(car.pos_joint.command, 3.0);  // past the upper limit 2: passed on
 }
 
-TEST(ForwardCommandController, EffortClampsToEffortLimit) {
+TEST(ForwardCommandController, EffortPassesOn) {
   Car car;
   auto& c = car.load(spec("e", "effort_controllers/JointEffortController",
                           "left_steering_hinge_joint"));
   c.setCommand(-50.0);
   car.update(0.001);
-  EXPECT_EQ(car.left_hinge.command, -10.0);
+  EXPECT_EQ(car.left_hinge.command, -50.0);  // beyond the effort limit 10: passed on
 }
 
 TEST(JointStateController, DueAtPublishRateInSimTime) {

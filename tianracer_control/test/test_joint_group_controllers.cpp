@@ -53,7 +53,7 @@ const std::vector<std::string> kHinges = {"left_steering_hinge_joint",
 
 }  // namespace
 
-TEST(JointGroupController, ForwardsOneCommandPerJointClampedToItsLimit) {
+TEST(JointGroupController, ForwardsOneCommandPerJointAsItIs) {
   Car car;
   JointGroupController& c =
       car.load(groupSpec("wheels", JointGroupController::kVelocityType, kWheels));
@@ -61,7 +61,7 @@ TEST(JointGroupController, ForwardsOneCommandPerJointClampedToItsLimit) {
   EXPECT_EQ(c.setCommands({3.0, -500.0}), "");
   car.set.update(0.01);
   EXPECT_EQ(car.left_rear.command, 3.0);
-  EXPECT_EQ(car.right_rear.command, -100.0);  // velocity_limit
+  EXPECT_EQ(car.right_rear.command, -500.0);  // beyond the velocity limit: the hardware's
 }
 
 TEST(JointGroupController, CommandOfTheWrongSizeIsRefusedWithUpstreamsMessage) {
@@ -82,15 +82,15 @@ TEST(JointGroupController, PositionGroupHoldsTheCurrentPositionsOnStart) {
   Car car;
   car.left_hinge.interface = car.right_hinge.interface = JointHandle::Interface::kPosition;
   car.left_hinge.position = 0.2;
-  car.right_hinge.position = 0.9;  // beyond the 0.6 limit: held at the limit
+  car.right_hinge.position = 0.9;  // beyond the 0.6 limit: held where it is, as upstream
   JointGroupController& c =
       car.load(groupSpec("steer", JointGroupController::kPositionType, kHinges));
-  EXPECT_EQ(c.commands(), (std::vector<double>{0.2, 0.6}));
+  EXPECT_EQ(c.commands(), (std::vector<double>{0.2, 0.9}));
   car.set.update(0.01);
   EXPECT_EQ(car.left_hinge.command, 0.2);
   EXPECT_EQ(c.setCommands({-1.0, 0.3}), "");
   car.set.update(0.01);
-  EXPECT_EQ(car.left_hinge.command, -0.6);
+  EXPECT_EQ(car.left_hinge.command, -1.0);  // position_controllers' group forwards it
   EXPECT_EQ(car.right_hinge.command, 0.3);
 }
 
@@ -108,13 +108,15 @@ TEST(JointGroupController, EffortPositionRunsOnePidPerJointWithItsOwnGains) {
   car.right_hinge.position = 0.1;                  // error 0.2 -> 0.1 in 0.01 s
   car.set.update(0.01);
   EXPECT_DOUBLE_EQ(car.right_hinge.command, 2.0 * 0.1 + 0.5 * (0.1 - 0.2) / 0.01);
-  // Efforts clamped to the joint's effort limit (10).
-  ASSERT_EQ(c.setCommands({0.6, 0.0}), "");
+  // Targets clamped to the position limits (upstream's enforceJointLimits: 0.9 -> 0.6); the
+  // effort is the PID's, not clamped to the joint's effort limit (the hardware's).
+  ASSERT_EQ(c.setCommands({0.9, 0.0}), "");
+  EXPECT_EQ(c.commands()[0], 0.6);
   car.set.update(0.01);
   EXPECT_DOUBLE_EQ(car.left_hinge.command, 6.0);
   car.left_hinge.effort_limit = 1.0;
   car.set.update(0.01);
-  EXPECT_DOUBLE_EQ(car.left_hinge.command, 1.0);
+  EXPECT_DOUBLE_EQ(car.left_hinge.command, 6.0);
 }
 
 TEST(JointGroupController, ConfigurationErrors) {
@@ -195,9 +197,9 @@ TEST(VelocityJointPositionController, VelocityFromThePositionError) {
   car.set.update(0.01);
   EXPECT_DOUBLE_EQ(car.left_rear.command, 4.0 * (1.0 - 0.25));
   EXPECT_FALSE(c.setCommand(std::nan("")));
-  car.left_rear.velocity_limit = 1.0;
+  car.left_rear.velocity_limit = 1.0;  // the velocity is the PID's; the hardware limits it
   car.set.update(0.01);
-  EXPECT_DOUBLE_EQ(car.left_rear.command, 1.0);
+  EXPECT_DOUBLE_EQ(car.left_rear.command, 3.0);
   // A continuous joint takes the shorter way round.
   car.right_rear.position = 3.0;
   ControllerSpec w = spec("wrap", "velocity_controllers/JointPositionController",

@@ -2,6 +2,7 @@
 // the test integrates (position joints follow their command, velocity joints integrate it,
 // effort joints are unit inertias): trajectories followed, goal outcomes, preemption, cancel,
 // bad input.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -58,15 +59,18 @@ struct Arm {
   void load(const ControllerSpec& s) {
     jtc = &dynamic_cast<JointTrajectoryController&>(set.load(s, joints));
   }
-  // One control period: the controller, then the arm's dynamics.
+  // One control period: the controller, then the arm's dynamics. A position joint stops at its
+  // limits, as the hardware holds it (the controller passes the command on as it is).
   void step() {
     set.update(kDt);
     for (JointHandle* j : {&shoulder, &elbow}) {
       switch (j->interface) {
-        case JointHandle::Interface::kPosition:
-          j->velocity = (j->command - j->position) / kDt;
-          j->position = j->command;
+        case JointHandle::Interface::kPosition: {
+          const double reached = std::clamp(j->command, j->lower, j->upper);
+          j->velocity = (reached - j->position) / kDt;
+          j->position = reached;
           break;
+        }
         case JointHandle::Interface::kVelocity:
           j->velocity = j->command;
           j->position += j->velocity * kDt;
@@ -206,9 +210,11 @@ TEST(JointTrajectoryController, GoalToleranceViolationAbortsAfterGoalTime) {
   s.params["constraints"]["goal_time"] = 0.2;
   s.params["constraints"]["shoulder"]["goal"] = 0.01;
   arm.load(s);
-  // 2.5 rad is past the joint's upper limit (2): the command is clamped, the goal not reached
+  // 2.5 rad is past the joint's upper limit (2): the command goes on as it is (upstream), the
+  // joint stops at the limit, the goal is not reached
   ASSERT_TRUE(arm.jtc->startGoal(4, twoPoints(1.0, 0.0, 2.5, 0.0), GoalTolerances()).ok());
   arm.run(2.15);
+  EXPECT_DOUBLE_EQ(arm.shoulder.command, 2.5);
   EXPECT_TRUE(arm.events.empty());  // within goal_time
   arm.run(0.1);
   ASSERT_EQ(arm.events.size(), 1u);

@@ -107,9 +107,9 @@ class SingleJointController : public Controller {
 /// angles::shortest_angular_distance: (to - from) wrapped into [-pi, pi).
 double shortestAngularDistance(double from, double to);
 
-/// x clamped to [-limit, limit]; limit <= 0 means no limit.
-double clampSymmetric(double x, double limit);
-/// x clamped to the joint's position limits, if it has any.
+/// x clamped to the joint's position limits, if it has any: the enforceJointLimits of
+/// effort_controllers' JointPositionController and JointGroupPositionController and of
+/// velocity_controllers' JointPositionController, the only upstream controllers that clamp.
 double clampToPositionLimits(const JointHandle& joint, double x);
 
 }  // namespace tianracer_control

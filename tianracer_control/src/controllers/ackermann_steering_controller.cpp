@@ -97,7 +97,7 @@ bool AckermannSteeringController::updateOdometry(double time) {
 
 void AckermannSteeringController::drive(double linear, double angular) {
   rear_->command = linear / params_.wheel_radius;  // omega = linear_vel / radius
-  steer_->command = clampToPositionLimits(*steer_, angular);  // DefaultRobotHWSim's limits
+  steer_->command = angular;  // the hardware (DefaultRobotHWSim) enforces the joint's limits
 }
 
 }  // namespace tianracer_control

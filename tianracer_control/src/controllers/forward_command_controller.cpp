@@ -18,25 +18,13 @@ template std::unique_ptr<Controller> ForwardCommandController::create<
 template std::unique_ptr<Controller> ForwardCommandController::create<
     JointHandle::Interface::kPosition>(ControllerContext&);
 
-double ForwardCommandController::clamp(double value) const {
-  switch (joint_->interface) {
-    case JointHandle::Interface::kEffort:
-      return clampSymmetric(value, joint_->effort_limit);
-    case JointHandle::Interface::kVelocity:
-      return clampSymmetric(value, joint_->velocity_limit);
-    case JointHandle::Interface::kPosition:
-      return clampToPositionLimits(*joint_, value);
-  }
-  return value;
-}
-
 void ForwardCommandController::starting(double) {
-  command_ = joint_->interface == JointHandle::Interface::kPosition ? clamp(joint_->position) : 0.0;
+  command_ = joint_->interface == JointHandle::Interface::kPosition ? joint_->position : 0.0;
 }
 
 bool ForwardCommandController::setCommand(double value) {
   if (!std::isfinite(value)) return false;
-  command_ = clamp(value);
+  command_ = value;
   return true;
 }
 

@@ -127,7 +127,7 @@ void GripperActionController::update(double dt) {
     computed_command_ = std::clamp(pid_->computeCommand(error_position, error_velocity, dt), -m, m);
     joint_->command = computed_command_;
   } else {
-    joint_->command = clampToPositionLimits(*joint_, target_);
+    joint_->command = target_;  // upstream's position adapter; the hardware enforces the limits
     computed_command_ = max_effort_;
   }
 }

@@ -76,9 +76,9 @@ bool JointGroupController::positionTargets() const {
 }
 
 double JointGroupController::clamp(const JointHandle& j, double value) const {
-  if (positionTargets()) return clampToPositionLimits(j, value);
-  return clampSymmetric(value, j.interface == JointHandle::Interface::kVelocity ? j.velocity_limit
-                                                                              : j.effort_limit);
+  // Only effort_controllers/JointGroupPositionController clamps its targets to the position
+  // limits (its enforceJointLimits); the forwarding groups pass commands on as they are.
+  return pids_.empty() ? value : clampToPositionLimits(j, value);
 }
 
 void JointGroupController::starting(double) {
@@ -98,8 +98,7 @@ void JointGroupController::update(double dt) {
     if (pids_.empty()) {
       j.command = commands_[i];
     } else {
-      j.command = clampSymmetric(pids_[i].computeCommand(positionError(j, commands_[i]), dt),
-                                 j.effort_limit);
+      j.command = pids_[i].computeCommand(positionError(j, commands_[i]), dt);
     }
   }
 }
@@ -141,7 +140,7 @@ void VelocityJointPositionController::starting(double) {
 void VelocityJointPositionController::update(double dt) {
   const double error = positionError(*joint_, command_);
   const double velocity = pid_.computeCommand(error, dt);
-  joint_->command = clampSymmetric(velocity, joint_->velocity_limit);
+  joint_->command = velocity;  // upstream sets the PID's output; the hardware limits it
   recordPidState(command_, joint_->position, joint_->velocity, error, dt, velocity, pid_.gains());
 }
 

@@ -231,15 +231,12 @@ void JointTrajectoryController::update(double dt) {
     JointHandle& j = *joints_[i];
     switch (j.interface) {
       case JointHandle::Interface::kPosition:
-        j.command = clampToPositionLimits(j, desired_.position[i]);
+        j.command = desired_.position[i];  // the hardware enforces the joint's limits
         break;
       case JointHandle::Interface::kVelocity:
       case JointHandle::Interface::kEffort: {
-        const double u = desired_.velocity[i] * velocity_ff_[i] +
-                         pids_[i].computeCommand(error_.position[i], error_.velocity[i], dt);
-        j.command = clampSymmetric(u, j.interface == JointHandle::Interface::kVelocity
-                                          ? j.velocity_limit
-                                          : j.effort_limit);
+        j.command = desired_.velocity[i] * velocity_ff_[i] +
+                    pids_[i].computeCommand(error_.position[i], error_.velocity[i], dt);
         break;
       }
     }

@@ -188,7 +188,10 @@ void Simulation::write(SimRobot& robot) {
   for (size_t k = 0; k < robot.handles.size(); ++k) {
     tc::JointHandle& h = robot.handles[k];
     const int j = robot.handle_joint[k];
-    if (!robot.claimed[k] || !std::isfinite(h.command)) continue;  // NaN never reaches Bullet
+    // NaN never reaches the hardware or Bullet. An infinite command (a PID's output overflowing)
+    // goes to the hardware, whose saturation bounds it as DefaultRobotHWSim's would; whatever
+    // is still not finite after it is not applied.
+    if (!robot.claimed[k] || std::isnan(h.command)) continue;
     const JointDrive d = robot.hw_sim.write(k, h, period);
     if (!std::isfinite(d.value)) continue;
     switch (d.mode) {

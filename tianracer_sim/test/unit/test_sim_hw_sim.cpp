@@ -197,6 +197,25 @@ TEST_F(HwSim, AJointLimitsParameterOverridesTheUrdf) {
   EXPECT_TRUE(warnings_.empty() || !warned("joint_limits")) << allWarnings();
 }
 
+// The controllers pass commands past the joint's limits on as they are (as upstream's); the
+// hardware's saturation handles limit them, as DefaultRobotHWSim's do.
+TEST_F(HwSim, CommandsPastTheUrdfLimitsAreLimitedByTheHardwareNotTheControllers) {
+  add();
+  command("spinner_controller", 1e9);  // URDF velocity 4
+  command("hinge_controller", 5.0);    // URDF upper 1
+  run(0.002);
+  const tc::Controller* spinner = robot_->controllers.find("spinner_controller");
+  ASSERT_NE(spinner, nullptr);
+  EXPECT_DOUBLE_EQ(spinner->command(), 1e9);  // the controller's own command: raw
+  EXPECT_DOUBLE_EQ(robot_->handles[handle("spinner")].command, 4.0);
+  // PositionJointSaturationHandle: within the URDF velocity (2 rad/s) of its last command
+  EXPECT_NEAR(robot_->handles[handle("hinge")].command, 2.0 * 0.002, 1e-12);
+  run(2.0);
+  EXPECT_DOUBLE_EQ(robot_->handles[handle("hinge")].command, 1.0);  // then the position limit
+  EXPECT_NEAR(velocity("spinner"), 4.0, 0.05);
+  EXPECT_NEAR(position("hinge"), 1.0, 2e-3);
+}
+
 TEST(RobotHwSimWrite, AVelocityCommandIsSaturatedAtTheUrdfVelocity) {
   // (our velocity controllers clamp too; the hardware does it whatever the controller)
   RobotModel model = loadRobotModel(kUrdf, "hw.urdf", LoadOptions());

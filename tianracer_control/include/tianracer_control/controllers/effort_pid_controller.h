@@ -41,8 +41,9 @@ class EffortPidController : public SingleJointController, public PidStateSource 
     pid_.reset();
   }
   void update(double dt) override {
+    // Upstream sets the PID's output as it is; the hardware saturates it to the effort limit.
     const double effort = derived().pidOutput(dt);
-    joint_->command = clampSymmetric(effort, joint_->effort_limit);
+    joint_->command = effort;
     recordPidState(command_, derived().processValue(), derived().processValueDot(),
                    derived().pidError(), dt, effort, pid_.gains());
   }

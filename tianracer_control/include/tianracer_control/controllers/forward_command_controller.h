@@ -1,13 +1,12 @@
 // ros_controllers' forward_command_controller::ForwardCommandController: the command goes to the
-// joint as it is, clamped to the URDF limit of the joint's interface. As in ros_controllers, one
-// class serves three types (its JointEffortController, JointVelocityController and
-// JointPositionController are typedefs of the template over the hardware interface):
-//   effort_controllers/JointEffortController      effort, clamped to +-effort_limit; starts at 0
+// joint as it is (the hardware enforces the joint's limits, as gazebo_ros_control's
+// DefaultRobotHWSim does). As in ros_controllers, one class serves three types (its
+// JointEffortController, JointVelocityController and JointPositionController are typedefs of the
+// template over the hardware interface):
+//   effort_controllers/JointEffortController      effort; starts at 0
 //   velocity_controllers/JointVelocityController  velocity target of the joint motor (limited by
-//                                                 the URDF effort), clamped to +-velocity_limit;
-//                                                 starts at 0
-//   position_controllers/JointPositionController  position, clamped to the URDF limits; starts at
-//                                                 the current position
+//                                                 the URDF effort); starts at 0
+//   position_controllers/JointPositionController  position; starts at the current position
 #ifndef TIANRACER_CONTROL_CONTROLLERS_FORWARD_COMMAND_CONTROLLER_H
 #define TIANRACER_CONTROL_CONTROLLERS_FORWARD_COMMAND_CONTROLLER_H
 
@@ -31,9 +30,6 @@ class ForwardCommandController : public SingleJointController {
   void starting(double time) override;
   void update(double dt) override;
   bool setCommand(double value) override;
-
- private:
-  double clamp(double value) const;
 };
 
 }  // namespace tianracer_control
