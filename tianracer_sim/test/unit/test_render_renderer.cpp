@@ -314,6 +314,34 @@ TEST(RenderMaterials, StockValues) {
   EXPECT_FALSE(findGazeboMaterial("Gazebo/NoSuchThing"));
 }
 
+// The rest of gazebo.material's visible materials (Gazebo's own worlds use Gazebo/Grass,
+// Gazebo/Runway, Gazebo/CoM, Gazebo/GreyTransparent): a glow is its parent's colour, a
+// transparent one its (opaque) colour, a textured one its colours times the texture's mean.
+TEST(RenderMaterials, EveryVisibleStockMaterialIsKnown) {
+  for (const char* n :
+       {"Gazebo/WhiteGlow", "Gazebo/RedGlow", "Gazebo/GreenGlow", "Gazebo/BlueGlow", "Gazebo/YellowGlow",
+        "Gazebo/PurpleGlow", "Gazebo/TurquoiseGlow", "Gazebo/TurquoiseGlowOutline",
+        "Gazebo/RedTransparent", "Gazebo/GreenTransparent", "Gazebo/BlueTransparent",
+        "Gazebo/DarkMagentaTransparent", "Gazebo/GreyTransparent", "Gazebo/BlackTransparent",
+        "Gazebo/YellowTransparent", "Gazebo/OrangeTransparent", "Gazebo/LightOn", "Gazebo/LightOff",
+        "Gazebo/LightBlueLaser", "Gazebo/BlueLaser", "Gazebo/CoM", "Gazebo/JointAnchor",
+        "Gazebo/CeilingTiled", "Gazebo/PaintedWall", "Gazebo/PioneerBody", "Gazebo/Pioneer2Body",
+        "Gazebo/Road", "Gazebo/Residential", "Gazebo/Tertiary", "Gazebo/Pedestrian", "Gazebo/Footway",
+        "Gazebo/Motorway", "Gazebo/Lanes_6", "Gazebo/Trunk", "Gazebo/Lanes_4", "Gazebo/Primary",
+        "Gazebo/Lanes_2", "Gazebo/Secondary", "Gazebo/Lane_1", "Gazebo/Steps", "Gazebo/Runway",
+        "Gazebo/Grass"}) {
+    EXPECT_TRUE(findGazeboMaterial(n)) << n;
+  }
+  EXPECT_EQ(findGazeboMaterial("Gazebo/GreenGlow")->material.diffuse,
+            findGazeboMaterial("Gazebo/Green")->material.diffuse);
+  EXPECT_EQ(findGazeboMaterial("Gazebo/GreenGlow")->material.name, "Gazebo/GreenGlow");
+  EXPECT_EQ(findGazeboMaterial("Gazebo/RedTransparent")->material.diffuse.head<3>(),
+            Eigen::Vector3f(1, 0, 0));
+  const auto grass = findGazeboMaterial("Gazebo/Grass");  // grass.jpg's mean, ambient 0.5
+  EXPECT_GT(grass->material.diffuse[1], grass->material.diffuse[0]);  // green
+  EXPECT_FLOAT_EQ(grass->material.ambient[1], 0.24f);
+}
+
 }  // namespace
 }  // namespace tianracer_sim
 
