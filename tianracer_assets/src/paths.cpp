@@ -113,9 +113,13 @@ bool existsAs(const std::string& path, UriResolver::Want want) {
   }
 }
 
-/// model://<model>/<path> -> "<model>/<path>"; throws for a URI without both parts.
+/// model://<model>/<path> -> "<model>/<path>"; throws for a URI without both parts. Slashes
+/// after the scheme are dropped: gazebo/common/SystemPaths.cc FindFileURI appends the rest to
+/// each model folder with boost::filesystem's operator/, which appends "/x" too, so
+/// model:///table_marble/meshes/... (osrf/gazebo_models' table_marble) is found.
 std::string modelRest(const std::string& uri, UriResolver::Want want) {
-  const std::string rest = uri.substr(8);
+  std::string rest = uri.substr(8);
+  rest.erase(0, std::min(rest.size(), rest.find_first_not_of('/')));
   const auto slash = rest.find('/');
   const bool folder = want != UriResolver::Want::kFile;
   if (rest.empty() || slash == 0 ||

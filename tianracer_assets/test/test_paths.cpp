@@ -96,6 +96,9 @@ TEST(UriResolver, ModelPath) {
   EXPECT_THAT(error(r, "model://no_such_model/meshes/x.dae"),
               HasSubstr("/nonexistent/models, " + data));
   EXPECT_THAT(error(r, "model://"), HasSubstr("is not model://<model>/<path>"));
+  EXPECT_THAT(error(r, "model:///"), HasSubstr("is not model://<model>/<path>"));
+  // Gazebo's FindFileURI appends "/meshes_model/..." to each folder: a third slash is found.
+  EXPECT_EQ(r.resolve("model:///meshes_model/meshes/cube.stl"), data + "/meshes_model/meshes/cube.stl");
 }
 
 TEST(UriResolver, ModelPathFromTheEnvironmentInGazebosOrder) {
