@@ -116,8 +116,8 @@ void RobotHwSim::init(const RobotModel& model, const std::vector<tc::JointHandle
     bool has_limits = false, has_soft = false;
     urdf::JointConstSharedPtr uj = model.urdf ? model.urdf->getJoint(h.name) : nullptr;
     if (uj) {
-      j.revolute = uj->type == urdf::Joint::REVOLUTE;
-      j.continuous = uj->type == urdf::Joint::CONTINUOUS;
+      if (uj->type == urdf::Joint::REVOLUTE) j.type = Joint::Type::kRevolute;
+      if (uj->type == urdf::Joint::CONTINUOUS) j.type = Joint::Type::kContinuous;
       if (uj->limits) {
         has_limits = true;
         j.limits.has_position_limits =
@@ -152,14 +152,7 @@ void RobotHwSim::init(const RobotModel& model, const std::vector<tc::JointHandle
     }
 
     j.effort_limit = kUnbounded;
-    j.lower = -kUnbounded;
-    j.upper = kUnbounded;
     if (has_limits) {
-      if (j.limits.has_position_limits) {
-        j.has_position_limits = true;
-        j.lower = j.limits.min_position;
-        j.upper = j.limits.max_position;
-      }
       if (j.limits.has_effort_limits) {
         j.has_effort_limit = true;
         j.effort_limit = j.limits.max_effort;
@@ -309,9 +302,10 @@ double positionPidError(const RobotHwSim::Joint& joint, double position, double 
     if (d < 0.0) d += 2.0 * M_PI;
     return d - M_PI;
   };
-  if (joint.continuous) return shortest(position, command);
-  if (joint.revolute) {
-    if (joint.has_position_limits && joint.upper - joint.lower < 2.0 * M_PI)
+  if (joint.type == RobotHwSim::Joint::Type::kContinuous) return shortest(position, command);
+  if (joint.type == RobotHwSim::Joint::Type::kRevolute) {
+    const tc::JointLimits& l = joint.limits;
+    if (l.has_position_limits && l.max_position - l.min_position < 2.0 * M_PI)
       return command - position;
     return shortest(position, command);
   }

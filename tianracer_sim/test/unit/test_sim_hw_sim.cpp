@@ -361,13 +361,13 @@ TEST(RobotHwSimWrite, TheEStopWritesNoEffortAndNoVelocity) {
 
 TEST(RobotHwSimWrite, PositionPidErrors) {
   RobotHwSim::Joint continuous;
-  continuous.continuous = true;
+  continuous.type = RobotHwSim::Joint::Type::kContinuous;
   EXPECT_NEAR(positionPidError(continuous, 3.0, -3.0), 2.0 * M_PI - 6.0, 1e-12);
   RobotHwSim::Joint revolute;
-  revolute.revolute = true;
-  revolute.has_position_limits = true;
-  revolute.lower = -3.1;
-  revolute.upper = 3.1;
+  revolute.type = RobotHwSim::Joint::Type::kRevolute;
+  revolute.limits.has_position_limits = true;
+  revolute.limits.min_position = -3.1;
+  revolute.limits.max_position = 3.1;
   // within the limits the way round through pi is closed: the plain difference
   EXPECT_NEAR(positionPidError(revolute, 3.0, -3.0), -6.0, 1e-12);
   RobotHwSim::Joint prismatic;

@@ -67,9 +67,9 @@ class RobotHwSim {
     Limits limits_kind = Limits::kNone;
     tianracer_control::JointLimits limits;
     tianracer_control::SoftJointLimits soft;
-    bool revolute = false, continuous = false;
-    double lower = 0.0, upper = 0.0;  // position limits for the PID's angular error
-    bool has_position_limits = false;
+    /// The URDF joint's type, for the PID's angular error (its position limits: `limits`).
+    enum class Type { kOther, kRevolute, kContinuous };
+    Type type = Type::kOther;
     /// DRS's effort limit: the limits' max_effort, unbounded (DBL_MAX) without one.
     double effort_limit = 0.0;
     bool has_effort_limit = false;
