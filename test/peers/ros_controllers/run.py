@@ -75,11 +75,14 @@ def classify(gitdir, ref, pkg):
     return hw, gtests, tests, na
 
 
-def harness_files(pkg, gtests, test_dirs):
+def harness_files(pkg, gtests, test_dirs, ws_deps=()):
+    """ws_deps: packages built in the same workspace (realtime_tools): declared so catkin configures
+    them first and find_package finds them."""
     pkgxml = ('<?xml version="1.0"?>\n<package format="2">\n  <name>%s</name>\n  <version>0.0.0</version>\n'
               '  <description>ros_controllers test nodes only (tianracer peer harness)</description>\n'
               '  <maintainer email="none@example.com">harness</maintainer>\n  <license>BSD</license>\n'
-              '  <buildtool_depend>catkin</buildtool_depend>\n</package>\n' % pkg)
+              '  <buildtool_depend>catkin</buildtool_depend>\n%s</package>\n'
+              % (pkg, ''.join('  <depend>%s</depend>\n' % d for d in ws_deps)))
     lines = ['cmake_minimum_required(VERSION 3.0.2)', 'project(%s)' % pkg,
              'find_package(catkin REQUIRED)', 'catkin_package()',
              'add_compile_options(-std=c++17 -DBOOST_BIND_GLOBAL_PLACEHOLDERS)',
@@ -138,6 +141,10 @@ def main():
     ap.add_argument('--list', action='store_true', help='list the tests and their class, run nothing')
     ap.add_argument('--limit', type=int, default=240, help='wall-clock cap per test file, seconds')
     ap.add_argument('--no-build', action='store_true')
+    ap.add_argument('--realtime-tools', metavar='GITDIR',
+                    help='bare git dir of github: ros-controls/realtime_tools (Debian 12 has none; the '
+                         "joint_trajectory_controller test nodes include its headers): built in WS's own workspace")
+    ap.add_argument('--realtime-tools-ref', default='noetic-devel')
     a = ap.parse_args()
 
     up = os.path.abspath(a.upstream)
@@ -189,6 +196,20 @@ def main():
         sys.exit('exported files differ from upstream: ' + ' '.join(bad))
     print('==> %s %s (%s): %d test files exported, sha256 equal to their git blobs'
           % (up, a.ref, commit[:12], len(exported)))
+    ws_deps = []
+    if a.realtime_tools:
+        # A test peer like the test nodes: upstream's package as it is, built in this throwaway
+        # workspace only (its library and headers), never installed nor committed.
+        rt = os.path.abspath(a.realtime_tools)
+        rt_commit = git(rt, 'rev-parse', a.realtime_tools_ref + '^{commit}').strip()
+        dest = os.path.join(ws, 'src', 'realtime_tools')
+        os.makedirs(dest)
+        archive = subprocess.Popen(['git', '--git-dir=' + rt, 'archive', rt_commit], stdout=subprocess.PIPE)
+        subprocess.check_call(['tar', '-x', '-C', dest], stdin=archive.stdout)
+        if archive.wait():
+            sys.exit('git archive of realtime_tools failed')
+        ws_deps.append('realtime_tools')
+        print('==> realtime_tools %s (%s) from %s, built in %s' % (a.realtime_tools_ref, rt_commit[:12], rt, ws))
 
     for p in pkgs:
         hw, gtests, _, _ = plan[p]
@@ -196,7 +217,7 @@ def main():
                             if f.startswith(p + '/test/') and f.endswith('.h')} | {'test'})
         if os.path.isdir(os.path.join(ws, 'src', p, 'include')):
             test_dirs.append('include')
-        pkgxml, cml = harness_files(p, gtests, test_dirs)
+        pkgxml, cml = harness_files(p, gtests, test_dirs, ws_deps)
         for name, text in (('package.xml', pkgxml), ('CMakeLists.txt', cml)):
             path = os.path.join(ws, 'src', p, name)
             assert not os.path.exists(path)
@@ -224,6 +245,8 @@ def main():
                                  stdout=log, stderr=subprocess.STDOUT, env=env)
             if rc == 0:
                 targets = [n for p in pkgs for n in plan[p][1] if any(sel(t) for t in plan[p][2])]
+                # The test nodes link realtime_tools' library by its devel path, not its target.
+                targets = ws_deps + targets
                 subprocess.call(['make', '-C', os.path.join(ws, 'build'), '-k', '-j2'] + targets,
                                 stdout=log, stderr=subprocess.STDOUT, env=env)
         if rc:

@@ -203,11 +203,15 @@ void Simulation::write(SimRobot& robot) {
         pr.setJointVelocityTarget(j, d.value, d.max_effort);
         break;
       case JointDrive::Mode::kPosition: {
-        // A position servo: the motor drives the joint to the target within one control
-        // period, limited by the joint's velocity limit and effort.
-        double omega = (d.value - h.position) / period;
-        if (h.velocity_limit > 0.0) omega = std::clamp(omega, -h.velocity_limit, h.velocity_limit);
-        pr.setJointVelocityTarget(j, omega, d.max_effort);
+        // DefaultRobotHWSim's writeSim without PID gains: SetPosition(0, command, true), the
+        // joint put at the command (within its limits: Joint::SetPositionMaximal) with the
+        // world velocities kept, so the joint's velocity stays as the physics left it. No
+        // motor: a servo capped at the effort limit limit-cycled around the target (upstream's
+        // steer bot: +-0.25 rad about a 0.314 rad steer, docs/ros_controllers.md).
+        const JointInfo& info = pr.joints()[j];
+        const double q = info.has_position_limits ? std::clamp(d.value, info.lower, info.upper) : d.value;
+        pr.clearJointCommand(j);
+        pr.setJointState(j, q, pr.jointVelocity(j));
         break;
       }
     }

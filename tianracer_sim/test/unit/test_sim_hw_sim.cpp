@@ -4,6 +4,7 @@
 // heavy base with four joints about z (gravity does not load them): a prismatic slider
 // (effort interface, soft limits), a continuous spinner (velocity, limited), a revolute hinge
 // (position) and a continuous free wheel (velocity, no <limit>).
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -333,6 +334,28 @@ TEST_F(HwSim, AWheelWithoutAnEffortLimitFollowsItsCommandAtOnce) {
   run(0.01);
   // 50 rad/s in 10 ms of a 0.01 kg m^2 wheel takes 50 N m: beyond the old 10 N m cap
   EXPECT_NEAR(velocity("free_wheel"), 50.0, 0.5);
+}
+
+TEST_F(HwSim, APositionJointWithoutGainsIsPutAtItsCommandAsDefaultRobotHwSimSetsIt) {
+  // DRS writeSim: SetPosition(0, command, true), no motor. The command goes through the
+  // saturation handle (2 rad/s from the previous command), so the hinge ramps at 2 rad/s and
+  // then sits exactly on 0.5, never past it. The servo it replaced (a velocity motor capped at
+  // the effort limit) overshot and circled the target by up to its stopping distance.
+  add();
+  command("hinge_controller", 0.5);
+  double highest = -1.0;
+  for (int i = 0; i < 1000; ++i) {  // 1 s
+    run(0.001);
+    highest = std::max(highest, position("hinge"));
+    if (i == 99) EXPECT_NEAR(position("hinge"), 0.2, 0.003) << "ramp at 2 rad/s";
+  }
+  EXPECT_LE(highest, 0.5 + 1e-6);
+  EXPECT_NEAR(position("hinge"), 0.5, 1e-6);
+  EXPECT_NEAR(velocity("hinge"), 0.0, 1e-4);  // the base under it settles
+  // beyond the URDF limit (1.0): the saturation handle clamps, the joint sits on the limit
+  command("hinge_controller", 3.0);
+  run(1.0);
+  EXPECT_NEAR(position("hinge"), 1.0, 1e-6);
 }
 
 TEST(RobotHwSimWrite, TheEStopWritesNoEffortAndNoVelocity) {
