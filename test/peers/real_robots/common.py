@@ -13,8 +13,9 @@ import time
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', '..'))
 # The lines of a launch's log that say what is not simulated, left out or failed.
-NOTE = re.compile(r'not simulated|not supported|is ignored|; ignored|left out|not read|'
-                  r'cannot launch node|ERROR|Error|no gazebo_ros plugin|not one of', re.I)
+NOTE = re.compile(r'not simulated|not supported|ignored|left out|not read|with differences|'
+                  r'falling back|warning:|cannot launch node|ERROR|Error|no gazebo_ros plugin|'
+                  r'not one of', re.I)
 
 
 def git(gitdir, *args):
