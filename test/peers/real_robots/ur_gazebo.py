@@ -80,7 +80,16 @@ def client(model):
     first = states.messages()[0]
     print('first /joint_states (sim %.3f s): velocities %s' % (
         first.header.stamp.to_sec(), ' '.join('%.2f' % v for v in first.velocity)))
-    wait_for(lambda: all(abs(v) < rest for v in states.latest().velocity), 'the arm at rest', 120)
+    try:
+        wait_for(lambda: all(abs(v) < rest for v in states.latest().velocity), 'the arm at rest',
+                 120)
+    except AssertionError as e:
+        m, c = states.latest(), ctrl.latest()
+        print('%s\n  /joint_states at sim %.3f s: positions %s velocities %s\n  controller desired '
+              '%s' % (e, m.header.stamp.to_sec(), ' '.join('%.3f' % p for p in m.position),
+                      ' '.join('%.2f' % v for v in m.velocity),
+                      ' '.join('%.3f' % p for p in c.desired.positions)))
+        return 1
     hold = ctrl.latest()
     print('at rest (sim %.3f s): controller desired %s actual %s' % (
         hold.header.stamp.to_sec(), ' '.join('%.3f' % p for p in hold.desired.positions),
