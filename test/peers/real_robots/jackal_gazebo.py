@@ -17,14 +17,13 @@ fetch from its model database) on GAZEBO_MODEL_PATH.
 
 Runs `roslaunch jackal_gazebo jackal_world.launch gui:=false` unchanged, then a rospy client:
 both controllers running, then Twist commands on /jackal_velocity_controller/cmd_vel (the topic
-twist_mux would forward /cmd_vel to; twist_mux is not in Debian) straight and on an arc; prints
+twist_mux would forward /cmd_vel to; twist_mux is not in Debian): straight, on the spot, on an arc; prints
 the diff drive's odometry and the ground truth (/gazebo/model_states) side by side. Ends with one
 PASS/FAIL line."""
 import argparse
 import math
 import os
 import re
-import subprocess
 import sys
 
 import common

@@ -131,7 +131,6 @@ def client(model):
     for j, a, b, g in zip(JOINTS, q, final, goal_tol):
         print('  %-20s %+.4f goal %+.4f error %+.4f (tolerance %.2f)' % (j, a, b, a - b, g))
         ok = ok and abs(a - b) <= g
-    # how far the arm was from the goal's path meanwhile (the YAML's trajectory tolerances)
     return 0 if ok else 1
 
 
