@@ -15,7 +15,9 @@ driver), velodyne_description (LCAS/velodyne_simulator master, a fork of the ori
 not to be had here), and the world's models from osrf/gazebo_models (the models Gazebo would
 fetch from its model database) on GAZEBO_MODEL_PATH.
 
-Runs `roslaunch jackal_gazebo jackal_world.launch gui:=false` unchanged, then a rospy client:
+Runs `roslaunch jackal_gazebo jackal_world.launch gui:=false world_name:=worlds/empty.world` (the
+launch file unchanged; its own world argument, --world: the race world has a barrier 0.5 m ahead),
+then a rospy client:
 both controllers running, then Twist commands on /jackal_velocity_controller/cmd_vel (the topic
 twist_mux would forward /cmd_vel to; twist_mux is not in Debian): straight, on the spot, on an arc; prints
 the diff drive's odometry and the ground truth (/gazebo/model_states) side by side. Ends with one
