@@ -83,6 +83,24 @@ class WorldTest(unittest.TestCase):
         self.assertIn(self.resources, str(e.exception))
         self.assertIn(self.shipped, str(e.exception))
 
+    def test_missing_world_falls_back_on_empty_world_as_gazebo(self):
+        # Gazebo's Server::ParseArgs loads worlds/empty.world when the world file cannot be
+        # loaded (steer_bot_sim.launch passes 'worlds/empty_world'; jackal_gazebo's
+        # empty_world.launch a gazebo_ros/worlds/empty_world.world Noetic does not ship).
+        world, warning = server.world_or_fallback('worlds/empty_world', self.resources,
+                                                  self.shipped)
+        self.assertEqual(world, os.path.join(self.shipped, 'empty.world'))
+        self.assertIn('world file worlds/empty_world not found', warning)
+        self.assertIn('falling back on worlds/empty.world, as Gazebo does', warning)
+        world, warning = server.world_or_fallback('worlds/cafe.world', self.resources,
+                                                  self.shipped)
+        self.assertEqual(world, os.path.join(self.resources, 'worlds', 'cafe.world'))
+        self.assertIsNone(warning)
+        os.remove(os.path.join(self.shipped, 'empty.world'))
+        with self.assertRaises(LookupError) as e:
+            server.world_or_fallback('worlds/nowhere.world', self.resources, self.shipped)
+        self.assertIn('world file worlds/empty.world not found', str(e.exception))
+
 
 class NamesAndPathsTest(unittest.TestCase):
     def test_node_name(self):

@@ -2,7 +2,10 @@
 """rostest: the /gazebo topics and services are exactly gazebo_ros's (noetic-devel's
 gazebo_ros_api_plugin.cpp with its physics dynamic_reconfigure server), or with
 ~enable_ros_network false (--disabled) none but the node's loggers. Our own check, written from
-gazebo_ros's published interface; gazebo_properties.test runs the enabled case."""
+gazebo_ros's published interface; gazebo_properties.test runs the enabled case. With --ns NS
+(empty_world.launch included in a <group ns="NS">, as steer_bot_gazebo's launch file does) they
+are all under /NS/gazebo/, the node's private namespace where gazebo_ros_api_plugin advertises
+them, and none under /gazebo/."""
 import subprocess
 import sys
 import time
@@ -79,14 +82,19 @@ def services():
     return {s: run(['rosservice', 'type', s]).strip() for s in names}
 
 
-def expected(disabled):
+def namespaced(names, ns):
+    return {(ns + k if k.startswith('/gazebo/') else k): v for k, v in names.items()}
+
+
+def expected(disabled, ns=''):
     if disabled:
-        return {'/clock': 'rosgraph_msgs/Clock'}, dict(LOGGERS)
-    return dict(GAZEBO_TOPICS), dict(GAZEBO_SERVICES, **LOGGERS)
+        return {'/clock': 'rosgraph_msgs/Clock'}, namespaced(LOGGERS, ns)
+    return (namespaced(GAZEBO_TOPICS, ns),
+            namespaced(dict(GAZEBO_SERVICES, **LOGGERS), ns))
 
 
-def check_lists(test, disabled):
-    want_topics, want_services = expected(disabled)
+def check_lists(test, disabled, ns=''):
+    want_topics, want_services = expected(disabled, ns)
     # A node still starting (spawn_model, the launch's other nodes) comes and goes: the lists
     # are compared once /gazebo offers all it will and the lists stay the same.
     deadline = time.time() + 60.0
@@ -103,7 +111,8 @@ def check_lists(test, disabled):
 class NetworkTest(unittest.TestCase):
     def test_lists(self):
         rospy.wait_for_message('/clock', Clock, timeout=60.0)
-        check_lists(self, '--disabled' in sys.argv)
+        ns = sys.argv[sys.argv.index('--ns') + 1] if '--ns' in sys.argv else ''
+        check_lists(self, '--disabled' in sys.argv, ns)
 
 
 if __name__ == '__main__':

@@ -300,6 +300,55 @@ class XacroStandInTest(unittest.TestCase):
                             'sys.exit(xacro.main())', XACRO_FILE]).stdout
         self.assertEqual(ours, pypi)
 
+    def test_noetic_symbols(self):
+        # Noetic's xacro (1.14) names that PyPI's 1.13.3 lacks, as ur_description's
+        # ur_common.xacro uses them: xacro.load_yaml with unit tags and dotted access; math.,
+        # python., len; 1.13.3's own load_yaml under PyYAML 6 (which needs a Loader).
+        d = tempfile.mkdtemp()
+        with open(os.path.join(d, 'limits.yaml'), 'w') as f:
+            f.write('joint_limits:\n  pan: {max_position: !degrees 360.0, min_position: !degrees -pi*180/pi,'
+                    ' max_velocity: !radians 3.15, offset: !millimeters 25}\n  names: [a, b, c]\n')
+        path = os.path.join(d, 'robot.xacro')
+        with open(path, 'w') as f:
+            f.write('<robot name="r" xmlns:xacro="http://wiki.ros.org/xacro">\n'
+                    '<xacro:property name="y" value="${xacro.load_yaml(\'limits.yaml\')}"/>\n'
+                    '<xacro:property name="old" value="${load_yaml(\'limits.yaml\')}"/>\n'
+                    '<link name="l" upper="${y.joint_limits.pan.max_position}"'
+                    ' lower="${y[\'joint_limits\'][\'pan\'][\'min_position\']}"'
+                    ' vel="${old[\'joint_limits\'][\'pan\'][\'max_velocity\']}"'
+                    ' off="${y.joint_limits.pan.offset}" n="${len(y.joint_limits.names)}"'
+                    ' m="${math.cos(0)}" p="${python.sum([1, 2])}"'
+                    ' t="${xacro.tokenize(\'a b;c\')[2]}"/>\n</robot>\n')
+        proc = self.run_ok([os.path.join(REPO, 'xacro', 'xacro'), path])
+        self.assertIn('upper="6.283185307179586"', proc.stdout)
+        self.assertIn('lower="-3.141592653589793"', proc.stdout)
+        self.assertIn('vel="3.15"', proc.stdout)
+        self.assertIn('off="0.025"', proc.stdout)
+        self.assertIn('n="3"', proc.stdout)
+        self.assertIn('m="1.0"', proc.stdout)
+        self.assertIn('p="3"', proc.stdout)
+        self.assertIn('t="c"', proc.stdout)
+
+    def test_noetic_symbols_bad_input(self):
+        d = tempfile.mkdtemp()
+        with open(os.path.join(d, 'bad.yaml'), 'w') as f:
+            f.write('a: !degrees __import__\n')
+        path = os.path.join(d, 'robot.xacro')
+        with open(path, 'w') as f:
+            f.write('<robot name="r" xmlns:xacro="http://wiki.ros.org/xacro">'
+                    '<link name="${xacro.load_yaml(\'bad.yaml\').a}"/></robot>')
+        proc = subprocess.run([os.path.join(REPO, 'xacro', 'xacro'), path], stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, universal_newlines=True, timeout=60)
+        self.assertEqual(proc.returncode, 2)
+        self.assertIn('invalid expression in a unit-tagged YAML value: __import__', proc.stderr)
+        with open(path, 'w') as f:
+            f.write('<robot name="r" xmlns:xacro="http://wiki.ros.org/xacro">'
+                    '<link name="${xacro.load_yaml(\'missing.yaml\').a}"/></robot>')
+        proc = subprocess.run([os.path.join(REPO, 'xacro', 'xacro'), path], stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, universal_newlines=True, timeout=60)
+        self.assertEqual(proc.returncode, 2)
+        self.assertIn('missing.yaml', proc.stderr)
+
     def test_errors_keep_xacros_exit_code(self):
         for exe in ('xacro', 'xacro.py'):
             proc = subprocess.run([os.path.join(REPO, 'xacro', exe), '/nonexistent/robot.xacro'],

@@ -171,6 +171,18 @@ def resolve_world(name, resource_path, shipped_dir):
                       % (name, ', '.join(searched)))
 
 
+def world_or_fallback(name, resource_path, shipped_dir):
+    """(world file, warning): the world named, or, where it is not found, worlds/empty.world with
+    a warning naming what was searched, as Gazebo's Server::ParseArgs falls back when LoadFile
+    fails (gazebo/Server.cc: "Falling back on worlds/empty.world"). LookupError when empty.world
+    is not found either."""
+    try:
+        return resolve_world(name, resource_path, shipped_dir), None
+    except LookupError as e:
+        return (resolve_world('worlds/empty.world', resource_path, shipped_dir),
+                '%s; falling back on worlds/empty.world, as Gazebo does' % e)
+
+
 def exported_paths(attribute, run=subprocess.run):
     """Paths that packages export for gazebo_ros under `attribute` (rospack plugins)."""
     try:
@@ -253,10 +265,12 @@ def main(argv, mode):
     extend_env_path(env, 'GAZEBO_RESOURCE_PATH', exported_paths('gazebo_media_path'))
     shipped = os.path.join(rospkg.RosPack().get_path('tianracer_sim'), 'worlds')
     try:
-        world = resolve_world(a.world, env.get('GAZEBO_RESOURCE_PATH', ''), shipped)
+        world, fallback = world_or_fallback(a.world, env.get('GAZEBO_RESOURCE_PATH', ''), shipped)
     except LookupError as e:
         _say(prog, 'error: %s' % e)
         return 1
+    if fallback:
+        _say(prog, 'warning: ' + fallback)
     nodes = roslib.packages.find_node('tianracer_sim', 'tianracer_sim_node')
     if not nodes:
         _say(prog, 'error: tianracer_sim_node not found (is tianracer_sim built?)')
@@ -267,8 +281,10 @@ def main(argv, mode):
     full_name = node_name(remaps, env)
     # gazebo_ros's interface exactly: no ~step services and no /diagnostics, which Gazebo has
     # not (ROS arguments _step_services:=true / _diagnostics:=true bring them back).
+    # gazebo_ros_api_plugin advertises in its node's private namespace ("~"): /gazebo/... for a
+    # node named gazebo at the root, /<ns>/gazebo/... under a launch file's <group ns>.
     params = {'world': world, 'paused': a.paused, 'robots': [], 'step_services': False,
-              'diagnostics': False}
+              'diagnostics': False, 'gazebo_namespace': full_name}
     if a.seed is not None:
         params['seed'] = a.seed
     _set_params(full_name, params, prog)

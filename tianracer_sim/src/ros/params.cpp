@@ -33,6 +33,7 @@ NodeParams readNodeParams(const ros::NodeHandle& pnh) {
   // gazebo_ros's ~enable_ros_network (its node is /gazebo: the gzserver stand-in's name).
   pnh.param("enable_ros_network", p.enable_ros_network, p.enable_ros_network);
   pnh.param("step_services", p.step_services, p.step_services);
+  pnh.param<std::string>("gazebo_namespace", p.gazebo_namespace, p.gazebo_namespace);
   return p;
 }
 

@@ -72,7 +72,8 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh, SimNodeC
   } else if (robot_names.empty()) {
     // As `gzserver x.world`: the world runs alone until robots are spawned.
     ROS_INFO("no robot at start (%s is empty): robots arrive through "
-             "/gazebo/spawn_urdf_model", pnh_.resolveName("robots").c_str());
+             "%s/spawn_urdf_model", pnh_.resolveName("robots").c_str(),
+             params.gazebo_namespace.c_str());
   }
   for (const std::string& name : robot_names) loadRobot(ros::NodeHandle(pnh_, name), name);
 
@@ -89,7 +90,7 @@ SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh, SimNodeC
              lockstep.timeout);
   }
 
-  ros::NodeHandle gazebo("/gazebo");
+  ros::NodeHandle gazebo(params.gazebo_namespace);
   gazebo.setCallbackQueue(&queue_);
   GazeboInterface::Options gazebo_options;
   gazebo_options.states_rate = params.gazebo_states_rate.value_or(gazebo_options.states_rate);

@@ -28,6 +28,9 @@ struct NodeParams {
   bool diagnostics = true;
   bool step_services = true;
   bool enable_ros_network = true;
+  // where gazebo_ros's topics and services are: its node's private namespace ("~" in
+  // gazebo_ros_api_plugin), which the gzserver stand-in passes; /gazebo for our own launches
+  std::string gazebo_namespace = "/gazebo";
   std::optional<double> gazebo_states_rate;
 };
 

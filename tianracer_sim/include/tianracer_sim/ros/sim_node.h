@@ -29,6 +29,8 @@
 //   ground_truth_rate  <ns>/ground_truth/odom rate (Hz, default 50)
 //   gazebo_states_rate /gazebo/model_states and link_states rate (Hz, default 50; 0 = every step)
 //   enable_ros_network gazebo_ros's: false = no /gazebo topics or services (default true)
+//   gazebo_namespace where the Gazebo topics and services are (default /gazebo; gazebo_ros's
+//                    gzserver: its node's own name, as gazebo_ros_api_plugin's "~")
 //   step_services    ~step and ~step_and_wait (default true; gazebo_ros's gzserver: false)
 //   diagnostics      publish /diagnostics (default true; gazebo_ros's gzserver: false)
 //   seed             seed of the sensors' noise (default 0): same seed, same noise
