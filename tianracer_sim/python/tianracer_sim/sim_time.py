@@ -43,6 +43,16 @@ def wait_for(predicate, what, wall_timeout=WALL_TIMEOUT, poll=0.01):
         time.sleep(poll)
 
 
+def action_finished(client, what, wall_timeout=WALL_TIMEOUT):
+    """Waits until an actionlib SimpleActionClient's goal is done with its result, and returns
+    (state, result). The goal's status and its result come on two topics, and ROS does not
+    order two connections: the status may say REJECTED or SUCCEEDED before the result is in
+    (get_result() is then None). The client's simple state turns DONE only with the result."""
+    from actionlib.simple_action_client import SimpleGoalState
+    wait_for(lambda: client.simple_state == SimpleGoalState.DONE, what, wall_timeout)
+    return client.get_state(), client.get_result()
+
+
 def sim_sleep(seconds, wall_timeout=None, each=None, poll=0.01):
     """Returns once `seconds` of sim time have passed on this process's clock, calling `each`
     every `poll` s of wall time meanwhile. Across a reset (the clock going back) the count goes

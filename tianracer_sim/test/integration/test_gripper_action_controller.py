@@ -14,7 +14,7 @@ from actionlib_msgs.msg import GoalStatus
 from control_msgs.msg import GripperCommandAction, GripperCommandGoal
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
-from tianracer_sim.sim_time import Stream, clock_stamp, sim_sleep, wait_for
+from tianracer_sim.sim_time import Stream, action_finished, clock_stamp, sim_sleep, wait_for
 
 WALL_TIMEOUT = 120.0
 ACTION = '/arm/gripper_controller/gripper_cmd'
@@ -45,9 +45,7 @@ class GripperActionControllerTest(unittest.TestCase):
         return m.position[m.name.index('finger_joint')]
 
     def finished(self, client, what):
-        wait_for(lambda: client.get_state() not in (GoalStatus.PENDING, GoalStatus.ACTIVE),
-                 what, WALL_TIMEOUT)
-        return client.get_state(), client.get_result()
+        return action_finished(client, what, WALL_TIMEOUT)
 
     def test_1_reaches_the_goal(self):
         c = self.clients[0]

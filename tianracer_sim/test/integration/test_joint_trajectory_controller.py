@@ -22,7 +22,7 @@ from controller_manager_msgs.srv import ListControllers, LoadController
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
-from tianracer_sim.sim_time import Stream, clock_stamp, sim_sleep, wait_connected, wait_for
+from tianracer_sim.sim_time import Stream, action_finished, clock_stamp, sim_sleep, wait_connected, wait_for
 
 WALL_TIMEOUT = 120.0
 NS = '/arm'
@@ -66,9 +66,7 @@ class JointTrajectoryControllerTest(unittest.TestCase):
         return client
 
     def finished(self, client, what):
-        wait_for(lambda: client.get_state() not in (GoalStatus.PENDING, GoalStatus.ACTIVE),
-                 what, WALL_TIMEOUT)
-        return client.get_state(), client.get_result()
+        return action_finished(client, what, WALL_TIMEOUT)
 
     def goal(self, points, joints=JOINTS):
         g = FollowJointTrajectoryGoal()
