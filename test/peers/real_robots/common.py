@@ -94,6 +94,19 @@ def run_client(env, script, args, wall):
         return 1
 
 
+def launch_and_run(env, port, launch_args, log_path, client_script, client_args, wall):
+    """Starts the launch file, runs the script's client against it, stops the launch and prints
+    its notes. True when the client passed and the launch was still running at its end."""
+    proc = start_launch(env, port, launch_args, log_path)
+    try:
+        rc = run_client(env, client_script, client_args, wall)
+        alive = proc.poll() is None
+    finally:
+        stop_launch(proc)
+    print_notes(log_path)
+    return rc == 0 and alive
+
+
 def print_notes(log_path):
     """The launch log's lines about what is not simulated, left out or failed, each once."""
     seen = []

@@ -173,14 +173,8 @@ def main():
     args = ['jackal_gazebo', a.launch, 'gui:=false']
     if a.world:
         args.append('world_name:=' + a.world)
-    proc = common.start_launch(env, port, args, log)
-    try:
-        rc = common.run_client(env, os.path.abspath(__file__), [], a.wall)
-        alive = proc.poll() is None
-    finally:
-        common.stop_launch(proc)
-    common.print_notes(log)
-    return common.verdict(rc == 0 and alive, 'jackal_gazebo %s %s: the diff drive moves Jackal and its '
+    ok = common.launch_and_run(env, port, args, log, os.path.abspath(__file__), [], a.wall)
+    return common.verdict(ok, 'jackal_gazebo %s %s: the diff drive moves Jackal and its '
                           'odometry agrees with the ground truth' % (a.launch, a.world))
 
 

@@ -117,14 +117,9 @@ def main():
     port = common.free_port()
     env = common.sim_env(a.sim_setup, src, port)
     log = os.path.join(a.ws, 'logs', 'launch.log')
-    proc = common.start_launch(env, port, ['steer_bot_gazebo', 'steer_bot_sim.launch'], log)
-    try:
-        rc = common.run_client(env, os.path.abspath(__file__), [], a.wall)
-        alive = proc.poll() is None
-    finally:
-        common.stop_launch(proc)
-    common.print_notes(log)
-    return common.verdict(rc == 0 and alive, 'steer_bot_gazebo steer_bot_sim.launch: the Ackermann '
+    ok = common.launch_and_run(env, port, ['steer_bot_gazebo', 'steer_bot_sim.launch'], log,
+                               os.path.abspath(__file__), [], a.wall)
+    return common.verdict(ok, 'steer_bot_gazebo steer_bot_sim.launch: the Ackermann '
                           'steering controller drives steer_bot on the radius its steering gives')
 
 

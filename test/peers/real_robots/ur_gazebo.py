@@ -154,15 +154,9 @@ def main():
     port = common.free_port()
     env = common.sim_env(a.sim_setup, src, port)
     log = os.path.join(a.ws, 'logs', 'launch.log')
-    proc = common.start_launch(env, port, ['ur_gazebo', a.model + '_bringup.launch', 'gui:=false'],
-                               log)
-    try:
-        rc = common.run_client(env, os.path.abspath(__file__), ['--model', a.model], a.wall)
-        alive = proc.poll() is None
-    finally:
-        common.stop_launch(proc)
-    common.print_notes(log)
-    return common.verdict(rc == 0 and alive, 'ur_gazebo %s_bringup.launch: follow_joint_trajectory '
+    ok = common.launch_and_run(env, port, ['ur_gazebo', a.model + '_bringup.launch', 'gui:=false'],
+                               log, os.path.abspath(__file__), ['--model', a.model], a.wall)
+    return common.verdict(ok, 'ur_gazebo %s_bringup.launch: follow_joint_trajectory '
                           'goal succeeded and /joint_states within the goal tolerances' % a.model)
 
 
