@@ -2,7 +2,8 @@
 """Counts test cases in catkin's JUnit result files and prints 'N passed, N failed'.
 
 catkin_test_results counts gtest cases twice (suite and cases), so the closing line is made
-here from the <testcase> elements themselves. Failing cases are listed by file and name.
+here from the <testcase> elements themselves. Failing cases are listed by file and name, each
+with the first lines of its failure message (a CI log may be all a reader has of a failure).
 Before them, where the time goes: the slowest test files (a rostest's file holds its whole
 run, launch included) and the slowest test cases.
 
@@ -26,6 +27,24 @@ def result_files(results_dir):
                 yield path, os.path.relpath(path, results_dir)
 
 
+MESSAGE_LINES = 6
+
+
+def failure_text(case):
+    """The first lines of a failed case's message: the failure's or error's text (a Python
+    traceback, gtest's expectation) or, without one, its message attribute."""
+    for tag in ('failure', 'error'):
+        element = case.find(tag)
+        if element is None:
+            continue
+        text = (element.text or '').strip() or (element.get('message') or '').strip()
+        lines = [l.rstrip() for l in text.splitlines() if l.strip()]
+        if len(lines) > MESSAGE_LINES:  # the end of a traceback says most
+            lines = lines[:2] + ['...'] + lines[-(MESSAGE_LINES - 3):]
+        return lines
+    return []
+
+
 def count(results_dir):
     passed, failed, skipped, failures = 0, 0, 0, []
     for path, rel in result_files(results_dir):
@@ -44,7 +63,7 @@ def count(results_dir):
             label = '%s: %s.%s' % (rel, case.get('classname', ''), case.get('name', ''))
             if case.find('failure') is not None or case.find('error') is not None:
                 failed += 1
-                failures.append(label)
+                failures.append('\n'.join([label] + ['    ' + l for l in failure_text(case)]))
             elif case.find('skipped') is not None or case.get('status') == 'notrun':
                 skipped += 1
             else:
