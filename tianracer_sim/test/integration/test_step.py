@@ -17,7 +17,7 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from std_srvs.srv import Empty
-from tianracer_sim.msg import StepAndWaitAction, StepAndWaitGoal
+from tianracer_sim.msg import StepAndWaitAction, StepAndWaitActionFeedback, StepAndWaitGoal
 from tianracer_sim.srv import Step
 
 WAIT = 60.0
@@ -59,12 +59,30 @@ class StepTest(unittest.TestCase):
         rospy.wait_for_service('/tianracer_sim/step', WAIT)
         cls.step = rospy.ServiceProxy('/tianracer_sim/step', Step)
         cls.action = actionlib.SimpleActionClient('/tianracer_sim/step_and_wait', StepAndWaitAction)
+        # The feedback as the server sends it, on its own subscriber: the client's feedback_cb
+        # drops what comes after the result, and ROS does not order the feedback and result
+        # connections (a test process starved while the steps run may read the result first).
+        cls.feedback_lock = threading.Lock()
+        cls.feedback = []
+        cls.feedback_sub = rospy.Subscriber('/tianracer_sim/step_and_wait/feedback',
+                                            StepAndWaitActionFeedback, cls.on_feedback,
+                                            queue_size=5000)
         assert cls.action.wait_for_server(rospy.Duration(WAIT))
         deadline = time.time() + WAIT
         while time.time() < deadline and (cls.scan.sub.get_num_connections() < 1 or
-                                          cls.truth.sub.get_num_connections() < 1):
+                                          cls.truth.sub.get_num_connections() < 1 or
+                                          cls.feedback_sub.get_num_connections() < 1):
             time.sleep(0.05)
         time.sleep(0.5)
+
+    @classmethod
+    def on_feedback(cls, msg):
+        with cls.feedback_lock:
+            cls.feedback.append((msg.status.goal_id.id, msg.feedback.steps_done))
+
+    def feedback_of(self, goal_id):
+        with self.feedback_lock:
+            return [done for g, done in self.feedback if g == goal_id]
 
     def quiet(self, t, seconds=1.0):
         """Nothing after sim time t arrives for `seconds` of wall time: the simulation waits."""
@@ -109,21 +127,25 @@ class StepTest(unittest.TestCase):
 
     def test_4_step_and_wait_with_feedback(self):
         before = self.step(1).sim_time.to_sec()
-        feedback = []
-        # Feedback goes out while the steps run (the waiting thread reports when it wakes), on
-        # a topic of its own: 50 steps took 8 ms and could finish, and their result arrive,
-        # before any feedback did. 1000 steps run long enough for it.
+        # Feedback goes out while the steps run (the waiting thread reports when it wakes): 50
+        # steps took 8 ms and could finish before any feedback did; 1000 steps run long enough.
         steps = 1000
-        self.action.send_goal(StepAndWaitGoal(steps=steps), feedback_cb=feedback.append)
+        self.action.send_goal(StepAndWaitGoal(steps=steps))
+        goal_id = self.action.gh.comm_state_machine.action_goal.goal_id.id
         self.assertTrue(self.action.wait_for_result(rospy.Duration(WAIT)))
         result = self.action.get_result()
         self.assertEqual(self.action.get_state(), GoalStatus.SUCCEEDED)
-        self.assertTrue(result.success)
+        self.assertTrue(result.success, result.status_message)
         self.assertEqual(result.steps_done, steps)
         self.assertAlmostEqual(result.sim_time.to_sec(), before + steps * 0.001, places=9)
         self.assertTrue(self.truth.wait_for(result.sim_time.to_sec()))
-        self.assertTrue(feedback)
-        self.assertTrue(all(0 < f.steps_done <= steps for f in feedback))
+        deadline = time.time() + WAIT
+        while time.time() < deadline and not self.feedback_of(goal_id):
+            time.sleep(0.01)
+        feedback = self.feedback_of(goal_id)
+        self.assertTrue(feedback, 'no feedback for goal %s' % goal_id)
+        self.assertTrue(all(0 < done <= steps for done in feedback), feedback[:20])
+        self.assertEqual(feedback, sorted(feedback))
         self.quiet(result.sim_time.to_sec())
 
     def test_5_cancel_stops_the_steps(self):
