@@ -64,7 +64,7 @@ def file_local_names(path):
 
 class UnityNames(unittest.TestCase):
     def test_the_parser_sees_a_file_local_function(self):
-        names = file_local_names(os.path.join(REPO, 'tianracer_sim', 'src', 'sensors',
+        names = file_local_names(os.path.join(REPO, 'tianracer_sim', 'src', 'plugins',
                                               'hector', 'sim_hector.cpp'))
         self.assertTrue(any(n == 'makeHectorImu' for n, _ in names), sorted(names))
 

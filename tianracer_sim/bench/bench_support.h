@@ -5,7 +5,7 @@
 #include <cmath>
 #include <ctime>
 
-#include "tianracer_sim/sensors/ray/ray_sensor.h"
+#include "tianracer_sim/plugins/ray/ray_sensor.h"
 
 namespace tianracer_sim {
 namespace bench {

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "tianracer_sim/lidar/ray_caster.h"
-#include "tianracer_sim/sensors/ray/ray_sensor.h"
+#include "tianracer_sim/plugins/ray/ray_sensor.h"
 #include "tianracer_sim/world/world.h"
 
 #include "bench_support.h"

@@ -19,7 +19,7 @@
 
 #include "tianracer_sim/mesh/mesh_loader.h"
 #include "tianracer_sim/model/robot_model.h"
-#include "tianracer_sim/sensors/camera/camera_sensor.h"
+#include "tianracer_sim/plugins/camera/camera_sensor.h"
 #include "tianracer_sim/scene/materials.h"
 #include "tianracer_sim/render/png_writer.h"
 #include "tianracer_sim/render/renderer.h"

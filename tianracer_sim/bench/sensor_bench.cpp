@@ -21,11 +21,11 @@
 #include <vector>
 
 #include "tianracer_sim/lidar/ray_caster.h"
-#include "tianracer_sim/sensors/ray/ray_sensor.h"
-#include "tianracer_sim/sensors/camera/camera_sensor.h"
-#include "tianracer_sim/sensors/camera/multicamera_config.h"
+#include "tianracer_sim/plugins/ray/ray_sensor.h"
+#include "tianracer_sim/plugins/camera/camera_sensor.h"
+#include "tianracer_sim/plugins/camera/multicamera_config.h"
 #include "tianracer_sim/render/renderer.h"
-#include "tianracer_sim/sensors/imu/imu_sensor.h"
+#include "tianracer_sim/plugins/imu/imu_sensor.h"
 #include "tianracer_sim/world/world.h"
 
 #include "bench_support.h"

@@ -1,7 +1,7 @@
 // The one naming module for what the simulator publishes: TF frame names with a tf_prefix and
 // topic names in a namespace, resolved the way gazebo_ros plugins and robot_state_publisher do
 // (tf::resolve, ros::names::resolve), so that several robots of one model share one TF tree and
-// one ROS graph. Used by the sensors (tianracer_sim/sensors/), the node and the odometry node.
+// one ROS graph. Used by the sensors (tianracer_sim/plugins/), the node and the odometry node.
 #ifndef TIANRACER_CONTROL_NAMING_H
 #define TIANRACER_CONTROL_NAMING_H
 

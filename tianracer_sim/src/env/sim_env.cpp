@@ -13,11 +13,11 @@
 #include <tianracer_assets/paths.h>
 
 #include "tianracer_sim/common/text.h"
-#include "tianracer_sim/sensors/camera/sim_camera.h"
+#include "tianracer_sim/plugins/camera/sim_camera.h"
 #include "tianracer_sim/simulator/robot_setup.h"
-#include "tianracer_sim/sensors/imu/sim_imu.h"
-#include "tianracer_sim/sensors/p3d/sim_p3d.h"
-#include "tianracer_sim/sensors/ray/sim_ray.h"
+#include "tianracer_sim/plugins/imu/sim_imu.h"
+#include "tianracer_sim/plugins/p3d/sim_p3d.h"
+#include "tianracer_sim/plugins/ray/sim_ray.h"
 
 namespace tianracer_sim {
 

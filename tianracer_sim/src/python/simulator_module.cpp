@@ -19,9 +19,9 @@
 #include "tianracer_sim/common/sdf_pose.h"
 #include "tianracer_sim/env/parallel.h"
 #include "tianracer_sim/env/sim_env.h"
-#include "tianracer_sim/sensors/ray/ray_sensor.h"
+#include "tianracer_sim/plugins/ray/ray_sensor.h"
 #include "tianracer_sim/physics/world.h"
-#include "tianracer_sim/sensors/camera/camera_config.h"
+#include "tianracer_sim/plugins/camera/camera_config.h"
 #include "tianracer_sim/world/world.h"
 
 namespace py = pybind11;

@@ -9,7 +9,7 @@
 
 #include <tianracer_control/naming.h>
 
-#include "tianracer_sim/sensors/sensor_topics.h"
+#include "tianracer_sim/plugins/sensor_topics.h"
 #include "tianracer_sim/ros/state_msgs.h"
 
 namespace tianracer_sim {

@@ -9,7 +9,7 @@
 
 #include "tianracer_sim/common/diagnostic.h"
 #include "tianracer_sim/ros/params.h"
-#include "tianracer_sim/ros/sensors/sensor_publisher.h"
+#include "tianracer_sim/ros/plugins/sensor_publisher.h"
 
 namespace tianracer_sim {
 

@@ -11,7 +11,7 @@
 
 #include "tianracer_sim/ros/controller_params.h"
 #include "tianracer_sim/ros/params.h"
-#include "tianracer_sim/ros/sensors/sensor_publisher.h"
+#include "tianracer_sim/ros/plugins/sensor_publisher.h"
 #include "tianracer_sim/ros/sim_node.h"
 
 namespace tianracer_sim {

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "tianracer_sim/sensors/sensor_registry.h"
+#include "tianracer_sim/plugins/sensor_registry.h"
 #include "tianracer_sim/simulator/simulator.h"  // SimulatorLog
 
 namespace tianracer_sim {

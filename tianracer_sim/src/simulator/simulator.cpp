@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "tianracer_sim/sensors/sensor_registry.h"
+#include "tianracer_sim/plugins/sensor_registry.h"
 
 namespace tianracer_sim {
 

@@ -12,8 +12,8 @@
 #include "tianracer_sim/model/robot_meshes.h"
 #include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/physics/rigid_tree.h"
-#include "tianracer_sim/sensors/model_report.h"
-#include "tianracer_sim/sensors/sensor_registry.h"
+#include "tianracer_sim/plugins/model_report.h"
+#include "tianracer_sim/plugins/sensor_registry.h"
 
 int main(int argc, char** argv) {
   std::string path;

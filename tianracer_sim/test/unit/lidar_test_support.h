@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "tianracer_sim/sensors/ray/ray_sensor.h"
+#include "tianracer_sim/plugins/ray/ray_sensor.h"
 
 namespace tianracer_sim {
 namespace test {

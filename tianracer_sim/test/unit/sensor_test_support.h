@@ -10,7 +10,7 @@
 #include <tinyxml2.h>
 
 #include "tianracer_sim/model/robot_model.h"
-#include "tianracer_sim/sensors/sensor_registry.h"
+#include "tianracer_sim/plugins/sensor_registry.h"
 
 namespace tianracer_sim {
 namespace test {

@@ -241,7 +241,7 @@ TEST(Extensions, JointStatePublisherStripsWhitespaceInsideNames) {
 }
 
 // Other model plugins are kept for the sensor registry and the start-up table to judge
-// (test_sensors_model_report.cpp): the parser neither drops them nor calls a simulated one
+// (test_plugins_model_report.cpp): the parser neither drops them nor calls a simulated one
 // (libgazebo_ros_p3d.so) unknown.
 TEST(Extensions, OtherPluginsKeptWithoutWarning) {
   Parser p;

@@ -3,8 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "tianracer_sim/ros/sensors/sensor_publisher.h"
-#include "tianracer_sim/sensors/sensor_registry.h"
+#include "tianracer_sim/ros/plugins/sensor_publisher.h"
+#include "tianracer_sim/plugins/sensor_registry.h"
 
 namespace tianracer_sim {
 namespace {

@@ -1,4 +1,4 @@
-// Which frame a robot's camera images are stamped in (sensors/camera/optical_frame.h): the plugin's
+// Which frame a robot's camera images are stamped in (plugins/camera/optical_frame.h): the plugin's
 // frameName when the URDF makes it an optical link at the camera (TurtleBot3's
 // camera_rgb_optical_frame), else "<frameName>_optical_frame", which the node adds on TF
 // (test/data/urdf/camera_frames.urdf).
@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "tianracer_sim/sensors/camera/sim_camera.h"
+#include "tianracer_sim/plugins/camera/sim_camera.h"
 #include "tianracer_sim/simulator/simulator.h"
 #include "tianracer_sim/world/world.h"
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "tianracer_sim/common/diagnostic.h"
-#include "tianracer_sim/sensors/bumper/sim_bumper.h"
+#include "tianracer_sim/plugins/bumper/sim_bumper.h"
 #include "tianracer_sim/simulator/simulator.h"
 #include "tianracer_sim/world/world.h"
 

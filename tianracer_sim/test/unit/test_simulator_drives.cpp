@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "tianracer_sim/sensors/drives/sim_drive.h"
+#include "tianracer_sim/plugins/drives/sim_drive.h"
 #include "tianracer_sim/simulator/simulator.h"
 
 #include "common_test_support.h"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "tianracer_sim/sensors/hector/sim_hector.h"
+#include "tianracer_sim/plugins/hector/sim_hector.h"
 #include "tianracer_sim/simulator/simulator.h"
 #include "tianracer_sim/world/world.h"
 

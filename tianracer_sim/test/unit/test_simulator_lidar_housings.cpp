@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "tianracer_sim/sensors/ray/sim_ray.h"
+#include "tianracer_sim/plugins/ray/sim_ray.h"
 #include "tianracer_sim/simulator/simulator.h"
 
 #include "sim_test_support.h"

@@ -10,9 +10,9 @@
 #include <limits>
 #include <string>
 
-#include "tianracer_sim/sensors/bumper/sim_bumper.h"
-#include "tianracer_sim/sensors/camera/sim_camera.h"
-#include "tianracer_sim/sensors/imu/sim_imu.h"
+#include "tianracer_sim/plugins/bumper/sim_bumper.h"
+#include "tianracer_sim/plugins/camera/sim_camera.h"
+#include "tianracer_sim/plugins/imu/sim_imu.h"
 #include "tianracer_sim/simulator/simulator.h"
 #include "tianracer_sim/world/world.h"
 

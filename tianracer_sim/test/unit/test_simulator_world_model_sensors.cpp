@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "tianracer_sim/sensors/camera/sim_camera.h"
-#include "tianracer_sim/sensors/p3d/sim_p3d.h"
-#include "tianracer_sim/sensors/ray/sim_ray.h"
+#include "tianracer_sim/plugins/camera/sim_camera.h"
+#include "tianracer_sim/plugins/p3d/sim_p3d.h"
+#include "tianracer_sim/plugins/ray/sim_ray.h"
 #include "tianracer_sim/simulator/simulator.h"
 
 namespace tianracer_sim {

@@ -1,4 +1,4 @@
-// Bumper states (sensors/bumper/bumper.h) -> gazebo_msgs/ContactsState.
+// Bumper states (plugins/bumper/bumper.h) -> gazebo_msgs/ContactsState.
 #ifndef TIANRACER_SIM_ROS_BUMPER_MSGS_H
 #define TIANRACER_SIM_ROS_BUMPER_MSGS_H
 
@@ -8,7 +8,7 @@
 #include <gazebo_msgs/ContactsState.h>
 #include <ros/time.h>
 
-#include "tianracer_sim/sensors/bumper/bumper.h"
+#include "tianracer_sim/plugins/bumper/bumper.h"
 
 namespace tianracer_sim {
 

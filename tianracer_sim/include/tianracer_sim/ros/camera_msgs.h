@@ -11,7 +11,7 @@
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/PointCloud2.h>
 
-#include "tianracer_sim/sensors/camera/camera_sensor.h"
+#include "tianracer_sim/plugins/camera/camera_sensor.h"
 #include "tianracer_sim/ros/borrowed_msgs.h"
 
 namespace tianracer_sim {

@@ -1,4 +1,4 @@
-// hector_gazebo_plugins' readings (sensors/hector/) -> their messages, filled as upstream fills
+// hector_gazebo_plugins' readings (plugins/hector/) -> their messages, filled as upstream fills
 // them (gazebo_ros_imu.cpp, gazebo_ros_gps.cpp, gazebo_ros_magnetic.cpp, gazebo_ros_sonar.cpp).
 #ifndef TIANRACER_SIM_ROS_HECTOR_MSGS_H
 #define TIANRACER_SIM_ROS_HECTOR_MSGS_H
@@ -11,8 +11,8 @@
 #include <sensor_msgs/NavSatFix.h>
 #include <sensor_msgs/Range.h>
 
-#include "tianracer_sim/sensors/hector/hector_gps.h"
-#include "tianracer_sim/sensors/ray/ray_plugins.h"
+#include "tianracer_sim/plugins/hector/hector_gps.h"
+#include "tianracer_sim/plugins/ray/ray_plugins.h"
 
 namespace tianracer_sim {
 

@@ -5,7 +5,7 @@
 #include <ros/time.h>
 #include <sensor_msgs/Imu.h>
 
-#include "tianracer_sim/sensors/imu/imu_sensor.h"
+#include "tianracer_sim/plugins/imu/imu_sensor.h"
 
 namespace tianracer_sim {
 

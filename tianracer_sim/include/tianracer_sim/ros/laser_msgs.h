@@ -11,8 +11,8 @@
 #include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/Range.h>
 
-#include "tianracer_sim/sensors/ray/ray_plugins.h"
-#include "tianracer_sim/sensors/ray/ray_sensor.h"
+#include "tianracer_sim/plugins/ray/ray_plugins.h"
+#include "tianracer_sim/plugins/ray/ray_sensor.h"
 
 namespace tianracer_sim {
 

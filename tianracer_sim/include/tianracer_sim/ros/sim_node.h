@@ -1,6 +1,6 @@
 // The simulator's ROS node: parameters in, the ROS-free Simulator (simulator/simulator.h)
 // stepped, Gazebo's topics and services out. Bridges only: RobotBridge (commands, joint_states,
-// ground truth, odom TF), the sensor publishers (ros/sensors/), GazeboInterface (world state,
+// ground truth, odom TF), the sensor publishers (ros/plugins/), GazeboInterface (world state,
 // spawn, pause and reset), Lockstep, /clock and the status.
 //
 // Parameters (private, ~):

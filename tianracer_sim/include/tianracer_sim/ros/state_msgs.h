@@ -12,8 +12,8 @@
 #include <ros/time.h>
 
 #include "tianracer_sim/physics/world.h"
-#include "tianracer_sim/sensors/drives/drives.h"
-#include "tianracer_sim/sensors/p3d/p3d.h"
+#include "tianracer_sim/plugins/drives/drives.h"
+#include "tianracer_sim/plugins/p3d/p3d.h"
 
 namespace tianracer_sim {
 
@@ -29,12 +29,12 @@ void toGroundTruth(const Eigen::Isometry3d& X_WB, const Twist& twist_W, const ro
                    const std::string& frame, const std::string& child_frame,
                    nav_msgs::Odometry* msg);
 
-/// libgazebo_ros_p3d's odometry: the reading as it is (see sensors/p3d/p3d.h), gn^2 on the pose
+/// libgazebo_ros_p3d's odometry: the reading as it is (see plugins/p3d/p3d.h), gn^2 on the pose
 /// and twist covariance diagonals.
 void toOdometry(const P3dReading& reading, const ros::Time& stamp, const std::string& frame,
                 const std::string& child_frame, nav_msgs::Odometry* msg);
 
-/// The odometry of a drive plugin (sensors/drives/drives.h) as it fills nav_msgs/Odometry.
+/// The odometry of a drive plugin (plugins/drives/drives.h) as it fills nav_msgs/Odometry.
 void toOdometry(const DriveOdometry& odometry, const ros::Time& stamp, const std::string& frame,
                 const std::string& child_frame, nav_msgs::Odometry* msg);
 /// X (child_frame in frame) as a TF message.

@@ -1,7 +1,7 @@
 // SensorHost: the sensors and sensor-like Gazebo plugins of the simulation's models, and the
 // camera frames they render, as Gazebo's sensors::SensorManager runs its sensors and the
 // rendering thread draws them (gazebo/sensors/SensorManager.cc). It makes each one from its
-// spec through the sensor registry (sensors/sensor_registry.h), runs the due ones every step
+// spec through the sensor registry (plugins/sensor_registry.h), runs the due ones every step
 // (update, sample, hand their outputs to their listeners), and renders the due frames on the
 // frame worker from a snapshot of the step's scene. The Simulator says which model a sensor
 // belongs to and is the SensorWorld the sensors read. ROS-free.
@@ -17,7 +17,7 @@
 #include "tianracer_sim/common/step_profile.h"
 #include "tianracer_sim/render/renderer.h"
 #include "tianracer_sim/scene/scene.h"
-#include "tianracer_sim/sensors/sim_sensor.h"
+#include "tianracer_sim/plugins/sim_sensor.h"
 #include "tianracer_sim/sim/frame_worker.h"
 
 namespace tianracer_sim {

@@ -142,7 +142,7 @@ struct ModelDescription {
   std::vector<LinkDescription> links;
   std::vector<JointDescription> joints;
   /// <plugin>s of the model. Those that publish like sensors (libgazebo_ros_p3d,
-  /// libgazebo_ros_imu: sensors/sensor_registry.h) are set up as a robot's model plugins; the
+  /// libgazebo_ros_imu: plugins/sensor_registry.h) are set up as a robot's model plugins; the
   /// Simulator reports the others as not simulated. A nested model's come with its bodyName
   /// as "<sub>::<link>".
   std::vector<PluginSpec> plugins;

@@ -1,0 +1,45 @@
+// libgazebo_ros_p3d in the simulation, around its core (p3d.h).
+#ifndef TIANRACER_SIM_PLUGINS_P3D_SIM_P3D_H
+#define TIANRACER_SIM_PLUGINS_P3D_SIM_P3D_H
+
+#include <string>
+
+#include "tianracer_sim/plugins/p3d/p3d.h"
+#include "tianracer_sim/plugins/sim_sensor.h"
+
+namespace tianracer_sim {
+
+/// libgazebo_ros_p3d: a link's ground truth, optionally relative to another link.
+class SimP3d : public SimSensor {
+ public:
+  static constexpr SensorOutputs kReading = 1;
+  SimP3d(const SimSensorSetup& setup, P3dConfig config);
+  const P3dConfig& config() const { return sensor_.config(); }
+  const P3dReading& reading() const { return *reading_; }
+  /// The frame the reading is in (world, or the reference link with its tf_prefix) and the
+  /// link's own frame.
+  const std::string& frame() const { return frame_; }
+  const std::string& childFrame() const { return child_; }
+
+  SensorOutputs update(double t, SensorWorld& world) override;
+  void sample(SensorOutputs outputs, SensorWorld& world) override;
+  void restart(double t) override;
+
+ private:
+  void track(double t, SensorWorld& world, const std::string& link, LinkMotion* motion);
+
+  P3dSensor sensor_;
+  std::string frame_, child_;
+  LinkMotion body_, reference_;
+  Schedule schedule_;
+  P3dReading none_;
+  const P3dReading* reading_ = &none_;
+};
+
+struct SensorKind;
+/// The kind(s) of this folder, registered beside their classes (plugins/sensor_registry.h).
+const SensorKind& p3dKind();
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_PLUGINS_P3D_SIM_P3D_H

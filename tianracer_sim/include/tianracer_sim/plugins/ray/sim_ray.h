@@ -1,0 +1,107 @@
+// The ray sensors in the simulation: a lidar scan, gazebo_ros_range and gazebo_ros_block_laser,
+// each around its core (ray_sensor.h, ray_plugins.h), cast with the simulation's RayCaster.
+#ifndef TIANRACER_SIM_PLUGINS_RAY_SIM_RAY_H
+#define TIANRACER_SIM_PLUGINS_RAY_SIM_RAY_H
+
+#include <random>
+#include <string>
+#include <vector>
+
+#include "tianracer_sim/plugins/ray/ray_plugins.h"
+#include "tianracer_sim/plugins/ray/ray_sensor.h"
+#include "tianracer_sim/plugins/sim_sensor.h"
+
+namespace tianracer_sim {
+
+/// ray / gpu_ray: a scan (ranges in beam order; a 3D lidar's rows one after the other).
+class SimLidar : public SimSensor {
+ public:
+  static constexpr SensorOutputs kScan = 1;
+  SimLidar(const SimSensorSetup& setup, RaySensorConfig config);
+  const RaySensorConfig& config() const { return sensor_.config(); }
+  /// The last scan's ranges; the unit ray directions in the sensor frame.
+  const std::vector<float>& ranges() const { return *ranges_; }
+  const std::vector<Eigen::Vector3d>& directions() const { return sensor_.directions(); }
+
+  SensorOutputs update(double t, SensorWorld& world) override;
+  void sample(SensorOutputs outputs, SensorWorld& world) override;
+  void restart(double t) override { schedule_.restart(t); }
+
+ private:
+  RaySensor sensor_;
+  Schedule schedule_;
+  const std::vector<float>* ranges_ = &empty_;
+  std::vector<float> empty_;
+};
+
+/// The gazebo_ros plugins over a ray sensor's grid (gazebo_ros_range, gazebo_ros_block_laser):
+/// at the plugin's rate the grid is cast, its ranges shaped by the ray sensor's settings, and
+/// the plugin's output measured from them with its own noise stream.
+template <class Config, class Output,
+          void (*Measure)(const Config&, const std::vector<float>&, std::mt19937_64&, Output*)>
+class SimRayGrid : public SimSensor {
+ public:
+  static constexpr SensorOutputs kOutput = 1;
+  SimRayGrid(const std::string& kind, const SimSensorSetup& setup, Config config, double rate)
+      : SimSensor(kind, config.ray.name, setup.linkRef(config.ray.link), setup.model_name),
+        config_(std::move(config)), rng_(config_.seed) {
+    setup.check_link(config_.ray.link);
+    sampleAt(schedule_, config_.ray.name, rate);
+  }
+  const Config& config() const { return config_; }
+
+  SensorOutputs update(double t, SensorWorld&) override { return schedule_.due(t) ? kOutput : 0; }
+  void sample(SensorOutputs, SensorWorld& world) override {
+    const Scene& scene = world.scene();
+    shapeRanges(config_.ray, world.caster(), scene, world.linkPose(link()) * config_.ray.X_LS,
+                &buffers_, &ranges_);
+    Measure(config_, ranges_, rng_, &output_);
+  }
+  void restart(double t) override { schedule_.restart(t); }
+
+ protected:
+  const Output& output() const { return output_; }
+
+ private:
+  Config config_;
+  std::mt19937_64 rng_;
+  Schedule schedule_;
+  RayScanBuffers buffers_;
+  std::vector<float> ranges_;
+  Output output_;
+};
+
+inline void measureRange(const RangeConfig& config, const std::vector<float>& shape_ranges,
+                         std::mt19937_64& rng, RangeReading* out) {
+  *out = rangeReading(config, shape_ranges, rng);
+}
+
+/// ray with gazebo_ros_range: the nearest of the grid's rays (sensor_msgs/Range), at the
+/// plugin's updateRate or the sensor's, whichever is lower.
+class SimRange : public SimRayGrid<RangeConfig, RangeReading, &measureRange> {
+ public:
+  static constexpr SensorOutputs kRange = kOutput;
+  SimRange(const SimSensorSetup& setup, const RangeConfig& config)
+      : SimRayGrid("range", setup, config, config.publishRate()) {}
+  const RangeReading& reading() const { return output(); }
+};
+
+/// ray with gazebo_ros_block_laser: a point cloud over the grid (sensor_msgs/PointCloud), at the
+/// sensor's rate.
+class SimBlockLaser : public SimRayGrid<BlockLaserConfig, BlockCloud, &blockLaserCloud> {
+ public:
+  static constexpr SensorOutputs kCloud = kOutput;
+  SimBlockLaser(const SimSensorSetup& setup, const BlockLaserConfig& config)
+      : SimRayGrid("block_laser", setup, config, config.ray.update_rate) {}
+  const BlockCloud& cloud() const { return output(); }
+};
+
+struct SensorKind;
+/// The kind(s) of this folder, registered beside their classes (plugins/sensor_registry.h).
+const SensorKind& lidarKind();
+const SensorKind& rangeKind();
+const SensorKind& blockLaserKind();
+
+}  // namespace tianracer_sim
+
+#endif  // TIANRACER_SIM_PLUGINS_RAY_SIM_RAY_H
