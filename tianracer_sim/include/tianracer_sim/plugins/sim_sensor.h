@@ -215,6 +215,51 @@ struct SimSensorSetup {
   }
 };
 
+/// The shape most kinds share: a ROS-free core (its config(), what it measures) sampled on one
+/// schedule, with one output whose latest value the publisher reads (an empty one before the
+/// first sample). A kind supplies sample() and, where it differentiates poses, track() (every
+/// step) and forget() (its histories, at a restart). SimLidar, SimImu and SimP3d are this;
+/// the ray grids (plugins/ray/sim_ray.h) and hector's plugins (plugins/hector/sim_hector.h)
+/// have shapes of their own.
+template <class Core, class Output>
+class SimCoreSensor : public SimSensor {
+ public:
+  static constexpr SensorOutputs kOutput = 1;
+  const auto& config() const { return core_.config(); }
+
+  SensorOutputs update(double t, SensorWorld& world) override {
+    track(t, world);
+    return schedule_.due(t) ? kOutput : 0;
+  }
+  void restart(double t) override {
+    schedule_.restart(t);
+    forget();
+  }
+
+ protected:
+  /// `core` is sampled at `rate` (Hz; 0: every step); the status counts it as `name`.
+  SimCoreSensor(std::string kind, const SimSensorSetup& setup, const std::string& name,
+                const std::string& link, Core core, double rate)
+      : SimSensor(std::move(kind), name, setup.linkRef(link), setup.model_name),
+        core_(std::move(core)) {
+    sampleAt(schedule_, name, rate);
+  }
+  /// Every step before the schedule: the motion history a kind differentiates.
+  virtual void track(double /*t*/, SensorWorld& /*world*/) {}
+  /// At a restart: the histories forgotten.
+  virtual void forget() {}
+  /// The latest output (held by the core or the kind).
+  const Output& output() const { return *output_; }
+  void setOutput(const Output& output) { output_ = &output; }
+
+  Core core_;
+
+ private:
+  Schedule schedule_;
+  Output none_{};
+  const Output* output_ = &none_;
+};
+
 }  // namespace tianracer_sim
 
 #endif  // TIANRACER_SIM_PLUGINS_SIM_SENSOR_H

@@ -38,30 +38,24 @@ const SensorKind& imuPluginKind() {
 }
 TIANRACER_SENSOR_KIND(imuPluginKind);
 
-SimImu::SimImu(const SimSensorSetup& setup, ImuConfig config)
-    : SimSensor(config.model_plugin ? "imu_plugin" : "imu", config.name,
-                setup.linkRef(config.link), setup.model_name),
-      sensor_((config.seed = setup.seed + 301 + static_cast<std::uint64_t>(setup.index),
-               config.frame_name = resolveFrame(setup.tf_prefix, config.frame_name),
-               setup.check_link(config.link), config),
-              setup.gravity) {
-  sampleAt(schedule_, sensor_.config().name, sensor_.config().publishRate());
+namespace {
+
+ImuConfig placedImu(const SimSensorSetup& setup, ImuConfig config) {
+  config.seed = setup.seed + 301 + static_cast<std::uint64_t>(setup.index);
+  config.frame_name = resolveFrame(setup.tf_prefix, config.frame_name);
+  setup.check_link(config.link);
+  return config;
 }
 
-SensorOutputs SimImu::update(double t, SensorWorld& world) {
-  // The motion history is kept every step: rates and accelerations are differences.
-  sensor_.record(t, world.linkPose(link()));
-  return schedule_.due(t) ? kReading : 0;
-}
+}  // namespace
+
+SimImu::SimImu(const SimSensorSetup& setup, ImuConfig config)
+    : SimCoreSensor(config.model_plugin ? "imu_plugin" : "imu", setup, config.name, config.link,
+                    ImuSensor(placedImu(setup, config), setup.gravity), config.publishRate()) {}
 
 void SimImu::sample(SensorOutputs, SensorWorld& world) {
-  sensor_.setGravity(world.gravity());
-  reading_ = &sensor_.read();
-}
-
-void SimImu::restart(double t) {
-  schedule_.restart(t);
-  sensor_.reset();
+  core_.setGravity(world.gravity());
+  setOutput(core_.read());
 }
 
 }  // namespace tianracer_sim

@@ -20,17 +20,24 @@ const SensorKind& p3dKind() {
 }
 TIANRACER_SENSOR_KIND(p3dKind);
 
+namespace {
+
+P3dConfig placedP3d(const SimSensorSetup& setup, P3dConfig config) {
+  config.seed = setup.seed + 401 + static_cast<std::uint64_t>(setup.index);
+  setup.check_link(config.link);
+  if (!config.reference_link.empty()) setup.check_link(config.reference_link);
+  return config;
+}
+
+}  // namespace
+
 SimP3d::SimP3d(const SimSensorSetup& setup, P3dConfig config)
-    : SimSensor("p3d", config.name, setup.linkRef(config.link), setup.model_name),
-      sensor_((config.seed = setup.seed + 401 + static_cast<std::uint64_t>(setup.index),
-               setup.check_link(config.link),
-               config.reference_link.empty() ? void() : setup.check_link(config.reference_link),
-               config)) {
-  const P3dConfig& c = sensor_.config();
+    : SimCoreSensor("p3d", setup, config.name, config.link, P3dSensor(placedP3d(setup, config)),
+                    config.update_rate) {
+  const P3dConfig& c = core_.config();
   // Frames as the sim's others: tf_prefix on links, world as it is.
   frame_ = c.reference_link.empty() ? c.frame_name : resolveFrame(setup.tf_prefix, c.reference_link);
   child_ = resolveFrame(setup.tf_prefix, c.link);
-  sampleAt(schedule_, c.name, c.update_rate);
 }
 
 void SimP3d::track(double t, SensorWorld& world, const std::string& link, LinkMotion* motion) {
@@ -43,21 +50,18 @@ void SimP3d::track(double t, SensorWorld& world, const std::string& link, LinkMo
   }
 }
 
-SensorOutputs SimP3d::update(double t, SensorWorld& world) {
-  // Velocities of links off the root body are pose differences: keep the history each step.
-  const P3dConfig& c = sensor_.config();
+void SimP3d::track(double t, SensorWorld& world) {
+  const P3dConfig& c = core_.config();
   track(t, world, c.link, &body_);
   if (!c.reference_link.empty()) track(t, world, c.reference_link, &reference_);
-  return schedule_.due(t) ? kReading : 0;
 }
 
 void SimP3d::sample(SensorOutputs, SensorWorld&) {
-  const P3dConfig& c = sensor_.config();
-  reading_ = &sensor_.measure(body_.state(), c.reference_link.empty() ? nullptr : &reference_.state());
+  const P3dConfig& c = core_.config();
+  setOutput(core_.measure(body_.state(), c.reference_link.empty() ? nullptr : &reference_.state()));
 }
 
-void SimP3d::restart(double t) {
-  schedule_.restart(t);
+void SimP3d::forget() {
   body_.reset();
   reference_.reset();
 }

@@ -63,21 +63,22 @@ const SensorKind& blockLaserKind() {
 }
 TIANRACER_SENSOR_KIND(blockLaserKind);
 
-SimLidar::SimLidar(const SimSensorSetup& setup, RaySensorConfig config)
-    : SimSensor("lidar", config.name, setup.linkRef(config.link), setup.model_name),
-      sensor_(config) {
+namespace {
+
+RaySensorConfig checkedLidar(const SimSensorSetup& setup, RaySensorConfig config) {
   setup.check_link(config.link);
-  sampleAt(schedule_, config.name, config.update_rate);
+  return config;
 }
 
-SensorOutputs SimLidar::update(double t, SensorWorld&) {
-  // The schedule runs whether or not anyone listens, so a new subscriber gets the rate.
-  return schedule_.due(t) ? kScan : 0;
-}
+}  // namespace
+
+SimLidar::SimLidar(const SimSensorSetup& setup, RaySensorConfig config)
+    : SimCoreSensor("lidar", setup, config.name, config.link, RaySensor(checkedLidar(setup, config)),
+                    config.update_rate) {}
 
 void SimLidar::sample(SensorOutputs, SensorWorld& world) {
   const Scene& scene = world.scene();
-  ranges_ = &sensor_.scan(world.caster(), scene, world.linkPose(link()));
+  setOutput(core_.scan(world.caster(), scene, world.linkPose(link())));
 }
 
 }  // namespace tianracer_sim

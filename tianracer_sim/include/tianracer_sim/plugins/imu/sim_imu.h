@@ -9,23 +9,19 @@
 namespace tianracer_sim {
 
 /// imu sensor (libgazebo_ros_imu_sensor) and the libgazebo_ros_imu model plugin.
-class SimImu : public SimSensor {
+class SimImu : public SimCoreSensor<ImuSensor, ImuReading> {
  public:
-  static constexpr SensorOutputs kReading = 1;
+  static constexpr SensorOutputs kReading = kOutput;
   SimImu(const SimSensorSetup& setup, ImuConfig config);
-  const ImuConfig& config() const { return sensor_.config(); }
-  const ImuReading& reading() const { return *reading_; }
+  const ImuReading& reading() const { return output(); }
 
-  SensorOutputs update(double t, SensorWorld& world) override;
   void sample(SensorOutputs outputs, SensorWorld& world) override;
-  void skip() override { sensor_.skip(); }
-  void restart(double t) override;
+  void skip() override { core_.skip(); }
 
  private:
-  ImuSensor sensor_;
-  Schedule schedule_;
-  ImuReading none_;
-  const ImuReading* reading_ = &none_;
+  // The motion history is kept every step: rates and accelerations are differences.
+  void track(double t, SensorWorld& world) override { core_.record(t, world.linkPose(link())); }
+  void forget() override { core_.reset(); }
 };
 
 struct SensorKind;

@@ -10,30 +10,25 @@
 namespace tianracer_sim {
 
 /// libgazebo_ros_p3d: a link's ground truth, optionally relative to another link.
-class SimP3d : public SimSensor {
+class SimP3d : public SimCoreSensor<P3dSensor, P3dReading> {
  public:
-  static constexpr SensorOutputs kReading = 1;
+  static constexpr SensorOutputs kReading = kOutput;
   SimP3d(const SimSensorSetup& setup, P3dConfig config);
-  const P3dConfig& config() const { return sensor_.config(); }
-  const P3dReading& reading() const { return *reading_; }
+  const P3dReading& reading() const { return output(); }
   /// The frame the reading is in (world, or the reference link with its tf_prefix) and the
   /// link's own frame.
   const std::string& frame() const { return frame_; }
   const std::string& childFrame() const { return child_; }
 
-  SensorOutputs update(double t, SensorWorld& world) override;
   void sample(SensorOutputs outputs, SensorWorld& world) override;
-  void restart(double t) override;
 
  private:
+  // Velocities of links off the root body are pose differences: the history is kept each step.
+  void track(double t, SensorWorld& world) override;
+  void forget() override;
   void track(double t, SensorWorld& world, const std::string& link, LinkMotion* motion);
-
-  P3dSensor sensor_;
   std::string frame_, child_;
   LinkMotion body_, reference_;
-  Schedule schedule_;
-  P3dReading none_;
-  const P3dReading* reading_ = &none_;
 };
 
 struct SensorKind;

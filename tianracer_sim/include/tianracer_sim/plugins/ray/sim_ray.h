@@ -14,24 +14,16 @@
 namespace tianracer_sim {
 
 /// ray / gpu_ray: a scan (ranges in beam order; a 3D lidar's rows one after the other).
-class SimLidar : public SimSensor {
+class SimLidar : public SimCoreSensor<RaySensor, std::vector<float>> {
  public:
-  static constexpr SensorOutputs kScan = 1;
+  static constexpr SensorOutputs kScan = kOutput;
   SimLidar(const SimSensorSetup& setup, RaySensorConfig config);
-  const RaySensorConfig& config() const { return sensor_.config(); }
   /// The last scan's ranges; the unit ray directions in the sensor frame.
-  const std::vector<float>& ranges() const { return *ranges_; }
-  const std::vector<Eigen::Vector3d>& directions() const { return sensor_.directions(); }
+  const std::vector<float>& ranges() const { return output(); }
+  const std::vector<Eigen::Vector3d>& directions() const { return core_.directions(); }
 
-  SensorOutputs update(double t, SensorWorld& world) override;
+  // The schedule runs whether or not anyone listens, so a new subscriber gets the rate.
   void sample(SensorOutputs outputs, SensorWorld& world) override;
-  void restart(double t) override { schedule_.restart(t); }
-
- private:
-  RaySensor sensor_;
-  Schedule schedule_;
-  const std::vector<float>* ranges_ = &empty_;
-  std::vector<float> empty_;
 };
 
 /// The gazebo_ros plugins over a ray sensor's grid (gazebo_ros_range, gazebo_ros_block_laser):
