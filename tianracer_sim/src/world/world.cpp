@@ -78,7 +78,7 @@ WorldDescription Parser::parse(const std::string& xml) {
       have_physics = true;
       parsePhysics(c, world.physics);
     } else if (tag == "gravity") {  // SDF >= 1.5 puts gravity in <world>
-      world.physics.gravity = gravity(c, "world");
+      if (!keepsDefault(c)) world.physics.gravity = gravity(c, "world");
     } else if (tag == "scene") {
       parseScene(c, world);
     } else if (tag == "include") {
@@ -131,16 +131,17 @@ void Parser::parsePhysics(const XMLElement* e, PhysicsSettings& physics) {
     const std::string tag = c->Name();
     if (tag == "max_step_size") {
       // As PhysicsWorld::setTimeStep takes it (0, kMaxTimeStep], checked here with the line.
-      physics.max_step_size = positive(c, "<physics>");
+      physics.max_step_size = positive(c, "<physics>", physics.max_step_size);
       if (physics.max_step_size > limits::kTimeStep)
         fail(c, "<physics>: <max_step_size> " + text(c) + " is out of range (0 < step <= " +
                     limits::formatNumber(limits::kTimeStep) + " s)");
     } else if (tag == "real_time_factor") {
-      physics.real_time_factor = nonNegative(c, "<physics>");
+      physics.real_time_factor = nonNegative(c, "<physics>", physics.real_time_factor);
     } else if (tag == "real_time_update_rate") {
-      physics.real_time_update_rate = nonNegative(c, "<physics>");
+      physics.real_time_update_rate =
+          nonNegative(c, "<physics>", physics.real_time_update_rate);
     } else if (tag == "gravity") {
-      physics.gravity = gravity(c, "<physics>");
+      if (!keepsDefault(c)) physics.gravity = gravity(c, "<physics>");
     } else {
       unsupported(c);
     }
@@ -175,9 +176,9 @@ void Parser::parseScene(const XMLElement* e, WorldDescription& world) {
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
     if (tag == "ambient") {
-      world.ambient = color(c, "<scene>");
+      if (!keepsDefault(c)) world.ambient = color(c, "<scene>");
     } else if (tag == "background") {
-      world.background = color(c, "<scene>");
+      if (!keepsDefault(c)) world.background = color(c, "<scene>");
     } else {
       unsupported(c);
     }
@@ -197,24 +198,20 @@ void Parser::parseLight(const XMLElement* e, WorldDescription& world) {
   double constant = 1.0, linear = 0.0, quadratic = 0.0;
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
-    // An empty value element keeps its default, as sdformat reads it (parser.cc readXml sets a
-    // value only from non-null text): Gazebo's actor_circle.world has <direction></direction>.
-    const bool empty = !c->GetText() && !c->FirstChildElement();
-    if (empty && (tag == "direction" || tag == "diffuse" || tag == "specular" || tag == "pose")) continue;
     if (tag == "direction") {
-      light.direction = vector3(c, what);
+      light.direction = vector3(c, what, light.direction);
     } else if (tag == "diffuse") {
-      light.given_diffuse = color(c, what);
+      light.given_diffuse = color(c, what, light.given_diffuse);
     } else if (tag == "specular") {
-      light.given_specular = color(c, what);
+      light.given_specular = color(c, what, light.given_specular);
     } else if (tag == "pose") {
-      X = pose(c, what);
+      X = pose(c, what, X);
     } else if (tag == "attenuation") {  // kept for get_light_properties; drawn: below
       for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
         const std::string ktag = k->Name();
-        if (ktag == "constant") constant = nonNegative(k, what);
-        else if (ktag == "linear") linear = nonNegative(k, what);
-        else if (ktag == "quadratic") quadratic = nonNegative(k, what);
+        if (ktag == "constant") constant = nonNegative(k, what, constant);
+        else if (ktag == "linear") linear = nonNegative(k, what, linear);
+        else if (ktag == "quadratic") quadratic = nonNegative(k, what, quadratic);
         else if (ktag != "range") unsupported(k);
       }
     } else {
@@ -255,9 +252,9 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
     if (tag == "static") {
-      m.is_static = boolean(c, what);
+      m.is_static = boolean(c, what, m.is_static);
     } else if (tag == "pose") {
-      m.X_WM = pose(c, what);
+      m.X_WM = pose(c, what, m.X_WM);
     } else if (tag == "link") {
       LinkDescription l = parseLink(c, m.name);
       if (!link_names.insert(l.name).second) fail(c, what + ": duplicate link name '" + l.name + "'");
@@ -269,7 +266,7 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
         leftOutError(err, "the plugin is left out");
       }
     } else if (tag == "allow_auto_disable") {
-      m.allow_auto_disable = boolean(c, what);
+      m.allow_auto_disable = boolean(c, what, m.allow_auto_disable);
     } else if (tag == "joint") {
       bool in_model_frame = false;
       m.joints.push_back(parseJoint(c, m.name, &in_model_frame));
@@ -370,13 +367,13 @@ LinkDescription Parser::parseLink(const XMLElement* e, const std::string& model)
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
     if (tag == "pose") {
-      l.X_ML = pose(c, what);
+      l.X_ML = pose(c, what, l.X_ML);
     } else if (tag == "inertial") {
       l.inertial = parseInertial(c, what);
     } else if (tag == "self_collide") {
-      l.self_collide = boolean(c, what);
+      l.self_collide = boolean(c, what, l.self_collide);
     } else if (tag == "gravity") {
-      l.gravity = boolean(c, what);
+      l.gravity = boolean(c, what, l.gravity);
     } else if (tag == "collision" || tag == "visual") {
       const std::string name = c->Attribute("name") ? c->Attribute("name") : "";
       const std::string cwhat = what + " " + tag + " '" + name + "'";
@@ -391,7 +388,7 @@ LinkDescription Parser::parseLink(const XMLElement* e, const std::string& model)
           if (geometry) fail(g, cwhat + ": more than one <geometry>");
           geometry = g;
         } else if (gtag == "pose") {
-          X_LS = pose(g, cwhat);
+          X_LS = pose(g, cwhat, X_LS);
         } else if (gtag == "surface" && tag == "collision") {
           friction = parseSurface(g, cwhat, &contact);
         } else if (gtag == "material" && tag == "visual") {
@@ -432,7 +429,7 @@ InertialDescription Parser::parseInertial(const XMLElement* e, const std::string
       // (sim/world_physics.h): a static model's may be anything, nan included.
       in.mass = anyNumber(c, what + " <inertial>");
     } else if (tag == "pose") {
-      in.X_LI = pose(c, what + " <inertial>");
+      in.X_LI = pose(c, what + " <inertial>", in.X_LI);
     } else if (tag == "inertia") {
       Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
       const std::string iwhat = what + " <inertia>";
@@ -482,7 +479,7 @@ std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::strin
     s.type = ShapeType::kBox;
     bool have = false;
     children({"size"}, [&](const XMLElement* c, const std::string&) {
-      s.size = vector3(c, what + " box");
+      s.size = vector3(c, what + " box", Eigen::Vector3d::Ones());  // SDF box size 1 1 1
       checkSize(c, s.size, what + ": <box> <size>");
       have = true;
     });
@@ -496,7 +493,7 @@ std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::strin
     bool r = false, l = false;
     const XMLElement* not_positive = nullptr;
     children({"radius", "length"}, [&](const XMLElement* c, const std::string& tag) {
-      const double v = number(c, what + " cylinder");
+      const double v = number(c, what + " cylinder", 1.0);  // SDF radius, length 1
       if (!(v > 0.0) && !not_positive) not_positive = c;
       if (tag == "radius") s.radius = v, r = true;
       else s.length = v, l = true;
@@ -514,7 +511,7 @@ std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::strin
     bool r = false;
     const XMLElement* not_positive = nullptr;
     children({"radius"}, [&](const XMLElement* c, const std::string&) {
-      s.radius = number(c, what + " sphere");
+      s.radius = number(c, what + " sphere", 1.0);  // SDF radius 1
       if (!(s.radius > 0.0)) not_positive = c;
       checkSize(c, Eigen::Vector3d::Constant(s.radius), what + ": <sphere> <radius>");
       r = true;
@@ -552,7 +549,7 @@ std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::strin
         uri = text(c);
         uri_e = c;
       } else if (tag == "scale") {
-        s.scale = vector3(c, what + " mesh");
+        s.scale = vector3(c, what + " mesh", s.scale);
         if (!(s.scale.minCoeff() > 0.0)) bad_scale = c;
         else checkSize(c, s.scale, what + ": <mesh> <scale>");
       } else {
@@ -709,7 +706,7 @@ JointDescription Parser::parseJoint(const XMLElement* e, const std::string& mode
     } else if (tag == "child") {
       j.child = text(c);
     } else if (tag == "pose") {
-      j.X_CJ = pose(c, what);
+      j.X_CJ = pose(c, what, j.X_CJ);
     } else if (tag == "axis") {
       // SDF 1.5-1.7 <axis> (sdformat's joint.sdf): xyz in the joint frame unless
       // use_parent_model_frame (1.5, 1.6) or expressed_in="__model__" (1.7) says the model's.

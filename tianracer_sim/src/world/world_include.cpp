@@ -153,7 +153,7 @@ void Parser::applyState(const XMLElement* e, WorldDescription& world,
         continue;
       }
       const std::string what = "<state> of model '" + name + "'";
-      if (const XMLElement* p = c->FirstChildElement("pose")) m->X_WM = pose(p, what);
+      if (const XMLElement* p = c->FirstChildElement("pose")) m->X_WM = pose(p, what, m->X_WM);
       for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
         const std::string ktag = k->Name();
         if (ktag == "pose") continue;
@@ -200,12 +200,14 @@ std::optional<Parser::IncludeSpec> Parser::parseIncludeSpec(const XMLElement* e)
     if (tag == "uri") {
       spec.uri = text(c);
     } else if (tag == "pose") {
-      spec.X = pose(c, "<include>");
-      spec.has_pose = true;
+      // An empty one keeps the model's own pose (sdformat 9 parser.cc, readXml's <include>:
+      // the pose is set only from text).
+      spec.has_pose = !keepsDefault(c);
+      if (spec.has_pose) spec.X = pose(c, "<include>");
     } else if (tag == "name") {
       spec.name = text(c);
     } else if (tag == "static") {
-      spec.is_static = boolean(c, "<include>");
+      if (!keepsDefault(c)) spec.is_static = boolean(c, "<include>");
     } else {
       unsupported(c);
     }

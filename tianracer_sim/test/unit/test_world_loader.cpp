@@ -322,6 +322,35 @@ TEST(WorldLoader, AnEmptyLightValueKeepsItsDefault) {
             std::string::npos);
 }
 
+// The same rule for every SDF value a world reads with a default: an empty <pose> is the
+// identity (or the model's own, for an <include>), an empty box <size/> is SDF's 1 1 1, an
+// empty <static/> is false; a value that is there and wrong is still an error at its line.
+TEST(WorldLoader, EmptySdfValuesKeepTheirDefaults) {
+  Collected c;
+  const WorldDescription w = loadWorldString(
+      "<sdf version='1.6'><world name='w'>\n"
+      "<model name='m'><pose></pose><static/>\n"
+      "<link name='l'><pose/><inertial><pose/><mass>2</mass></inertial>\n"
+      "<collision name='c'><pose> </pose><geometry><box><size/></box></geometry></collision>\n"
+      "<visual name='v'><geometry><sphere><radius/></sphere></geometry></visual>\n"
+      "</link></model></world></sdf>",
+      "empty.world", kData, c.options());
+  ASSERT_EQ(w.models.size(), 1u);
+  const ModelDescription& m = w.models[0];
+  EXPECT_TRUE(m.X_WM.isApprox(Eigen::Isometry3d::Identity()));
+  EXPECT_FALSE(m.is_static);
+  ASSERT_EQ(m.links.size(), 1u);
+  EXPECT_TRUE(m.links[0].X_ML.isApprox(Eigen::Isometry3d::Identity()));
+  ASSERT_EQ(m.links[0].collisions.size(), 1u);
+  EXPECT_EQ(m.links[0].collisions[0].shape.size, Eigen::Vector3d::Ones());
+  ASSERT_EQ(m.links[0].visuals.size(), 1u);
+  EXPECT_EQ(m.links[0].visuals[0].shape.radius, 1.0);
+  EXPECT_TRUE(c.warnings.empty()) << ::testing::PrintToString(c.warnings);
+  EXPECT_EQ(errorOfString("<sdf><world name='w'>\n<model name='m'>\n<pose>1 2</pose>\n"
+                          "</model></world></sdf>"),
+            "inline.world:3: model 'm': <pose> '1 2' is not 6 numbers \"x y z roll pitch yaw\"");
+}
+
 // An <include> without <uri> (SDF 1.3's <include filename='...'>, as in Gazebo's
 // deprecated_worlds/weshare2012.world) is skipped by sdformat with an error; the rest loads.
 TEST(WorldLoader, AnIncludeWithoutUriIsLeftOutAndTheRestLoads) {
