@@ -293,17 +293,23 @@ std::optional<ModelDescription> Parser::includeModel(const XMLElement* e, const 
   std::string file;
   const std::string config = join(dir, "model.config");
   if (isFile(config)) {
+    // Read as every other XML file here (parseXmlDocument, elementText): an error names the
+    // line of model.config.
+    std::ifstream in(config, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
     tinyxml2::XMLDocument doc;
-    if (doc.LoadFile(config.c_str()) != tinyxml2::XML_SUCCESS)
-      fail(e, "<include> of '" + spec.uri + "': " + config + " is not valid XML");
+    if (!in || parseXmlDocument(text.str(), &doc) != tinyxml2::XML_SUCCESS)
+      fail(e, "<include> of '" + spec.uri + "': " + formatLocation(config, doc.ErrorLineNum()) +
+                  "is not valid XML" + (doc.Error() ? std::string(" (") + doc.ErrorName() + ")" : ""));
     const XMLElement* root = doc.RootElement();
     double best = -1.0;
     for (const XMLElement* s = root ? root->FirstChildElement("sdf") : nullptr; s;
          s = s->NextSiblingElement("sdf")) {
       const double v = sdfVersion(s->Attribute("version"));
-      if (v <= 1.7 + 1e-9 && v > best && s->GetText()) {
+      if (v <= 1.7 + 1e-9 && v > best && !elementText(s).empty()) {
         best = v;
-        file = join(dir, trimText(s->GetText()));
+        file = join(dir, elementText(s));
       }
     }
     if (file.empty())

@@ -673,6 +673,18 @@ TEST(WorldLoader, ModelConfigWithoutSdfIsAnError) {
   EXPECT_NE(e.find("model.config names no <sdf> file"), std::string::npos) << e;
 }
 
+// model.config is read as the world is: its XML error names its line (tinyxml2 places an
+// unclosed element at its start, line 4).
+TEST(WorldLoader, ABrokenModelConfigIsAnErrorAtItsLine) {
+  const std::string e = errorWithModels(
+      "<sdf version='1.6'><world name='w'>\n<include><uri>model://bad_config</uri></include>"
+      "</world></sdf>");
+  EXPECT_NE(e.find("inline.world:2: <include> of 'model://bad_config': " + kData +
+                   "gazebo_models/bad_config/model.config:4: is not valid XML (XML_ERROR_MISMATCHED"),
+            std::string::npos)
+      << e;
+}
+
 TEST(WorldLoader, IncludeFindsModelsThroughGazeboModelPathAndRosPackages) {
   // GAZEBO_MODEL_PATH alone.
   setenv("GAZEBO_MODEL_PATH", (kData + "gazebo_models").c_str(), 1);
