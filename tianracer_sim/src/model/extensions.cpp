@@ -58,10 +58,7 @@ constexpr const char* kRosControl = "libgazebo_ros_control.so";
 constexpr const char* kJointStatePublisher = "libgazebo_ros_joint_state_publisher.so";
 constexpr const char* kSimpleTransmission = "transmission_interface/SimpleTransmission";
 
-std::string text(const XMLElement* e) {
-  const char* t = e->GetText();
-  return t ? trimText(t) : "";
-}
+std::string text(const XMLElement* e) { return elementText(e); }
 
 /// Value of <tag value="..."/> (the seed's form) or <tag>...</tag> (Gazebo's form).
 std::string valueOf(const XMLElement* e) {
@@ -88,8 +85,7 @@ double nonNegative(const XMLElement* e, const std::string& what, const std::stri
 
 bool toBool(const XMLElement* e, const std::string& what, const std::string& source) {
   const std::string v = valueOf(e);
-  if (v == "true" || v == "1") return true;
-  if (v == "false" || v == "0") return false;
+  if (const auto b = parseBool(v)) return *b;
   throw ModelError(mi::at(source, e) + what + ": <" + e->Name() + "> value '" + v +
                    "' is not a boolean (true/false/1/0)");
 }
