@@ -78,12 +78,15 @@ bool startsWith(const std::string& s, const std::string& prefix) {
 
 namespace {
 
-/// SDF version "1.6" -> 1.6; unparsable -> 0.
-double sdfVersion(const char* v) {
-  if (!v) return 0.0;
-  char* end = nullptr;
-  const double d = std::strtod(v, &end);
-  return end == v ? 0.0 : d;
+/// SDF version "1.6" -> (1, 6), compared as versions are (sdformat's getBestSupportedModelVersion
+/// compares gz::math::SemanticVersions: 1.10 is above 1.7); a patch level is not compared;
+/// unreadable -> (0, 0).
+std::pair<int, int> sdfVersion(const std::string& v) {
+  const std::size_t dot = v.find('.');
+  const std::string minor = dot == std::string::npos ? "0" : v.substr(dot + 1);
+  const auto a = parseInteger(v.substr(0, dot));
+  const auto b = parseInteger(minor.substr(0, minor.find('.')));
+  return a && b ? std::make_pair(*a, *b) : std::make_pair(0, 0);
 }
 
 }  // namespace
@@ -303,11 +306,11 @@ std::optional<ModelDescription> Parser::includeModel(const XMLElement* e, const 
       fail(e, "<include> of '" + spec.uri + "': " + formatLocation(config, doc.ErrorLineNum()) +
                   "is not valid XML" + (doc.Error() ? std::string(" (") + doc.ErrorName() + ")" : ""));
     const XMLElement* root = doc.RootElement();
-    double best = -1.0;
+    std::pair<int, int> best{-1, -1};
     for (const XMLElement* s = root ? root->FirstChildElement("sdf") : nullptr; s;
          s = s->NextSiblingElement("sdf")) {
-      const double v = sdfVersion(s->Attribute("version"));
-      if (v <= 1.7 + 1e-9 && v > best && !elementText(s).empty()) {
+      const std::pair<int, int> v = sdfVersion(attributeText(s, "version"));
+      if (v <= std::make_pair(1, 7) && v > best && !elementText(s).empty()) {
         best = v;
         file = join(dir, elementText(s));
       }

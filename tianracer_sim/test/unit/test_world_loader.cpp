@@ -685,6 +685,18 @@ TEST(WorldLoader, ABrokenModelConfigIsAnErrorAtItsLine) {
       << e;
 }
 
+// model.config's versions compare as versions: 1.10 is above 1.7 (not 1.1 > 1.0), so 1.0 is chosen.
+TEST(WorldLoader, ModelConfigVersionsCompareAsVersions) {
+  WorldLoadOptions o = strict();
+  o.model_paths = {kData + "gazebo_models"};
+  const WorldDescription w = loadWorldString(
+      "<sdf version='1.6'><world name='w'><include><uri>model://version_1_10</uri></include>"
+      "</world></sdf>",
+      "inline.world", kData, o);
+  ASSERT_EQ(w.models.size(), 1u);  // 1.10's file does not exist: read, it would be an error
+  EXPECT_EQ(w.models[0].name, "test_crate");
+}
+
 TEST(WorldLoader, IncludeFindsModelsThroughGazeboModelPathAndRosPackages) {
   // GAZEBO_MODEL_PATH alone.
   setenv("GAZEBO_MODEL_PATH", (kData + "gazebo_models").c_str(), 1);
