@@ -69,6 +69,18 @@ TEST(SensorErrorLines, RayFromARobotAndFromAWorld) {
   }
 }
 
+// The checks after reading (validate()) are placed at the element they name too.
+TEST(SensorErrorLines, RayChecksAfterReading) {
+  std::string xml = kRay;
+  xml.replace(xml.find("many"), 4, "0");
+  EXPECT_EQ(errorOf([&] { parseRaySensorConfig(robotSensor(xml)); }),
+            "robot.urdf:7: sensor 'laser': <samples> must be > 0 (got 0)");
+  xml.replace(xml.find("<samples>0"), 10, "<samples>10");
+  xml.replace(xml.find("<min>0.1"), 8, "<min>6");
+  EXPECT_EQ(errorOf([&] { parseRaySensorConfig(worldSensor(xml)); }),
+            "room.world:9: sensor 'laser': range <min> 6 must be < range <max> 5");
+}
+
 const char* kCamera =
     "<sensor type='camera' name='cam'>\n"        // 4
     "  <camera>\n"                               // 5
