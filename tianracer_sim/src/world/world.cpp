@@ -427,7 +427,7 @@ InertialDescription Parser::parseInertial(const XMLElement* e, const std::string
     if (tag == "mass") {
       // Mass and inertia are checked where they matter, for a link that moves
       // (sim/world_physics.h): a static model's may be anything, nan included.
-      in.mass = anyNumber(c, what + " <inertial>");
+      if (!keepsDefault(c)) in.mass = anyNumber(c, what + " <inertial>");
     } else if (tag == "pose") {
       in.X_LI = pose(c, what + " <inertial>", in.X_LI);
     } else if (tag == "inertia") {
@@ -435,6 +435,8 @@ InertialDescription Parser::parseInertial(const XMLElement* e, const std::string
       const std::string iwhat = what + " <inertia>";
       for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
         const std::string key = k->Name();
+        static const std::set<std::string> kInertia = {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"};
+        if (keepsDefault(k) && kInertia.count(key)) continue;  // keeps its default (sdformat)
         if (key == "ixx") I(0, 0) = anyNumber(k, iwhat);
         else if (key == "iyy") I(1, 1) = anyNumber(k, iwhat);
         else if (key == "izz") I(2, 2) = anyNumber(k, iwhat);
@@ -675,6 +677,10 @@ Friction Parser::parseSurface(const XMLElement* e, const std::string& what,
       }
       for (const XMLElement* p = k->FirstChildElement(); p; p = p->NextSiblingElement()) {
         const std::string tag = p->Name();
+        // An empty value keeps its default (sdformat); an unknown element is still reported.
+        if (keepsDefault(p) && (tag == "mu" || tag == "mu2" || tag == "kp" || tag == "kd" ||
+                                tag == "max_vel" || tag == "min_depth"))
+          continue;
         // A negative mu is no limit (toSurface), as Gazebo reads it.
         if (ctag == "friction" && tag == "mu") f.mu = number(p, what + " friction");
         else if (ctag == "friction" && tag == "mu2") f.mu2 = number(p, what + " friction");
@@ -730,6 +736,9 @@ JointDescription Parser::parseJoint(const XMLElement* e, const std::string& mode
         } else if (atag == "limit") {
           for (const XMLElement* l = a->FirstChildElement(); l; l = l->NextSiblingElement()) {
             const std::string ltag = l->Name();
+            if (keepsDefault(l) && (ltag == "lower" || ltag == "upper" || ltag == "effort" ||
+                                    ltag == "velocity"))
+              continue;  // an empty value keeps its default (sdformat)
             if (ltag == "lower") j.lower = number(l, awhat + " <limit>");
             else if (ltag == "upper") j.upper = number(l, awhat + " <limit>");
             else if (ltag == "effort") j.effort = number(l, awhat + " <limit>");
@@ -740,6 +749,9 @@ JointDescription Parser::parseJoint(const XMLElement* e, const std::string& mode
           for (const XMLElement* d = a->FirstChildElement(); d; d = d->NextSiblingElement()) {
             const std::string dtag = d->Name();
             const std::string dwhat = awhat + " <dynamics>";
+            if (keepsDefault(d) && (dtag == "damping" || dtag == "friction" ||
+                                    dtag == "spring_reference" || dtag == "spring_stiffness"))
+              continue;  // an empty value keeps its default (sdformat)
             if (dtag == "damping") j.damping = coefficient(d, dwhat);
             else if (dtag == "friction") j.friction = coefficient(d, dwhat);
             else if (dtag == "spring_reference")

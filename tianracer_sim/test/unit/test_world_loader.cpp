@@ -330,7 +330,8 @@ TEST(WorldLoader, EmptySdfValuesKeepTheirDefaults) {
   const WorldDescription w = loadWorldString(
       "<sdf version='1.6'><world name='w'>\n"
       "<model name='m'><pose></pose><static/>\n"
-      "<link name='l'><pose/><inertial><pose/><mass>2</mass></inertial>\n"
+      "<link name='l'><pose/><inertial><pose/><mass/><inertia><ixx/><iyy>2</iyy></inertia>"
+      "</inertial>\n"
       "<collision name='c'><pose> </pose><geometry><box><size/></box></geometry></collision>\n"
       "<visual name='v'><geometry><sphere><radius/></sphere></geometry></visual>\n"
       "</link></model></world></sdf>",
@@ -341,6 +342,8 @@ TEST(WorldLoader, EmptySdfValuesKeepTheirDefaults) {
   EXPECT_FALSE(m.is_static);
   ASSERT_EQ(m.links.size(), 1u);
   EXPECT_TRUE(m.links[0].X_ML.isApprox(Eigen::Isometry3d::Identity()));
+  EXPECT_EQ(m.links[0].inertial.mass, 1.0);  // SDF's default mass and ixx
+  EXPECT_EQ(m.links[0].inertial.inertia, Eigen::Vector3d(1, 2, 1).asDiagonal().toDenseMatrix());
   ASSERT_EQ(m.links[0].collisions.size(), 1u);
   EXPECT_EQ(m.links[0].collisions[0].shape.size, Eigen::Vector3d::Ones());
   ASSERT_EQ(m.links[0].visuals.size(), 1u);
