@@ -242,7 +242,7 @@ void Parser::parseLight(const XMLElement* e, WorldDescription& world) {
 
 ModelDescription Parser::parseModel(const XMLElement* e) {
   ModelDescription m;
-  m.name = e->Attribute("name") ? trimText(e->Attribute("name")) : "";
+  m.name = attributeText(e, "name");
   m.line = e->GetLineNum();
   if (m.name.empty()) fail(e, "<model> has no name");
   const std::string what = "model '" + m.name + "'";
@@ -360,7 +360,7 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
 
 LinkDescription Parser::parseLink(const XMLElement* e, const std::string& model) {
   LinkDescription l;
-  l.name = e->Attribute("name") ? trimText(e->Attribute("name")) : "";
+  l.name = attributeText(e, "name");
   l.line = e->GetLineNum();
   if (l.name.empty()) fail(e, "model '" + model + "': <link> has no name");
   const std::string what = "model '" + model + "' link '" + l.name + "'";
@@ -699,8 +699,8 @@ Friction Parser::parseSurface(const XMLElement* e, const std::string& what,
 JointDescription Parser::parseJoint(const XMLElement* e, const std::string& model,
                                     bool* axis_in_model_frame) {
   JointDescription j;
-  j.name = e->Attribute("name") ? trimText(e->Attribute("name")) : "";
-  j.type = e->Attribute("type") ? trimText(e->Attribute("type")) : "";
+  j.name = attributeText(e, "name");
+  j.type = attributeText(e, "type");
   j.line = e->GetLineNum();
   *axis_in_model_frame = false;
   const std::string what = "model '" + model + "' joint '" + j.name + "'";

@@ -18,7 +18,7 @@ ActorDescription Parser::parseActor(const XMLElement* e) {
   ActorDescription a;
   a.line = e->GetLineNum();
   a.model.line = a.line;
-  a.model.name = e->Attribute("name") ? trimText(e->Attribute("name")) : "";
+  a.model.name = attributeText(e, "name");
   if (a.model.name.empty()) fail(e, "<actor> has no name");
   const std::string what = "actor '" + a.model.name + "'";
   std::set<std::string> link_names;
@@ -76,7 +76,7 @@ ActorDescription Parser::parseActor(const XMLElement* e) {
     const std::string id_text = id ? trimText(id) : "";
     const std::string twhat = what + " <trajectory id='" + id_text + "'>";
     tr.id = integerAttribute(c, "id", what);
-    tr.type = c->Attribute("type") ? trimText(c->Attribute("type")) : "";
+    tr.type = attributeText(c, "type");
     if (c->Attribute("tension")) tr.tension = numberAttribute(c, "tension", what);
     std::map<double, int> times;  // time -> line
     for (const XMLElement* w = c->FirstChildElement(); w; w = w->NextSiblingElement()) {

@@ -147,7 +147,7 @@ void Parser::applyState(const XMLElement* e, WorldDescription& world,
         names.erase(name);
       }
     } else if (tag == "model") {
-      const std::string name = c->Attribute("name") ? trimText(c->Attribute("name")) : "";
+      const std::string name = attributeText(c, "name");
       ModelDescription* m = findModel(name);
       if (!m) {
         // Gazebo logs "Unable to find model[...]" and applies the rest (World::SetState).
@@ -174,7 +174,7 @@ void Parser::applyState(const XMLElement* e, WorldDescription& world,
             for (VisualDescription& v : l.visuals) v.shape = scaledAsGazebo(v.shape, scale);
           }
         } else if (ktag == "link") {
-          const std::string lname = k->Attribute("name") ? trimText(k->Attribute("name")) : "";
+          const std::string lname = attributeText(k, "name");
           auto l = std::find_if(m->links.begin(), m->links.end(),
                                 [&](const LinkDescription& d) { return d.name == lname; });
           if (l == m->links.end()) {
