@@ -288,12 +288,21 @@ Eigen::Vector4f XmlReader::color(const XMLElement* e, const std::string& what) c
           v.size() == 4 ? static_cast<float>(v[3]) : 1.0f};
 }
 
-Eigen::Isometry3d XmlReader::pose(const XMLElement* e, const std::string& what) {
+namespace {
+
+// SDF 1.5's frame and 1.7's relative_to attributes, warned about where a <pose> is read.
+void warnPoseFrame(XmlReader* r, const XMLElement* e, const std::string& what) {
   for (const char* a : {"frame", "relative_to"}) {
     const char* v = e->Attribute(a);
     if (v && *v)
-      warn(e, what + ": <pose " + a + "='" + v + "'> is not supported; taken relative to the parent");
+      r->warn(e, what + ": <pose " + a + "='" + v + "'> is not supported; taken relative to the parent");
   }
+}
+
+}  // namespace
+
+Eigen::Isometry3d XmlReader::pose(const XMLElement* e, const std::string& what) {
+  warnPoseFrame(this, e, what);
   const auto v = numbers(e, what);
   if (v.size() != 6)
     fail(e, lead(what, e) + " '" + text(e) + "' is not 6 numbers \"x y z roll pitch yaw\"");
@@ -330,7 +339,9 @@ Eigen::Vector4f XmlReader::color(const XMLElement* e, const std::string& what,
 
 Eigen::Isometry3d XmlReader::pose(const XMLElement* e, const std::string& what,
                                   const Eigen::Isometry3d& fallback) {
-  return keepsDefault(e) ? fallback : pose(e, what);
+  if (!keepsDefault(e)) return pose(e, what);
+  warnPoseFrame(this, e, what);
+  return fallback;
 }
 
 double XmlReader::numberAttribute(const XMLElement* e, const char* name,

@@ -203,6 +203,13 @@ TEST_F(XmlReaderTest, AnSdfElementWithNoTextKeepsTheDefaultItIsGiven) {
             "room.world:7: box: <bad> '1 x 3' is not a list of numbers");
   EXPECT_EQ(error([&] { reader_.nonNegative(el("neg"), "sensor", 0.0); }),
             "room.world:9: sensor: <neg> must be >= 0 (got -1)");
+  // An empty <pose relative_to=...> is warned about as a full one is.
+  load("<m>\n<pose relative_to='other'/>\n</m>");
+  EXPECT_TRUE(reader_.pose(el("pose"), "model 'm'", X0).isApprox(X0));
+  EXPECT_THAT(warnings_, ElementsAre("room.world:2: model 'm': <pose relative_to='other'> is not "
+                                     "supported; taken relative to the parent"));
+  warnings_.clear();
+  load("<m>\n<pose></pose>\n</m>");
   // Without a default an empty element is still an error.
   EXPECT_EQ(error([&] { reader_.pose(el("pose"), "model 'm'"); }),
             "room.world:2: model 'm': <pose> '' is not 6 numbers \"x y z roll pitch yaw\"");
