@@ -239,15 +239,20 @@ double XmlReader::nonNegative(const XMLElement* e, const std::string& what) cons
   return v;
 }
 
-int XmlReader::integer(const XMLElement* e, const std::string& what) const {
-  const std::string t = text(e);
+std::optional<int> parseInteger(const std::string& text) {
+  const std::string t = trimText(text);
   const char* begin = t.data() + (t.size() > 1 && t[0] == '+' && t[1] != '-' ? 1 : 0);  // as strtol
   const char* end = t.data() + t.size();
   int v = 0;
   const auto r = std::from_chars(begin, end, v);
-  if (t.empty() || r.ec != std::errc() || r.ptr != end)
-    fail(e, lead(what, e) + " '" + t + "' is not an integer");
+  if (t.empty() || r.ec != std::errc() || r.ptr != end) return std::nullopt;
   return v;
+}
+
+int XmlReader::integer(const XMLElement* e, const std::string& what) const {
+  const auto v = parseInteger(text(e));
+  if (!v) fail(e, lead(what, e) + " '" + text(e) + "' is not an integer");
+  return *v;
 }
 
 std::uint32_t XmlReader::unsignedInteger(const XMLElement* e, const std::string& what) const {
@@ -283,18 +288,77 @@ Eigen::Vector4f XmlReader::color(const XMLElement* e, const std::string& what) c
           v.size() == 4 ? static_cast<float>(v[3]) : 1.0f};
 }
 
-Eigen::Isometry3d XmlReader::pose(const XMLElement* e, const std::string& what) {
+namespace {
+
+// SDF 1.5's frame and 1.7's relative_to attributes, warned about where a <pose> is read.
+void warnPoseFrame(XmlReader* r, const XMLElement* e, const std::string& what) {
   for (const char* a : {"frame", "relative_to"}) {
     const char* v = e->Attribute(a);
     if (v && *v)
-      warn(e, what + ": <pose " + a + "='" + v + "'> is not supported; taken relative to the parent");
+      r->warn(e, what + ": <pose " + a + "='" + v + "'> is not supported; taken relative to the parent");
   }
+}
+
+}  // namespace
+
+Eigen::Isometry3d XmlReader::pose(const XMLElement* e, const std::string& what) {
+  warnPoseFrame(this, e, what);
   const auto v = numbers(e, what);
   if (v.size() != 6)
     fail(e, lead(what, e) + " '" + text(e) + "' is not 6 numbers \"x y z roll pitch yaw\"");
   const std::string bad = limits::checkVector({v[0], v[1], v[2]}, limits::kPosition, "m");
   if (!bad.empty()) fail(e, lead(what, e) + " position " + bad);
   return sdfPose(v[0], v[1], v[2], v[3], v[4], v[5]);
+}
+
+double XmlReader::number(const XMLElement* e, const std::string& what, double fallback) const {
+  return keepsDefault(e) ? fallback : number(e, what);
+}
+
+double XmlReader::positive(const XMLElement* e, const std::string& what, double fallback) const {
+  return keepsDefault(e) ? fallback : positive(e, what);
+}
+
+double XmlReader::nonNegative(const XMLElement* e, const std::string& what, double fallback) const {
+  return keepsDefault(e) ? fallback : nonNegative(e, what);
+}
+
+bool XmlReader::boolean(const XMLElement* e, const std::string& what, bool fallback) const {
+  return keepsDefault(e) ? fallback : boolean(e, what);
+}
+
+Eigen::Vector3d XmlReader::vector3(const XMLElement* e, const std::string& what,
+                                   const Eigen::Vector3d& fallback) const {
+  return keepsDefault(e) ? fallback : vector3(e, what);
+}
+
+Eigen::Vector4f XmlReader::color(const XMLElement* e, const std::string& what,
+                                 const Eigen::Vector4f& fallback) const {
+  return keepsDefault(e) ? fallback : color(e, what);
+}
+
+Eigen::Isometry3d XmlReader::pose(const XMLElement* e, const std::string& what,
+                                  const Eigen::Isometry3d& fallback) {
+  if (!keepsDefault(e)) return pose(e, what);
+  warnPoseFrame(this, e, what);
+  return fallback;
+}
+
+double XmlReader::numberAttribute(const XMLElement* e, const char* name,
+                                  const std::string& what) const {
+  const std::string t = attributeText(e, name);
+  const auto v = parseNumber(t);
+  if (!v || !std::isfinite(*v))
+    fail(e, lead(what, e) + " " + name + " '" + t + "' is not a finite number");
+  return *v;
+}
+
+int XmlReader::integerAttribute(const XMLElement* e, const char* name,
+                                const std::string& what) const {
+  const std::string t = attributeText(e, name);
+  const auto v = parseInteger(t);
+  if (!v) fail(e, lead(what, e) + " " + name + " '" + t + "' is not an integer");
+  return *v;
 }
 
 Eigen::Isometry3d sdfPose(double x, double y, double z, double roll, double pitch, double yaw) {

@@ -58,10 +58,7 @@ constexpr const char* kRosControl = "libgazebo_ros_control.so";
 constexpr const char* kJointStatePublisher = "libgazebo_ros_joint_state_publisher.so";
 constexpr const char* kSimpleTransmission = "transmission_interface/SimpleTransmission";
 
-std::string text(const XMLElement* e) {
-  const char* t = e->GetText();
-  return t ? trimText(t) : "";
-}
+std::string text(const XMLElement* e) { return elementText(e); }
 
 /// Value of <tag value="..."/> (the seed's form) or <tag>...</tag> (Gazebo's form).
 std::string valueOf(const XMLElement* e) {
@@ -88,8 +85,7 @@ double nonNegative(const XMLElement* e, const std::string& what, const std::stri
 
 bool toBool(const XMLElement* e, const std::string& what, const std::string& source) {
   const std::string v = valueOf(e);
-  if (v == "true" || v == "1") return true;
-  if (v == "false" || v == "0") return false;
+  if (const auto b = parseBool(v)) return *b;
   throw ModelError(mi::at(source, e) + what + ": <" + e->Name() + "> value '" + v +
                    "' is not a boolean (true/false/1/0)");
 }
@@ -124,23 +120,17 @@ SensorSpec parseSensor(const XMLElement* e, const std::string& link, const std::
   if (s.name.empty())
     throw ModelError(mi::at(source, e) + "sensor on link '" + link + "' has no name");
   if (s.type.empty()) throw ModelError(mi::at(source, e) + what + " has no type");
+  XmlReader reader(source, WarningSink());
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
-    // A bad value of the sensor's own tags leaves this sensor out, not the robot.
+    // A bad value of the sensor's own tags leaves this sensor out, not the robot. A <sensor> is
+    // SDF (gazebo_ros copies it as it is): an empty value keeps its default (XmlReader).
     try {
     if (tag == "pose") {
-      bool ok = false;
-      const auto v = numbers(text(c), &ok);
-      if (!ok || v.size() != 6)
-        throw ModelError(mi::at(source, c) + what + ": <pose> '" + text(c) +
-                         "' is not 6 finite numbers \"x y z roll pitch yaw\"");
-      // SDF pose: translation, then fixed-axis roll-pitch-yaw, R = Rz(yaw) Ry(pitch) Rx(roll).
-      s.X_LS = Eigen::Translation3d(v[0], v[1], v[2]) *
-               Eigen::AngleAxisd(v[5], Eigen::Vector3d::UnitZ()) *
-               Eigen::AngleAxisd(v[4], Eigen::Vector3d::UnitY()) *
-               Eigen::AngleAxisd(v[3], Eigen::Vector3d::UnitX());
+      s.X_LS = reader.pose(c, what, s.X_LS);
     } else if (tag == "update_rate") {
-      s.update_rate = nonNegative(c, what, source);
+      if (!XmlReader::keepsDefault(c) || c->Attribute("value"))
+        s.update_rate = nonNegative(c, what, source);
     } else if (tag == "always_on") {
       s.always_on = toBool(c, what, source);
     } else if (tag == "plugin") {

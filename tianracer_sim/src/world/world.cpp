@@ -78,7 +78,7 @@ WorldDescription Parser::parse(const std::string& xml) {
       have_physics = true;
       parsePhysics(c, world.physics);
     } else if (tag == "gravity") {  // SDF >= 1.5 puts gravity in <world>
-      world.physics.gravity = gravity(c, "world");
+      if (!keepsDefault(c)) world.physics.gravity = gravity(c, "world");
     } else if (tag == "scene") {
       parseScene(c, world);
     } else if (tag == "include") {
@@ -131,16 +131,17 @@ void Parser::parsePhysics(const XMLElement* e, PhysicsSettings& physics) {
     const std::string tag = c->Name();
     if (tag == "max_step_size") {
       // As PhysicsWorld::setTimeStep takes it (0, kMaxTimeStep], checked here with the line.
-      physics.max_step_size = positive(c, "<physics>");
+      physics.max_step_size = positive(c, "<physics>", physics.max_step_size);
       if (physics.max_step_size > limits::kTimeStep)
         fail(c, "<physics>: <max_step_size> " + text(c) + " is out of range (0 < step <= " +
                     limits::formatNumber(limits::kTimeStep) + " s)");
     } else if (tag == "real_time_factor") {
-      physics.real_time_factor = nonNegative(c, "<physics>");
+      physics.real_time_factor = nonNegative(c, "<physics>", physics.real_time_factor);
     } else if (tag == "real_time_update_rate") {
-      physics.real_time_update_rate = nonNegative(c, "<physics>");
+      physics.real_time_update_rate =
+          nonNegative(c, "<physics>", physics.real_time_update_rate);
     } else if (tag == "gravity") {
-      physics.gravity = gravity(c, "<physics>");
+      if (!keepsDefault(c)) physics.gravity = gravity(c, "<physics>");
     } else {
       unsupported(c);
     }
@@ -175,9 +176,9 @@ void Parser::parseScene(const XMLElement* e, WorldDescription& world) {
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
     if (tag == "ambient") {
-      world.ambient = color(c, "<scene>");
+      if (!keepsDefault(c)) world.ambient = color(c, "<scene>");
     } else if (tag == "background") {
-      world.background = color(c, "<scene>");
+      if (!keepsDefault(c)) world.background = color(c, "<scene>");
     } else {
       unsupported(c);
     }
@@ -197,24 +198,20 @@ void Parser::parseLight(const XMLElement* e, WorldDescription& world) {
   double constant = 1.0, linear = 0.0, quadratic = 0.0;
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
-    // An empty value element keeps its default, as sdformat reads it (parser.cc readXml sets a
-    // value only from non-null text): Gazebo's actor_circle.world has <direction></direction>.
-    const bool empty = !c->GetText() && !c->FirstChildElement();
-    if (empty && (tag == "direction" || tag == "diffuse" || tag == "specular" || tag == "pose")) continue;
     if (tag == "direction") {
-      light.direction = vector3(c, what);
+      light.direction = vector3(c, what, light.direction);
     } else if (tag == "diffuse") {
-      light.given_diffuse = color(c, what);
+      light.given_diffuse = color(c, what, light.given_diffuse);
     } else if (tag == "specular") {
-      light.given_specular = color(c, what);
+      light.given_specular = color(c, what, light.given_specular);
     } else if (tag == "pose") {
-      X = pose(c, what);
+      X = pose(c, what, X);
     } else if (tag == "attenuation") {  // kept for get_light_properties; drawn: below
       for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
         const std::string ktag = k->Name();
-        if (ktag == "constant") constant = nonNegative(k, what);
-        else if (ktag == "linear") linear = nonNegative(k, what);
-        else if (ktag == "quadratic") quadratic = nonNegative(k, what);
+        if (ktag == "constant") constant = nonNegative(k, what, constant);
+        else if (ktag == "linear") linear = nonNegative(k, what, linear);
+        else if (ktag == "quadratic") quadratic = nonNegative(k, what, quadratic);
         else if (ktag != "range") unsupported(k);
       }
     } else {
@@ -245,7 +242,7 @@ void Parser::parseLight(const XMLElement* e, WorldDescription& world) {
 
 ModelDescription Parser::parseModel(const XMLElement* e) {
   ModelDescription m;
-  m.name = e->Attribute("name") ? trimText(e->Attribute("name")) : "";
+  m.name = attributeText(e, "name");
   m.line = e->GetLineNum();
   if (m.name.empty()) fail(e, "<model> has no name");
   const std::string what = "model '" + m.name + "'";
@@ -255,9 +252,9 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
     if (tag == "static") {
-      m.is_static = boolean(c, what);
+      m.is_static = boolean(c, what, m.is_static);
     } else if (tag == "pose") {
-      m.X_WM = pose(c, what);
+      m.X_WM = pose(c, what, m.X_WM);
     } else if (tag == "link") {
       LinkDescription l = parseLink(c, m.name);
       if (!link_names.insert(l.name).second) fail(c, what + ": duplicate link name '" + l.name + "'");
@@ -269,7 +266,7 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
         leftOutError(err, "the plugin is left out");
       }
     } else if (tag == "allow_auto_disable") {
-      m.allow_auto_disable = boolean(c, what);
+      m.allow_auto_disable = boolean(c, what, m.allow_auto_disable);
     } else if (tag == "joint") {
       bool in_model_frame = false;
       m.joints.push_back(parseJoint(c, m.name, &in_model_frame));
@@ -363,20 +360,20 @@ ModelDescription Parser::parseModel(const XMLElement* e) {
 
 LinkDescription Parser::parseLink(const XMLElement* e, const std::string& model) {
   LinkDescription l;
-  l.name = e->Attribute("name") ? trimText(e->Attribute("name")) : "";
+  l.name = attributeText(e, "name");
   l.line = e->GetLineNum();
   if (l.name.empty()) fail(e, "model '" + model + "': <link> has no name");
   const std::string what = "model '" + model + "' link '" + l.name + "'";
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
     if (tag == "pose") {
-      l.X_ML = pose(c, what);
+      l.X_ML = pose(c, what, l.X_ML);
     } else if (tag == "inertial") {
       l.inertial = parseInertial(c, what);
     } else if (tag == "self_collide") {
-      l.self_collide = boolean(c, what);
+      l.self_collide = boolean(c, what, l.self_collide);
     } else if (tag == "gravity") {
-      l.gravity = boolean(c, what);
+      l.gravity = boolean(c, what, l.gravity);
     } else if (tag == "collision" || tag == "visual") {
       const std::string name = c->Attribute("name") ? c->Attribute("name") : "";
       const std::string cwhat = what + " " + tag + " '" + name + "'";
@@ -391,7 +388,7 @@ LinkDescription Parser::parseLink(const XMLElement* e, const std::string& model)
           if (geometry) fail(g, cwhat + ": more than one <geometry>");
           geometry = g;
         } else if (gtag == "pose") {
-          X_LS = pose(g, cwhat);
+          X_LS = pose(g, cwhat, X_LS);
         } else if (gtag == "surface" && tag == "collision") {
           friction = parseSurface(g, cwhat, &contact);
         } else if (gtag == "material" && tag == "visual") {
@@ -430,14 +427,16 @@ InertialDescription Parser::parseInertial(const XMLElement* e, const std::string
     if (tag == "mass") {
       // Mass and inertia are checked where they matter, for a link that moves
       // (sim/world_physics.h): a static model's may be anything, nan included.
-      in.mass = anyNumber(c, what + " <inertial>");
+      if (!keepsDefault(c)) in.mass = anyNumber(c, what + " <inertial>");
     } else if (tag == "pose") {
-      in.X_LI = pose(c, what + " <inertial>");
+      in.X_LI = pose(c, what + " <inertial>", in.X_LI);
     } else if (tag == "inertia") {
       Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
       const std::string iwhat = what + " <inertia>";
       for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
         const std::string key = k->Name();
+        static const std::set<std::string> kInertia = {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"};
+        if (keepsDefault(k) && kInertia.count(key)) continue;  // keeps its default (sdformat)
         if (key == "ixx") I(0, 0) = anyNumber(k, iwhat);
         else if (key == "iyy") I(1, 1) = anyNumber(k, iwhat);
         else if (key == "izz") I(2, 2) = anyNumber(k, iwhat);
@@ -482,7 +481,7 @@ std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::strin
     s.type = ShapeType::kBox;
     bool have = false;
     children({"size"}, [&](const XMLElement* c, const std::string&) {
-      s.size = vector3(c, what + " box");
+      s.size = vector3(c, what + " box", Eigen::Vector3d::Ones());  // SDF box size 1 1 1
       checkSize(c, s.size, what + ": <box> <size>");
       have = true;
     });
@@ -496,7 +495,7 @@ std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::strin
     bool r = false, l = false;
     const XMLElement* not_positive = nullptr;
     children({"radius", "length"}, [&](const XMLElement* c, const std::string& tag) {
-      const double v = number(c, what + " cylinder");
+      const double v = number(c, what + " cylinder", 1.0);  // SDF radius, length 1
       if (!(v > 0.0) && !not_positive) not_positive = c;
       if (tag == "radius") s.radius = v, r = true;
       else s.length = v, l = true;
@@ -514,7 +513,7 @@ std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::strin
     bool r = false;
     const XMLElement* not_positive = nullptr;
     children({"radius"}, [&](const XMLElement* c, const std::string&) {
-      s.radius = number(c, what + " sphere");
+      s.radius = number(c, what + " sphere", 1.0);  // SDF radius 1
       if (!(s.radius > 0.0)) not_positive = c;
       checkSize(c, Eigen::Vector3d::Constant(s.radius), what + ": <sphere> <radius>");
       r = true;
@@ -552,7 +551,7 @@ std::optional<Shape> Parser::parseGeometry(const XMLElement* e, const std::strin
         uri = text(c);
         uri_e = c;
       } else if (tag == "scale") {
-        s.scale = vector3(c, what + " mesh");
+        s.scale = vector3(c, what + " mesh", s.scale);
         if (!(s.scale.minCoeff() > 0.0)) bad_scale = c;
         else checkSize(c, s.scale, what + ": <mesh> <scale>");
       } else {
@@ -678,6 +677,10 @@ Friction Parser::parseSurface(const XMLElement* e, const std::string& what,
       }
       for (const XMLElement* p = k->FirstChildElement(); p; p = p->NextSiblingElement()) {
         const std::string tag = p->Name();
+        // An empty value keeps its default (sdformat); an unknown element is still reported.
+        if (keepsDefault(p) && (tag == "mu" || tag == "mu2" || tag == "kp" || tag == "kd" ||
+                                tag == "max_vel" || tag == "min_depth"))
+          continue;
         // A negative mu is no limit (toSurface), as Gazebo reads it.
         if (ctag == "friction" && tag == "mu") f.mu = number(p, what + " friction");
         else if (ctag == "friction" && tag == "mu2") f.mu2 = number(p, what + " friction");
@@ -696,8 +699,8 @@ Friction Parser::parseSurface(const XMLElement* e, const std::string& what,
 JointDescription Parser::parseJoint(const XMLElement* e, const std::string& model,
                                     bool* axis_in_model_frame) {
   JointDescription j;
-  j.name = e->Attribute("name") ? trimText(e->Attribute("name")) : "";
-  j.type = e->Attribute("type") ? trimText(e->Attribute("type")) : "";
+  j.name = attributeText(e, "name");
+  j.type = attributeText(e, "type");
   j.line = e->GetLineNum();
   *axis_in_model_frame = false;
   const std::string what = "model '" + model + "' joint '" + j.name + "'";
@@ -709,7 +712,7 @@ JointDescription Parser::parseJoint(const XMLElement* e, const std::string& mode
     } else if (tag == "child") {
       j.child = text(c);
     } else if (tag == "pose") {
-      j.X_CJ = pose(c, what);
+      j.X_CJ = pose(c, what, j.X_CJ);
     } else if (tag == "axis") {
       // SDF 1.5-1.7 <axis> (sdformat's joint.sdf): xyz in the joint frame unless
       // use_parent_model_frame (1.5, 1.6) or expressed_in="__model__" (1.7) says the model's.
@@ -733,6 +736,9 @@ JointDescription Parser::parseJoint(const XMLElement* e, const std::string& mode
         } else if (atag == "limit") {
           for (const XMLElement* l = a->FirstChildElement(); l; l = l->NextSiblingElement()) {
             const std::string ltag = l->Name();
+            if (keepsDefault(l) && (ltag == "lower" || ltag == "upper" || ltag == "effort" ||
+                                    ltag == "velocity"))
+              continue;  // an empty value keeps its default (sdformat)
             if (ltag == "lower") j.lower = number(l, awhat + " <limit>");
             else if (ltag == "upper") j.upper = number(l, awhat + " <limit>");
             else if (ltag == "effort") j.effort = number(l, awhat + " <limit>");
@@ -743,6 +749,9 @@ JointDescription Parser::parseJoint(const XMLElement* e, const std::string& mode
           for (const XMLElement* d = a->FirstChildElement(); d; d = d->NextSiblingElement()) {
             const std::string dtag = d->Name();
             const std::string dwhat = awhat + " <dynamics>";
+            if (keepsDefault(d) && (dtag == "damping" || dtag == "friction" ||
+                                    dtag == "spring_reference" || dtag == "spring_stiffness"))
+              continue;  // an empty value keeps its default (sdformat)
             if (dtag == "damping") j.damping = coefficient(d, dwhat);
             else if (dtag == "friction") j.friction = coefficient(d, dwhat);
             else if (dtag == "spring_reference")

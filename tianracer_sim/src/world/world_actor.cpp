@@ -1,7 +1,6 @@
 // <actor> (SDF 1.6, sdformat's sdf/1.6/actor.sdf) -> ActorDescription, as Gazebo 11's
 // Actor::Load / LoadScript reads it (gazebo/physics/Actor.cc); docs/actors.md.
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -19,7 +18,7 @@ ActorDescription Parser::parseActor(const XMLElement* e) {
   ActorDescription a;
   a.line = e->GetLineNum();
   a.model.line = a.line;
-  a.model.name = e->Attribute("name") ? trimText(e->Attribute("name")) : "";
+  a.model.name = attributeText(e, "name");
   if (a.model.name.empty()) fail(e, "<actor> has no name");
   const std::string what = "actor '" + a.model.name + "'";
   std::set<std::string> link_names;
@@ -27,7 +26,7 @@ ActorDescription Parser::parseActor(const XMLElement* e) {
   for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string tag = c->Name();
     if (tag == "pose") {
-      a.model.X_WM = pose(c, what);
+      a.model.X_WM = pose(c, what, a.model.X_WM);
     } else if (tag == "link") {
       LinkDescription l = parseLink(c, a.model.name);
       if (!link_names.insert(l.name).second)
@@ -76,22 +75,9 @@ ActorDescription Parser::parseActor(const XMLElement* e) {
     const char* id = c->Attribute("id");
     const std::string id_text = id ? trimText(id) : "";
     const std::string twhat = what + " <trajectory id='" + id_text + "'>";
-    char* end = nullptr;
-    errno = 0;
-    const long v = std::strtol(id_text.c_str(), &end, 10);
-    if (id_text.empty() || *end != '\0' || errno == ERANGE || v < -2147483647L ||
-        v > 2147483647L)
-      fail(c, what + ": <trajectory> id '" + id_text + "' is not an integer");
-    tr.id = static_cast<int>(v);
-    tr.type = c->Attribute("type") ? trimText(c->Attribute("type")) : "";
-    if (const char* t = c->Attribute("tension")) {
-      const std::string tt = trimText(t);
-      errno = 0;
-      const double tv = std::strtod(tt.c_str(), &end);
-      if (tt.empty() || *end != '\0' || !std::isfinite(tv))
-        fail(c, twhat + ": tension '" + tt + "' is not a finite number");
-      tr.tension = tv;
-    }
+    tr.id = integerAttribute(c, "id", what);
+    tr.type = attributeText(c, "type");
+    if (c->Attribute("tension")) tr.tension = numberAttribute(c, "tension", what);
     std::map<double, int> times;  // time -> line
     for (const XMLElement* w = c->FirstChildElement(); w; w = w->NextSiblingElement()) {
       if (std::string(w->Name()) != "waypoint") {

@@ -78,12 +78,15 @@ bool startsWith(const std::string& s, const std::string& prefix) {
 
 namespace {
 
-/// SDF version "1.6" -> 1.6; unparsable -> 0.
-double sdfVersion(const char* v) {
-  if (!v) return 0.0;
-  char* end = nullptr;
-  const double d = std::strtod(v, &end);
-  return end == v ? 0.0 : d;
+/// SDF version "1.6" -> (1, 6), compared as versions are (sdformat's getBestSupportedModelVersion
+/// compares gz::math::SemanticVersions: 1.10 is above 1.7); a patch level is not compared;
+/// unreadable -> (0, 0).
+std::pair<int, int> sdfVersion(const std::string& v) {
+  const std::size_t dot = v.find('.');
+  const std::string minor = dot == std::string::npos ? "0" : v.substr(dot + 1);
+  const auto a = parseInteger(v.substr(0, dot));
+  const auto b = parseInteger(minor.substr(0, minor.find('.')));
+  return a && b ? std::make_pair(*a, *b) : std::make_pair(0, 0);
 }
 
 }  // namespace
@@ -144,7 +147,7 @@ void Parser::applyState(const XMLElement* e, WorldDescription& world,
         names.erase(name);
       }
     } else if (tag == "model") {
-      const std::string name = c->Attribute("name") ? trimText(c->Attribute("name")) : "";
+      const std::string name = attributeText(c, "name");
       ModelDescription* m = findModel(name);
       if (!m) {
         // Gazebo logs "Unable to find model[...]" and applies the rest (World::SetState).
@@ -153,7 +156,7 @@ void Parser::applyState(const XMLElement* e, WorldDescription& world,
         continue;
       }
       const std::string what = "<state> of model '" + name + "'";
-      if (const XMLElement* p = c->FirstChildElement("pose")) m->X_WM = pose(p, what);
+      if (const XMLElement* p = c->FirstChildElement("pose")) m->X_WM = pose(p, what, m->X_WM);
       for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
         const std::string ktag = k->Name();
         if (ktag == "pose") continue;
@@ -171,7 +174,7 @@ void Parser::applyState(const XMLElement* e, WorldDescription& world,
             for (VisualDescription& v : l.visuals) v.shape = scaledAsGazebo(v.shape, scale);
           }
         } else if (ktag == "link") {
-          const std::string lname = k->Attribute("name") ? trimText(k->Attribute("name")) : "";
+          const std::string lname = attributeText(k, "name");
           auto l = std::find_if(m->links.begin(), m->links.end(),
                                 [&](const LinkDescription& d) { return d.name == lname; });
           if (l == m->links.end()) {
@@ -200,12 +203,14 @@ std::optional<Parser::IncludeSpec> Parser::parseIncludeSpec(const XMLElement* e)
     if (tag == "uri") {
       spec.uri = text(c);
     } else if (tag == "pose") {
-      spec.X = pose(c, "<include>");
-      spec.has_pose = true;
+      // An empty one keeps the model's own pose (sdformat 9 parser.cc, readXml's <include>:
+      // the pose is set only from text).
+      spec.has_pose = !keepsDefault(c);
+      if (spec.has_pose) spec.X = pose(c, "<include>");
     } else if (tag == "name") {
       spec.name = text(c);
     } else if (tag == "static") {
-      spec.is_static = boolean(c, "<include>");
+      if (!keepsDefault(c)) spec.is_static = boolean(c, "<include>");
     } else {
       unsupported(c);
     }
@@ -291,17 +296,23 @@ std::optional<ModelDescription> Parser::includeModel(const XMLElement* e, const 
   std::string file;
   const std::string config = join(dir, "model.config");
   if (isFile(config)) {
+    // Read as every other XML file here (parseXmlDocument, elementText): an error names the
+    // line of model.config.
+    std::ifstream in(config, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
     tinyxml2::XMLDocument doc;
-    if (doc.LoadFile(config.c_str()) != tinyxml2::XML_SUCCESS)
-      fail(e, "<include> of '" + spec.uri + "': " + config + " is not valid XML");
+    if (!in || parseXmlDocument(text.str(), &doc) != tinyxml2::XML_SUCCESS)
+      fail(e, "<include> of '" + spec.uri + "': " + formatLocation(config, doc.ErrorLineNum()) +
+                  "is not valid XML" + (doc.Error() ? std::string(" (") + doc.ErrorName() + ")" : ""));
     const XMLElement* root = doc.RootElement();
-    double best = -1.0;
+    std::pair<int, int> best{-1, -1};
     for (const XMLElement* s = root ? root->FirstChildElement("sdf") : nullptr; s;
          s = s->NextSiblingElement("sdf")) {
-      const double v = sdfVersion(s->Attribute("version"));
-      if (v <= 1.7 + 1e-9 && v > best && s->GetText()) {
+      const std::pair<int, int> v = sdfVersion(attributeText(s, "version"));
+      if (v <= std::make_pair(1, 7) && v > best && !elementText(s).empty()) {
         best = v;
-        file = join(dir, trimText(s->GetText()));
+        file = join(dir, elementText(s));
       }
     }
     if (file.empty())

@@ -180,6 +180,63 @@ TEST_F(XmlReaderTest, PosesAreSdfPoses) {
                                      "supported; taken relative to the parent"));
 }
 
+// sdformat 9 src/parser.cc, readXml: a value is set only from text the element has; an empty
+// one keeps its default. Text that is there is read as always (a bad one still fails).
+TEST_F(XmlReaderTest, AnSdfElementWithNoTextKeepsTheDefaultItIsGiven) {
+  load("<m>\n<pose></pose>\n<size/>\n<update_rate>  </update_rate>\n<static/>\n<c/>\n"
+       "<bad>1 x 3</bad>\n<rate>5</rate>\n<neg>-1</neg>\n</m>");
+  const Eigen::Isometry3d X0 = sdfPose(1, 2, 3, 0, 0, 0.5);
+  EXPECT_TRUE(reader_.pose(el("pose"), "model 'm'", X0).isApprox(X0));
+  EXPECT_EQ(reader_.vector3(el("size"), "box", Eigen::Vector3d::Ones()), Eigen::Vector3d::Ones());
+  EXPECT_EQ(reader_.nonNegative(el("update_rate"), "sensor", 0.0), 0.0);
+  EXPECT_EQ(reader_.number(el("update_rate"), "sensor", 7.0), 7.0);
+  EXPECT_EQ(reader_.positive(el("update_rate"), "sensor", 2.0), 2.0);
+  EXPECT_TRUE(reader_.boolean(el("static"), "model 'm'", true));
+  EXPECT_FALSE(reader_.boolean(el("static"), "model 'm'", false));
+  EXPECT_EQ(reader_.color(el("c"), "scene", Eigen::Vector4f(0.4f, 0.4f, 0.4f, 1.0f)),
+            Eigen::Vector4f(0.4f, 0.4f, 0.4f, 1.0f));
+  EXPECT_TRUE(XmlReader::keepsDefault(el("size")));
+  EXPECT_FALSE(XmlReader::keepsDefault(el("rate")));
+  // Text there is read, defaults or not.
+  EXPECT_EQ(reader_.number(el("rate"), "sensor", 7.0), 5.0);
+  EXPECT_EQ(error([&] { reader_.vector3(el("bad"), "box", Eigen::Vector3d::Ones()); }),
+            "room.world:7: box: <bad> '1 x 3' is not a list of numbers");
+  EXPECT_EQ(error([&] { reader_.nonNegative(el("neg"), "sensor", 0.0); }),
+            "room.world:9: sensor: <neg> must be >= 0 (got -1)");
+  // An empty <pose relative_to=...> is warned about as a full one is.
+  load("<m>\n<pose relative_to='other'/>\n</m>");
+  EXPECT_TRUE(reader_.pose(el("pose"), "model 'm'", X0).isApprox(X0));
+  EXPECT_THAT(warnings_, ElementsAre("room.world:2: model 'm': <pose relative_to='other'> is not "
+                                     "supported; taken relative to the parent"));
+  warnings_.clear();
+  load("<m>\n<pose></pose>\n</m>");
+  // Without a default an empty element is still an error.
+  EXPECT_EQ(error([&] { reader_.pose(el("pose"), "model 'm'"); }),
+            "room.world:2: model 'm': <pose> '' is not 6 numbers \"x y z roll pitch yaw\"");
+  EXPECT_TRUE(warnings_.empty());
+}
+
+TEST_F(XmlReaderTest, AttributeNumbersAndIntegers) {
+  load("<m>\n<t id=' 3 ' tension='0.5' big='3000000000' frac='1.5' nan='nan' empty=''/>\n</m>");
+  EXPECT_EQ(reader_.integerAttribute(el("t"), "id", "actor 'a'"), 3);
+  EXPECT_EQ(reader_.numberAttribute(el("t"), "tension", "actor 'a'"), 0.5);
+  EXPECT_EQ(error([&] { reader_.integerAttribute(el("t"), "big", "actor 'a'"); }),
+            "room.world:2: actor 'a': <t> big '3000000000' is not an integer");
+  EXPECT_EQ(error([&] { reader_.integerAttribute(el("t"), "frac", "actor 'a'"); }),
+            "room.world:2: actor 'a': <t> frac '1.5' is not an integer");
+  EXPECT_EQ(error([&] { reader_.integerAttribute(el("t"), "absent", "actor 'a'"); }),
+            "room.world:2: actor 'a': <t> absent '' is not an integer");
+  EXPECT_EQ(error([&] { reader_.numberAttribute(el("t"), "nan", "actor 'a'"); }),
+            "room.world:2: actor 'a': <t> nan 'nan' is not a finite number");
+  EXPECT_EQ(error([&] { reader_.numberAttribute(el("t"), "empty", "actor 'a'"); }),
+            "room.world:2: actor 'a': <t> empty '' is not a finite number");
+  EXPECT_EQ(parseInteger(" +7 "), 7);
+  EXPECT_EQ(parseInteger("-2147483648"), -2147483648LL);
+  EXPECT_FALSE(parseInteger("+-1"));
+  EXPECT_FALSE(parseInteger("1e3"));
+  EXPECT_FALSE(parseInteger(""));
+}
+
 TEST_F(XmlReaderTest, MissingElements) {
   load("<link>\n<visual/>\n</link>");
   EXPECT_EQ(reader_.required(el("link"), "visual", "link 'a'"), el("visual"));

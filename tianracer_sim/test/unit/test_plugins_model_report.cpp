@@ -68,7 +68,7 @@ TEST(SensorsModelReport, GoldenTable) {
           /front/camera_info sensor_msgs/CameraInfo @ 15 Hz
           difference: images are stamped in <frameName>_optical_frame (z forward), not the plain frame
   sensor  bayer               camera                        base_link     left out
-          why: report.urdf:54: camera sensor 'bayer' on link 'base_link': <image><format> 'R_FLOAT32' is a Gazebo format that is not simulated (supported: R8G8B8, B8G8R8, L8, L16, R16G16B16, BAYER_RGGB8, BAYER_BGGR8, BAYER_GBRG8, BAYER_GRBG8); the camera is left out
+          why: report.urdf:58: camera sensor 'bayer' on link 'base_link': <image><format> 'R_FLOAT32' is a Gazebo format that is not simulated (supported: R8G8B8, B8G8R8, L8, L16, R16G16B16, BAYER_RGGB8, BAYER_BGGR8, BAYER_GBRG8, BAYER_GRBG8); the camera is left out
   sensor  lidar               gpu_ray                       base_link     simulated, with differences
           /scan sensor_msgs/LaserScan @ 10 Hz
           difference: ray-cast on the CPU (Embree), exactly as type ray

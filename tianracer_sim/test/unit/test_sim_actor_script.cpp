@@ -290,7 +290,7 @@ TEST(ActorScript, EachBrokenFormIsAnErrorAtItsLineAndTheRestLoads) {
        "w.world:10: actor 'walker': <trajectory> id 'x1' is not an integer"},
       {"bad tension", "<trajectory id='0' type='w' tension='nan'>\n<waypoint><time>0</time>"
                       "<pose>0 0 0 0 0 0</pose></waypoint>\n</trajectory>\n",
-       "w.world:10: actor 'walker' <trajectory id='0'>: tension 'nan' is not a finite number"},
+       "w.world:10: actor 'walker': <trajectory> tension 'nan' is not a finite number"},
       {"bad loop", "<loop>sometimes</loop>\n" + std::string(kThreeWaypoints), "sometimes"},
       {"nan delay", "<delay_start>nan</delay_start>\n" + std::string(kThreeWaypoints), "nan"},
   };

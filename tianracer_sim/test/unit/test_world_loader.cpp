@@ -322,6 +322,38 @@ TEST(WorldLoader, AnEmptyLightValueKeepsItsDefault) {
             std::string::npos);
 }
 
+// The same rule for every SDF value a world reads with a default: an empty <pose> is the
+// identity (or the model's own, for an <include>), an empty box <size/> is SDF's 1 1 1, an
+// empty <static/> is false; a value that is there and wrong is still an error at its line.
+TEST(WorldLoader, EmptySdfValuesKeepTheirDefaults) {
+  Collected c;
+  const WorldDescription w = loadWorldString(
+      "<sdf version='1.6'><world name='w'>\n"
+      "<model name='m'><pose></pose><static/>\n"
+      "<link name='l'><pose/><inertial><pose/><mass/><inertia><ixx/><iyy>2</iyy></inertia>"
+      "</inertial>\n"
+      "<collision name='c'><pose> </pose><geometry><box><size/></box></geometry></collision>\n"
+      "<visual name='v'><geometry><sphere><radius/></sphere></geometry></visual>\n"
+      "</link></model></world></sdf>",
+      "empty.world", kData, c.options());
+  ASSERT_EQ(w.models.size(), 1u);
+  const ModelDescription& m = w.models[0];
+  EXPECT_TRUE(m.X_WM.isApprox(Eigen::Isometry3d::Identity()));
+  EXPECT_FALSE(m.is_static);
+  ASSERT_EQ(m.links.size(), 1u);
+  EXPECT_TRUE(m.links[0].X_ML.isApprox(Eigen::Isometry3d::Identity()));
+  EXPECT_EQ(m.links[0].inertial.mass, 1.0);  // SDF's default mass and ixx
+  EXPECT_EQ(m.links[0].inertial.inertia, Eigen::Vector3d(1, 2, 1).asDiagonal().toDenseMatrix());
+  ASSERT_EQ(m.links[0].collisions.size(), 1u);
+  EXPECT_EQ(m.links[0].collisions[0].shape.size, Eigen::Vector3d::Ones());
+  ASSERT_EQ(m.links[0].visuals.size(), 1u);
+  EXPECT_EQ(m.links[0].visuals[0].shape.radius, 1.0);
+  EXPECT_TRUE(c.warnings.empty()) << ::testing::PrintToString(c.warnings);
+  EXPECT_EQ(errorOfString("<sdf><world name='w'>\n<model name='m'>\n<pose>1 2</pose>\n"
+                          "</model></world></sdf>"),
+            "inline.world:3: model 'm': <pose> '1 2' is not 6 numbers \"x y z roll pitch yaw\"");
+}
+
 // An <include> without <uri> (SDF 1.3's <include filename='...'>, as in Gazebo's
 // deprecated_worlds/weshare2012.world) is skipped by sdformat with an error; the rest loads.
 TEST(WorldLoader, AnIncludeWithoutUriIsLeftOutAndTheRestLoads) {
@@ -642,6 +674,30 @@ TEST(WorldLoader, ModelConfigWithoutSdfIsAnError) {
   const std::string e = errorWithModels(
       "<sdf version='1.6'><world name='w'><include><uri>model://no_sdf</uri></include></world></sdf>");
   EXPECT_NE(e.find("model.config names no <sdf> file"), std::string::npos) << e;
+}
+
+// model.config is read as the world is: its XML error names its line (tinyxml2 places an
+// unclosed element at its start, line 4).
+TEST(WorldLoader, ABrokenModelConfigIsAnErrorAtItsLine) {
+  const std::string e = errorWithModels(
+      "<sdf version='1.6'><world name='w'>\n<include><uri>model://bad_config</uri></include>"
+      "</world></sdf>");
+  EXPECT_NE(e.find("inline.world:2: <include> of 'model://bad_config': " + kData +
+                   "gazebo_models/bad_config/model.config:4: is not valid XML (XML_ERROR_MISMATCHED"),
+            std::string::npos)
+      << e;
+}
+
+// model.config's versions compare as versions: 1.10 is above 1.7 (not 1.1 > 1.0), so 1.0 is chosen.
+TEST(WorldLoader, ModelConfigVersionsCompareAsVersions) {
+  WorldLoadOptions o = strict();
+  o.model_paths = {kData + "gazebo_models"};
+  const WorldDescription w = loadWorldString(
+      "<sdf version='1.6'><world name='w'><include><uri>model://version_1_10</uri></include>"
+      "</world></sdf>",
+      "inline.world", kData, o);
+  ASSERT_EQ(w.models.size(), 1u);  // 1.10's file does not exist: read, it would be an error
+  EXPECT_EQ(w.models[0].name, "test_crate");
 }
 
 TEST(WorldLoader, IncludeFindsModelsThroughGazeboModelPathAndRosPackages) {

@@ -30,6 +30,10 @@ std::optional<std::vector<double>> parseNumbers(const std::string& text);
 /// "true"/"1" and "false"/"0" (blanks around ignored), as SDF and gazebo_ros read them.
 std::optional<bool> parseBool(const std::string& text);
 
+/// A whole string (blanks around it ignored, one leading '+' allowed) as an int; nullopt on
+/// anything else, a fraction or a value out of int's range.
+std::optional<int> parseInteger(const std::string& text);
+
 /// The text directly inside `e`, trimmed; "" when there is none.
 std::string elementText(const tinyxml2::XMLElement* e);
 
@@ -120,6 +124,29 @@ class XmlReader {
   /// coordinate within limits::kPosition ("position x 1e+30 is out of range (|x| <= 1e+06 m)"). A frame or
   /// relative_to attribute is warned about and the pose taken relative to the parent.
   Eigen::Isometry3d pose(const tinyxml2::XMLElement* e, const std::string& what);
+
+  /// sdformat's rule for an SDF value element (sdformat 9 src/parser.cc, readXml: the value is
+  /// set from the element's text only when GetText() is not null): an element with no text
+  /// (<size/>, <pose></pose>, blanks only) keeps `fallback`, the SDF default; any text is read as
+  /// by the reader without one. URDF attributes do not follow it (urdfdom fails an empty one).
+  static bool keepsDefault(const tinyxml2::XMLElement* e) { return elementText(e).empty(); }
+  double number(const tinyxml2::XMLElement* e, const std::string& what, double fallback) const;
+  double positive(const tinyxml2::XMLElement* e, const std::string& what, double fallback) const;
+  double nonNegative(const tinyxml2::XMLElement* e, const std::string& what, double fallback) const;
+  bool boolean(const tinyxml2::XMLElement* e, const std::string& what, bool fallback) const;
+  Eigen::Vector3d vector3(const tinyxml2::XMLElement* e, const std::string& what,
+                          const Eigen::Vector3d& fallback) const;
+  Eigen::Vector4f color(const tinyxml2::XMLElement* e, const std::string& what,
+                        const Eigen::Vector4f& fallback) const;
+  Eigen::Isometry3d pose(const tinyxml2::XMLElement* e, const std::string& what,
+                         const Eigen::Isometry3d& fallback);
+
+  /// Attribute `name` of `e` as a finite number / an int (as integer()): fails
+  /// "<what>: <tag> <name> '<text>' is not a finite number / an integer" (absent reads as "").
+  double numberAttribute(const tinyxml2::XMLElement* e, const char* name,
+                         const std::string& what) const;
+  int integerAttribute(const tinyxml2::XMLElement* e, const char* name,
+                       const std::string& what) const;
 
  private:
   std::string source_;

@@ -104,16 +104,20 @@ class Parser {
 
   [[noreturn]] void fail(const std::string& what) const { xml_.fail(nullptr, what); }
   void warn(const std::string& what) { xml_.warn(nullptr, what); }
+  /// At `e`'s own line of the model file (the <sensor>'s when `e` is null).
+  [[noreturn]] void fail(const XMLElement* e, const std::string& what) const { xml_.fail(e, what); }
+  void warn(const XMLElement* e, const std::string& what) { xml_.warn(e, what); }
 
-  double number(const std::string& element, const std::string& text) const {
+  /// `text` (of `e`, where an error is placed) as a finite number.
+  double number(const std::string& element, const std::string& text, const XMLElement* e) const {
     const auto v = parseNumber(text);
-    if (!v || !std::isfinite(*v)) fail(element + " '" + text + "' is not a number");
+    if (!v || !std::isfinite(*v)) fail(e, element + " '" + text + "' is not a number");
     return *v;
   }
 
-  int integer(const std::string& element, const std::string& text) const {
-    const double v = number(element, text);
-    if (v != std::floor(v) || std::fabs(v) > 1e9) fail(element + " '" + text + "' is not an integer");
+  int integer(const std::string& element, const std::string& text, const XMLElement* e) const {
+    const double v = number(element, text, e);
+    if (v != std::floor(v) || std::fabs(v) > 1e9) fail(e, element + " '" + text + "' is not an integer");
     return static_cast<int>(v);
   }
 
@@ -134,13 +138,13 @@ class Parser {
         const std::string b = trimText(g_text);
         if (b == "true" || b == "1") scale_to_hfov = true;
         else if (b == "false" || b == "0") scale_to_hfov = false;
-        else fail("<lens><scale_to_hfov> '" + g_text + "' is not a boolean");
+        else fail(g, "<lens><scale_to_hfov> '" + g_text + "' is not a boolean");
       } else if (g_name == "custom_function") {
         custom = g;
       } else if (g_name == "cutoff_angle") {
-        cutoff = number("<lens><cutoff_angle>", g_text);
+        cutoff = number("<lens><cutoff_angle>", g_text, g);
       } else if (g_name == "env_texture_size") {
-        env_size = integer("<lens><env_texture_size>", g_text);
+        env_size = integer("<lens><env_texture_size>", g_text, g);
       } else if (g_name == "intrinsics") {
         warn("<lens><intrinsics> ignored: a wideanglecamera stitches its image from six views "
              "(camera.sdf)");
@@ -160,13 +164,13 @@ class Parser {
         for (const XMLElement* g = custom->FirstChildElement(); g; g = g->NextSiblingElement()) {
           const std::string g_name = g->Name(), g_text = textOf(g);
           const std::string what = "<lens><custom_function><" + g_name + ">";
-          if (g_name == "c1") l.c1 = number(what, g_text);
-          else if (g_name == "c2") l.c2 = number(what, g_text);
-          else if (g_name == "c3") l.c3 = number(what, g_text);
-          else if (g_name == "f") l.f = number(what, g_text);
+          if (g_name == "c1") l.c1 = number(what, g_text, g);
+          else if (g_name == "c2") l.c2 = number(what, g_text, g);
+          else if (g_name == "c3") l.c3 = number(what, g_text, g);
+          else if (g_name == "f") l.f = number(what, g_text, g);
           else if (g_name == "fun") {
             const auto fun = WideAngleLens::funOf(trimText(g_text));
-            if (!fun) fail(what + " '" + g_text + "' is not a lens function (sin, tan, id)");
+            if (!fun) fail(g, what + " '" + g_text + "' is not a lens function (sin, tan, id)");
             l.fun = *fun;
           } else {
             warn("unknown element " + what + " ignored");
@@ -216,74 +220,78 @@ class Parser {
         std::string(root->Name()) == "camera" ? root : root->FirstChildElement("camera");
     if (cam == nullptr) fail("has no <camera> element");
     c->wide_angle = sensor_.type == "wideanglecamera";
+    // Where each value checked below was read, so that its error names that line (<camera>'s
+    // when the value is the default).
+    const XMLElement *width_e = cam, *height_e = cam, *image_e = cam, *fov_e = cam, *near_e = cam,
+                     *format_e = cam, *lens_e = cam;
     for (const XMLElement* child = cam->FirstChildElement(); child;
          child = child->NextSiblingElement()) {
       const std::string n = child->Name();
       const std::string child_text = textOf(child);
       if (n == "horizontal_fov") {
-        c->horizontal_fov = number("<camera><horizontal_fov>", child_text);
+        c->horizontal_fov = number("<camera><horizontal_fov>", child_text, child);
+        fov_e = child;
       } else if (n == "image") {
+        image_e = child;
         for (const XMLElement* g = child->FirstChildElement(); g; g = g->NextSiblingElement()) {
           const std::string g_name = g->Name(), g_text = textOf(g);
-          if (g_name == "width") c->width = integer("<image><width>", g_text);
-          else if (g_name == "height") c->height = integer("<image><height>", g_text);
-          else if (g_name == "format") c->format_name = trimText(g_text);
-          else warn("unknown element <camera><image><" + g_name + "> ignored");
+          if (g_name == "width") c->width = integer("<image><width>", g_text, width_e = g);
+          else if (g_name == "height") c->height = integer("<image><height>", g_text, height_e = g);
+          else if (g_name == "format") c->format_name = trimText(g_text), format_e = g;
+          else warn(g, "unknown element <camera><image><" + g_name + "> ignored");
         }
       } else if (n == "clip") {
         for (const XMLElement* g = child->FirstChildElement(); g; g = g->NextSiblingElement()) {
           const std::string g_name = g->Name(), g_text = textOf(g);
-          if (g_name == "near") c->near_clip = number("<clip><near>", g_text);
-          else if (g_name == "far") c->far_clip = number("<clip><far>", g_text);
-          else warn("unknown element <camera><clip><" + g_name + "> ignored");
+          if (g_name == "near") c->near_clip = number("<clip><near>", g_text, near_e = g);
+          else if (g_name == "far") c->far_clip = number("<clip><far>", g_text, g);
+          else warn(g, "unknown element <camera><clip><" + g_name + "> ignored");
         }
       } else if (n == "noise") {
         std::string type = "gaussian";
         for (const XMLElement* g = child->FirstChildElement(); g; g = g->NextSiblingElement()) {
           const std::string g_name = g->Name(), g_text = textOf(g);
           if (g_name == "type") type = trimText(g_text);
-          else if (g_name == "mean") c->noise_mean = number("<noise><mean>", g_text);
-          else if (g_name == "stddev") c->noise_stddev = number("<noise><stddev>", g_text);
-          else warn("unknown element <camera><noise><" + g_name + "> ignored");
+          else if (g_name == "mean") c->noise_mean = number("<noise><mean>", g_text, g);
+          else if (g_name == "stddev") c->noise_stddev = number("<noise><stddev>", g_text, g);
+          else warn(g, "unknown element <camera><noise><" + g_name + "> ignored");
         }
         if (type == "none") {
           c->noise = false;
         } else if (type == "gaussian") {
           c->noise = c->noise_stddev > 0.0 || c->noise_mean != 0.0;
         } else {
-          fail("<noise><type> '" + type + "' is not supported (gaussian, none)");
+          fail(child, "<noise><type> '" + type + "' is not supported (gaussian, none)");
         }
-        if (c->noise_stddev < 0.0) fail("<noise><stddev> " + child_text + " must be >= 0");
+        if (c->noise_stddev < 0.0) fail(child, "<noise><stddev> " + child_text + " must be >= 0");
       } else if (n == "distortion") {
         LensDistortion& d = c->distortion;
         for (const XMLElement* g = child->FirstChildElement(); g; g = g->NextSiblingElement()) {
           const std::string g_name = g->Name(), g_text = textOf(g);
           const std::string what = "<distortion><" + g_name + ">";
-          if (g_name == "k1") d.k1 = number(what, g_text);
-          else if (g_name == "k2") d.k2 = number(what, g_text);
-          else if (g_name == "k3") d.k3 = number(what, g_text);
-          else if (g_name == "p1") d.p1 = number(what, g_text);
-          else if (g_name == "p2") d.p2 = number(what, g_text);
+          if (g_name == "k1") d.k1 = number(what, g_text, g);
+          else if (g_name == "k2") d.k2 = number(what, g_text, g);
+          else if (g_name == "k3") d.k3 = number(what, g_text, g);
+          else if (g_name == "p1") d.p1 = number(what, g_text, g);
+          else if (g_name == "p2") d.p2 = number(what, g_text, g);
           else if (g_name == "center") {
-            std::istringstream in(g_text);
-            std::string a, b, extra;
-            in >> a >> b;
-            if (a.empty() || b.empty() || (in >> extra)) {
-              fail(what + " '" + g_text + "' is not two numbers");
-            }
-            d.center_x = number(what, a);
-            d.center_y = number(what, b);
+            const auto v = parseNumbers(g_text);
+            if (!v || v->size() != 2 || !std::isfinite((*v)[0]) || !std::isfinite((*v)[1]))
+              fail(g, what + " '" + g_text + "' is not two numbers");
+            d.center_x = (*v)[0];
+            d.center_y = (*v)[1];
           } else {
-            warn("unknown element <camera><distortion><" + g_name + "> ignored");
+            warn(g, "unknown element <camera><distortion><" + g_name + "> ignored");
           }
         }
       } else if (n == "lens" && c->wide_angle) {
+        lens_e = child;
         parseLens(child, &c->lens);
       } else if (n == "save" || n == "depth_camera" || n == "lens" || n == "pose" ||
                  n == "visualize" || n == "triggered" || n == "trigger_topic") {
-        warn("<camera><" + n + "> is not supported; ignored");
+        warn(child, "<camera><" + n + "> is not supported; ignored");
       } else {
-        warn("unknown element <camera><" + n + "> ignored");
+        warn(child, "unknown element <camera><" + n + "> ignored");
       }
     }
     // Validation, each value named.
@@ -292,17 +300,17 @@ class Parser {
       os << v;
       return os.str();
     };
-    if (c->width <= 0 || c->width > 8192) fail("<image><width> " + std::to_string(c->width) + " out of range 1..8192");
-    if (c->height <= 0 || c->height > 8192) fail("<image><height> " + std::to_string(c->height) + " out of range 1..8192");
+    if (c->width <= 0 || c->width > 8192) fail(width_e, "<image><width> " + std::to_string(c->width) + " out of range 1..8192");
+    if (c->height <= 0 || c->height > 8192) fail(height_e, "<image><height> " + std::to_string(c->height) + " out of range 1..8192");
     // 8192 x 8192 RGBA is 256 MB per image, rendered and copied every update.
     if (static_cast<double>(c->width) * c->height > limits::kImagePixels)
-      fail("<image> " + std::to_string(c->width) + " x " + std::to_string(c->height) +
+      fail(image_e, "<image> " + std::to_string(c->width) + " x " + std::to_string(c->height) +
            " pixels is out of range (<= " + std::to_string(static_cast<long>(limits::kImagePixels)) +
            " pixels, e.g. 7680 x 4320)");
     if (c->wide_angle) {
       // camera.sdf's range for horizontal_fov; the cube map sees every direction.
       if (!(c->horizontal_fov > 0.0 && c->horizontal_fov <= 2.0 * M_PI)) {
-        fail("<horizontal_fov> " + str(c->horizontal_fov) + " rad outside (0, 2 pi]");
+        fail(fov_e, "<horizontal_fov> " + str(c->horizontal_fov) + " rad outside (0, 2 pi]");
       }
       if (c->lens.type == "gnomonical" && c->horizontal_fov > M_PI / 2.0) {
         // WideAngleCamera::Load's gzerr.
@@ -311,7 +319,7 @@ class Parser {
       }
       const double focal = c->lens.focal(c->horizontal_fov);
       if (!(focal > 0.0) || !std::isfinite(focal)) {
-        fail("<lens> " + c->lens.type + " with <horizontal_fov> " + str(c->horizontal_fov) +
+        fail(lens_e, "<lens> " + c->lens.type + " with <horizontal_fov> " + str(c->horizontal_fov) +
              " rad has no image (f = 1 / (c1 fun(hfov/2 / c2 + c3)) = " + str(focal) + ")");
       }
       if (c->distortion.enabled()) {
@@ -319,11 +327,11 @@ class Parser {
         c->distortion = LensDistortion();
       }
     } else if (!(c->horizontal_fov > 0.0 && c->horizontal_fov < M_PI)) {
-      fail("<horizontal_fov> " + str(c->horizontal_fov) + " rad outside (0, pi)");
+      fail(fov_e, "<horizontal_fov> " + str(c->horizontal_fov) + " rad outside (0, pi)");
     }
-    if (!(c->near_clip > 0.0)) fail("<clip><near> " + str(c->near_clip) + " must be > 0");
+    if (!(c->near_clip > 0.0)) fail(near_e, "<clip><near> " + str(c->near_clip) + " must be > 0");
     if (!(c->near_clip < c->far_clip)) {
-      fail("<clip><near> " + str(c->near_clip) + " must be less than <clip><far> " + str(c->far_clip));
+      fail(near_e, "<clip><near> " + str(c->near_clip) + " must be less than <clip><far> " + str(c->far_clip));
     }
     // Gazebo's names (and its *_INT* aliases), as gazebo_ros_camera_utils.cpp Init maps them;
     // the float formats are Gazebo's too, but not simulated here.
@@ -347,10 +355,10 @@ class Parser {
     }
     if (!known) {
       if (f == "R_FLOAT16" || f == "R_FLOAT32") {
-        fail("<image><format> '" + f + "' is a Gazebo format that is not simulated (supported: " +
+        fail(format_e, "<image><format> '" + f + "' is a Gazebo format that is not simulated (supported: " +
              kSupported + "); the camera is left out");
       }
-      fail("<image><format> '" + f + "' is not a Gazebo image format (supported: " + kSupported +
+      fail(format_e, "<image><format> '" + f + "' is not a Gazebo image format (supported: " + kSupported +
            ")");
     }
     c->noise_seed = nameHash(sensor_.name);

@@ -54,6 +54,7 @@ class MultiCameraParser {
 
   [[noreturn]] void fail(const std::string& what) const { xml_.fail(nullptr, what); }
   void warn(const std::string& what) { xml_.warn(nullptr, what); }
+  [[noreturn]] void fail(const XMLElement* e, const std::string& what) const { xml_.fail(e, what); }
 
   MultiCameraConfig parse() {
     MultiCameraConfig m;
@@ -71,18 +72,18 @@ class MultiCameraParser {
     std::vector<SensorSpec> specs;
     for (XMLElement* cam = root->FirstChildElement("camera"); cam;
          cam = cam->NextSiblingElement("camera")) {
-      const std::string name = trimText(cam->Attribute("name") ? cam->Attribute("name") : "");
+      const std::string name = attributeText(cam, "name");
       if (name.empty()) {
-        fail("<camera> number " + std::to_string(names.size() + 1) +
+        fail(cam, "<camera> number " + std::to_string(names.size() + 1) +
              " has no name (a multicamera's cameras are told apart by name)");
       }
       for (const std::string& n : names) {
-        if (n == name) fail("two cameras are named '" + name + "'; each needs its own name");
+        if (n == name) fail(cam, "two cameras are named '" + name + "'; each needs its own name");
       }
       names.push_back(name);
       Eigen::Isometry3d X_SC = Eigen::Isometry3d::Identity();
       if (XMLElement* pose = cam->FirstChildElement("pose")) {
-        X_SC = parsePose(name, pose->GetText() ? pose->GetText() : "");
+        X_SC = xml_.pose(pose, "camera '" + name + "'", X_SC);
         cam->DeleteChild(pose);
       }
       poses.push_back(X_SC);
@@ -100,7 +101,7 @@ class MultiCameraParser {
       const std::string tag = c->Name();
       if (tag != "camera" && tag != "plugin" && tag != "pose" && tag != "update_rate" &&
           tag != "always_on" && tag != "visualize") {
-        warn("unknown element <" + tag + "> ignored");
+        xml_.warn(c, "unknown element <" + tag + "> ignored");
       }
     }
     if (names.size() < 2) {
@@ -152,28 +153,6 @@ class MultiCameraParser {
       if (kSharedCameraParams.count(key)) out.params[key] = value;
     }
     return out;
-  }
-
-  Eigen::Isometry3d parsePose(const std::string& camera, const std::string& text) const {
-    std::vector<double> v;
-    bool ok = true;
-    std::istringstream in(text);
-    std::string token;
-    while (in >> token) {
-      char* end = nullptr;
-      const double x = std::strtod(token.c_str(), &end);
-      ok = ok && end == token.c_str() + token.size() && std::isfinite(x);
-      v.push_back(x);
-    }
-    if (!ok || v.size() != 6) {
-      fail("camera '" + camera + "': <pose> '" + trimText(text) +
-           "' is not 6 finite numbers \"x y z roll pitch yaw\"");
-    }
-    // SDF pose: translation, then fixed-axis roll-pitch-yaw, R = Rz(yaw) Ry(pitch) Rx(roll).
-    return Eigen::Translation3d(v[0], v[1], v[2]) *
-           Eigen::AngleAxisd(v[5], Eigen::Vector3d::UnitZ()) *
-           Eigen::AngleAxisd(v[4], Eigen::Vector3d::UnitY()) *
-           Eigen::AngleAxisd(v[3], Eigen::Vector3d::UnitX());
   }
 
   void readPlugin(const PluginSpec& p, const std::vector<std::string>& names,

@@ -26,34 +26,26 @@ namespace {
 using tinyxml2::XMLElement;
 
 
-// The reader reads a printed copy of the <sensor> (SensorSpec::xml), so its messages are placed
-// at the sensor's line of the model file (nullptr: no element of its own).
+// The reader reads a printed copy of the <sensor> (SensorSpec::xml) that knows each element's
+// line of the model file: a message is placed at its element (the sensor's line for nullptr).
 // Numbers of elements: NaN and inf are kept (validate() names them), garbage is an error.
 // The plugins' parameters are read by the PluginReader, which refuses NaN and inf at once.
-double number(const XmlReader& r, const std::string& name, const std::string& text,
-              const XMLElement* e = nullptr) {
-  const auto v = parseNumber(text);
-  if (!v) r.fail(e, name + " '" + trimText(text) + "' is not a number");
-  return *v;
-}
-double number(const XmlReader& r, const XMLElement* e) {
-  return number(r, "<" + std::string(e->Name()) + ">", e->GetText() ? e->GetText() : "", e);
-}
+double number(const XmlReader& r, const XMLElement* e) { return r.anyNumber(e, ""); }
 void readNoise(XmlReader& r, const XMLElement* noise, ImuAxisNoise* n, const std::string& where) {
   n->type = "gaussian";  // SDF's default
-  if (const char* type = noise->Attribute("type")) n->type = trimText(type);
+  if (noise->Attribute("type")) n->type = attributeText(noise, "type");
   for (const XMLElement* k = noise->FirstChildElement(); k; k = k->NextSiblingElement()) {
     const std::string key = k->Name();
-    if (key == "type") n->type = trimText(k->GetText() ? k->GetText() : "");
+    if (key == "type") n->type = elementText(k);
     else if (key == "mean") n->mean = number(r, k);
     else if (key == "stddev") n->stddev = number(r, k);
     else if (key == "bias_mean") n->bias_mean = number(r, k);
     else if (key == "bias_stddev") n->bias_stddev = number(r, k);
     else if (key == "precision") n->precision = number(r, k);
-    else r.warn(nullptr, where + "<noise><" + key + "> is not supported, ignored");
+    else r.warn(k, where + "<noise><" + key + "> is not supported, ignored");
   }
   if (n->type != "none" && n->type != "gaussian" && n->type != "gaussian_quantized")
-    r.fail(nullptr, where + "<noise> type '" + n->type +
+    r.fail(noise, where + "<noise> type '" + n->type +
            "' is not supported (none, gaussian, gaussian_quantized)");
 }
 
@@ -66,7 +58,7 @@ void readImu(XmlReader& r, const XMLElement* imu, ImuConfig& c) {
         const std::string axis = a->Name();
         const int i = axis == "x" ? 0 : axis == "y" ? 1 : axis == "z" ? 2 : -1;
         if (i < 0) {
-          r.warn(nullptr, "<" + tag + "><" + axis + "> is not supported, ignored");
+          r.warn(a, "<" + tag + "><" + axis + "> is not supported, ignored");
           continue;
         }
         if (const XMLElement* noise = a->FirstChildElement("noise"))
@@ -75,24 +67,24 @@ void readImu(XmlReader& r, const XMLElement* imu, ImuConfig& c) {
     } else if (tag == "noise") {
       // SDF 1.4: one <noise><type> with <rate> and <accel> for all three axes.
       std::string type = "gaussian";
-      if (const XMLElement* t = e->FirstChildElement("type")) type = trimText(t->GetText() ? t->GetText() : "");
+      if (const XMLElement* t = e->FirstChildElement("type")) type = elementText(t);
       for (const XMLElement* k = e->FirstChildElement(); k; k = k->NextSiblingElement()) {
         const std::string key = k->Name();
         if (key == "type") continue;
         if (key != "rate" && key != "accel") {
-          r.warn(nullptr, "<imu><noise><" + key + "> is not supported, ignored");
+          r.warn(k, "<imu><noise><" + key + "> is not supported, ignored");
           continue;
         }
         ImuAxisNoise n;
         readNoise(r, k, &n, "<imu><noise><" + key + ">");
         n.type = type;
         if (type != "none" && type != "gaussian" && type != "gaussian_quantized")
-          r.fail(nullptr, "<imu><noise> type '" + type +
+          r.fail(e, "<imu><noise> type '" + type +
                  "' is not supported (none, gaussian, gaussian_quantized)");
         (key == "rate" ? c.rate_noise : c.accel_noise).fill(n);
       }
     } else {  // orientation_reference_frame, enable_orientation, topic and the unknown
-      r.warn(nullptr, "<imu><" + tag + "> is not supported, ignored");
+      r.warn(e, "<imu><" + tag + "> is not supported, ignored");
     }
   }
 }
@@ -154,11 +146,11 @@ ImuConfig parseImuSensorConfig(const SensorSpec& spec, const std::string& model_
       readImu(r, e, c);
     } else if (tag == "update_rate") {
       // The model loader keeps the number; NaN and negative values are named here.
-      c.update_rate = number(r, e);
+      if (!XmlReader::keepsDefault(e)) c.update_rate = number(r, e);
     } else if (tag == "pose" || tag == "always_on" || tag == "plugin" || tag == "visualize" ||
                tag == "topic") {
     } else {
-      r.warn(nullptr, "<" + tag + "> is not supported, ignored");
+      r.warn(e, "<" + tag + "> is not supported, ignored");
     }
   }
   for (const PluginSpec& p : spec.plugins) {

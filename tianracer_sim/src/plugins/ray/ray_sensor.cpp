@@ -33,6 +33,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -70,12 +71,36 @@ class ConfigReader {
   }
   int integer(const XMLElement* e) const { return xml_.integer(e, ""); }
   void readRay(const XMLElement* ray, RaySensorConfig& c);
+  /// validate(c), its error placed at the line of the element its message names ("<samples>",
+  /// "range <min>": the longest label of places_ the message starts with).
+  void validateAt(const RaySensorConfig& c) const;
 
   const SensorSpec& spec_;
   const WarningSink& warn_;
   std::string what_;
   XmlReader xml_;
+  std::map<std::string, const XMLElement*> places_;  // validate()'s label -> element read
 };
+
+void ConfigReader::validateAt(const RaySensorConfig& c) const {
+  try {
+    validate(c);
+  } catch (const SensorError& err) {
+    const std::string prefix = what_ + ": ";
+    std::string msg = err.message();
+    if (msg.compare(0, prefix.size(), prefix) != 0) throw;
+    msg.erase(0, prefix.size());
+    const XMLElement* at = nullptr;
+    std::size_t longest = 0;
+    for (const auto& [label, e] : places_) {
+      if (label.size() > longest && msg.compare(0, label.size(), label) == 0) {
+        at = e;
+        longest = label.size();
+      }
+    }
+    xml_.fail(at, msg);  // nullptr: the <sensor>'s line
+  }
+}
 
 RaySensorConfig ConfigReader::read() {
   if (spec_.type != "ray" && spec_.type != "gpu_ray")
@@ -95,7 +120,9 @@ RaySensorConfig ConfigReader::read() {
     if (tag == "ray") {
       readRay(e, c);
       have_ray = true;
-    } else if (tag == "pose" || tag == "update_rate" || tag == "always_on" ||
+    } else if (tag == "pose" || tag == "update_rate") {
+      places_["<" + tag + ">"] = e;  // read in the SensorSpec
+    } else if (tag == "always_on" ||
                tag == "plugin" || tag == "visualize") {
       // pose, rate and plugins come parsed in the SensorSpec; visualize means nothing headless.
     } else {
@@ -148,7 +175,7 @@ RaySensorConfig ConfigReader::read() {
   if (c.vertical_samples == 1 && (c.vertical_min_angle != 0.0 || c.vertical_max_angle != 0.0) &&
       warn_)
     warn_(what_ + ": <vertical> angles ignored with one vertical sample (planar scan)");
-  validate(c);
+  validateAt(c);
   return c;
 }
 
@@ -165,6 +192,8 @@ void ConfigReader::readRay(const XMLElement* ray, RaySensorConfig& c) {
         }
         for (const XMLElement* k = s->FirstChildElement(); k; k = k->NextSiblingElement()) {
           const std::string key = k->Name();
+          const bool resolution = horizontal && key == "resolution";
+          places_[(horizontal && !resolution ? "" : "<" + stag + ">") + "<" + key + ">"] = k;
           if (horizontal) {
             if (key == "samples") c.samples = integer(k);
             else if (key == "resolution") c.resolution = number(k);
@@ -187,6 +216,7 @@ void ConfigReader::readRay(const XMLElement* ray, RaySensorConfig& c) {
     } else if (tag == "range") {
       for (const XMLElement* k = e->FirstChildElement(); k; k = k->NextSiblingElement()) {
         const std::string key = k->Name();
+        places_["range <" + key + ">"] = k;
         if (key == "min") c.range_min = number(k);
         else if (key == "max") c.range_max = number(k);
         else if (key == "resolution") c.range_resolution = number(k);
@@ -194,8 +224,10 @@ void ConfigReader::readRay(const XMLElement* ray, RaySensorConfig& c) {
       }
     } else if (tag == "noise") {
       c.noise.type = "gaussian";  // SDF's default type for <ray><noise>
+      places_["noise <type>"] = e;
       for (const XMLElement* k = e->FirstChildElement(); k; k = k->NextSiblingElement()) {
         const std::string key = k->Name();
+        places_["noise <" + key + ">"] = k;
         if (key == "type") c.noise.type = text(k);
         else if (key == "mean") c.noise.mean = number(k);
         else if (key == "stddev") c.noise.stddev = number(k);
