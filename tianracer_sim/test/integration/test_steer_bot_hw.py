@@ -5,13 +5,16 @@ front_steer_joint; the hardware, its parameters read from the parameter server, 
 at its Ackermann link's angles (0.2796 and 0.3235 rad for 0.3) and drives the wheels; the car
 moves on a left turn at about the commanded speed; joint_states carries the hardware's state of
 the bicycle's joints (front_steer its command, rear_wheel the rear wheels' mean), not the
-physics' free joints. Sim time throughout."""
+physics' free joints. A second steer bot spawned without its parameters is refused with the
+parameter's name, and the first drives on. Sim time throughout."""
 import math
+import os
 import unittest
 
 import rospy
 import rostest
-from geometry_msgs.msg import Twist
+from gazebo_msgs.srv import GetWorldProperties, SpawnModel
+from geometry_msgs.msg import Pose, Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
@@ -64,6 +67,29 @@ class SteerBotHwTest(unittest.TestCase):
         # wheels at one speed; our contacts slip): within 30 % of its yaw rate.
         self.assertLess(yaw_rate, V * t / H)
         self.assertGreater(yaw_rate, 0.7 * V * t / H)
+
+    def test_spawn_without_parameters_is_refused(self):
+        urdf_file = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data', 'urdf',
+                                 'steer_bot_hw.urdf')
+        with open(urdf_file) as f:
+            xml = f.read().replace('<robotNamespace>/steer_bot<', '<robotNamespace>/bad_bot<')
+        rospy.wait_for_service('/gazebo/spawn_urdf_model', WALL_TIMEOUT)
+        pose = Pose()
+        pose.position.x, pose.position.z = 5.0, 0.2
+        pose.orientation.w = 1.0
+        r = rospy.ServiceProxy('/gazebo/spawn_urdf_model', SpawnModel)('bad_bot', xml, '', pose, '')
+        print('spawn: success %s, %s' % (r.success, r.status_message))
+        self.assertFalse(r.success)
+        self.assertIn('steer_bot_hardware_gazebo/SteerBotHardwareGazebo: parameter '
+                      '/bad_bot/steer_bot_hardware_gazebo/rear_wheel is not set', r.status_message)
+        models = rospy.ServiceProxy('/gazebo/get_world_properties', GetWorldProperties)().model_names
+        self.assertNotIn('bad_bot', models)
+        self.assertIn('steer_bot', models)
+        # the first drives on
+        drive_twist(self.cmd, 1.0, V, 0.0, wall_timeout=WALL_TIMEOUT)
+        t1 = rospy.get_time()
+        self.truth.first_stamped(t1)
+        self.assertGreater(self.truth.latest().twist.twist.linear.x, 0.3)
 
 
 if __name__ == '__main__':
