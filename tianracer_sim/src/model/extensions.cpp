@@ -203,10 +203,14 @@ RosControlSpec rosControl(const PluginSpec& p, XmlReader& warner) {
   r.text("robotNamespace", &s.robot_namespace);
   if (const auto param = r.text("robotParam"); param && !param->empty()) s.robot_param = *param;
   r.number("controlPeriod", &s.control_period, true);
-  if (const auto type = r.text("robotSimType");
-      type && *type != "gazebo_ros_control/DefaultRobotHWSim")
-    r.warn("robotSimType '" + *type +
-           "' is not supported; the built-in DefaultRobotHWSim behaviour is used");
+  if (const auto type = r.text("robotSimType")) {
+    if (*type == "gazebo_ros_control/DefaultRobotHWSim" ||
+        *type == "steer_bot_hardware_gazebo/SteerBotHardwareGazebo")  // sim/steer_bot_hw_sim.h
+      s.robot_sim_type = *type;
+    else
+      r.warn("robotSimType '" + *type +
+             "' is not supported; the built-in DefaultRobotHWSim behaviour is used");
+  }
   r.text("eStopTopic", &s.e_stop_topic);
   r.ignore({"legacyModeNS"});
   r.finish();

@@ -102,6 +102,7 @@ std::vector<RobotBridge::JointStateStream> RobotBridge::makeJointStates() {
     std::vector<std::string> joints;
     double rate;
     std::string source;
+    bool from_handles = false;  // joints[n] is robot.handles[n], the state the hardware's
   };
   std::vector<Request> requests;
   const SimRobot& robot = *sim_.robot(id_);
@@ -117,7 +118,8 @@ std::vector<RobotBridge::JointStateStream> RobotBridge::makeJointStates() {
       std::vector<std::string> joints;
       for (const auto& h : robot.handles) joints.push_back(h.name);
       requests.push_back({resolveTopic(options_.ns, "joint_states"), joints, jsc->publishRate(),
-                          "joint_state_controller '" + c->name() + "'"});
+                          "joint_state_controller '" + c->name() + "'",
+                          robot.steer_bot.has_value()});
     }
   }
   std::vector<JointStateStream> streams;
@@ -136,11 +138,14 @@ std::vector<RobotBridge::JointStateStream> RobotBridge::makeJointStates() {
                                  "into one stream at the higher rate");
       it->schedule.period = std::min(it->schedule.period, 1.0 / r.rate);
     }
-    for (const std::string& j : r.joints) {
+    for (size_t n = 0; n < r.joints.size(); ++n) {
+      const std::string& j = r.joints[n];
       const int idx = pr.jointIndex(j);
-      if (idx < 0) throw ModelError(r.source + ": joint '" + j + "' is not a movable joint");
-      if (std::find(it->joints.begin(), it->joints.end(), idx) == it->joints.end()) {
+      const int handle = r.from_handles ? static_cast<int>(n) : -1;
+      if (idx < 0 && handle < 0) throw ModelError(r.source + ": joint '" + j + "' is not a movable joint");
+      if (std::find(it->msg.name.begin(), it->msg.name.end(), j) == it->msg.name.end()) {
         it->joints.push_back(idx);
+        it->handles.push_back(handle);
         it->msg.name.push_back(j);
       }
     }
@@ -159,6 +164,7 @@ void RobotBridge::publish(double t) {
   StepProfile* const profile = sim_.profile();
   const ros::Time stamp(t);
   const PhysicsRobot& pr = *sim_.physicsOf(id_);
+  const std::vector<tc::JointHandle>& handles = sim_.robot(id_)->handles;
   commands_->publish(t);  // what the controllers produced (diff_drive_controller's odom, tf)
   {
     StepProfile::Scope timed(profile, rows_.joint_states);
@@ -168,6 +174,13 @@ void RobotBridge::publish(double t) {
         StepProfile::Scope part(profile, rows_.joint_states_convert);
         s.msg.header.stamp = stamp;
         for (size_t k = 0; k < s.joints.size(); ++k) {
+          if (s.handles[k] >= 0) {
+            const tc::JointHandle& h = handles[s.handles[k]];
+            s.msg.position[k] = h.position;
+            s.msg.velocity[k] = h.velocity;
+            s.msg.effort[k] = h.effort;
+            continue;
+          }
           s.msg.position[k] = pr.jointPosition(s.joints[k]);
           s.msg.velocity[k] = pr.jointVelocity(s.joints[k]);
           s.msg.effort[k] = pr.jointEffort(s.joints[k]);

@@ -27,7 +27,7 @@ LoadOptions loadOptions(const ros::NodeHandle& rp) {
 }
 
 /// gazebo_ros_control's parameters under the robot's namespace (DefaultRobotHWSim initSim:
-/// joint_limits/<joint>, gazebo_ros_control/pid_gains/<joint>).
+/// joint_limits/<joint>, gazebo_ros_control/pid_gains/<joint>; SteerBotHardwareGazebo's).
 RobotHwSimParams readRobotHwSimParams(const std::string& ns) {
   RobotHwSimParams p;
   ros::NodeHandle nh(ns);
@@ -36,6 +36,10 @@ RobotHwSimParams readRobotHwSimParams(const std::string& ns) {
   if (nh.getParam("joint_limits", v)) p.joint_limits = tianracer_control::toParamValue(v);
   if (nh.getParam("gazebo_ros_control/pid_gains", v))
     p.pid_gains = tianracer_control::toParamValue(v);
+  // SteerBotHardwareGazebo's (sim/steer_bot_hw_sim.h).
+  if (nh.getParam("steer_bot_hardware_gazebo", v))
+    p.steer_bot_hardware_gazebo = tianracer_control::toParamValue(v);
+  if (nh.getParam("gains", v)) p.gains = tianracer_control::toParamValue(v);
   return p;
 }
 

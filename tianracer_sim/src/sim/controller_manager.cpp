@@ -79,7 +79,8 @@ void ControllerManager::updateClaims(SimRobot& robot) {
       if (!robot.controllers.isRunning(*c)) continue;
       for (const tc::JointHandle* j : c->claimedJoints()) claimed = claimed || j == &robot.handles[k];
     }
-    if (robot.claimed[k] && !claimed) pr.clearJointCommand(robot.handle_joint[k]);
+    if (robot.claimed[k] && !claimed && robot.handle_joint[k] >= 0)
+      pr.clearJointCommand(robot.handle_joint[k]);
     robot.claimed[k] = claimed;
   }
 }

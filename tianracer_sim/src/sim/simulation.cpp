@@ -111,6 +111,41 @@ double depthBelowBase(const RobotModel& model, const Eigen::Matrix3d& R_WB) {
   return any ? -lowest : 0.0;
 }
 
+namespace {
+
+/// A hardware's drive onto physics joint j.
+void applyDrive(PhysicsRobot& pr, int j, const JointDrive& d) {
+  switch (d.mode) {
+    case JointDrive::Mode::kEffort:
+      pr.setJointEffort(j, d.value);
+      break;
+    case JointDrive::Mode::kVelocity:
+      // A velocity motor limited by the effort limit.
+      pr.setJointVelocityTarget(j, d.value, d.max_effort);
+      break;
+    case JointDrive::Mode::kPosition: {
+      // DefaultRobotHWSim's writeSim without PID gains: SetPosition(0, command, true), the
+      // joint put at the command (within its limits: Joint::SetPositionMaximal) with the
+      // world velocities kept, so the joint's velocity stays as the physics left it. No
+      // motor: a servo capped at the effort limit limit-cycled around the target (upstream's
+      // steer bot: +-0.25 rad about a 0.314 rad steer, docs/ros_controllers.md).
+      const JointInfo& info = pr.joints()[j];
+      const double q = info.has_position_limits ? std::clamp(d.value, info.lower, info.upper) : d.value;
+      pr.clearJointCommand(j);
+      pr.setJointState(j, q, pr.jointVelocity(j));
+      break;
+    }
+    case JointDrive::Mode::kSetVelocity:
+      // Gazebo's Joint::SetVelocity (ODE: SetVelocityMaximal): the child link's velocity set
+      // relative to its parent's; no motor, no force limit.
+      pr.clearJointCommand(j);
+      pr.setJointState(j, pr.jointPosition(j), d.value);
+      break;
+  }
+}
+
+}  // namespace
+
 Simulation::Simulation(const PhysicsOptions& options, WarningSink warn)
     : physics_(options),
       warn_(std::move(warn)),
@@ -130,7 +165,14 @@ SimRobot& Simulation::addRobot(RobotConfig config) {
   robot->id = addRobotModel(&physics_, robot->model, config.X_WB_spawn, config.name, warn_);
   PhysicsRobot& physics_robot = physics_.robot(robot->id);
   try {
-    buildJointHandles(robot->model, physics_robot, &robot->handles, &robot->handle_joint);
+    const auto& rc = robot->model.ext.ros_control;
+    if (rc && rc->robot_sim_type == kSteerBotHardwareGazebo) {
+      robot->steer_bot.emplace();
+      robot->steer_bot->init(robot->model, physics_robot, config.hw_sim, warn_, &robot->handles,
+                             &robot->handle_joint);
+    } else {
+      buildJointHandles(robot->model, physics_robot, &robot->handles, &robot->handle_joint);
+    }
     // gazebo_ros_control's controlPeriod: controllers run every N physics steps.
     const double period = controlPeriod(*robot);
     if (period > 0.0) {
@@ -143,7 +185,7 @@ SimRobot& Simulation::addRobot(RobotConfig config) {
     }
     // A velocity or position joint without an effort limit gets an unbounded motor, as
     // DefaultRobotHWSim's SetParam("fmax", DBL_MAX) (sim/robot_hw_sim.h).
-    robot->hw_sim.init(robot->model, robot->handles, config.hw_sim, warn_);
+    if (!robot->steer_bot) robot->hw_sim.init(robot->model, robot->handles, config.hw_sim, warn_);
     controllers_.attach(*robot, config.controllers);
   } catch (...) {
     physics_.removeRobot(robot->id);  // nothing of a robot that failed stays
@@ -173,15 +215,22 @@ void Simulation::read(SimRobot& robot) {
   for (size_t k = 0; k < robot.handles.size(); ++k) {
     tc::JointHandle& h = robot.handles[k];
     const int j = robot.handle_joint[k];
+    if (j < 0) continue;  // SteerBotHardwareGazebo's rear_wheel and front_steer
     h.position = pr.jointPosition(j);
     h.velocity = pr.jointVelocity(j);
     h.effort = pr.jointEffort(j);
   }
+  if (robot.steer_bot) robot.steer_bot->read(robot.handles);
 }
 
 void Simulation::write(SimRobot& robot) {
   PhysicsRobot& pr = physics_.robot(robot.id);
   const double period = robot.control_every * physics_.dt();
+  if (robot.steer_bot) {
+    // SteerBotHardwareGazebo writeSim (sim/steer_bot_hw_sim.h): every step, claimed or not.
+    for (const auto& [j, d] : robot.steer_bot->write(robot.handles)) applyDrive(pr, j, d);
+    return;
+  }
   // DefaultRobotHWSim writeSim (sim/robot_hw_sim.h): the e-stop's hold, the joint limits, the
   // PID gains; then the command to the joint.
   robot.hw_sim.beginWrite(robot.handles);
@@ -194,27 +243,7 @@ void Simulation::write(SimRobot& robot) {
     if (!robot.claimed[k] || std::isnan(h.command)) continue;
     const JointDrive d = robot.hw_sim.write(k, h, period);
     if (!std::isfinite(d.value)) continue;
-    switch (d.mode) {
-      case JointDrive::Mode::kEffort:
-        pr.setJointEffort(j, d.value);
-        break;
-      case JointDrive::Mode::kVelocity:
-        // A velocity motor limited by the effort limit.
-        pr.setJointVelocityTarget(j, d.value, d.max_effort);
-        break;
-      case JointDrive::Mode::kPosition: {
-        // DefaultRobotHWSim's writeSim without PID gains: SetPosition(0, command, true), the
-        // joint put at the command (within its limits: Joint::SetPositionMaximal) with the
-        // world velocities kept, so the joint's velocity stays as the physics left it. No
-        // motor: a servo capped at the effort limit limit-cycled around the target (upstream's
-        // steer bot: +-0.25 rad about a 0.314 rad steer, docs/ros_controllers.md).
-        const JointInfo& info = pr.joints()[j];
-        const double q = info.has_position_limits ? std::clamp(d.value, info.lower, info.upper) : d.value;
-        pr.clearJointCommand(j);
-        pr.setJointState(j, q, pr.jointVelocity(j));
-        break;
-      }
-    }
+    applyDrive(pr, j, d);
   }
 }
 

@@ -193,6 +193,15 @@ TEST(Extensions, RosControlPlugin) {
   EXPECT_THAT(p.warnings,
               ElementsAre(HasSubstr("robotSimType 'my/Sim' is not supported"),
                           HasSubstr("<colour> is not a parameter of libgazebo_ros_control.so")));
+  EXPECT_EQ(ext.ros_control->robot_sim_type, "gazebo_ros_control/DefaultRobotHWSim");  // fallback
+
+  // The robotSimTypes the simulator runs: chosen, no warning (sim/steer_bot_hw_sim.h).
+  Parser steer;
+  ext = steer.parse(robot("<gazebo><plugin name='rc' filename='libgazebo_ros_control.so'>"
+                          "<robotSimType>steer_bot_hardware_gazebo/SteerBotHardwareGazebo"
+                          "</robotSimType></plugin></gazebo>"));
+  EXPECT_EQ(ext.ros_control->robot_sim_type, "steer_bot_hardware_gazebo/SteerBotHardwareGazebo");
+  EXPECT_TRUE(steer.warnings.empty());
 
   // eStopTopic (gazebo_ros_control_plugin.cpp's emergency stop): the topic, no warning; none
   // without the element.

@@ -99,6 +99,10 @@ struct RosControlSpec {
   double control_period = 0.0;                    // seconds; 0 = every physics step
   /// <eStopTopic>: a std_msgs/Bool topic under the namespace; "" = none.
   std::string e_stop_topic;
+  /// <robotSimType> when the simulator runs it: gazebo_ros_control/DefaultRobotHWSim (also for
+  /// any other, with a warning) or steer_bot_hardware_gazebo/SteerBotHardwareGazebo
+  /// (sim/steer_bot_hw_sim.h).
+  std::string robot_sim_type = "gazebo_ros_control/DefaultRobotHWSim";
 };
 
 /// libgazebo_ros_joint_state_publisher.so parameters (joint names with all whitespace removed).

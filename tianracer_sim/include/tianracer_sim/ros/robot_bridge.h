@@ -75,6 +75,10 @@ class RobotBridge {
   struct JointStateStream {
     ros::Publisher pub;
     std::vector<int> joints;  // PhysicsRobot joint indices
+    /// Per joint: the robot's handle whose state is published, or -1 (the physics joint's).
+    /// Handles where the hardware makes the state (SteerBotHardwareGazebo), as upstream's
+    /// joint_state_controller reads its JointStateInterface.
+    std::vector<int> handles;
     Schedule schedule;
     sensor_msgs::JointState msg;
   };

@@ -40,6 +40,10 @@ struct RobotHwSimParams {
   /// <ns>/gazebo_ros_control/pid_gains: a dictionary per joint (p, i, d, i_clamp,
   /// i_clamp_min, i_clamp_max, antiwindup: control_toolbox::Pid::init).
   tianracer_control::ParamValue pid_gains;
+  /// <ns>/steer_bot_hardware_gazebo and <ns>/gains: SteerBotHardwareGazebo's parameters
+  /// (sim/steer_bot_hw_sim.h).
+  tianracer_control::ParamValue steer_bot_hardware_gazebo;
+  tianracer_control::ParamValue gains;
 };
 
 /// What the hardware sends to one joint after a write.
@@ -48,6 +52,7 @@ struct JointDrive {
     kEffort,    // value: N m / N (SetForce)
     kVelocity,  // value: rad/s, m/s, a motor capped at max_effort (SetParam "vel", "fmax")
     kPosition,  // value: rad, m (SetPosition; ours: a servo within one control period)
+    kSetVelocity,  // value: rad/s, m/s, the joint's velocity set (Joint::SetVelocity), no motor
   };
   Mode mode = Mode::kEffort;
   double value = 0.0;

@@ -7,6 +7,7 @@
 #define TIANRACER_SIM_SIM_SIMULATION_H
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,7 @@
 #include "tianracer_sim/common/step_profile.h"
 #include "tianracer_sim/sim/controller_manager.h"
 #include "tianracer_sim/sim/robot_hw_sim.h"
+#include "tianracer_sim/sim/steer_bot_hw_sim.h"
 #include "tianracer_sim/model/robot_model.h"
 #include "tianracer_sim/physics/world.h"
 
@@ -43,12 +45,15 @@ struct SimRobot {
   /// One handle per transmission joint, in transmission order. Stable storage: controllers
   /// keep pointers into it.
   std::vector<tianracer_control::JointHandle> handles;
-  std::vector<int> handle_joint;  // PhysicsRobot joint index of each handle
+  std::vector<int> handle_joint;  // PhysicsRobot joint index of each handle (-1: none)
   std::vector<bool> claimed;      // handle written by a controller (others stay free)
   tianracer_control::ControllerSet controllers;
   int control_every = 1;  // controllers run every control_every physics steps
   /// DefaultRobotHWSim between the handles and the joints: limits, PID gains, e-stop.
   RobotHwSim hw_sim;
+  /// <robotSimType> steer_bot_hardware_gazebo/SteerBotHardwareGazebo: in place of hw_sim, its
+  /// handles (not the transmissions') fanned out onto the joints.
+  std::optional<SteerBotHwSim> steer_bot;
 };
 
 class Simulation {
