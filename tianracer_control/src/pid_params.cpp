@@ -52,14 +52,7 @@ PidGains toPidGains(const std::string& controller, const PidParams& params,
 }
 
 PidGains readPidGains(ControllerParams& params, const WarningSink& warn, const std::string& ns) {
-  PidParams pid;
-  pid.p = params.number(ns + "/p");
-  pid.i = params.number(ns + "/i");
-  pid.d = params.number(ns + "/d");
-  pid.i_clamp = params.number(ns + "/i_clamp");
-  pid.i_clamp_min = params.number(ns + "/i_clamp_min");
-  pid.i_clamp_max = params.number(ns + "/i_clamp_max");
-  pid.antiwindup = params.boolean(ns + "/antiwindup");
+  const PidParams pid = readPidParams(params, ns + "/");
   if (!pid.p) {
     throw ControllerError(params.prefix() + ns + "/p is missing (" + params.type() +
                           " needs pid gains)");

@@ -16,6 +16,22 @@ struct PidParams {
   std::optional<bool> antiwindup;
 };
 
+/// control_toolbox's Pid::init keys, each read as `reader.number(prefix + key)` (and
+/// `boolean` for antiwindup): any reader of parameters with those two (a controller's YAML, the
+/// hardware's pid_gains/<joint>).
+template <class Reader>
+PidParams readPidParams(Reader& reader, const std::string& prefix = "") {
+  PidParams pid;
+  pid.p = reader.number(prefix + "p");
+  pid.i = reader.number(prefix + "i");
+  pid.d = reader.number(prefix + "d");
+  pid.i_clamp = reader.number(prefix + "i_clamp");
+  pid.i_clamp_min = reader.number(prefix + "i_clamp_min");
+  pid.i_clamp_max = reader.number(prefix + "i_clamp_max");
+  pid.antiwindup = reader.boolean(prefix + "antiwindup");
+  return pid;
+}
+
 /// pid/{p,i,d,i_clamp,i_clamp_min,i_clamp_max,antiwindup} -> gains, with control_toolbox's rules:
 /// p is required; i, d default to 0; i_clamp_min/max override i_clamp (min = -|i_clamp|,
 /// max = |i_clamp|); all clamps default to 0, which disables the integral term (warned when i != 0).

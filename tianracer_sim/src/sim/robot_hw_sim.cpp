@@ -192,14 +192,7 @@ void RobotHwSim::init(const RobotModel& model, const std::vector<tc::JointHandle
       p.warn(std::string("is ") + g->typeName() + ", not a dictionary; ignored");
       continue;
     }
-    tc::PidParams pp;
-    pp.p = p.number("p");
-    pp.i = p.number("i");
-    pp.d = p.number("d");
-    pp.i_clamp = p.number("i_clamp");
-    pp.i_clamp_min = p.number("i_clamp_min");
-    pp.i_clamp_max = p.number("i_clamp_max");
-    pp.antiwindup = p.boolean("antiwindup");
+    const tc::PidParams pp = tc::readPidParams(p);
     if (!pp.p) {
       // control_toolbox: "No p gain specified for pid." and init() fails: no PID.
       p.warn("no p gain specified for pid; joint '" + h.name + "' is driven without one");

@@ -187,14 +187,7 @@ void SteerBotHwSim::init(const RobotModel& model, const PhysicsRobot& robot,
     const tc::ParamValue* g = gains.find(rear[i]);
     const tc::ParamValue none;
     const Params one(g ? *g : none, gains.name(rear[i]));
-    tc::PidParams pp;
-    pp.p = one.number("p");
-    pp.i = one.number("i");
-    pp.d = one.number("d");
-    pp.i_clamp = one.number("i_clamp");
-    pp.i_clamp_min = one.number("i_clamp_min");
-    pp.i_clamp_max = one.number("i_clamp_max");
-    pp.antiwindup = one.boolean("antiwindup");
+    const tc::PidParams pp = tc::readPidParams(one);
     if (!pp.p) {
       throw ModelError(std::string(kSteerBotHardwareGazebo) + ": No p gain specified for pid.  "
                        "Namespace: " + gains.name(rear[i]) + " (control_toolbox), so initSim "
