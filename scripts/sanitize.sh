@@ -70,7 +70,9 @@ for t in "${targets[@]}"; do
   bin=$(find "$WS/devel/lib" -type f -name "$t" -perm -u+x | head -1)
   [[ -n "$bin" ]] || { failed=$((failed + 1)); failures+=("$t (not built)"); continue; }
   # A build that is not sanitized (a stale cache; the top-level CMakeLists.txt) is not a pass.
-  if ! ldd "$bin" | grep -q libasan; then
+  # (grep reads all of ldd's output: with -q it would stop early, ldd would die of SIGPIPE and
+  # pipefail would count a sanitized binary as not sanitized, as 9 of 115 were once.)
+  if ! ldd "$bin" | grep libasan >/dev/null; then
     failed=$((failed + 1)); failures+=("$t (not built with AddressSanitizer)"); continue
   fi
   pkg=$(basename "$(dirname "$bin")")
