@@ -70,7 +70,9 @@ for t in "${targets[@]}"; do
   bin=$(find "$WS/devel/lib" -type f -name "$t" -perm -u+x | head -1)
   [[ -n "$bin" ]] || { failed=$((failed + 1)); failures+=("$t (not built)"); continue; }
   # A build that is not sanitized (a stale cache; the top-level CMakeLists.txt) is not a pass.
-  if ! ldd "$bin" | grep -q libasan; then
+  # (grep reads all of ldd's output: with -q it would stop early, ldd would die of SIGPIPE and
+  # pipefail would count a sanitized binary as not sanitized, as 9 of 115 were once.)
+  if ! ldd "$bin" | grep libasan >/dev/null; then
     failed=$((failed + 1)); failures+=("$t (not built with AddressSanitizer)"); continue
   fi
   pkg=$(basename "$(dirname "$bin")")
@@ -89,7 +91,13 @@ for t in "${targets[@]}"; do
       (cd "$dir" && timeout 1800 "$bin")
     fi
   }
-  if run >"$WS/logs/$t.log" 2>&1; then
+  # A report after the last test case (LeakSanitizer runs at exit) leaves gtest's XML saying
+  # "passed", and rostest counts the XML: a report in the test's output (or its nodes' logs)
+  # fails it whatever the exit status says.
+  rm -rf "$WS/logs/ros_$t"  # this run's node logs only
+  if run >"$WS/logs/$t.log" 2>&1 &&
+     ! grep -rqE 'ERROR: (Address|Leak)Sanitizer|runtime error:' "$WS/logs/$t.log" \
+         $( [[ -d "$WS/logs/ros_$t" ]] && echo "$WS/logs/ros_$t" ); then
     passed=$((passed + 1))
   else
     failed=$((failed + 1)); failures+=("$t")
