@@ -2,6 +2,7 @@
 upstream repository's packages from its bare git dir into a throwaway workspace, start the
 robot's own launch file against the simulator with roslaunch, run a rospy client in the same
 environment, and pick out of the launch's log what the simulator says it does not simulate."""
+import argparse
 import os
 import re
 import shutil
@@ -38,6 +39,18 @@ def fresh_workspace(ws):
     os.makedirs(os.path.join(ws, 'src'))
     os.makedirs(os.path.join(ws, 'logs'))
     return os.path.join(ws, 'src')
+
+
+def arg_parser(doc, ws_default):
+    """The options every robot script takes: --ws (the workspace it builds the robot's packages
+    in), --sim-setup (our workspace's setup.bash), --wall (the client's wall-clock cap, s) and
+    the hidden --client (the script run again as the launch's ROS client)."""
+    ap = argparse.ArgumentParser(description=doc.split('\n')[0])
+    ap.add_argument('--ws', default=ws_default)
+    ap.add_argument('--sim-setup', default=os.path.join(ROOT, '.build/devel/setup.bash'))
+    ap.add_argument('--wall', type=float, default=300.0, help='wall-clock cap of the client, s')
+    ap.add_argument('--client', action='store_true', help=argparse.SUPPRESS)
+    return ap
 
 
 def free_port():

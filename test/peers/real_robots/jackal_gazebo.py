@@ -22,7 +22,6 @@ both controllers running, then Twist commands on /jackal_velocity_controller/cmd
 twist_mux would forward /cmd_vel to; twist_mux is not in Debian): straight, on the spot, on an arc; prints
 the diff drive's odometry and the ground truth (/gazebo/model_states) side by side. Ends with one
 PASS/FAIL line."""
-import argparse
 import math
 import os
 import re
@@ -137,18 +136,14 @@ def client():
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    ap = common.arg_parser(__doc__, '/tmp/jackal_ws')
     ap.add_argument('--mirror', default='/work/.mirror')
     for key in SOURCES:
         ap.add_argument('--' + key.replace('_', '-'), dest=key, help='bare git dir of ' + SOURCES[key][0])
     ap.add_argument('--gazebo-models', help='bare git dir of osrf/gazebo_models')
-    ap.add_argument('--ws', default='/tmp/jackal_ws')
-    ap.add_argument('--sim-setup', default=os.path.join(common.ROOT, '.build/devel/setup.bash'))
     ap.add_argument('--launch', default='jackal_world.launch')
     ap.add_argument('--world', default='worlds/empty.world',
                     help="the launch's world_name argument ('': the launch's own default)")
-    ap.add_argument('--wall', type=float, default=300.0)
-    ap.add_argument('--client', action='store_true', help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.client:
         common.wait_for_sim_time_param()

@@ -14,7 +14,6 @@ running, then cmd_vel on /steer_bot/ackermann_steering_controller/cmd_vel (linea
 angular.z the steering angle, as the controller reads it), and the turning radius the ground
 truth shows against the one the steering gives (wheel_separation_h / tan(angle)). Ends with one
 PASS/FAIL line."""
-import argparse
 import math
 import os
 import sys
@@ -97,13 +96,9 @@ def client():
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    ap = common.arg_parser(__doc__, '/tmp/steer_ws')
     ap.add_argument('--upstream', help='bare git dir of srmainwaring/steer_bot')
     ap.add_argument('--ref', default='master')
-    ap.add_argument('--ws', default='/tmp/steer_ws')
-    ap.add_argument('--sim-setup', default=os.path.join(common.ROOT, '.build/devel/setup.bash'))
-    ap.add_argument('--wall', type=float, default=300.0)
-    ap.add_argument('--client', action='store_true', help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.client:
         common.wait_for_sim_time_param()

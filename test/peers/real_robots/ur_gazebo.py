@@ -12,7 +12,6 @@ controllers the launch spawned (list_controllers), a two-point goal on
 /eff_joint_traj_controller/follow_joint_trajectory that must SUCCEED, and /joint_states within
 the YAML's goal tolerances of the last point once the goal succeeded (sim time). Prints what the
 launch said it does not simulate and ends with one PASS/FAIL line."""
-import argparse
 import os
 import sys
 
@@ -135,14 +134,10 @@ def client(model):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    ap = common.arg_parser(__doc__, '/tmp/ur_ws')
     ap.add_argument('--upstream', help='bare git dir of ros-industrial/universal_robot')
     ap.add_argument('--ref', default='noetic-devel')
     ap.add_argument('--model', default='ur5e')
-    ap.add_argument('--ws', default='/tmp/ur_ws')
-    ap.add_argument('--sim-setup', default=os.path.join(common.ROOT, '.build/devel/setup.bash'))
-    ap.add_argument('--wall', type=float, default=300.0, help='wall-clock cap of the client, s')
-    ap.add_argument('--client', action='store_true', help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.client:
         return client(a.model)
