@@ -35,6 +35,19 @@ const ParamValue* ParamValue::find(const std::string& key) const {
   return it == dict_.end() ? nullptr : &it->second;
 }
 
+std::optional<double> ParamValue::asNumber() const {
+  if (kind_ == Kind::kDouble) return double_;
+  if (kind_ == Kind::kInt) return int_;
+  return std::nullopt;
+}
+
+std::string finiteNumberProblem(const ParamValue& v) {
+  const std::optional<double> x = v.asNumber();
+  if (!x) return std::string("is ") + v.typeName() + ", not a number";
+  if (!std::isfinite(*x)) return "is " + numberText(*x) + ", not a finite number";
+  return "";
+}
+
 const char* ParamValue::typeName() const {
   // Indexed by Kind; kNone and kOther are what a YAML reader cannot give as a parameter.
   static const char* const kNames[] = {"an unsupported value", "a bool", "an int", "a double",
@@ -87,8 +100,7 @@ double ControllerParams::positiveNumber(const std::string& key, double fallback)
 std::optional<double> ControllerParams::number(const std::string& key) {
   const ParamValue* v = lookup(key);
   if (!v) return std::nullopt;
-  if (v->kind() == ParamValue::Kind::kDouble) return v->asDouble();
-  if (v->kind() == ParamValue::Kind::kInt) return v->asInt();
+  if (const std::optional<double> x = v->asNumber()) return x;
   throw ControllerError(prefix() + key + " must be a number, got " + v->typeName());
 }
 

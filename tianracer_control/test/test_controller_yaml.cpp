@@ -1,5 +1,6 @@
 // A ros_control YAML read without ROS: the same specs as the parameter-server adapter gives
 // (test_controller_adapter.cpp), the shipped file, and each bad input's message.
+#include <cmath>
 #include <gtest/gtest.h>
 
 #include "tianracer_control/controller_yaml.h"
@@ -101,6 +102,21 @@ TEST(ControllerYaml, SameTreeAsTheParameterServer) {
             test::unusedKeyWarnings("test.yaml:3: controller 'hinge': ",
                                     "effort_controllers/JointPositionController",
                                     {"names", "pid/pp"}));
+}
+
+// A number as getParam reads a double: an int or a double; the hardware readers' one check.
+TEST(ControllerYaml, ParamNumbersAreIntsOrDoublesAndFiniteNumbersAreChecked) {
+  EXPECT_EQ(ParamValue(3).asNumber(), 3.0);
+  EXPECT_EQ(ParamValue(0.25).asNumber(), 0.25);
+  EXPECT_FALSE(ParamValue(true).asNumber());
+  EXPECT_FALSE(ParamValue("1").asNumber());
+  EXPECT_FALSE(ParamValue().asNumber());
+  EXPECT_EQ(finiteNumberProblem(ParamValue(2)), "");
+  EXPECT_EQ(finiteNumberProblem(ParamValue(-1e300)), "");
+  EXPECT_EQ(finiteNumberProblem(ParamValue("fast")), "is a string, not a number");
+  EXPECT_EQ(finiteNumberProblem(ParamValue::list()), "is a list, not a number");
+  EXPECT_EQ(finiteNumberProblem(ParamValue(std::nan(""))), "is nan, not a finite number");
+  EXPECT_EQ(finiteNumberProblem(ParamValue(-HUGE_VAL)), "is -inf, not a finite number");
 }
 
 TEST(ControllerYaml, NestedNamespaceTopLevelAndNamedControllers) {

@@ -44,6 +44,9 @@ class ParamValue {
   int asInt() const { return int_; }
   double asDouble() const { return double_; }
   const std::string& asString() const { return string_; }
+  /// The value as ros::NodeHandle::getParam reads a double: an int or a double; nullopt for
+  /// another kind.
+  std::optional<double> asNumber() const;
   const List& items() const { return list_; }
   const Dict& members() const { return dict_; }
 
@@ -81,6 +84,12 @@ struct ControllerSpec {
   std::string source;  // the file it was read from, where known ("" = the parameter server)
   int line = 0;        // source line where known (0 = unknown)
 };
+
+/// What keeps `v` from being read as a finite number, as a phrase that follows the key ("is a
+/// string, not a number", "is nan, not a finite number"); "" when it is one. The readers of
+/// the simulated hardware's parameters (DefaultRobotHWSim, SteerBotHardwareGazebo) share it
+/// and keep their own policy (warn and skip, or refuse).
+std::string finiteNumberProblem(const ParamValue& v);
 
 /// A number as parameter errors quote it (operator<<'s default: 6 significant digits).
 std::string numberText(double x);

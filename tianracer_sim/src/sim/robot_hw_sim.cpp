@@ -17,9 +17,6 @@ namespace tc = tianracer_control;
 
 namespace {
 
-constexpr double kUnbounded = std::numeric_limits<double>::max();
-
-
 /// Reads one joint's parameter dictionary as ros::NodeHandle::getParam does (an int is a
 /// double; another kind is not there); a value of another kind or a non-finite number is
 /// warned with its full name and treated as absent.
@@ -38,20 +35,11 @@ class JointParams {
   std::optional<double> number(const std::string& key) const {
     const tc::ParamValue* v = tree_.find(key);
     if (!v) return std::nullopt;
-    double x = 0.0;
-    if (v->kind() == tc::ParamValue::Kind::kDouble) {
-      x = v->asDouble();
-    } else if (v->kind() == tc::ParamValue::Kind::kInt) {
-      x = v->asInt();
-    } else {
-      bad(key, std::string("is ") + v->typeName() + ", not a number");
+    if (const std::string why = tc::finiteNumberProblem(*v); !why.empty()) {
+      bad(key, why);
       return std::nullopt;
     }
-    if (!std::isfinite(x)) {
-      bad(key, "is " + formatShort(x) + ", not a finite number");
-      return std::nullopt;
-    }
-    return x;
+    return v->asNumber();
   }
   void warn(const std::string& message) const {
     if (warn_) warn_(where_ + ": " + message);
@@ -151,12 +139,7 @@ void RobotHwSim::init(const RobotModel& model, const std::vector<tc::JointHandle
       }
     }
 
-    j.effort_limit = kUnbounded;
     if (has_limits) {
-      if (j.limits.has_effort_limits) {
-        j.has_effort_limit = true;
-        j.effort_limit = j.limits.max_effort;
-      }
       // The handles' constructors throw (and Gazebo stops) without the limits they need;
       // here the joint goes unlimited with upstream's words.
       const bool vel = j.limits.has_velocity_limits, eff = j.limits.has_effort_limits;
@@ -251,7 +234,7 @@ JointDrive RobotHwSim::write(size_t k, tc::JointHandle& h, double period) {
   }
 
   JointDrive d;
-  const double cap = j.effort_limit;  // DRS SetParam("fmax", effort limit): DBL_MAX without one
+  const double cap = j.effortLimit();  // DRS SetParam("fmax", effort limit): DBL_MAX without one
   switch (j.method) {
     case Method::kEffort:
       d.mode = JointDrive::Mode::kEffort;
@@ -273,7 +256,7 @@ JointDrive RobotHwSim::write(size_t k, tc::JointHandle& h, double period) {
                                ? positionPidError(j, h.position, h.command)
                                : (e_stop_ ? -h.velocity : h.command - h.velocity);
       d.mode = JointDrive::Mode::kEffort;
-      d.value = std::clamp(j.pid.computeCommand(error, period), -j.effort_limit, j.effort_limit);
+      d.value = std::clamp(j.pid.computeCommand(error, period), -j.effortLimit(), j.effortLimit());
       break;
     }
   }

@@ -56,16 +56,8 @@ class Params {
   std::optional<double> number(const std::string& key) const {
     const tc::ParamValue* v = find(key);
     if (!v) return std::nullopt;
-    double x = 0.0;
-    if (v->kind() == tc::ParamValue::Kind::kDouble) {
-      x = v->asDouble();
-    } else if (v->kind() == tc::ParamValue::Kind::kInt) {
-      x = v->asInt();
-    } else {
-      fail(key, std::string("is ") + v->typeName() + ", not a number");
-    }
-    if (!std::isfinite(x)) fail(key, formatShort(x) + " is not a finite number");
-    return x;
+    if (const std::string why = tc::finiteNumberProblem(*v); !why.empty()) fail(key, why);
+    return v->asNumber();
   }
   std::optional<bool> boolean(const std::string& key) const {
     const tc::ParamValue* v = find(key);

@@ -337,7 +337,7 @@ TEST_F(SteerBot, BadParametersAreRefusedNamingThePluginParameterAndValue) {
   {
     RobotHwSimParams p = steerBotParams();
     p.steer_bot_hardware_gazebo["wheel_separation_w"] = std::nan("");
-    EXPECT_EQ(refusal(p), plugin + "/steer_bot/steer_bot_hardware_gazebo/wheel_separation_w nan is not a "
+    EXPECT_EQ(refusal(p), plugin + "/steer_bot/steer_bot_hardware_gazebo/wheel_separation_w is nan, not a "
                                    "finite number");
   }
   {
