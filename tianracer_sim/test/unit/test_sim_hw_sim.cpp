@@ -153,8 +153,8 @@ TEST_F(HwSim, TheUrdfLimitsRegisterSoftLimitsOrSaturationHandles) {
   EXPECT_EQ(joint("free_wheel").limits_kind, Limits::kNone);  // no <limit>
   EXPECT_DOUBLE_EQ(joint("spinner").limits.max_velocity, 4.0);
   EXPECT_FALSE(joint("spinner").limits.has_position_limits);  // continuous
-  EXPECT_DOUBLE_EQ(joint("hinge").effort_limit, 8.0);
-  EXPECT_FALSE(joint("free_wheel").has_effort_limit);  // DRS: unbounded
+  EXPECT_DOUBLE_EQ(joint("hinge").effortLimit(), 8.0);
+  EXPECT_EQ(joint("free_wheel").effortLimit(), std::numeric_limits<double>::max());  // DRS: unbounded
   EXPECT_DOUBLE_EQ(joint("slider").soft.max_position, 0.3);
   EXPECT_DOUBLE_EQ(joint("slider").soft.k_velocity, 50.0);
   EXPECT_EQ(joint("hinge").method, Method::kPosition);  // no pid_gains
@@ -347,7 +347,9 @@ TEST_F(HwSim, APositionJointWithoutGainsIsPutAtItsCommandAsDefaultRobotHwSimSets
   for (int i = 0; i < 1000; ++i) {  // 1 s
     run(0.001);
     highest = std::max(highest, position("hinge"));
-    if (i == 99) EXPECT_NEAR(position("hinge"), 0.2, 0.003) << "ramp at 2 rad/s";
+    if (i == 99) {
+      EXPECT_NEAR(position("hinge"), 0.2, 0.003) << "ramp at 2 rad/s";
+    }
   }
   EXPECT_LE(highest, 0.5 + 1e-6);
   EXPECT_NEAR(position("hinge"), 0.5, 1e-6);

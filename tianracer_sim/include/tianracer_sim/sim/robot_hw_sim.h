@@ -14,6 +14,7 @@
 #ifndef TIANRACER_SIM_SIM_ROBOT_HW_SIM_H
 #define TIANRACER_SIM_SIM_ROBOT_HW_SIM_H
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -76,8 +77,9 @@ class RobotHwSim {
     enum class Type { kOther, kRevolute, kContinuous };
     Type type = Type::kOther;
     /// DRS's effort limit: the limits' max_effort, unbounded (DBL_MAX) without one.
-    double effort_limit = 0.0;
-    bool has_effort_limit = false;
+    double effortLimit() const {
+      return limits.has_effort_limits ? limits.max_effort : std::numeric_limits<double>::max();
+    }
     std::optional<tianracer_control::PositionSaturation> position_saturation;
     std::optional<tianracer_control::PositionSoftLimits> position_soft;
     std::optional<tianracer_control::VelocitySaturation> velocity_saturation;
