@@ -144,11 +144,9 @@ ImuConfig parseImuSensorConfig(const SensorSpec& spec, const std::string& model_
     const std::string tag = e->Name();
     if (tag == "imu") {
       readImu(r, e, c);
-    } else if (tag == "update_rate") {
-      // The model loader keeps the number; NaN and negative values are named here.
-      if (!XmlReader::keepsDefault(e)) c.update_rate = number(r, e);
-    } else if (tag == "pose" || tag == "always_on" || tag == "plugin" || tag == "visualize" ||
-               tag == "topic") {
+    } else if (tag == "pose" || tag == "update_rate" || tag == "always_on" || tag == "plugin" ||
+               tag == "visualize" || tag == "topic") {
+      // The common fields, read once into the SensorSpec (a bad <update_rate> is its error).
     } else {
       r.warn(e, "<" + tag + "> is not supported, ignored");
     }
