@@ -17,7 +17,8 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from std_srvs.srv import Empty
-from tianracer_sim.msg import StepAndWaitAction, StepAndWaitActionFeedback, StepAndWaitGoal
+from tianracer_sim.msg import (StepAndWaitAction, StepAndWaitActionFeedback, StepAndWaitActionGoal,
+                               StepAndWaitGoal)
 from tianracer_sim.srv import Step
 
 WAIT = 60.0
@@ -67,11 +68,17 @@ class StepTest(unittest.TestCase):
         cls.feedback_sub = rospy.Subscriber('/tianracer_sim/step_and_wait/feedback',
                                             StepAndWaitActionFeedback, cls.on_feedback,
                                             queue_size=5000)
+        # The ids of the goals this client sends, read off the action's goal topic (the
+        # client's public interface does not return them).
+        cls.goal_ids = []
+        cls.goal_sub = rospy.Subscriber('/tianracer_sim/step_and_wait/goal', StepAndWaitActionGoal,
+                                        cls.on_goal, queue_size=100)
         assert cls.action.wait_for_server(rospy.Duration(WAIT))
         deadline = time.time() + WAIT
         while time.time() < deadline and (cls.scan.sub.get_num_connections() < 1 or
                                           cls.truth.sub.get_num_connections() < 1 or
-                                          cls.feedback_sub.get_num_connections() < 1):
+                                          cls.feedback_sub.get_num_connections() < 1 or
+                                          cls.goal_sub.get_num_connections() < 1):
             time.sleep(0.05)
         time.sleep(0.5)
 
@@ -79,6 +86,21 @@ class StepTest(unittest.TestCase):
     def on_feedback(cls, msg):
         with cls.feedback_lock:
             cls.feedback.append((msg.status.goal_id.id, msg.feedback.steps_done))
+
+    @classmethod
+    def on_goal(cls, msg):
+        with cls.feedback_lock:
+            cls.goal_ids.append(msg.goal_id.id)
+
+    def sent_goal_id(self, count_before):
+        """The id of the goal sent after `count_before` goals, once the goal topic carried it."""
+        deadline = time.time() + WAIT
+        while time.time() < deadline:
+            with self.feedback_lock:
+                if len(self.goal_ids) > count_before:
+                    return self.goal_ids[count_before]
+            time.sleep(0.01)
+        self.fail('the goal never appeared on /tianracer_sim/step_and_wait/goal')
 
     def feedback_of(self, goal_id):
         with self.feedback_lock:
@@ -130,8 +152,10 @@ class StepTest(unittest.TestCase):
         # Feedback goes out while the steps run (the waiting thread reports when it wakes): 50
         # steps took 8 ms and could finish before any feedback did; 1000 steps run long enough.
         steps = 1000
+        with self.feedback_lock:
+            sent = len(self.goal_ids)
         self.action.send_goal(StepAndWaitGoal(steps=steps))
-        goal_id = self.action.gh.comm_state_machine.action_goal.goal_id.id
+        goal_id = self.sent_goal_id(sent)
         self.assertTrue(self.action.wait_for_result(rospy.Duration(WAIT)))
         result = self.action.get_result()
         self.assertEqual(self.action.get_state(), GoalStatus.SUCCEEDED)
