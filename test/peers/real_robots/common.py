@@ -7,12 +7,13 @@ import os
 import re
 import shutil
 import signal
-import socket
 import subprocess
 import sys
 import time
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', '..'))
+sys.path.insert(0, os.path.join(ROOT, 'tianracer_sim', 'python'))
+from tianracer_sim.master import free_port  # noqa: E402,F401 (the scripts' common.free_port)
 # The lines of a launch's log that say what is not simulated, left out or failed.
 NOTE = re.compile(r'not simulated|not supported|ignored|left out|not read|with differences|'
                   r'falling back|warning:|cannot launch node|ERROR|Error|no gazebo_ros plugin|'
@@ -51,14 +52,6 @@ def arg_parser(doc, ws_default):
     ap.add_argument('--wall', type=float, default=300.0, help='wall-clock cap of the client, s')
     ap.add_argument('--client', action='store_true', help=argparse.SUPPRESS)
     return ap
-
-
-def free_port():
-    s = socket.socket()
-    s.bind(('localhost', 0))
-    port = s.getsockname()[1]
-    s.close()
-    return port
 
 
 def sim_env(setup, src, port):

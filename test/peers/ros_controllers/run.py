@@ -23,12 +23,13 @@ import os
 import re
 import shutil
 import signal
-import socket
 import subprocess
 import sys
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, '..', '..', '..', 'tianracer_sim', 'python'))
+from tianracer_sim.master import free_port  # noqa: E402
 # What the tests' nodes may include; each found package is added (a missing one only fails the
 # nodes that need it).
 OPTIONAL_DEPS = ['roscpp', 'rostest', 'std_msgs', 'std_srvs', 'geometry_msgs', 'nav_msgs', 'tf',
@@ -100,14 +101,6 @@ def harness_files(pkg, gtests, test_dirs, ws_deps=()):
                   '  target_link_libraries(%s ${deps_LIBRARIES})' % name,
                   'endif()']
     return pkgxml, '\n'.join(lines) + '\n'
-
-
-def free_port():
-    s = socket.socket()
-    s.bind(('localhost', 0))
-    port = s.getsockname()[1]
-    s.close()
-    return port
 
 
 def reap(token):
