@@ -145,6 +145,65 @@ void MultiBodyWorld::pruneWheelManifolds() {
   }
 }
 
+btScalar ContactSolver::solveGroupCacheFriendlySetup(btCollisionObject** bodies, int numBodies,
+                                                     btPersistentManifold** manifolds,
+                                                     int numManifolds,
+                                                     btTypedConstraint** constraints,
+                                                     int numConstraints,
+                                                     const btContactSolverInfo& info,
+                                                     btIDebugDraw* debug) {
+  const btScalar r = btMultiBodyConstraintSolver::solveGroupCacheFriendlySetup(
+      bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debug);
+  alignFrictionWithSlip(info);
+  return r;
+}
+
+/// The rows as Bullet set them up: pairs (first, second direction) of one contact, in order,
+/// each with the relative velocity along it in m_rhs = -v / (J M^-1 J^T) (friction has no
+/// position error and no warm start here). A pair whose tangential slip is not zero is set up
+/// again along the slip, with Bullet's own routine; the normal rows are untouched.
+void ContactSolver::alignFrictionWithSlip(const btContactSolverInfo& info) {
+  if (!(info.m_solverMode & SOLVER_USE_2_FRICTION_DIRECTIONS) ||
+      (info.m_solverMode & SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION)) {
+    return;
+  }
+  for (int i = 0; i + 1 < m_multiBodyFrictionContactConstraints.size(); i += 2) {
+    btMultiBodySolverConstraint& c1 = m_multiBodyFrictionContactConstraints[i];
+    btMultiBodySolverConstraint& c2 = m_multiBodyFrictionContactConstraints[i + 1];
+    auto* cp = static_cast<btManifoldPoint*>(c1.m_originalContactPoint);
+    if (cp == nullptr || c2.m_originalContactPoint != cp || c1.m_frictionIndex != c2.m_frictionIndex ||
+        !(c1.m_jacDiagABInv > 0.0) || !(c2.m_jacDiagABInv > 0.0) ||
+        (cp->m_contactPointFlags & BT_CONTACT_FLAG_FRICTION_ANCHOR)) {
+      continue;
+    }
+    const btMultiBodySolverConstraint& normal = m_multiBodyNormalContactConstraints[c1.m_frictionIndex];
+    const btCollisionObject* a = normal.m_multiBodyA
+                                     ? static_cast<const btCollisionObject*>(
+                                           normal.m_multiBodyA->getLinkCollider(normal.m_linkA))
+                                     : nullptr;
+    const btCollisionObject* b = normal.m_multiBodyB
+                                     ? static_cast<const btCollisionObject*>(
+                                           normal.m_multiBodyB->getLinkCollider(normal.m_linkB))
+                                     : nullptr;
+    if (normal.m_multiBodyA && normal.m_linkA < 0) a = normal.m_multiBodyA->getBaseCollider();
+    if (normal.m_multiBodyB && normal.m_linkB < 0) b = normal.m_multiBodyB->getBaseCollider();
+    if ((a && a->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION)) ||
+        (b && b->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION))) {
+      continue;
+    }
+    const btVector3 slip = c1.m_contactNormal1 * (-c1.m_rhs / c1.m_jacDiagABInv) +
+                           c2.m_contactNormal1 * (-c2.m_rhs / c2.m_jacDiagABInv);
+    if (!(slip.length2() > SIMD_EPSILON)) continue;  // Bullet's threshold (convertContact)
+    const btVector3 dir1 = slip.normalized();
+    const btVector3 dir2 = dir1.cross(cp->m_normalWorldOnB).normalized();
+    btScalar relaxation;
+    setupMultiBodyContactConstraint(c1, dir1, 0, *cp, info, relaxation, true);
+    setupMultiBodyContactConstraint(c2, dir2, 0, *cp, info, relaxation, true);
+    cp->m_lateralFrictionDir1 = dir1;
+    cp->m_lateralFrictionDir2 = dir2;
+  }
+}
+
 bool WorldModelFilter::needBroadphaseCollision(btBroadphaseProxy* p0, btBroadphaseProxy* p1) const {
   if (!(p0->m_collisionFilterGroup & p1->m_collisionFilterMask) ||
       !(p1->m_collisionFilterGroup & p0->m_collisionFilterMask)) {
