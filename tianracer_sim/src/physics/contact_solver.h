@@ -52,6 +52,10 @@ class ContactSolver : public btMultiBodyConstraintSolver {
 
  private:
   void alignFrictionWithSlip(const btContactSolverInfo& info);
+  /// Turns a contact's two friction rows (multibody or static sides) to dir1, dir2.
+  void turnRows(btMultiBodySolverConstraint& c1, btMultiBodySolverConstraint& c2,
+                const btVector3& dir1, const btVector3& dir2, const btVector3& slip,
+                const btContactSolverInfo& info);
 };
 
 /// The broadphase's pair filter: the collision groups and masks as Bullet's default, and two
