@@ -194,17 +194,13 @@ void ContactSolver::alignFrictionWithSlip(const btContactSolverInfo& info) {
         (cp->m_contactPointFlags & BT_CONTACT_FLAG_FRICTION_ANCHOR)) {
       continue;
     }
-    const btMultiBodySolverConstraint& normal = m_multiBodyNormalContactConstraints[c1.m_frictionIndex];
-    const btCollisionObject* a = normal.m_multiBodyA
-                                     ? static_cast<const btCollisionObject*>(
-                                           normal.m_multiBodyA->getLinkCollider(normal.m_linkA))
-                                     : nullptr;
-    const btCollisionObject* b = normal.m_multiBodyB
-                                     ? static_cast<const btCollisionObject*>(
-                                           normal.m_multiBodyB->getLinkCollider(normal.m_linkB))
-                                     : nullptr;
-    if (normal.m_multiBodyA && normal.m_linkA < 0) a = normal.m_multiBodyA->getBaseCollider();
-    if (normal.m_multiBodyB && normal.m_linkB < 0) b = normal.m_multiBodyB->getBaseCollider();
+    if (c1.m_appliedImpulse != 0.0 || c2.m_appliedImpulse != 0.0) continue;  // warm-started
+    const auto collider = [](const btMultiBody* mb, int link) -> const btCollisionObject* {
+      if (mb == nullptr) return nullptr;
+      return link < 0 ? mb->getBaseCollider() : mb->getLinkCollider(link);
+    };
+    const btCollisionObject* a = collider(c1.m_multiBodyA, c1.m_linkA);
+    const btCollisionObject* b = collider(c1.m_multiBodyB, c1.m_linkB);
     if ((a && a->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION)) ||
         (b && b->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION))) {
       continue;
