@@ -41,6 +41,7 @@
 
 #include "tianracer_sim/lidar/ray_caster.h"
 #include "tianracer_sim/model/plugin_reader.h"
+#include "tianracer_sim/plugins/sensor_registry.h"
 
 namespace tianracer_sim {
 
@@ -150,14 +151,11 @@ RaySensorConfig ConfigReader::read() {
       r.finish();
       continue;
     }
-    // gazebo_ros_range, gazebo_ros_block_laser and hector's sonar read the same <ray>; their
-    // own parsers (ray_plugins.h, hector/hector_sonar.h) read their parameters.
-    if (p.filename.find("gazebo_ros_range") != std::string::npos ||
-        p.filename.find("gazebo_ros_block_laser") != std::string::npos ||
-        p.filename.find("hector_gazebo_ros_sonar") != std::string::npos) {
-      continue;
-    }
     if (!laser) {
+      // A plugin another kind of this sensor type registers (gazebo_ros_range,
+      // gazebo_ros_block_laser, hector's sonar: plugins/sensor_registry.h) reads the same
+      // <ray>; that kind's own parser reads its parameters.
+      if (findPluginKind(spec_.type, p.filename)) continue;
       if (warn_)
         warn_(formatLocation(p.source, p.line) + what_ + ": plugin '" + p.filename +
               "' is not supported on a ray sensor, ignored");
