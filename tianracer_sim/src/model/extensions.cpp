@@ -200,7 +200,7 @@ PluginReader modelPluginReader(const PluginSpec& p, XmlReader& warner) {
 RosControlSpec rosControl(const PluginSpec& p, XmlReader& warner) {
   PluginReader r = modelPluginReader(p, warner);
   RosControlSpec s;
-  r.text("robotNamespace", &s.robot_namespace);
+  r.robotNamespace(NamespaceRule::kAsGiven, &s.robot_namespace);
   if (const auto param = r.text("robotParam"); param && !param->empty()) s.robot_param = *param;
   r.number("controlPeriod", &s.control_period, true);
   if (const auto type = r.text("robotSimType")) {
@@ -243,7 +243,7 @@ JointStatePublisherSpec jointStatePublisher(const PluginSpec& p,
   flush();
   if (s.joint_names.empty()) r.fail("<jointName> lists no joints");
   r.number("updateRate", &s.update_rate, true);
-  r.text("robotNamespace", &s.robot_namespace);
+  r.robotNamespace(NamespaceRule::kAsGiven, &s.robot_namespace);
   r.ignore({"alwaysOn"});
   r.finish();
   return s;

@@ -144,7 +144,7 @@ RaySensorConfig ConfigReader::read() {
       PluginReader r(p, what_, warn_);
       r.text("topicName", &c.topic_name);
       c.frame_name = r.frame("frameName", c.frame_name);
-      r.text("robotNamespace", &c.robot_namespace);
+      r.robotNamespace(NamespaceRule::kAsGiven, &c.robot_namespace);
       r.number("min_range", &c.cloud_min_range);
       r.number("max_range", &c.cloud_max_range);
       r.number("gaussianNoise", &c.cloud_noise);
@@ -166,8 +166,8 @@ RaySensorConfig ConfigReader::read() {
     r.text("topicName", &c.topic_name);
     c.frame_name = r.frame("frameName", c.frame_name);
     // gazebo_ros_laser.cpp / gazebo_ros_gpu_laser.cpp Load: GetRobotNamespace.
-    if (r.text("robotNamespace", &c.robot_namespace))
-      c.namespace_from_model = c.robot_namespace.find_first_not_of(" \t\r\n") == std::string::npos;
+    c.namespace_from_model = r.robotNamespace(NamespaceRule::kEmptyIsModel, &c.robot_namespace) ==
+                             NamespaceFrom::kModel;
     r.finish();
   }
   if (c.vertical_samples == 1 && (c.vertical_min_angle != 0.0 || c.vertical_max_angle != 0.0) &&
