@@ -62,7 +62,7 @@ std::string text(const XMLElement* e) { return elementText(e); }
 
 /// Value of <tag value="..."/> (the seed's form) or <tag>...</tag> (Gazebo's form).
 std::string valueOf(const XMLElement* e) {
-  if (const char* v = e->Attribute("value")) return trimText(v);
+  if (const auto v = mi::attribute(e, "value")) return trimText(*v);
   return text(e);
 }
 
@@ -129,7 +129,7 @@ SensorSpec parseSensor(const XMLElement* e, const std::string& link, const std::
     if (tag == "pose") {
       s.X_LS = reader.pose(c, what, s.X_LS);
     } else if (tag == "update_rate") {
-      if (!XmlReader::keepsDefault(c) || c->Attribute("value"))
+      if (!XmlReader::keepsDefault(c) || mi::attribute(c, "value"))
         s.update_rate = nonNegative(c, what, source);
     } else if (tag == "always_on") {
       s.always_on = toBool(c, what, source);
@@ -200,7 +200,7 @@ PluginReader modelPluginReader(const PluginSpec& p, XmlReader& warner) {
 RosControlSpec rosControl(const PluginSpec& p, XmlReader& warner) {
   PluginReader r = modelPluginReader(p, warner);
   RosControlSpec s;
-  r.text("robotNamespace", &s.robot_namespace);
+  r.robotNamespace(NamespaceRule::kAsGiven, &s.robot_namespace);
   if (const auto param = r.text("robotParam"); param && !param->empty()) s.robot_param = *param;
   r.number("controlPeriod", &s.control_period, true);
   if (const auto type = r.text("robotSimType")) {
@@ -243,7 +243,7 @@ JointStatePublisherSpec jointStatePublisher(const PluginSpec& p,
   flush();
   if (s.joint_names.empty()) r.fail("<jointName> lists no joints");
   r.number("updateRate", &s.update_rate, true);
-  r.text("robotNamespace", &s.robot_namespace);
+  r.robotNamespace(NamespaceRule::kAsGiven, &s.robot_namespace);
   r.ignore({"alwaysOn"});
   r.finish();
   return s;
@@ -405,8 +405,8 @@ RobotExtensions parseExtensionsXml(const XMLElement* robot, const std::string& s
       warner.warnOnce("robot:" + tag, at(source, e) + "unknown element <" + tag + "> ignored");
       continue;
     }
-    if (const char* ref = e->Attribute("reference")) {
-      const std::string link = trimText(ref);
+    if (const auto ref = mi::attribute(e, "reference")) {
+      const std::string link = trimText(*ref);
       if (links.count(link)) {
         parseLinkExtension(e, link, ext.links[link], source, warner);
       } else if (joints.count(link)) {

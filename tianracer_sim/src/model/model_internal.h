@@ -17,11 +17,18 @@ namespace model_internal {
 /// The model loader's reader: warnings once, ModelErrors, places as "<source>:<line>: ".
 XmlReader modelReader(const std::string& source, WarningSink warn);
 
-/// An attribute's value as written (not trimmed: URDF names are taken as they are); "" when
-/// absent or `e` is null.
-inline std::string attr(const tinyxml2::XMLElement* e, const char* name) {
+/// An attribute's value as written (not trimmed: URDF names are taken as they are, and a
+/// message quotes a value as written); nullopt when absent or `e` is null. The model loader's
+/// one tinyxml2 attribute read: XmlReader's attributeText() cannot tell an absent attribute from
+/// an empty one, and the URDF checks must (urdfdom fails each its own way).
+inline std::optional<std::string> attribute(const tinyxml2::XMLElement* e, const char* name) {
   const char* v = e ? e->Attribute(name) : nullptr;
-  return v ? v : "";
+  return v ? std::optional<std::string>(v) : std::nullopt;
+}
+
+/// attribute(), "" when absent.
+inline std::string attr(const tinyxml2::XMLElement* e, const char* name) {
+  return attribute(e, name).value_or("");
 }
 
 /// "<source>:<line>: " for an element ("<source>: " when its line is unknown).

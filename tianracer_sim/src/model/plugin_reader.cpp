@@ -57,6 +57,14 @@ bool PluginReader::vector3(const std::string& key, Eigen::Vector3d* out) {
   return true;
 }
 
+NamespaceFrom PluginReader::robotNamespace(NamespaceRule rule, std::string* ns) {
+  const auto v = text("robotNamespace");
+  if (!v) return NamespaceFrom::kMissing;
+  if (v->empty() && rule == NamespaceRule::kEmptyIsModel) return NamespaceFrom::kModel;
+  *ns = *v;
+  return NamespaceFrom::kGiven;
+}
+
 bool PluginReader::boolean(const std::string& key, bool* out) {
   const auto t = text(key);
   if (!t) return false;

@@ -38,38 +38,36 @@ std::string fmt(double v) {
 }
 
 /// mass > 0 and finite; inertia finite and positive definite (all eigenvalues of the symmetric
-/// 3x3 tensor > 0). The triangle inequalities are not required, as in Gazebo.
+/// 3x3 tensor > 0). The triangle inequalities are not required, as in Gazebo. Values are read
+/// with the XmlReader's readers (mi::attribute, parseNumber), errors placed by it.
 void checkInertial(const XMLElement* link, const std::string& name, const std::string& source) {
   const XMLElement* inertial = link->FirstChildElement("inertial");
   if (!inertial) return;  // massless link (e.g. base_link): merged into its parent or ignored
+  const XmlReader reader = mi::modelReader(source, {});
   const std::string what = "link '" + name + "': ";
   const XMLElement* mass = inertial->FirstChildElement("mass");
-  if (!mass || !mass->Attribute("value"))
-    throw ModelError(mi::at(source, mass ? mass : inertial) + what +
-                     "<inertial> has no <mass value=...>");
-  const std::string mv = attr(mass, "value");
-  const auto m = parseNumber(mv);
+  const std::optional<std::string> mv = mi::attribute(mass, "value");
+  if (!mv) reader.fail(mass ? mass : inertial, what + "<inertial> has no <mass value=...>");
+  const auto m = parseNumber(*mv);
   if (!m || !std::isfinite(*m) || *m <= 0.0)
-    throw ModelError(mi::at(source, mass) + what + "mass '" + mv +
-                     "' must be a positive finite number");
+    reader.fail(mass, what + "mass '" + *mv + "' must be a positive finite number");
   if (*m > limits::kMass)
-    throw ModelError(mi::at(source, mass) + what + "mass " + mv + " is out of range (<= " +
-                     limits::formatNumber(limits::kMass) + " kg)");
+    reader.fail(mass, what + "mass " + *mv + " is out of range (<= " +
+                          limits::formatNumber(limits::kMass) + " kg)");
   const XMLElement* inertia = inertial->FirstChildElement("inertia");
-  if (!inertia) throw ModelError(mi::at(source, inertial) + what + "<inertial> has no <inertia>");
+  if (!inertia) reader.fail(inertial, what + "<inertial> has no <inertia>");
   static const char* kKeys[6] = {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"};
   double v[6];
   for (int i = 0; i < 6; ++i) {
-    const char* a = inertia->Attribute(kKeys[i]);
-    if (!a) throw ModelError(mi::at(source, inertia) + what + "<inertia> has no " + kKeys[i]);
-    const auto d = parseNumber(a);
+    const std::optional<std::string> a = mi::attribute(inertia, kKeys[i]);
+    if (!a) reader.fail(inertia, what + "<inertia> has no " + kKeys[i]);
+    const auto d = parseNumber(*a);
     if (!d || !std::isfinite(*d))
-      throw ModelError(mi::at(source, inertia) + what + "inertia " + kKeys[i] + "='" + a +
-                       "' is not a finite number");
+      reader.fail(inertia, what + "inertia " + kKeys[i] + "='" + *a + "' is not a finite number");
     if (std::abs(*d) > limits::kInertia)
-      throw ModelError(mi::at(source, inertia) + what + "inertia " + kKeys[i] + "=" + a +
-                       " is out of range (|" + kKeys[i] + "| <= " + limits::formatNumber(limits::kInertia) +
-                       " kg m^2)");
+      reader.fail(inertia, what + "inertia " + kKeys[i] + "=" + *a + " is out of range (|" +
+                               kKeys[i] + "| <= " + limits::formatNumber(limits::kInertia) +
+                               " kg m^2)");
     v[i] = *d;
   }
   Eigen::Matrix3d I;
@@ -79,8 +77,8 @@ void checkInertial(const XMLElement* link, const std::string& name, const std::s
   if (!(min_eig > 0.0)) {
     std::string values;
     for (int i = 0; i < 6; ++i) values += std::string(i ? " " : "") + kKeys[i] + "=" + fmt(v[i]);
-    throw ModelError(mi::at(source, inertia) + what + "inertia is not positive definite (" +
-                     values + "; smallest eigenvalue " + fmt(min_eig) + ")");
+    reader.fail(inertia, what + "inertia is not positive definite (" + values +
+                             "; smallest eigenvalue " + fmt(min_eig) + ")");
   }
 }
 
@@ -88,9 +86,9 @@ void checkInertial(const XMLElement* link, const std::string& name, const std::s
 /// unreadable (urdfdom reports those with its own message).
 std::optional<std::vector<double>> numbersOf(const XMLElement* e, const char* name,
                                              std::size_t count) {
-  const char* a = e ? e->Attribute(name) : nullptr;
+  const std::optional<std::string> a = mi::attribute(e, name);
   if (!a) return std::nullopt;
-  auto v = parseNumbers(a);
+  auto v = parseNumbers(*a);
   if (!v || v->size() != count) return std::nullopt;
   return v;
 }

@@ -117,6 +117,14 @@ const SensorKind* findSensorKind(const SensorSpec& sensor) {
   return of_type == 1 ? only : by_default;
 }
 
+const SensorKind* findPluginKind(const std::string& sensor_type, const std::string& filename) {
+  for (const SensorKind& kind : sensorKinds()) {
+    if (contains(kind.sensor_types, sensor_type) && contains(kind.plugins, baseName(filename)))
+      return &kind;
+  }
+  return nullptr;
+}
+
 std::vector<SensorTopic> sensorTopics(const SensorSpec& sensor, const std::string& model_name,
                                       const WarningSink& warn) {
   const SensorKind* kind = findSensorKind(sensor);

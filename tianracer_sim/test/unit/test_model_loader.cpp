@@ -313,6 +313,25 @@ TEST(ModelLoaderBadInput, InertiaNotPositiveDefinite) {
             "");
 }
 
+// The inertial checks' errors are placed by the XmlReader: the exception carries the file, line
+// and element, and the message reads as before.
+TEST(ModelLoaderBadInput, InertialErrorsCarryTheirElementsPlace) {
+  Loader l;
+  try {
+    loadRobotModel("<robot name='r'><link name='b'><inertial><mass value='1'/>\n"
+                   "<inertia ixx='1' ixy='0' ixz='nan' iyy='1' iyz='0' izz='1'/>"
+                   "</inertial></link></robot>",
+                   "car.urdf", l.options);
+    FAIL() << "loaded";
+  } catch (const ModelError& e) {
+    EXPECT_EQ(e.where().file, "car.urdf");
+    EXPECT_EQ(e.where().line, 2);
+    EXPECT_EQ(e.where().element, "inertia");
+    EXPECT_EQ(e.message(), "link 'b': inertia ixz='nan' is not a finite number");
+    EXPECT_STREQ(e.what(), "car.urdf:2: link 'b': inertia ixz='nan' is not a finite number");
+  }
+}
+
 TEST(ModelLoaderBadInput, DuplicateLink) {
   Loader l;
   EXPECT_THAT(l.error("invalid_duplicate_link.urdf"),

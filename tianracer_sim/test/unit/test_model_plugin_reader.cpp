@@ -97,5 +97,33 @@ TEST(PluginReader, WarnsOnceAboutEachParameterNothingRead) {
                           "car.urdf:12: plugin 'drive': <odometrySource> 'gps' read as world"));
 }
 
+// <robotNamespace> is read here for every plugin, each by its plugin's rule.
+TEST(PluginReader, RobotNamespaceByTheRuleOfThePlugin) {
+  const auto read = [](std::map<std::string, std::string> params, NamespaceRule rule,
+                       NamespaceFrom* from) {
+    const PluginSpec p = plugin(std::move(params));
+    std::vector<std::string> warnings;
+    PluginReader r(p, "plugin 'drive'", [&](const std::string& w) { warnings.push_back(w); });
+    std::string ns = "default";
+    *from = r.robotNamespace(rule, &ns);
+    r.finish();  // read: not reported
+    EXPECT_THAT(warnings, ::testing::IsEmpty());
+    return ns;
+  };
+  NamespaceFrom from;
+  EXPECT_EQ(read({}, NamespaceRule::kAsGiven, &from), "default");
+  EXPECT_EQ(from, NamespaceFrom::kMissing);
+  EXPECT_EQ(read({}, NamespaceRule::kEmptyIsModel, &from), "default");
+  EXPECT_EQ(from, NamespaceFrom::kMissing);
+  EXPECT_EQ(read({{"robotNamespace", " /car "}}, NamespaceRule::kAsGiven, &from), "/car");
+  EXPECT_EQ(from, NamespaceFrom::kGiven);
+  EXPECT_EQ(read({{"robotNamespace", " /car "}}, NamespaceRule::kEmptyIsModel, &from), "/car");
+  EXPECT_EQ(from, NamespaceFrom::kGiven);
+  EXPECT_EQ(read({{"robotNamespace", " "}}, NamespaceRule::kAsGiven, &from), "");
+  EXPECT_EQ(from, NamespaceFrom::kGiven);
+  EXPECT_EQ(read({{"robotNamespace", " "}}, NamespaceRule::kEmptyIsModel, &from), "default");
+  EXPECT_EQ(from, NamespaceFrom::kModel);
+}
+
 }  // namespace
 }  // namespace tianracer_sim

@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tianracer_sim/plugins/ray/ray_sensor.h"
 #include "tianracer_sim/plugins/sensor_registry.h"
 
 #include "sensor_test_support.h"
@@ -142,6 +143,34 @@ TEST(SensorsRegistry, KindsByTypeAndPlugin) {
   const SensorSpec unknown = sensorFrom("<sensor type='sonar' name='s'/>");
   EXPECT_EQ(findSensorKind(unknown), nullptr);
   EXPECT_TRUE(sensorTopics(unknown, "r").empty());
+}
+
+// The ray sensor's parser leaves the plugins other kinds of its type register to their own
+// parsers (asked of the registry, not a list of its own), and warns about the rest.
+TEST(SensorsRegistry, TheRaySensorAsksTheRegistryWhichPluginsAreOtherKinds) {
+  ASSERT_NE(findPluginKind("ray", "/opt/lib/libgazebo_ros_range.so"), nullptr);
+  EXPECT_EQ(findPluginKind("ray", "/opt/lib/libgazebo_ros_range.so")->id, "range");
+  EXPECT_EQ(findPluginKind("gpu_ray", "libgazebo_ros_block_laser.so")->id, "block_laser");
+  EXPECT_EQ(findPluginKind("ray", "libhector_gazebo_ros_sonar.so")->id, "hector_sonar");
+  EXPECT_EQ(findPluginKind("camera", "libgazebo_ros_range.so"), nullptr);
+  EXPECT_EQ(findPluginKind("ray", "libgazebo_ros_sonar_of_nobody.so"), nullptr);
+
+  const std::string ray_body =
+      "<ray><scan><horizontal><samples>10</samples><min_angle>-1</min_angle>"
+      "<max_angle>1</max_angle></horizontal></scan><range><min>0.1</min><max>5</max></range></ray>";
+  const auto warnings = [&](const std::string& file) {
+    std::vector<std::string> out;
+    parseRaySensorConfig(sensorFrom("<sensor type='ray' name='l'>" + ray_body +
+                                    "<plugin name='p' filename='" + file + "'/></sensor>"),
+                         [&out](const std::string& m) { out.push_back(m); });
+    return out;
+  };
+  EXPECT_THAT(warnings("libgazebo_ros_range.so"), ::testing::IsEmpty());
+  EXPECT_THAT(warnings("libgazebo_ros_block_laser.so"), ::testing::IsEmpty());
+  EXPECT_THAT(warnings("libhector_gazebo_ros_sonar.so"), ::testing::IsEmpty());
+  EXPECT_THAT(warnings("libgazebo_ros_sonar_of_nobody.so"),
+              ElementsAre(::testing::HasSubstr(
+                  "plugin 'libgazebo_ros_sonar_of_nobody.so' is not supported on a ray sensor")));
 }
 
 TEST(SensorsRegistry, EveryKindRegistersBesideItsClassAndTheyAgree) {

@@ -18,6 +18,18 @@
 
 namespace tianracer_sim {
 
+/// What a gazebo_ros plugin's Load makes of a <robotNamespace> given but empty.
+enum class NamespaceRule {
+  kAsGiven,       // the value as given: an empty one is the root (GazeboRosP3D, the IMU
+                  // sensor, bumper, range, block_laser, velodyne, skid steer, planar move,
+                  // hector's, gazebo_ros_control, joint_state_publisher)
+  kEmptyIsModel,  // the model's name: GetRobotNamespace (gazebo_ros_utils.h: gazebo_ros_laser,
+                  // gpu_laser, the cameras) and GazeboRos (the diff drive)
+};
+
+/// Where PluginReader::robotNamespace() took the namespace from.
+enum class NamespaceFrom { kMissing, kGiven, kModel };
+
 class PluginReader {
  public:
   /// `context` starts every message after the place, e.g. "contact sensor 'b' of model 'm'".
@@ -41,6 +53,11 @@ class PluginReader {
   bool number(const std::string& key, double* out, bool non_negative = false);
   /// Three finite numbers.
   bool vector3(const std::string& key, Eigen::Vector3d* out);
+  /// <robotNamespace>, the one reading of it for every plugin, by the plugin's `rule`: given,
+  /// *ns is its trimmed value (kGiven); given but empty under kEmptyIsModel, *ns is left and
+  /// the namespace is the model's name (kModel: the caller, who knows the name, applies it);
+  /// missing, *ns keeps the plugin's default (kMissing).
+  NamespaceFrom robotNamespace(NamespaceRule rule, std::string* ns);
   /// true/1 or false/0, any case.
   bool boolean(const std::string& key, bool* out);
   /// Names that are read elsewhere or mean nothing here (not reported by finish()).

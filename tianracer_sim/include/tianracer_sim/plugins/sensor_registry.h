@@ -84,6 +84,12 @@ const std::vector<SensorKind>& sensorKinds();
 /// when none.
 const SensorKind* findSensorKind(const SensorSpec& sensor);
 
+/// The kind of sensor type `sensor_type` that registers the plugin `filename` (its directory
+/// ignored), nullptr when none. A sensor's parser that several kinds share (the ray sensor's,
+/// under gazebo_ros_range, gazebo_ros_block_laser and hector's sonar) leaves the plugins of
+/// the other kinds to their own parsers: the registrations say which those are.
+const SensorKind* findPluginKind(const std::string& sensor_type, const std::string& filename);
+
 /// The topics the simulator publishes for `sensor` (empty for an unknown type). Throws as
 /// the kind's parser does.
 std::vector<SensorTopic> sensorTopics(const SensorSpec& sensor, const std::string& model_name,

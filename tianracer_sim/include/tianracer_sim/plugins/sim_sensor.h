@@ -19,6 +19,8 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -215,17 +217,33 @@ struct SimSensorSetup {
   }
 };
 
-/// The shape most kinds share: a ROS-free core (its config(), what it measures) sampled on one
-/// schedule, with one output whose latest value the publisher reads (an empty one before the
-/// first sample). A kind supplies sample() and, where it differentiates poses, track() (every
-/// step) and forget() (its histories, at a restart). SimLidar, SimImu and SimP3d are this;
-/// the ray grids (plugins/ray/sim_ray.h) and hector's plugins (plugins/hector/sim_hector.h)
-/// have shapes of their own.
+namespace sim_sensor_internal {
+template <class T, class = void>
+struct HasConfig : std::false_type {};
+template <class T>
+struct HasConfig<T, std::void_t<decltype(std::declval<const T&>().config())>> : std::true_type {};
+}  // namespace sim_sensor_internal
+
+/// The shape most kinds share: a ROS-free core (its config(), what it measures; or just the
+/// config, for a kind whose measurement is a function of it) sampled on one schedule, with one
+/// output whose latest value the publisher reads (an empty one before the first sample). A
+/// kind supplies sample() and, where it differentiates poses, track() (every step) and
+/// forget() (its histories, at a restart). SimLidar, SimImu, SimP3d, SimBumper and the ray
+/// grids (SimRange, SimBlockLaser) are this. Not this: the cameras (several outputs, rendered
+/// on the frame worker, two schedules or triggers), the drives (they act every step and have
+/// three outputs), hector's plugins (their UpdateTimer's clock, whose tick gives the models'
+/// dt and runs when nobody listens; the IMU and GPS have two outputs).
 template <class Core, class Output>
 class SimCoreSensor : public SimSensor {
  public:
   static constexpr SensorOutputs kOutput = 1;
-  const auto& config() const { return core_.config(); }
+  const auto& config() const {
+    if constexpr (sim_sensor_internal::HasConfig<Core>::value) {
+      return core_.config();
+    } else {
+      return core_;
+    }
+  }
 
   SensorOutputs update(double t, SensorWorld& world) override {
     track(t, world);

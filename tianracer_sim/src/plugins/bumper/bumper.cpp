@@ -28,7 +28,7 @@ BumperConfig parseBumperConfig(const SensorSpec& spec, const std::string& model_
   PluginReader r(*plugin, what, warn);
   r.text("bumperTopicName", &c.topic_name);
   r.text("frameName", &c.frame_name);
-  r.text("robotNamespace", &c.robot_namespace);
+  r.robotNamespace(NamespaceRule::kAsGiven, &c.robot_namespace);
   r.ignore({"alwaysOn", "updateRate"});  // the sensor's own tags rule
   r.finish();
   if (c.topic_name.empty()) r.fail("<bumperTopicName> is empty");

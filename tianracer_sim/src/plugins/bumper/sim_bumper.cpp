@@ -31,25 +31,22 @@ const SensorKind& bumperKind() {
 TIANRACER_SENSOR_KIND(bumperKind);
 
 SimBumper::SimBumper(const SimSensorSetup& setup, BumperConfig config)
-    : SimSensor("bumper", config.name, setup.linkRef(config.link), setup.model_name),
-      config_(std::move(config)) {
-  setup.check_link(config_.link);
-  const bool world = config_.frame_name == "world" || config_.frame_name == "map";
+    : SimCoreSensor("bumper", setup, config.name, config.link, config, config.update_rate) {
+  const BumperConfig& c = core_;
+  setup.check_link(c.link);
+  const bool world = c.frame_name == "world" || c.frame_name == "map";
   if (!world) {
     try {
-      setup.check_link(config_.frame_name);
+      setup.check_link(c.frame_name);
     } catch (const std::exception&) {
-      setup.fail("contact sensor '" + config_.name + "' of model '" + setup.model_name +
-                 "': <frameName> '" + config_.frame_name +
-                 "' is neither world nor a link of the model");
+      setup.fail("contact sensor '" + c.name + "' of model '" + setup.model_name +
+                 "': <frameName> '" + c.frame_name + "' is neither world nor a link of the model");
     }
-    frame_link_ = config_.frame_name;
+    frame_link_ = c.frame_name;
   }
-  frame_id_ = world ? config_.frame_name : resolveFrame(setup.tf_prefix, config_.frame_name);
-  sampleAt(schedule_, config_.name, config_.update_rate);
+  frame_id_ = world ? c.frame_name : resolveFrame(setup.tf_prefix, c.frame_name);
+  setOutput(states_);
 }
-
-SensorOutputs SimBumper::update(double t, SensorWorld&) { return schedule_.due(t) ? kStates : 0; }
 
 void SimBumper::sample(SensorOutputs, SensorWorld& world) {
   world.linkContacts(link(), &contacts_);

@@ -388,8 +388,8 @@ class Parser {
     // An empty <robotNamespace/> is the model's name: gazebo_ros_camera_utils.cpp Load calls
     // GetRobotNamespace (gazebo_ros_utils.h), which gives the model's name when the element is
     // there but empty, and "" when it is missing. Resolved by applyModelNamespace().
-    if (r.text("robotNamespace", &c->robot_namespace))
-      c->namespace_from_model = trimText(c->robot_namespace).empty();
+    c->namespace_from_model =
+        r.robotNamespace(NamespaceRule::kEmptyIsModel, &c->robot_namespace) == NamespaceFrom::kModel;
     r.text("cameraName", &c->camera_name);
     r.text("imageTopicName", &c->image_topic);
     r.text("cameraInfoTopicName", &c->camera_info_topic);

@@ -22,8 +22,6 @@ class ParamReader : public PluginReader {
   ParamReader(const PluginSpec& p, std::string what, const WarningSink& warn, DriveConfig* c)
       : PluginReader(p, std::move(what), warn), c_(c) {}
 
-  std::string value(const std::string& key) { return text(key).value_or(""); }
-
   std::string textOr(const std::string& key, const std::string& def, bool note = true) {
     if (const auto v = text(key)) return *v;
     if (note) c_->defaulted.push_back("missing <" + key + ">, defaults to \"" + def + "\"");
@@ -64,8 +62,7 @@ void parseDiffDrive(ParamReader& r, const std::string& model_name, DriveConfig* 
   // GazeboRos (gazebo_ros_utils.h): the model's name unless <robotNamespace> is given and not
   // empty; then readCommonParameter's <rosDebugLevel>.
   c->robot_namespace = model_name;
-  if (r.has("robotNamespace") && !r.value("robotNamespace").empty())
-    c->robot_namespace = r.value("robotNamespace");
+  r.robotNamespace(NamespaceRule::kEmptyIsModel, &c->robot_namespace);
   c->ros_debug_level = r.textOr("rosDebugLevel", "na");
   c->command_topic = r.textOr("commandTopic", "cmd_vel");
   c->odometry_topic = r.textOr("odometryTopic", "odom");
@@ -96,7 +93,8 @@ void parseDiffDrive(ParamReader& r, const std::string& model_name, DriveConfig* 
 
 void parseSkidSteer(ParamReader& r, DriveConfig* c) {
   // Its own node handle: <robotNamespace> + "/", else "" (no model-name default).
-  if (r.has("robotNamespace")) c->robot_namespace = r.value("robotNamespace") + "/";
+  if (r.robotNamespace(NamespaceRule::kAsGiven, &c->robot_namespace) == NamespaceFrom::kGiven)
+    c->robot_namespace += "/";
   c->publish_odom_tf = r.booleanOr("broadcastTF", false, /*note=*/false);  // upstream: ROS_INFO
   c->joints = {r.textOr("leftFrontJoint", "left_front_joint"),
                r.textOr("rightFrontJoint", "right_front_joint"),
@@ -118,7 +116,7 @@ void parseSkidSteer(ParamReader& r, DriveConfig* c) {
 }
 
 void parsePlanarMove(ParamReader& r, DriveConfig* c) {
-  if (r.has("robotNamespace")) c->robot_namespace = r.value("robotNamespace");
+  r.robotNamespace(NamespaceRule::kAsGiven, &c->robot_namespace);
   c->command_topic = r.textOr("commandTopic", "cmd_vel");
   c->odometry_topic = r.textOr("odometryTopic", "odom");
   c->odometry_frame = r.textOr("odometryFrame", "odom");

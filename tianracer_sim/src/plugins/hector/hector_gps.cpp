@@ -38,7 +38,7 @@ HectorGpsConfig parseHectorGpsConfig(const SensorSpec& spec, const std::string& 
   PluginReader r(hectorModelPlugin(spec, context), context, warn);
   HectorGpsConfig c;
   c.name = spec.name;
-  r.text("robotNamespace", &c.robot_namespace);
+  r.robotNamespace(NamespaceRule::kAsGiven, &c.robot_namespace);
   r.text("bodyName", &c.link);
   readUseWorldSphericalCoordinates(r);
   c.frame_id = r.frame("frameId", "world");

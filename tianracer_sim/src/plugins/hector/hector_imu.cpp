@@ -15,7 +15,7 @@ HectorImuConfig parseHectorImuConfig(const SensorSpec& spec, const std::string& 
   PluginReader r(hectorModelPlugin(spec, context), context, warn);
   HectorImuConfig c;
   c.name = spec.name;
-  r.text("robotNamespace", &c.robot_namespace);
+  r.robotNamespace(NamespaceRule::kAsGiven, &c.robot_namespace);
   r.text("bodyName", &c.link);
   c.frame_id = r.frame("frameId", "");
   r.text("topicName", &c.topic_name);

@@ -17,7 +17,7 @@ HectorMagneticConfig parseHectorMagneticConfig(const SensorSpec& spec,
   HectorMagneticConfig c;
   c.name = spec.name;
   constexpr double kDeg = M_PI / 180.0;
-  r.text("robotNamespace", &c.robot_namespace);
+  r.robotNamespace(NamespaceRule::kAsGiven, &c.robot_namespace);
   r.text("topicName", &c.topic_name);
   r.text("bodyName", &c.link);
   readUseWorldSphericalCoordinates(r);

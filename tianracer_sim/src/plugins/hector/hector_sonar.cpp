@@ -26,7 +26,7 @@ HectorSonarConfig parseHectorSonarConfig(const SensorSpec& spec, const WarningSi
                          "': libhector_gazebo_ros_sonar needs a ray sensor (Gazebo refuses it)");
   c.ray = parseRaySensorConfig(spec, warn);
   PluginReader r(*plugin, "sensor '" + spec.name + "', plugin " + plugin->filename, warn);
-  r.text("robotNamespace", &c.robot_namespace);
+  r.robotNamespace(NamespaceRule::kAsGiven, &c.robot_namespace);
   c.frame_id = r.frame("frameId", c.ray.link);
   r.text("topicName", &c.topic_name);
   readErrorModel(r, "", &c.model);

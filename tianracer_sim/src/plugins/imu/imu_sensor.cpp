@@ -93,7 +93,7 @@ void readImu(XmlReader& r, const XMLElement* imu, ImuConfig& c) {
 void readImuPlugin(PluginReader& r, const char* rate_key, ImuConfig& c) {
   c.has_plugin = true;
   c.plugin_filename = r.plugin().filename;
-  r.text("robotNamespace", &c.robot_namespace);
+  r.robotNamespace(NamespaceRule::kAsGiven, &c.robot_namespace);
   r.text("topicName", &c.topic_name);
   r.text("frameName", &c.frame_name);
   r.number(rate_key, &c.plugin_rate);

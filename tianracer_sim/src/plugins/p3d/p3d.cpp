@@ -12,7 +12,7 @@ P3dConfig parseP3dConfig(const SensorSpec& spec, const std::string& model_name,
   PluginReader r(p, what, warn);
   P3dConfig c;
   c.name = spec.name;
-  r.text("robotNamespace", &c.robot_namespace);
+  r.robotNamespace(NamespaceRule::kAsGiven, &c.robot_namespace);
   r.text("bodyName", &c.link);
   r.text("topicName", &c.topic_name);
   c.frame_name = r.frame("frameName", "world");

@@ -40,7 +40,7 @@ PluginReader readRayPlugin(const SensorSpec& spec, const std::string& stem,
   const PluginSpec* p = findPlugin(spec, stem);
   if (!p) throw SensorError("sensor '" + spec.name + "': no lib" + stem + " plugin");
   PluginReader r(*p, "sensor '" + spec.name + "', plugin " + p->filename, warn);
-  r.text("robotNamespace", &c->robot_namespace);
+  r.robotNamespace(NamespaceRule::kAsGiven, &c->robot_namespace);
   r.text("topicName", &c->topic_name);
   c->frame_name = r.frame("frameName", c->ray.link);
   return r;

@@ -41,6 +41,7 @@
 
 #include "tianracer_sim/lidar/ray_caster.h"
 #include "tianracer_sim/model/plugin_reader.h"
+#include "tianracer_sim/plugins/sensor_registry.h"
 
 namespace tianracer_sim {
 
@@ -143,21 +144,18 @@ RaySensorConfig ConfigReader::read() {
       PluginReader r(p, what_, warn_);
       r.text("topicName", &c.topic_name);
       c.frame_name = r.frame("frameName", c.frame_name);
-      r.text("robotNamespace", &c.robot_namespace);
+      r.robotNamespace(NamespaceRule::kAsGiven, &c.robot_namespace);
       r.number("min_range", &c.cloud_min_range);
       r.number("max_range", &c.cloud_max_range);
       r.number("gaussianNoise", &c.cloud_noise);
       r.finish();
       continue;
     }
-    // gazebo_ros_range, gazebo_ros_block_laser and hector's sonar read the same <ray>; their
-    // own parsers (ray_plugins.h, hector/hector_sonar.h) read their parameters.
-    if (p.filename.find("gazebo_ros_range") != std::string::npos ||
-        p.filename.find("gazebo_ros_block_laser") != std::string::npos ||
-        p.filename.find("hector_gazebo_ros_sonar") != std::string::npos) {
-      continue;
-    }
     if (!laser) {
+      // A plugin another kind of this sensor type registers (gazebo_ros_range,
+      // gazebo_ros_block_laser, hector's sonar: plugins/sensor_registry.h) reads the same
+      // <ray>; that kind's own parser reads its parameters.
+      if (findPluginKind(spec_.type, p.filename)) continue;
       if (warn_)
         warn_(formatLocation(p.source, p.line) + what_ + ": plugin '" + p.filename +
               "' is not supported on a ray sensor, ignored");
@@ -168,8 +166,8 @@ RaySensorConfig ConfigReader::read() {
     r.text("topicName", &c.topic_name);
     c.frame_name = r.frame("frameName", c.frame_name);
     // gazebo_ros_laser.cpp / gazebo_ros_gpu_laser.cpp Load: GetRobotNamespace.
-    if (r.text("robotNamespace", &c.robot_namespace))
-      c.namespace_from_model = c.robot_namespace.find_first_not_of(" \t\r\n") == std::string::npos;
+    c.namespace_from_model = r.robotNamespace(NamespaceRule::kEmptyIsModel, &c.robot_namespace) ==
+                             NamespaceFrom::kModel;
     r.finish();
   }
   if (c.vertical_samples == 1 && (c.vertical_min_angle != 0.0 || c.vertical_max_angle != 0.0) &&

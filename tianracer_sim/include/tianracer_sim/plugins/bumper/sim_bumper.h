@@ -11,23 +11,18 @@
 namespace tianracer_sim {
 
 /// contact sensor with libgazebo_ros_bumper: the link's touching pairs in the output frame.
-class SimBumper : public SimSensor {
+class SimBumper : public SimCoreSensor<BumperConfig, std::vector<BumperState>> {
  public:
-  static constexpr SensorOutputs kStates = 1;
+  static constexpr SensorOutputs kStates = kOutput;
   SimBumper(const SimSensorSetup& setup, BumperConfig config);
-  const BumperConfig& config() const { return config_; }
   /// The frame the states are in: world (or map) or a link with its tf_prefix.
   const std::string& frame() const { return frame_id_; }
-  const std::vector<BumperState>& states() const { return states_; }
+  const std::vector<BumperState>& states() const { return output(); }
 
-  SensorOutputs update(double t, SensorWorld& world) override;
   void sample(SensorOutputs outputs, SensorWorld& world) override;
-  void restart(double t) override { schedule_.restart(t); }
 
  private:
-  BumperConfig config_;
   std::string frame_link_, frame_id_;
-  Schedule schedule_;
   std::vector<LinkContact> contacts_;
   std::vector<BumperState> states_;
 };

@@ -31,33 +31,26 @@ class SimLidar : public SimCoreSensor<RaySensor, std::vector<float>> {
 /// the plugin's output measured from them with its own noise stream.
 template <class Config, class Output,
           void (*Measure)(const Config&, const std::vector<float>&, std::mt19937_64&, Output*)>
-class SimRayGrid : public SimSensor {
+class SimRayGrid : public SimCoreSensor<Config, Output> {
  public:
-  static constexpr SensorOutputs kOutput = 1;
-  SimRayGrid(const std::string& kind, const SimSensorSetup& setup, Config config, double rate)
-      : SimSensor(kind, config.ray.name, setup.linkRef(config.ray.link), setup.model_name),
-        config_(std::move(config)), rng_(config_.seed) {
-    setup.check_link(config_.ray.link);
-    sampleAt(schedule_, config_.ray.name, rate);
+  SimRayGrid(const std::string& kind, const SimSensorSetup& setup, const Config& config,
+             double rate)
+      : SimCoreSensor<Config, Output>(kind, setup, config.ray.name, config.ray.link, config, rate),
+        rng_(config.seed) {
+    setup.check_link(config.ray.link);
+    this->setOutput(output_);
   }
-  const Config& config() const { return config_; }
 
-  SensorOutputs update(double t, SensorWorld&) override { return schedule_.due(t) ? kOutput : 0; }
   void sample(SensorOutputs, SensorWorld& world) override {
+    const Config& c = this->core_;
     const Scene& scene = world.scene();
-    shapeRanges(config_.ray, world.caster(), scene, world.linkPose(link()) * config_.ray.X_LS,
+    shapeRanges(c.ray, world.caster(), scene, world.linkPose(this->link()) * c.ray.X_LS,
                 &buffers_, &ranges_);
-    Measure(config_, ranges_, rng_, &output_);
+    Measure(c, ranges_, rng_, &output_);
   }
-  void restart(double t) override { schedule_.restart(t); }
-
- protected:
-  const Output& output() const { return output_; }
 
  private:
-  Config config_;
   std::mt19937_64 rng_;
-  Schedule schedule_;
   RayScanBuffers buffers_;
   std::vector<float> ranges_;
   Output output_;
