@@ -81,9 +81,9 @@ SimNodeCore makeSimNodeCore(const ros::NodeHandle& pnh) {
   mark("simulator (the world's physics, scene, sensors)");
   core.sim->setPaused(params.paused);
   // The pace as Gazebo holds it (set_physics_properties' max_update_rate changes it).
-  PhysicsProperties physics = core.sim->physicsProperties();
+  PhysicsProperties physics = core.sim->properties().physicsProperties();
   physics.max_update_rate = core.real_time_factor / core.sim->dt();
-  core.sim->setPhysicsProperties(physics);
+  core.sim->properties().setPhysicsProperties(physics);
   return core;
 }
 
