@@ -30,6 +30,14 @@ struct Entity {
   PhysicsRobot* body = nullptr;
   std::string model_name;
   std::string link;  // "" = the model itself (its canonical link)
+  /// Whether its state changes with time (a robot, a free body, an actor); a static model's
+  /// stays where the world put it.
+  bool moves() const { return body != nullptr || actor; }
+};
+
+/// A movable joint's state, as joint_states reports it.
+struct JointReading {
+  double position = 0.0, velocity = 0.0, effort = 0.0;
 };
 
 /// A movable joint found by name.
@@ -60,8 +68,24 @@ class Entities {
   /// models, then the robots, as Gazebo searches its models) or "model::joint". Fixed joints
   /// are merged away and not found. Throws InputError naming the joint.
   JointRef joint(const std::string& name) const;
-  /// Every model by name: the ground plane, the world's models, the robots (get_world_properties).
+  /// Every model by name: the ground plane, the world's models, the actors, the robots
+  /// (get_world_properties), the names of models().
   std::vector<std::string> modelNames() const;
+  /// The one lister: every model, in modelNames()' order (Entity::link empty), and every link
+  /// as Gazebo lists them (/gazebo/model_states, /gazebo/link_states): a world model's and an
+  /// actor's every link, a robot's rigid bodies (bodyLinks()), the ground plane's "link".
+  std::vector<Entity> models() const;
+  std::vector<Entity> links() const;
+
+  // --- a model by id: what its bridges read (joint states, ground truth, frames) -------------
+  /// The rigid bodies of a robot or moving world model, each named after its first link (what
+  /// Gazebo lists after lumping the links joined by fixed joints), the base first; empty for a
+  /// static model.
+  std::vector<std::string> bodyLinks(ModelId id) const;
+  /// Where a robot or moving world model was spawned (its base, in the world).
+  Eigen::Isometry3d spawnPose(ModelId id) const;
+  /// Movable joint `joint` (Simulator::jointIndex) of a robot or moving world model.
+  JointReading jointReading(ModelId id, int joint) const;
 
  private:
   Simulator& sim_;
