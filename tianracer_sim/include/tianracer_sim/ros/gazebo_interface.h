@@ -46,7 +46,7 @@
 #include <std_srvs/Empty.h>
 
 #include "tianracer_sim/ros/service_advertiser.h"
-#include "tianracer_sim/sim/entity_state.h"
+#include "tianracer_sim/simulator/entity_state.h"
 #include "tianracer_sim/simulator/simulator.h"
 #include "tianracer_sim/world/world.h"
 

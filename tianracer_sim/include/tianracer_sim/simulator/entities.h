@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "tianracer_sim/sim/entity_state.h"
+#include "tianracer_sim/simulator/entity_state.h"
 #include "tianracer_sim/plugins/sim_sensor.h"  // ModelId
 #include "tianracer_sim/sim/simulation.h"
 #include "tianracer_sim/world/world.h"

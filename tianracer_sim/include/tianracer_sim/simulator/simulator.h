@@ -38,7 +38,7 @@
 #include "tianracer_sim/scene/scene.h"
 #include "tianracer_sim/plugins/model_report.h"
 #include "tianracer_sim/sim/contact_tracker.h"
-#include "tianracer_sim/sim/entity_state.h"
+#include "tianracer_sim/simulator/entity_state.h"
 #include "tianracer_sim/sim/frame_worker.h"
 #include "tianracer_sim/sim/robot_hw_sim.h"
 #include "tianracer_sim/sim/robot_scene.h"
