@@ -287,7 +287,7 @@ void GazeboInterface::applyJointEfforts() {
   for (const auto& [name, effort] : due) {
     try {
       const JointRef joint = entities_.joint(name);
-      joint.body->setJointExternalEffort(joint.index, effort);
+      entities_.applyJointEffort(joint, effort);
       if (effort != 0.0) joints_pushed_.push_back(name);
     } catch (const InputError&) {
       // the model is gone since

@@ -102,12 +102,7 @@ bool GazeboInterface::setLinkState(gazebo_msgs::SetLinkState::Request& req,
     }
     // The whole robot moves rigidly so that the link gets the state (joints kept): gazebo
     // moves the one link and lets the joints pull the others after it.
-    const PhysicsRobot& pr = *t.entity.body;
-    const EntityState L = fromFrame(in_frame, t.frame);
-    const Eigen::Isometry3d X_LB = pr.linkPose(t.entity.link).inverse() * pr.basePose();
-    EntityState B;
-    B.X_WE = L.X_WE * X_LB;
-    B.V_WE = shiftTwist(L.V_WE, L.X_WE.translation(), B.X_WE.translation());
+    const EntityState B = entities_.baseFor(t.entity, fromFrame(in_frame, t.frame));
     try {
       entities_.setBase(t.entity, B, false);
     } catch (const InputError& e) {
@@ -148,8 +143,8 @@ bool GazeboInterface::getModelProperties(gazebo_msgs::GetModelProperties::Reques
   if (e.robot) {
     // Bodies as Gazebo's URDF import makes them: links joined by fixed joints are lumped into
     // their parent, and the lumped collisions are named <parent>_fixed_joint_lump__<link>_collision.
-    const PhysicsRobot& pr = *e.body;
-    for (const TreeBody& b : pr.tree().bodies) {
+    const std::vector<TreeBody>& bodies = entities_.bodies(e);
+    for (const TreeBody& b : bodies) {
       res.body_names.push_back(b.link);
       std::map<std::string, int> count;
       for (const CollisionGeometry& c : b.collisions) {
@@ -160,8 +155,8 @@ bool GazeboInterface::getModelProperties(gazebo_msgs::GetModelProperties::Reques
         res.geom_names.push_back(name);
       }
     }
-    for (const JointInfo& j : pr.joints()) res.joint_names.push_back(j.name);
-    res.canonical_body_name = pr.tree().bodies.front().link;
+    for (const JointInfo& j : entities_.joints(e)) res.joint_names.push_back(j.name);
+    res.canonical_body_name = bodies.front().link;
     res.is_static = false;
   } else if (e.ground_plane) {
     res.body_names = {"link"};

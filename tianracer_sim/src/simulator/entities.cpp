@@ -217,4 +217,33 @@ JointReading Entities::jointReading(ModelId id, int joint) const {
   return {body.jointPosition(joint), body.jointVelocity(joint), body.jointEffort(joint)};
 }
 
+EntityState Entities::baseFor(const Entity& link, const EntityState& L) const {
+  if (!link.body) throw InputError("'" + link.model_name + "::" + link.link + "' belongs to a static model");
+  const PhysicsRobot& pr = *link.body;
+  const Eigen::Isometry3d X_LB = pr.linkPose(link.link).inverse() * pr.basePose();
+  EntityState B;
+  B.X_WE = L.X_WE * X_LB;
+  B.V_WE = shiftTwist(L.V_WE, L.X_WE.translation(), B.X_WE.translation());
+  return B;
+}
+
+void Entities::applyWrench(const Entity& link, const Eigen::Vector3d& force_W,
+                           const Eigen::Vector3d& torque_W) const {
+  if (link.body) link.body->setExternalWrench(link.link, force_W, torque_W);
+}
+
+void Entities::applyJointEffort(const JointRef& joint, double effort) const {
+  joint.body->setJointExternalEffort(joint.index, effort);
+}
+
+const std::vector<TreeBody>& Entities::bodies(const Entity& e) const {
+  static const std::vector<TreeBody> none;
+  return e.body ? e.body->tree().bodies : none;
+}
+
+const std::vector<JointInfo>& Entities::joints(const Entity& e) const {
+  static const std::vector<JointInfo> none;
+  return e.body ? e.body->joints() : none;
+}
+
 }  // namespace tianracer_sim

@@ -68,6 +68,21 @@ class Entities {
   /// models, then the robots, as Gazebo searches its models) or "model::joint". Fixed joints
   /// are merged away and not found. Throws InputError naming the joint.
   JointRef joint(const std::string& name) const;
+  /// The base state that puts link `link` (an Entity with a link, of a moving model) in state
+  /// `L` with the model moved rigidly, its joints kept (set_link_state: gazebo moves the one
+  /// link and lets the joints pull the others after it). Hand it to setBase().
+  EntityState baseFor(const Entity& link, const EntityState& L) const;
+  /// apply_body_wrench's total on a link this step (world frame, through its centre of mass);
+  /// nothing for a static model.
+  void applyWrench(const Entity& link, const Eigen::Vector3d& force_W,
+                   const Eigen::Vector3d& torque_W) const;
+  /// apply_joint_effort's effort on a joint this step.
+  void applyJointEffort(const JointRef& joint, double effort) const;
+  /// A robot's or moving world model's rigid bodies with their collisions (get_model_properties'
+  /// bodies and geoms), and its movable joints (Gazebo's joint list); empty for a static model.
+  const std::vector<TreeBody>& bodies(const Entity& e) const;
+  const std::vector<JointInfo>& joints(const Entity& e) const;
+
   /// Every model by name: the ground plane, the world's models, the actors, the robots
   /// (get_world_properties), the names of models().
   std::vector<std::string> modelNames() const;
