@@ -454,9 +454,10 @@ void SimEnv::reset(const std::optional<Eigen::Isometry3d>& X_WB, bool rest_on_gr
     if (rest_on_ground) X.translation().z() = depthBelowBase(model_, X.linear());
     const std::string bad = checkModelState(X, Twist());
     if (!bad.empty()) throw EnvError("reset pose: " + bad);
-    PhysicsRobot& robot = *sim_->physicsOf(robot_);
-    robot.setBasePose(X);
-    robot.setBaseTwist(Twist());
+    EntityState base;
+    base.X_WE = X;
+    const Entities entities = sim_->entities();
+    entities.setBase(entities.find(sim_->modelName(robot_), true), base, false);
   }
   if (drive_) drive_->reset();
   for (Observation& o : observations_) o.stamp = std::numeric_limits<double>::quiet_NaN();
@@ -553,9 +554,8 @@ void SimEnv::read(std::size_t i, void* out) const {
 
 std::vector<LinkContact> SimEnv::contacts() {
   std::vector<LinkContact> out, scratch;
-  const PhysicsRobot& pr = *sim_->physicsOf(robot_);
-  for (const auto& body : pr.tree().bodies) {
-    sim_->linkContacts(LinkRef{robot_, body.link}, &scratch);
+  for (const std::string& link : sim_->entities().bodyLinks(robot_)) {
+    sim_->linkContacts(LinkRef{robot_, link}, &scratch);
     out.insert(out.end(), scratch.begin(), scratch.end());
   }
   return out;

@@ -180,7 +180,7 @@ void GazeboInterface::beforeStep() {
     } catch (const InputError&) {
       continue;  // gone since
     }
-    if (e.body) e.body->setExternalWrench(e.link, w.force_W, w.torque_W);
+    entities_.applyWrench(e, w.force_W, w.torque_W);
   }
 }
 

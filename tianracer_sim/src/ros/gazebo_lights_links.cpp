@@ -30,7 +30,7 @@ Eigen::Vector4f fromColor(const std_msgs::ColorRGBA& m) { return {m.r, m.g, m.b,
 bool GazeboInterface::getLightProperties(gazebo_msgs::GetLightProperties::Request& req,
                                          gazebo_msgs::GetLightProperties::Response& res) {
   res.success = false;
-  for (const DirectionalLight& l : simulator_.lights()) {
+  for (const DirectionalLight& l : simulator_.properties().lights()) {
     if (l.name != req.light_name) continue;
     res.diffuse = toColor(l.given_diffuse);
     res.attenuation_constant = l.attenuation.constant;
@@ -50,7 +50,7 @@ bool GazeboInterface::setLightProperties(gazebo_msgs::SetLightProperties::Reques
   c.attenuation = {req.attenuation_constant, req.attenuation_linear, req.attenuation_quadratic};
   c.direction = Eigen::Vector3d(req.direction.x, req.direction.y, req.direction.z);
   return answer(res, {"set_light_properties: "}, [&] {
-    simulator_.setLight(req.light_name, c);
+    simulator_.properties().setLight(req.light_name, c);
     return "SetLightProperties: properties set";
   });
 }
@@ -59,7 +59,7 @@ bool GazeboInterface::deleteLight(gazebo_msgs::DeleteLight::Request& req,
                                   gazebo_msgs::DeleteLight::Response& res) {
   res.success = false;
   try {
-    simulator_.deleteLight(req.light_name);
+    simulator_.properties().deleteLight(req.light_name);
     res.success = true;
     res.status_message = "DeleteLight: " + req.light_name + " successfully deleted";
   } catch (const InputError& e) {
@@ -73,7 +73,7 @@ bool GazeboInterface::deleteLight(gazebo_msgs::DeleteLight::Request& req,
 bool GazeboInterface::getLinkProperties(gazebo_msgs::GetLinkProperties::Request& req,
                                         gazebo_msgs::GetLinkProperties::Response& res) {
   return answer(res, {"get_link_properties: ", "", false}, [&] {
-    const LinkProperties l = simulator_.linkProperties(req.link_name);
+    const LinkProperties l = simulator_.properties().linkProperties(req.link_name);
     tianracer_control::toXyzMsg(l.com, &res.com.position);
     res.com.orientation.w = 1.0;  // as gazebo_ros: no rotated inertia
     res.gravity_mode = l.gravity_mode;
@@ -92,7 +92,7 @@ bool GazeboInterface::setLinkProperties(gazebo_msgs::SetLinkProperties::Request&
                                         gazebo_msgs::SetLinkProperties::Response& res) {
   res.success = false;
   try {
-    simulator_.linkProperties(req.link_name);  // names an unknown link first
+    simulator_.properties().linkProperties(req.link_name);  // names an unknown link first
     res.status_message = "set_link_properties: link '" + req.link_name +
                          "': mass, inertia, centre of mass and gravity mode are fixed once the "
                          "model is built here (a Bullet multibody's); nothing changed";

@@ -1,7 +1,7 @@
 // gazebo_ros's property services (gazebo_ros/src/gazebo_ros_api_plugin.cpp, noetic-devel):
 // joints, physics, lights, links, set_model_configuration, apply_joint_effort and
 // clear_joint_forces, and the physics' dynamic_reconfigure parameters. Thin: the Simulator
-// checks and changes the state (simulator_properties.cpp); a refusal (InputError) answers
+// checks and changes the state (simulator/properties.h); a refusal (InputError) answers
 // success false with its message, and nothing changes.
 #include <algorithm>
 #include <cmath>
@@ -157,7 +157,7 @@ void GazeboInterface::advertiseProperties(ServiceAdvertiser<GazeboInterface>& se
     group.parameters.push_back(d);
   }
   description.groups.push_back(group);
-  description.dflt = physicsConfig(simulator_.physicsProperties());
+  description.dflt = physicsConfig(simulator_.properties().physicsProperties());
   description.max = description.dflt;
   description.min = description.dflt;
   for (auto& v : description.max.doubles) v.value = std::numeric_limits<double>::max();
@@ -169,7 +169,7 @@ void GazeboInterface::advertiseProperties(ServiceAdvertiser<GazeboInterface>& se
 }
 
 void GazeboInterface::publishPhysicsConfig() {
-  if (reconfigure_updates_pub_) reconfigure_updates_pub_.publish(physicsConfig(simulator_.physicsProperties()));
+  if (reconfigure_updates_pub_) reconfigure_updates_pub_.publish(physicsConfig(simulator_.properties().physicsProperties()));
 }
 
 // --- joints -----------------------------------------------------------------------------------
@@ -177,7 +177,7 @@ void GazeboInterface::publishPhysicsConfig() {
 bool GazeboInterface::getJointProperties(gazebo_msgs::GetJointProperties::Request& req,
                                          gazebo_msgs::GetJointProperties::Response& res) {
   return answer(res, {"get_joint_properties: ", "", false}, [&] {
-    const JointProperties j = simulator_.jointProperties(req.joint_name);
+    const JointProperties j = simulator_.properties().jointProperties(req.joint_name);
     switch (j.info.type) {
       case JointType::kRevolute: res.type = res.REVOLUTE; break;
       case JointType::kContinuous: res.type = res.CONTINUOUS; break;
@@ -221,7 +221,7 @@ bool GazeboInterface::setJointProperties(gazebo_msgs::SetJointProperties::Reques
     c.upper = first(o.hiStop);
     c.velocity = first(o.vel);
     c.fmax = first(o.fmax);
-    simulator_.setJointProperties(req.joint_name, c);
+    simulator_.properties().setJointProperties(req.joint_name, c);
     return "SetJointProperties: properties set";
   });
 }
@@ -229,7 +229,7 @@ bool GazeboInterface::setJointProperties(gazebo_msgs::SetJointProperties::Reques
 bool GazeboInterface::setModelConfiguration(gazebo_msgs::SetModelConfiguration::Request& req,
                                             gazebo_msgs::SetModelConfiguration::Response& res) {
   return answer(res, {}, [&] {
-    simulator_.setModelConfiguration(req.model_name, req.joint_names, req.joint_positions);
+    simulator_.properties().setModelConfiguration(req.model_name, req.joint_names, req.joint_positions);
     return "SetModelConfiguration: success";
   });
 }
@@ -287,7 +287,7 @@ void GazeboInterface::applyJointEfforts() {
   for (const auto& [name, effort] : due) {
     try {
       const JointRef joint = entities_.joint(name);
-      joint.body->setJointExternalEffort(joint.index, effort);
+      entities_.applyJointEffort(joint, effort);
       if (effort != 0.0) joints_pushed_.push_back(name);
     } catch (const InputError&) {
       // the model is gone since
@@ -299,7 +299,7 @@ void GazeboInterface::applyJointEfforts() {
 
 bool GazeboInterface::getPhysicsProperties(gazebo_msgs::GetPhysicsProperties::Request&,
                                            gazebo_msgs::GetPhysicsProperties::Response& res) {
-  const PhysicsProperties p = simulator_.physicsProperties();
+  const PhysicsProperties p = simulator_.properties().physicsProperties();
   res.time_step = p.time_step;
   res.pause = simulator_.paused();
   res.max_update_rate = p.max_update_rate;
@@ -310,14 +310,14 @@ bool GazeboInterface::getPhysicsProperties(gazebo_msgs::GetPhysicsProperties::Re
 
 bool GazeboInterface::setPhysicsProperties(gazebo_msgs::SetPhysicsProperties::Request& req,
                                            gazebo_msgs::SetPhysicsProperties::Response& res) {
-  PhysicsProperties p = simulator_.physicsProperties();
+  PhysicsProperties p = simulator_.properties().physicsProperties();
   p.time_step = req.time_step;
   p.max_update_rate = req.max_update_rate;
   p.gravity = Eigen::Vector3d(req.gravity.x, req.gravity.y, req.gravity.z);
   const std::string refused = applyOde(req.ode_config, &p);
   return answer(res, {"set_physics_properties: ", "; nothing changed"}, [&] {
     if (!refused.empty()) throw InputError("physics: " + refused);
-    simulator_.setPhysicsProperties(p);
+    simulator_.properties().setPhysicsProperties(p);
     publishPhysicsConfig();
     return "physics engine updated";
   });
@@ -325,7 +325,7 @@ bool GazeboInterface::setPhysicsProperties(gazebo_msgs::SetPhysicsProperties::Re
 
 bool GazeboInterface::setParameters(dynamic_reconfigure::Reconfigure::Request& req,
                                     dynamic_reconfigure::Reconfigure::Response& res) {
-  PhysicsProperties p = simulator_.physicsProperties();
+  PhysicsProperties p = simulator_.properties().physicsProperties();
   gazebo_msgs::ODEPhysics o = odeConfig(p);
   std::string refused;
   for (const auto& d : req.config.doubles) {
@@ -355,11 +355,11 @@ bool GazeboInterface::setParameters(dynamic_reconfigure::Reconfigure::Request& r
   if (refused.empty()) refused = applyOde(o, &p);
   try {
     if (!refused.empty()) throw InputError("physics: " + refused);
-    simulator_.setPhysicsProperties(p);
+    simulator_.properties().setPhysicsProperties(p);
   } catch (const InputError& e) {
     ROS_WARN_STREAM("set_parameters: " << e.what() << "; nothing changed");
   }
-  res.config = physicsConfig(simulator_.physicsProperties());
+  res.config = physicsConfig(simulator_.properties().physicsProperties());
   publishPhysicsConfig();
   return true;
 }

@@ -102,12 +102,7 @@ bool GazeboInterface::setLinkState(gazebo_msgs::SetLinkState::Request& req,
     }
     // The whole robot moves rigidly so that the link gets the state (joints kept): gazebo
     // moves the one link and lets the joints pull the others after it.
-    const PhysicsRobot& pr = *t.entity.body;
-    const EntityState L = fromFrame(in_frame, t.frame);
-    const Eigen::Isometry3d X_LB = pr.linkPose(t.entity.link).inverse() * pr.basePose();
-    EntityState B;
-    B.X_WE = L.X_WE * X_LB;
-    B.V_WE = shiftTwist(L.V_WE, L.X_WE.translation(), B.X_WE.translation());
+    const EntityState B = entities_.baseFor(t.entity, fromFrame(in_frame, t.frame));
     try {
       entities_.setBase(t.entity, B, false);
     } catch (const InputError& e) {
@@ -148,8 +143,8 @@ bool GazeboInterface::getModelProperties(gazebo_msgs::GetModelProperties::Reques
   if (e.robot) {
     // Bodies as Gazebo's URDF import makes them: links joined by fixed joints are lumped into
     // their parent, and the lumped collisions are named <parent>_fixed_joint_lump__<link>_collision.
-    const PhysicsRobot& pr = *e.body;
-    for (const TreeBody& b : pr.tree().bodies) {
+    const std::vector<TreeBody>& bodies = entities_.bodies(e);
+    for (const TreeBody& b : bodies) {
       res.body_names.push_back(b.link);
       std::map<std::string, int> count;
       for (const CollisionGeometry& c : b.collisions) {
@@ -160,8 +155,8 @@ bool GazeboInterface::getModelProperties(gazebo_msgs::GetModelProperties::Reques
         res.geom_names.push_back(name);
       }
     }
-    for (const JointInfo& j : pr.joints()) res.joint_names.push_back(j.name);
-    res.canonical_body_name = pr.tree().bodies.front().link;
+    for (const JointInfo& j : entities_.joints(e)) res.joint_names.push_back(j.name);
+    res.canonical_body_name = bodies.front().link;
     res.is_static = false;
   } else if (e.ground_plane) {
     res.body_names = {"link"};
@@ -190,53 +185,17 @@ bool GazeboInterface::getWorldProperties(gazebo_msgs::GetWorldProperties::Reques
 void GazeboInterface::rebuildStateMessages() {
   model_states_.name.clear();
   model_states_.pose.clear();
-  model_slots_.clear();
+  model_slots_ = entities_.models();
   link_states_.name.clear();
   link_states_.pose.clear();
-  link_slots_.clear();
-  auto add_model = [&](const std::string& name, const PhysicsRobot* body,
-                       const Eigen::Isometry3d& X_WM) {
-    model_states_.name.push_back(name);
-    model_slots_.push_back({body, ""});
-    model_states_.pose.push_back(toPose(X_WM));
-  };
-  auto add_link = [&](const std::string& name, const PhysicsRobot* body, const std::string& link,
-                      const Eigen::Isometry3d& X_WL) {
-    link_states_.name.push_back(name);
-    link_slots_.push_back({body, link});
-    link_states_.pose.push_back(toPose(X_WL));
-  };
-  if (world_.ground_plane) {
-    add_model("ground_plane", nullptr, world_.X_WG);
-    add_link("ground_plane::link", nullptr, "", world_.X_WG);
+  link_slots_ = entities_.links();
+  for (const Entity& e : model_slots_) {
+    model_states_.name.push_back(e.model_name);
+    model_states_.pose.push_back(toPose(entities_.state(e).X_WE));
   }
-  for (const ModelDescription& m : world_.models) {
-    const ModelId id = simulator_.findModel(m.name);
-    const PhysicsRobot* body = id != kNoModel ? simulator_.physicsOf(id) : nullptr;
-    add_model(m.name, body, m.X_WM);
-    // Every link, as Gazebo lists a world model's links (each moves on its own).
-    for (const LinkDescription& l : m.links) add_link(m.name + "::" + l.name, body, l.name, m.X_WM * l.X_ML);
-  }
-  for (const ActorDescription& a : world_.actors) {
-    const ModelId id = simulator_.findModel(a.model.name);
-    if (id == kNoModel) continue;  // deleted
-    add_model(a.model.name, nullptr, a.model.X_WM);
-    model_slots_.back().actor = id;
-    for (const LinkDescription& l : a.model.links) {
-      add_link(a.model.name + "::" + l.name, nullptr, l.name, a.model.X_WM * l.X_ML);
-      link_slots_.back().actor = id;
-    }
-  }
-  const std::vector<ModelId> robots = simulator_.robotIds();
-  for (const ModelId id : robots) {
-    const std::string& name = simulator_.modelName(id);
-    const PhysicsRobot* body = simulator_.physicsOf(id);
-    add_model(name, body, Eigen::Isometry3d::Identity());
-    // One entry per rigid body, named after its first link: what Gazebo lists after lumping
-    // the links joined by fixed joints.
-    for (const TreeBody& b : body->tree().bodies) {
-      add_link(name + "::" + b.link, body, b.link, Eigen::Isometry3d::Identity());
-    }
+  for (const Entity& e : link_slots_) {
+    link_states_.name.push_back(e.model_name + "::" + e.link);
+    link_states_.pose.push_back(toPose(entities_.state(e).X_WE));
   }
   msgs_valid_ = true;
   model_states_.twist.assign(model_states_.name.size(), geometry_msgs::Twist());
@@ -261,21 +220,19 @@ void GazeboInterface::afterStep() {
   if (!msgs_valid_ || msgs_models_version_ != simulator_.modelsVersion()) rebuildStateMessages();
   if (want_models) {
     for (std::size_t i = 0; i < model_slots_.size(); ++i) {
-      const Slot& s = model_slots_[i];
-      if (s.actor != kNoModel) model_states_.pose[i] = toPose(simulator_.modelState(s.actor).X_WE);
-      if (!s.body) continue;
-      model_states_.pose[i] = toPose(s.body->basePose());
-      model_states_.twist[i] = toTwistMsg(s.body->baseTwist());
+      if (!model_slots_[i].moves()) continue;
+      const EntityState s = entities_.state(model_slots_[i]);
+      model_states_.pose[i] = toPose(s.X_WE);
+      model_states_.twist[i] = toTwistMsg(s.V_WE);
     }
     model_states_pub_.publish(model_states_);
   }
   if (want_links) {
     for (std::size_t i = 0; i < link_slots_.size(); ++i) {
-      const Slot& s = link_slots_[i];
-      if (s.actor != kNoModel) link_states_.pose[i] = toPose(simulator_.linkPose({s.actor, s.link}));
-      if (!s.body) continue;
-      link_states_.pose[i] = toPose(s.body->linkPose(s.link));
-      link_states_.twist[i] = toTwistMsg(s.body->linkTwist(s.link));
+      if (!link_slots_[i].moves()) continue;
+      const EntityState s = entities_.state(link_slots_[i]);
+      link_states_.pose[i] = toPose(s.X_WE);
+      link_states_.twist[i] = toTwistMsg(s.V_WE);
     }
     link_states_pub_.publish(link_states_);
   }

@@ -25,8 +25,8 @@ RobotBridge::RobotBridge(Simulator& sim, ModelId id, Options options, ros::NodeH
     : sim_(sim), id_(id), options_(std::move(options)), root_(root) {
   SimRobot& robot = *sim_.robot(id_);
   physics_id_ = robot.id;
-  const PhysicsRobot& pr = *sim_.physicsOf(id_);
-  base_frame_ = tc::resolveFrame(options_.tf_prefix, pr.tree().bodies.front().link);
+  const Entities entities = sim_.entities();
+  base_frame_ = tc::resolveFrame(options_.tf_prefix, entities.bodyLinks(id_).front());
 
   // world -> odom at the spawn pose: wheel odometry starts there, so rviz can show the
   // ground truth (world) and the odometry (odom) together.
@@ -34,7 +34,7 @@ RobotBridge::RobotBridge(Simulator& sim, ModelId id, Options options, ros::NodeH
     geometry_msgs::TransformStamped tf;
     tf.header.frame_id = "world";
     tf.child_frame_id = tc::resolveFrame(options_.tf_prefix, options_.odom_frame);
-    const geometry_msgs::Pose p = toPose(pr.spawnPose());
+    const geometry_msgs::Pose p = toPose(entities.spawnPose(id_));
     tf.transform.translation.x = p.position.x;
     tf.transform.translation.y = p.position.y;
     tf.transform.translation.z = p.position.z;
@@ -107,7 +107,6 @@ std::vector<RobotBridge::JointStateStream> RobotBridge::makeJointStates() {
   std::vector<Request> requests;
   const SimRobot& robot = *sim_.robot(id_);
   const RobotModel& model = robot.model;
-  const PhysicsRobot& pr = *sim_.physicsOf(id_);
   if (const auto& jsp = model.ext.joint_state_publisher) {
     requests.push_back({resolveTopic(jsp->robot_namespace, "joint_states"), jsp->joint_names,
                         jsp->update_rate, "joint_state_publisher plugin"});
@@ -140,7 +139,7 @@ std::vector<RobotBridge::JointStateStream> RobotBridge::makeJointStates() {
     }
     for (size_t n = 0; n < r.joints.size(); ++n) {
       const std::string& j = r.joints[n];
-      const int idx = pr.jointIndex(j);
+      const int idx = sim_.jointIndex(id_, j, nullptr, nullptr);
       const int handle = r.from_handles ? static_cast<int>(n) : -1;
       if (idx < 0 && handle < 0) throw ModelError(r.source + ": joint '" + j + "' is not a movable joint");
       if (std::find(it->msg.name.begin(), it->msg.name.end(), j) == it->msg.name.end()) {
@@ -163,7 +162,7 @@ std::vector<RobotBridge::JointStateStream> RobotBridge::makeJointStates() {
 void RobotBridge::publish(double t) {
   StepProfile* const profile = sim_.profile();
   const ros::Time stamp(t);
-  const PhysicsRobot& pr = *sim_.physicsOf(id_);
+  const Entities entities = sim_.entities();
   const std::vector<tc::JointHandle>& handles = sim_.robot(id_)->handles;
   commands_->publish(t);  // what the controllers produced (diff_drive_controller's odom, tf)
   {
@@ -181,9 +180,10 @@ void RobotBridge::publish(double t) {
             s.msg.effort[k] = h.effort;
             continue;
           }
-          s.msg.position[k] = pr.jointPosition(s.joints[k]);
-          s.msg.velocity[k] = pr.jointVelocity(s.joints[k]);
-          s.msg.effort[k] = pr.jointEffort(s.joints[k]);
+          const JointReading j = entities.jointReading(id_, s.joints[k]);
+          s.msg.position[k] = j.position;
+          s.msg.velocity[k] = j.velocity;
+          s.msg.effort[k] = j.effort;
         }
       }
       StepProfile::Scope part(profile, rows_.joint_states_send);
@@ -193,7 +193,8 @@ void RobotBridge::publish(double t) {
   StepProfile::Scope timed(profile, rows_.ground_truth);
   if (ground_truth_schedule_.due(t) && ground_truth_.getNumSubscribers() > 0) {
     std::optional<StepProfile::Scope> part(std::in_place, profile, rows_.ground_truth_convert);
-    toGroundTruth(pr.basePose(), pr.baseTwist(), stamp, kWorldFrame, base_frame_, &ground_truth_msg_);
+    const EntityState base = sim_.modelState(id_);
+    toGroundTruth(base.X_WE, base.V_WE, stamp, kWorldFrame, base_frame_, &ground_truth_msg_);
     part.emplace(profile, rows_.ground_truth_send);
     ground_truth_.publish(ground_truth_msg_);
   }

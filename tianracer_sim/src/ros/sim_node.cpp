@@ -263,7 +263,7 @@ void SimNode::run() {
       publishStatus();
     }
     // set_physics_properties may have changed the pace (max_update_rate or the step).
-    real_time_factor_ = sim_->maxUpdateRate() * sim_->dt();
+    real_time_factor_ = sim_->properties().maxUpdateRate() * sim_->dt();
     pacer_.endStep(sim_->time(), real_time_factor_);
   }
 }

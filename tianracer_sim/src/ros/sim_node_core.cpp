@@ -8,7 +8,6 @@
 
 #include "tianracer_sim/common/diagnostic.h"
 #include "tianracer_sim/ros/robot_bridge.h"
-#include "tianracer_sim/sim/world_physics.h"
 
 namespace tianracer_sim {
 
@@ -68,7 +67,7 @@ SimNodeCore makeSimNodeCore(const ros::NodeHandle& pnh) {
   mark("world file and its meshes");
 
   SimulatorOptions options;
-  options.max_step_size = params.max_step_size.value_or(physicsOptionsFor(world).dt);
+  options.max_step_size = params.max_step_size.value_or(worldTimeStep(world));
   core.real_time_factor = params.real_time_factor.value_or(world.physics.real_time_factor);
   checkPace(options.max_step_size, core.real_time_factor);
   options.seed = static_cast<std::uint64_t>(params.seed);
@@ -81,9 +80,9 @@ SimNodeCore makeSimNodeCore(const ros::NodeHandle& pnh) {
   mark("simulator (the world's physics, scene, sensors)");
   core.sim->setPaused(params.paused);
   // The pace as Gazebo holds it (set_physics_properties' max_update_rate changes it).
-  PhysicsProperties physics = core.sim->physicsProperties();
+  PhysicsProperties physics = core.sim->properties().physicsProperties();
   physics.max_update_rate = core.real_time_factor / core.sim->dt();
-  core.sim->setPhysicsProperties(physics);
+  core.sim->properties().setPhysicsProperties(physics);
   return core;
 }
 

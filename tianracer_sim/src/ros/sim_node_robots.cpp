@@ -151,16 +151,17 @@ void SimNode::addRobot(RobotModel model, const RobotSetup& setup, const Eigen::I
   // The robot's topics before its sensors' (as a subscriber of joint_states sees them at start).
   spawn.added = [&](ModelId id) {
     const SimRobot& robot = *sim_->robot(id);
-    const PhysicsRobot& pr = *sim_->physicsOf(id);
+    JointStates joints;
+    sim_->jointStates(id, &joints);
     ROS_INFO_STREAM("robot '" << name << "' (" << robot.model.source << "): "
-                    << pr.joints().size() << " movable joints, " << robot.handles.size()
+                    << joints.name.size() << " movable joints, " << robot.handles.size()
                     << " transmissions, controllers [" << [&] {
                          std::string s;
                          for (const auto& c : robot.controllers.controllers()) s += " " + c->name();
                          return s + " ]";
                        }()
                     << " in " << bridge.ns << ", spawned at ("
-                    << pr.spawnPose().translation().transpose() << ")"
+                    << sim_->entities().spawnPose(id).translation().transpose() << ")"
                     << (bridge.tf_prefix.empty() ? "" : ", frames prefixed " + bridge.tf_prefix + "/"));
     robots_.push_back(std::make_unique<RobotBridge>(*sim_, id, bridge, root_, staticTf()));
     contacts_->addRobot(root_, robot.id, name, bridge.ns);

@@ -1,6 +1,7 @@
 #include "tianracer_sim/simulator/entities.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include <urdf_model/model.h>
 
@@ -134,14 +135,115 @@ JointRef Entities::joint(const std::string& name) const {
 
 std::vector<std::string> Entities::modelNames() const {
   std::vector<std::string> names;
-  const WorldDescription& world = sim_.world();
-  if (world.ground_plane) names.push_back("ground_plane");
-  for (const ModelDescription& m : world.models) names.push_back(m.name);
-  for (const ActorDescription& a : world.actors) {
-    if (sim_.findModel(a.model.name) != kNoModel) names.push_back(a.model.name);  // not deleted
-  }
-  for (const ModelId id : sim_.robotIds()) names.push_back(sim_.modelName(id));
+  for (const Entity& e : models()) names.push_back(e.model_name);
   return names;
+}
+
+std::vector<Entity> Entities::models() const {
+  std::vector<Entity> out;
+  const WorldDescription& world = sim_.world();
+  if (world.ground_plane) {
+    Entity e;
+    e.ground_plane = true;
+    e.model_name = "ground_plane";
+    out.push_back(e);
+  }
+  for (const ModelDescription& m : world.models) {
+    Entity e;
+    e.id = sim_.findModel(m.name);
+    e.model = &m;
+    if (e.id != kNoModel) e.body = sim_.physicsOf(e.id);
+    e.model_name = m.name;
+    out.push_back(e);
+  }
+  for (const ActorDescription& a : world.actors) {
+    Entity e;
+    e.id = sim_.findModel(a.model.name);
+    if (e.id == kNoModel) continue;  // deleted
+    e.model = &a.model;
+    e.actor = true;
+    e.model_name = a.model.name;
+    out.push_back(e);
+  }
+  for (const ModelId id : sim_.robotIds()) {
+    Entity e;
+    e.id = id;
+    e.robot = sim_.robot(id);
+    e.body = sim_.physicsOf(id);
+    e.model_name = sim_.modelName(id);
+    out.push_back(e);
+  }
+  return out;
+}
+
+std::vector<Entity> Entities::links() const {
+  std::vector<Entity> out;
+  for (Entity e : models()) {
+    if (e.ground_plane) {
+      e.link = "link";
+      out.push_back(e);
+    } else if (e.robot) {
+      for (const std::string& link : bodyLinks(e.id)) {
+        e.link = link;
+        out.push_back(e);
+      }
+    } else if (e.model) {
+      // Every link, as Gazebo lists a world model's links (each moves on its own).
+      for (const LinkDescription& l : e.model->links) {
+        e.link = l.name;
+        out.push_back(e);
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> Entities::bodyLinks(ModelId id) const {
+  std::vector<std::string> links;
+  if (const PhysicsRobot* body = sim_.physicsOf(id)) {
+    for (const TreeBody& b : body->tree().bodies) links.push_back(b.link);
+  }
+  return links;
+}
+
+Eigen::Isometry3d Entities::spawnPose(ModelId id) const {
+  const PhysicsRobot* body = sim_.physicsOf(id);
+  if (!body) throw std::out_of_range("model '" + sim_.modelName(id) + "' is static: it was not spawned");
+  return body->spawnPose();
+}
+
+JointReading Entities::jointReading(ModelId id, int joint) const {
+  const PhysicsRobot& body = *sim_.physicsOf(id);
+  return {body.jointPosition(joint), body.jointVelocity(joint), body.jointEffort(joint)};
+}
+
+EntityState Entities::baseFor(const Entity& link, const EntityState& L) const {
+  if (!link.body) throw InputError("'" + link.model_name + "::" + link.link + "' belongs to a static model");
+  const PhysicsRobot& pr = *link.body;
+  const Eigen::Isometry3d X_LB = pr.linkPose(link.link).inverse() * pr.basePose();
+  EntityState B;
+  B.X_WE = L.X_WE * X_LB;
+  B.V_WE = shiftTwist(L.V_WE, L.X_WE.translation(), B.X_WE.translation());
+  return B;
+}
+
+void Entities::applyWrench(const Entity& link, const Eigen::Vector3d& force_W,
+                           const Eigen::Vector3d& torque_W) const {
+  if (link.body) link.body->setExternalWrench(link.link, force_W, torque_W);
+}
+
+void Entities::applyJointEffort(const JointRef& joint, double effort) const {
+  joint.body->setJointExternalEffort(joint.index, effort);
+}
+
+const std::vector<TreeBody>& Entities::bodies(const Entity& e) const {
+  static const std::vector<TreeBody> none;
+  return e.body ? e.body->tree().bodies : none;
+}
+
+const std::vector<JointInfo>& Entities::joints(const Entity& e) const {
+  static const std::vector<JointInfo> none;
+  return e.body ? e.body->joints() : none;
 }
 
 }  // namespace tianracer_sim

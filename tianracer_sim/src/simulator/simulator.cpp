@@ -66,7 +66,8 @@ Simulator::Simulator(WorldDescription world, SimulatorOptions options)
   actor_physics_players_ = actor_players_;
   addToScene(*world_, scene_);
   // The run loop's pace: Gazebo's real-time factor is real_time_update_rate * max_step_size.
-  max_update_rate_ = world_->physics.real_time_factor / sim_.dt();
+  properties_ = std::make_unique<Properties>(*this, sim_, scene_, [this]() { scene_step_ = ~0ull; },
+                                             world_->physics.real_time_factor / sim_.dt());
   for (std::size_t id = 0; id < models_.size(); ++id) setUpWorldModelSensors(static_cast<ModelId>(id));
   char line[512];
   std::snprintf(line, sizeof(line), "world '%s' (%s): %zu models, %d collision shapes, ground plane %s",

@@ -1,4 +1,4 @@
-// What gazebo_ros's property services change in the Simulator (simulator_properties.cpp):
+// What gazebo_ros's property services change in the Simulator (simulator/properties.cpp):
 // physics (step, gravity, solver), joints of world models (get/set_joint_properties,
 // set_model_configuration), link inertials and the world's lights; and that bad input is
 // refused naming it, with nothing changed.
@@ -53,14 +53,14 @@ double boxZ(const Simulator& sim) { return sim.modelState(sim.findModel("box")).
 
 TEST(SimulatorProperties, PhysicsStepAndGravityChangeTheSimulation) {
   Simulator sim(propertiesWorld(), {});
-  PhysicsProperties p = sim.physicsProperties();
+  PhysicsProperties p = sim.properties().physicsProperties();
   EXPECT_DOUBLE_EQ(p.time_step, 0.001);
   EXPECT_DOUBLE_EQ(p.max_update_rate, 1000.0);  // real_time_factor 1 at 1 ms
   EXPECT_DOUBLE_EQ(p.gravity.z(), -9.8);
   EXPECT_EQ(p.solver_iterations, 20);
   // Without gravity, the box lifted 1 m stays where it is; with it, it falls.
   p.gravity = Eigen::Vector3d::Zero();
-  sim.setPhysicsProperties(p);
+  sim.properties().setPhysicsProperties(p);
   PhysicsRobot& box = *sim.physicsOf(sim.findModel("box"));
   box.setBasePose(Eigen::Isometry3d(Eigen::Translation3d(2.0, 0.0, 1.1)));
   const double z0 = boxZ(sim);
@@ -71,10 +71,10 @@ TEST(SimulatorProperties, PhysicsStepAndGravityChangeTheSimulation) {
   p.gravity = Eigen::Vector3d(0, 0, -9.8);
   p.max_update_rate = 250.0;
   p.solver_iterations = 30;
-  sim.setPhysicsProperties(p);
+  sim.properties().setPhysicsProperties(p);
   EXPECT_DOUBLE_EQ(sim.dt(), 0.002);
-  EXPECT_DOUBLE_EQ(sim.maxUpdateRate(), 250.0);
-  EXPECT_EQ(sim.physicsProperties().solver_iterations, 30);
+  EXPECT_DOUBLE_EQ(sim.properties().maxUpdateRate(), 250.0);
+  EXPECT_EQ(sim.properties().physicsProperties().solver_iterations, 30);
   sim.step(100);
   EXPECT_NEAR(sim.time(), 0.5, 1e-9);
   // Free fall for 0.2 s: 0.5 g t^2 = 0.196 m.
@@ -145,11 +145,11 @@ TEST(SimulatorProperties, BumpersAndAnImuFollowANewStepAndGravity) {
   EXPECT_EQ(pad_bumper->states()[0].collision2, "box::link");
   EXPECT_NEAR(imu->reading().linear_acceleration.z(), 9.8, 0.3);
 
-  PhysicsProperties p = sim.physicsProperties();
+  PhysicsProperties p = sim.properties().physicsProperties();
   p.time_step = 0.002;
   p.max_update_rate = 500.0;
   p.gravity = Eigen::Vector3d(0.0, 0.0, -5.0);
-  sim.setPhysicsProperties(p);
+  sim.properties().setPhysicsProperties(p);
   sim.step(500);
   EXPECT_NEAR(held(box_bumper), 5.0, 0.2);
   EXPECT_NEAR(held(pad_bumper), 5.0, 0.2);
@@ -201,15 +201,15 @@ TEST(SimulatorProperties, ACollisionWithoutContactIsTouchedButPushesNothing) {
 
 TEST(SimulatorProperties, BadPhysicsIsRefusedAndChangesNothing) {
   Simulator sim(propertiesWorld(), {});
-  const PhysicsProperties before = sim.physicsProperties();
+  const PhysicsProperties before = sim.properties().physicsProperties();
   auto refused = [&](PhysicsProperties p, const std::string& text) {
     try {
-      sim.setPhysicsProperties(p);
+      sim.properties().setPhysicsProperties(p);
       ADD_FAILURE() << "accepted: " << text;
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
     }
-    const PhysicsProperties now = sim.physicsProperties();
+    const PhysicsProperties now = sim.properties().physicsProperties();
     EXPECT_EQ(now.time_step, before.time_step);
     EXPECT_EQ(now.gravity, before.gravity);
     EXPECT_EQ(now.max_update_rate, before.max_update_rate);
@@ -238,55 +238,55 @@ TEST(SimulatorProperties, BadPhysicsIsRefusedAndChangesNothing) {
 
 TEST(SimulatorProperties, JointsOfWorldModelsAreReadAndSet) {
   Simulator sim(propertiesWorld(), {});
-  JointProperties j = sim.jointProperties("pivot");
+  JointProperties j = sim.properties().jointProperties("pivot");
   EXPECT_EQ(j.model, "pendulum");
   EXPECT_EQ(j.info.type, JointType::kRevolute);
-  EXPECT_EQ(sim.jointProperties("pendulum::pivot").info.name, "pivot");
+  EXPECT_EQ(sim.properties().jointProperties("pendulum::pivot").info.name, "pivot");
   // set_model_configuration: the pendulum at 0.5 rad, at rest; then it swings down.
-  sim.setModelConfiguration("pendulum", {"pivot"}, {0.5});
-  j = sim.jointProperties("pivot");
+  sim.properties().setModelConfiguration("pendulum", {"pivot"}, {0.5});
+  j = sim.properties().jointProperties("pivot");
   EXPECT_DOUBLE_EQ(j.position, 0.5);
   EXPECT_DOUBLE_EQ(j.rate, 0.0);
   sim.step(100);
-  EXPECT_LT(sim.jointProperties("pivot").position, 0.5);
-  EXPECT_LT(sim.jointProperties("pivot").rate, 0.0);
+  EXPECT_LT(sim.properties().jointProperties("pivot").position, 0.5);
+  EXPECT_LT(sim.properties().jointProperties("pivot").rate, 0.0);
   // Damping, limits, a velocity with its force cap.
   JointPropertiesChange c;
   c.damping = 0.7;
   c.lower = -0.2;
   c.upper = 0.3;
-  sim.setJointProperties("pendulum::pivot", c);
-  j = sim.jointProperties("pivot");
+  sim.properties().setJointProperties("pendulum::pivot", c);
+  j = sim.properties().jointProperties("pivot");
   EXPECT_DOUBLE_EQ(j.info.damping, 0.7);
   EXPECT_DOUBLE_EQ(j.info.lower, -0.2);
   EXPECT_DOUBLE_EQ(j.info.upper, 0.3);
   JointPropertiesChange v;
   v.velocity = 0.5;
   v.fmax = 100.0;
-  sim.setModelConfiguration("pendulum", {"pivot"}, {0.0});
-  sim.setJointProperties("pivot", v);
+  sim.properties().setModelConfiguration("pendulum", {"pivot"}, {0.0});
+  sim.properties().setJointProperties("pivot", v);
   sim.step(100);
-  EXPECT_NEAR(sim.jointProperties("pivot").rate, 0.5, 0.02);
+  EXPECT_NEAR(sim.properties().jointProperties("pivot").rate, 0.5, 0.02);
 }
 
 // apply_joint_effort's core: an effort added to the joint, every step until replaced.
 TEST(SimulatorProperties, JointExternalEffortPushesUntilReplaced) {
   Simulator sim(propertiesWorld(), {});
-  PhysicsProperties p = sim.physicsProperties();
+  PhysicsProperties p = sim.properties().physicsProperties();
   p.gravity = Eigen::Vector3d::Zero();
-  sim.setPhysicsProperties(p);
+  sim.properties().setPhysicsProperties(p);
   const JointRef joint = sim.entities().joint("pivot");
   PhysicsRobot& pendulum = *joint.body;
   const int i = joint.index;
   pendulum.setJointExternalEffort(i, 0.1);
   sim.step(100);
   // About the pivot: I = m L^2 + ixx = 1.5 * 0.25 + 0.002 (the bob's inertial is 1 cm up).
-  const double rate = sim.jointProperties("pivot").rate;
+  const double rate = sim.properties().jointProperties("pivot").rate;
   EXPECT_GT(rate, 0.0);
   EXPECT_NEAR(rate, 0.1 * 0.1 / (1.5 * 0.49 * 0.49 + 0.002), 0.1 * rate);
   pendulum.setJointExternalEffort(i, 0.0);
   sim.step(100);
-  EXPECT_NEAR(sim.jointProperties("pivot").rate, rate, 1e-6 + 1e-3 * rate);
+  EXPECT_NEAR(sim.properties().jointProperties("pivot").rate, rate, 1e-6 + 1e-3 * rate);
   pendulum.setJointExternalEffort(i, kNaN);  // rejected, counted
   EXPECT_EQ(pendulum.jointExternalEffort(i), 0.0);
   EXPECT_THROW(sim.entities().joint("nope"), InputError);
@@ -294,7 +294,7 @@ TEST(SimulatorProperties, JointExternalEffortPushesUntilReplaced) {
 
 TEST(SimulatorProperties, BadJointInputIsRefusedAndChangesNothing) {
   Simulator sim(propertiesWorld(), {});
-  sim.setModelConfiguration("pendulum", {"pivot"}, {0.25});
+  sim.properties().setModelConfiguration("pendulum", {"pivot"}, {0.25});
   auto expectThrow = [](const std::function<void()>& f, const std::string& text) {
     try {
       f();
@@ -303,56 +303,56 @@ TEST(SimulatorProperties, BadJointInputIsRefusedAndChangesNothing) {
       EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
     }
   };
-  expectThrow([&] { sim.jointProperties("nope"); }, "joint 'nope' not found");
-  expectThrow([&] { sim.jointProperties("ghost::pivot"); }, "no model named 'ghost'");
+  expectThrow([&] { sim.properties().jointProperties("nope"); }, "joint 'nope' not found");
+  expectThrow([&] { sim.properties().jointProperties("ghost::pivot"); }, "no model named 'ghost'");
   JointPropertiesChange c;
   c.damping = kNaN;
   c.lower = -0.1;
-  expectThrow([&] { sim.setJointProperties("pivot", c); }, "damping must be finite and >= 0, got nan");
+  expectThrow([&] { sim.properties().setJointProperties("pivot", c); }, "damping must be finite and >= 0, got nan");
   c = JointPropertiesChange();
   c.damping = -1.0;
-  expectThrow([&] { sim.setJointProperties("pivot", c); }, "damping must be finite and >= 0, got -1");
+  expectThrow([&] { sim.properties().setJointProperties("pivot", c); }, "damping must be finite and >= 0, got -1");
   c = JointPropertiesChange();
   c.lower = 0.5;
   c.upper = 0.1;
-  expectThrow([&] { sim.setJointProperties("pivot", c); }, "loStop 0.5 is above hiStop 0.1");
+  expectThrow([&] { sim.properties().setJointProperties("pivot", c); }, "loStop 0.5 is above hiStop 0.1");
   c = JointPropertiesChange();
   c.velocity = 1.0;
-  expectThrow([&] { sim.setJointProperties("pivot", c); }, "vel and fmax go together");
-  const JointProperties j = sim.jointProperties("pivot");
+  expectThrow([&] { sim.properties().setJointProperties("pivot", c); }, "vel and fmax go together");
+  const JointProperties j = sim.properties().jointProperties("pivot");
   EXPECT_DOUBLE_EQ(j.info.damping, 0.0);
   EXPECT_DOUBLE_EQ(j.info.lower, -1.0);
   EXPECT_DOUBLE_EQ(j.info.upper, 1.0);
-  expectThrow([&] { sim.setModelConfiguration("ghost", {"pivot"}, {0.1}); }, "no model named 'ghost'");
-  expectThrow([&] { sim.setModelConfiguration("wall", {}, {}); }, "model 'wall' is static");
-  expectThrow([&] { sim.setModelConfiguration("pendulum", {"pivot"}, {}); },
+  expectThrow([&] { sim.properties().setModelConfiguration("ghost", {"pivot"}, {0.1}); }, "no model named 'ghost'");
+  expectThrow([&] { sim.properties().setModelConfiguration("wall", {}, {}); }, "model 'wall' is static");
+  expectThrow([&] { sim.properties().setModelConfiguration("pendulum", {"pivot"}, {}); },
               "1 joint names but 0 positions");
-  expectThrow([&] { sim.setModelConfiguration("pendulum", {"pivot", "elbow"}, {0.1, 0.2}); },
+  expectThrow([&] { sim.properties().setModelConfiguration("pendulum", {"pivot", "elbow"}, {0.1, 0.2}); },
               "model 'pendulum' has no movable joint 'elbow'");
-  expectThrow([&] { sim.setModelConfiguration("pendulum", {"pivot"}, {kNaN}); },
+  expectThrow([&] { sim.properties().setModelConfiguration("pendulum", {"pivot"}, {kNaN}); },
               "joint 'pivot': position nan is not finite");
-  EXPECT_DOUBLE_EQ(sim.jointProperties("pivot").position, 0.25);
+  EXPECT_DOUBLE_EQ(sim.properties().jointProperties("pivot").position, 0.25);
 }
 
 TEST(SimulatorProperties, LinkInertialsAsGazeboReportsThem) {
   Simulator sim(propertiesWorld(), {});
-  const LinkProperties l = sim.linkProperties("pendulum::bob");
+  const LinkProperties l = sim.properties().linkProperties("pendulum::bob");
   EXPECT_DOUBLE_EQ(l.mass, 1.5);
   EXPECT_DOUBLE_EQ(l.com.z(), 0.01);
   EXPECT_DOUBLE_EQ(l.inertia(1, 1), 0.003);
   EXPECT_TRUE(l.gravity_mode);
-  EXPECT_THROW(sim.linkProperties("pendulum::arm"), InputError);
-  EXPECT_THROW(sim.linkProperties("bob"), InputError);
-  EXPECT_THROW(sim.linkProperties("ghost::bob"), InputError);
+  EXPECT_THROW(sim.properties().linkProperties("pendulum::arm"), InputError);
+  EXPECT_THROW(sim.properties().linkProperties("bob"), InputError);
+  EXPECT_THROW(sim.properties().linkProperties("ghost::bob"), InputError);
 }
 
 TEST(SimulatorProperties, LightsAreReadSetAndDeleted) {
   Simulator sim(propertiesWorld(), {});
-  ASSERT_EQ(sim.lights().size(), 2u);
-  const DirectionalLight& sun = sim.lights()[0];
+  ASSERT_EQ(sim.properties().lights().size(), 2u);
+  const DirectionalLight& sun = sim.properties().lights()[0];
   EXPECT_EQ(sun.name, "sun");
   EXPECT_DOUBLE_EQ(sun.attenuation.constant, 0.9);  // Gazebo's sun/model.sdf
-  const DirectionalLight& lamp = sim.lights()[1];
+  const DirectionalLight& lamp = sim.properties().lights()[1];
   EXPECT_EQ(lamp.name, "lamp");
   // Drawn dimmed by its attenuation at 2 m: 1 / (0.5 + 0.5 * 2 + 0.25 * 4) = 0.4.
   EXPECT_NEAR(lamp.diffuse[0], 0.4, 1e-6);
@@ -360,19 +360,19 @@ TEST(SimulatorProperties, LightsAreReadSetAndDeleted) {
   LightChange c;
   c.diffuse = Eigen::Vector4f(0.2f, 0.4f, 0.6f, 1.0f);
   c.attenuation = {1.0, 0.0, 0.0};
-  sim.setLight("lamp", c);
-  EXPECT_NEAR(sim.lights()[1].diffuse[1], 0.4, 1e-6);  // no longer dimmed
-  EXPECT_THROW(sim.setLight("nope", c), InputError);
+  sim.properties().setLight("lamp", c);
+  EXPECT_NEAR(sim.properties().lights()[1].diffuse[1], 0.4, 1e-6);  // no longer dimmed
+  EXPECT_THROW(sim.properties().setLight("nope", c), InputError);
   LightChange bad = c;
   bad.diffuse[0] = std::numeric_limits<float>::quiet_NaN();
-  EXPECT_THROW(sim.setLight("lamp", bad), InputError);
+  EXPECT_THROW(sim.properties().setLight("lamp", bad), InputError);
   bad = c;
   bad.attenuation.linear = -1.0;
-  EXPECT_THROW(sim.setLight("lamp", bad), InputError);
-  EXPECT_NEAR(sim.lights()[1].diffuse[1], 0.4, 1e-6);  // unchanged
-  sim.deleteLight("lamp");
-  EXPECT_EQ(sim.lights().size(), 1u);
-  EXPECT_THROW(sim.deleteLight("lamp"), InputError);
+  EXPECT_THROW(sim.properties().setLight("lamp", bad), InputError);
+  EXPECT_NEAR(sim.properties().lights()[1].diffuse[1], 0.4, 1e-6);  // unchanged
+  sim.properties().deleteLight("lamp");
+  EXPECT_EQ(sim.properties().lights().size(), 1u);
+  EXPECT_THROW(sim.properties().deleteLight("lamp"), InputError);
 }
 
 // set_light_properties changes what cameras render: the red box seen by a world model's
@@ -389,17 +389,17 @@ TEST(SimulatorProperties, ACameraRendersTheChangedLight) {
   // -0.5 0.1 -0.9, leaves that face dark), full white.
   LightChange bright;
   bright.diffuse = Eigen::Vector4f(1, 1, 1, 1);
-  bright.attenuation = sim.lights()[0].attenuation;
+  bright.attenuation = sim.properties().lights()[0].attenuation;
   bright.direction = Eigen::Vector3d(1.0, 0.0, -0.3);
-  sim.setLight("sun", bright);
+  sim.properties().setLight("sun", bright);
   sim.step(250);
   sim.waitFrames();
   const int lit = camera->camera().image()[middle];
   LightChange dark;
   dark.diffuse = Eigen::Vector4f(0, 0, 0, 1);
   dark.specular = Eigen::Vector4f(0, 0, 0, 1);
-  dark.attenuation = sim.lights()[0].attenuation;
-  sim.setLight("sun", dark);
+  dark.attenuation = sim.properties().lights()[0].attenuation;
+  sim.properties().setLight("sun", dark);
   sim.step(250);
   sim.waitFrames();
   const int unlit = camera->camera().image()[middle];

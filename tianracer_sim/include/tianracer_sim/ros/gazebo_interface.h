@@ -46,7 +46,7 @@
 #include <std_srvs/Empty.h>
 
 #include "tianracer_sim/ros/service_advertiser.h"
-#include "tianracer_sim/sim/entity_state.h"
+#include "tianracer_sim/simulator/entity_state.h"
 #include "tianracer_sim/simulator/simulator.h"
 #include "tianracer_sim/world/world.h"
 
@@ -215,14 +215,9 @@ class GazeboInterface {
   bool msgs_valid_ = false;
   gazebo_msgs::ModelStates model_states_;
   gazebo_msgs::LinkStates link_states_;
-  /// Where each entry of the messages comes from: a robot's or free body's physics (its base,
-  /// or a link), or null for a static model whose pose was filled in once.
-  struct Slot {
-    const PhysicsRobot* body = nullptr;
-    std::string link;
-    ModelId actor = kNoModel;  // an <actor>: its pose from Simulator::modelState / linkPose
-  };
-  std::vector<Slot> model_slots_, link_slots_;
+  /// What each entry of the messages is (Entities::models(), links()): read each time when it
+  /// moves, filled in once for a static model.
+  std::vector<Entity> model_slots_, link_slots_;
 };
 
 }  // namespace tianracer_sim

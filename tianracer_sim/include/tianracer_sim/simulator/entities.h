@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "tianracer_sim/sim/entity_state.h"
+#include "tianracer_sim/simulator/entity_state.h"
 #include "tianracer_sim/plugins/sim_sensor.h"  // ModelId
 #include "tianracer_sim/sim/simulation.h"
 #include "tianracer_sim/world/world.h"
@@ -30,6 +30,14 @@ struct Entity {
   PhysicsRobot* body = nullptr;
   std::string model_name;
   std::string link;  // "" = the model itself (its canonical link)
+  /// Whether its state changes with time (a robot, a free body, an actor); a static model's
+  /// stays where the world put it.
+  bool moves() const { return body != nullptr || actor; }
+};
+
+/// A movable joint's state, as joint_states reports it.
+struct JointReading {
+  double position = 0.0, velocity = 0.0, effort = 0.0;
 };
 
 /// A movable joint found by name.
@@ -60,8 +68,39 @@ class Entities {
   /// models, then the robots, as Gazebo searches its models) or "model::joint". Fixed joints
   /// are merged away and not found. Throws InputError naming the joint.
   JointRef joint(const std::string& name) const;
-  /// Every model by name: the ground plane, the world's models, the robots (get_world_properties).
+  /// The base state that puts link `link` (an Entity with a link, of a moving model) in state
+  /// `L` with the model moved rigidly, its joints kept (set_link_state: gazebo moves the one
+  /// link and lets the joints pull the others after it). Hand it to setBase().
+  EntityState baseFor(const Entity& link, const EntityState& L) const;
+  /// apply_body_wrench's total on a link this step (world frame, through its centre of mass);
+  /// nothing for a static model.
+  void applyWrench(const Entity& link, const Eigen::Vector3d& force_W,
+                   const Eigen::Vector3d& torque_W) const;
+  /// apply_joint_effort's effort on a joint this step.
+  void applyJointEffort(const JointRef& joint, double effort) const;
+  /// A robot's or moving world model's rigid bodies with their collisions (get_model_properties'
+  /// bodies and geoms), and its movable joints (Gazebo's joint list); empty for a static model.
+  const std::vector<TreeBody>& bodies(const Entity& e) const;
+  const std::vector<JointInfo>& joints(const Entity& e) const;
+
+  /// Every model by name: the ground plane, the world's models, the actors, the robots
+  /// (get_world_properties), the names of models().
   std::vector<std::string> modelNames() const;
+  /// The one lister: every model, in modelNames()' order (Entity::link empty), and every link
+  /// as Gazebo lists them (/gazebo/model_states, /gazebo/link_states): a world model's and an
+  /// actor's every link, a robot's rigid bodies (bodyLinks()), the ground plane's "link".
+  std::vector<Entity> models() const;
+  std::vector<Entity> links() const;
+
+  // --- a model by id: what its bridges read (joint states, ground truth, frames) -------------
+  /// The rigid bodies of a robot or moving world model, each named after its first link (what
+  /// Gazebo lists after lumping the links joined by fixed joints), the base first; empty for a
+  /// static model.
+  std::vector<std::string> bodyLinks(ModelId id) const;
+  /// Where a robot or moving world model was spawned (its base, in the world).
+  Eigen::Isometry3d spawnPose(ModelId id) const;
+  /// Movable joint `joint` (Simulator::jointIndex) of a robot or moving world model.
+  JointReading jointReading(ModelId id, int joint) const;
 
  private:
   Simulator& sim_;

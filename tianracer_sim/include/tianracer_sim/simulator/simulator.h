@@ -38,7 +38,7 @@
 #include "tianracer_sim/scene/scene.h"
 #include "tianracer_sim/plugins/model_report.h"
 #include "tianracer_sim/sim/contact_tracker.h"
-#include "tianracer_sim/sim/entity_state.h"
+#include "tianracer_sim/simulator/entity_state.h"
 #include "tianracer_sim/sim/frame_worker.h"
 #include "tianracer_sim/sim/robot_hw_sim.h"
 #include "tianracer_sim/sim/robot_scene.h"
@@ -47,6 +47,7 @@
 #include "tianracer_sim/sim/world_physics.h"
 #include "tianracer_sim/plugins/sim_sensor.h"
 #include "tianracer_sim/simulator/entities.h"
+#include "tianracer_sim/simulator/properties.h"
 #include "tianracer_sim/simulator/sensor_host.h"
 #include "tianracer_sim/world/world.h"
 
@@ -96,53 +97,6 @@ struct RobotSpawn {
 struct JointStates {
   std::vector<std::string> name;
   std::vector<double> position, velocity, effort;
-};
-
-/// The physics settings gazebo_ros's get/set_physics_properties read and change.
-struct PhysicsProperties {
-  double time_step = 0.0;        // s
-  /// Steps per wall-clock second the run loop aims at (Gazebo's real_time_update_rate; the
-  /// real-time factor is max_update_rate * time_step); 0 = as fast as possible.
-  double max_update_rate = 0.0;
-  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
-  int solver_iterations = 0;                // ODE's "iters"
-  double contact_max_correcting_vel = 0.0;  // m/s
-  /// Read only: free bodies may sleep (PhysicsOptions::sleep_time > 0), Gazebo's
-  /// auto_disable_bodies; and the solver's other settings.
-  bool auto_disable_bodies = false;
-  SolverSettings solver;
-};
-
-/// A movable joint as get_joint_properties reports it.
-struct JointProperties {
-  std::string model;  // the model (robot or world model) it belongs to
-  JointInfo info;     // type, limits, damping, friction (current values)
-  double position = 0.0, rate = 0.0;
-};
-
-/// What set_joint_properties changes (unset: unchanged).
-struct JointPropertiesChange {
-  std::optional<double> damping, lower, upper, friction;
-  /// A velocity target driven with at most fmax (ODE's "vel" and "fmax"); both or neither.
-  std::optional<double> velocity, fmax;
-};
-
-/// A link's inertial as get_link_properties reports it: mass, centre of mass in the link
-/// frame, inertia about it (in the link frame's axes for robots, the <inertial> frame's for
-/// world models, as Gazebo).
-struct LinkProperties {
-  double mass = 0.0;
-  Eigen::Vector3d com = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
-  bool gravity_mode = true;
-};
-
-/// What set_light_properties changes.
-struct LightChange {
-  Eigen::Vector4f diffuse{0.8f, 0.8f, 0.8f, 1.0f};
-  Eigen::Vector4f specular{0.2f, 0.2f, 0.2f, 1.0f};
-  Attenuation attenuation;
-  Eigen::Vector3d direction = Eigen::Vector3d::Zero();  // zero: unchanged
 };
 
 /// Which lockstep waits a step has (Simulator::advance()).
@@ -234,35 +188,9 @@ class Simulator : public SensorWorld {
   bool setCommand(ModelId robot, const std::string& controller, double value);
 
   // --- what gazebo_ros's property services read and change (docs/gazebo_interface.md) -------
-  // Each setter checks everything first and throws InputError naming the entity, the field and
-  // the value; nothing changes then.
-  PhysicsProperties physicsProperties() const;
-  /// time_step (from the next step; controllers keep their periods), max_update_rate (>= 0),
-  /// gravity, solver_iterations, contact_max_correcting_vel. auto_disable_bodies cannot be
-  /// changed: a different value is refused.
-  void setPhysicsProperties(const PhysicsProperties& p);
-  double maxUpdateRate() const { return max_update_rate_; }
-  /// A movable joint by "joint" (the first model that has one of that name: the world's
-  /// models, then the robots, as Gazebo searches its models) or "model::joint". Fixed joints
-  /// are merged away (robots, as Gazebo's URDF import; world models: one body) and not found.
-  /// Throws InputError naming the joint.
-  JointProperties jointProperties(const std::string& joint) const;
-  void setJointProperties(const std::string& joint, const JointPropertiesChange& change);
-  /// gazebo's Model::SetJointPositions (set_model_configuration): the named joints of a robot
-  /// or moving world model to the positions, their rates to 0; the base stays. Names and
-  /// positions of equal length, every name a movable joint of the model, positions finite.
-  void setModelConfiguration(const std::string& model, const std::vector<std::string>& joints,
-                             const std::vector<double>& positions);
-  /// "model::link": a robot's link that is a body of its own (a link lumped into its parent by
-  /// a fixed joint is not found, as in Gazebo), or any link of a world model.
-  LinkProperties linkProperties(const std::string& link) const;
-  /// The world's lights (the sun first when the world includes it), as drawn.
-  const std::vector<DirectionalLight>& lights() const { return scene_.lights; }
-  /// Colours and attenuation of light `name` (colours finite and >= 0, attenuation finite and
-  /// >= 0, a direction finite); cameras draw it from the next frame.
-  void setLight(const std::string& name, const LightChange& change);
-  /// Takes the light out of the scene (delete_light).
-  void deleteLight(const std::string& name);
+  /// The physics, joint, link and light properties (simulator/properties.h).
+  Properties& properties() { return *properties_; }
+  const Properties& properties() const { return *properties_; }
 
   // --- controllers (controller_manager's load, unload and switch) ------------------------------
   /// The one owner of the robots' controllers (sim/controller_manager.h); its calls take a
@@ -367,7 +295,7 @@ class Simulator : public SensorWorld {
   Schedule reply_schedule_, tick_schedule_;
   bool lockstep_replies_ = false, lockstep_ticks_ = false;
   bool paused_ = false;
-  double max_update_rate_ = 0.0;
+  std::unique_ptr<Properties> properties_;  // properties(); made in the constructor
 
   bool track_contacts_ = true;
   // options_.profile's rows

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tianracer_sim/sim/entity_state.h"
+#include "tianracer_sim/simulator/entity_state.h"
 
 namespace tianracer_sim {
 namespace {

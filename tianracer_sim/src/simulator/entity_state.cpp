@@ -1,4 +1,4 @@
-#include "tianracer_sim/sim/entity_state.h"
+#include "tianracer_sim/simulator/entity_state.h"
 
 #include <algorithm>
 #include <cmath>

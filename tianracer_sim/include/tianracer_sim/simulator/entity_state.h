@@ -2,8 +2,8 @@
 // ("model", "model::link"), and external wrenches on a schedule: the ROS-free part of the
 // Gazebo interface (ros/gazebo_interface.h). Frames: X_AB is the pose of B in A; twists are
 // the velocity of a frame's origin and its angular velocity, both in the world frame W.
-#ifndef TIANRACER_SIM_SIM_ENTITY_STATE_H
-#define TIANRACER_SIM_SIM_ENTITY_STATE_H
+#ifndef TIANRACER_SIM_SIMULATOR_ENTITY_STATE_H
+#define TIANRACER_SIM_SIMULATOR_ENTITY_STATE_H
 
 #include <string>
 #include <vector>
@@ -81,4 +81,4 @@ class WrenchSchedule {
 
 }  // namespace tianracer_sim
 
-#endif  // TIANRACER_SIM_SIM_ENTITY_STATE_H
+#endif  // TIANRACER_SIM_SIMULATOR_ENTITY_STATE_H

@@ -1,10 +1,14 @@
 // What gazebo_ros's property services read and change (gazebo_ros/src/gazebo_ros_api_plugin.cpp:
 // get/set_physics_properties, get/set_joint_properties, set_model_configuration,
 // get_link_properties, get/set_light_properties, delete_light), as state changes of the
-// Simulator without ROS. Every setter checks all of its input before it changes anything.
+// Simulator without ROS (simulator/properties.h). Every setter checks all of its input before it
+// changes anything.
+#include "tianracer_sim/simulator/properties.h"
+
 #include <cmath>
 #include <sstream>
 
+#include "tianracer_sim/sim/world_physics.h"
 #include "tianracer_sim/simulator/simulator.h"
 
 namespace tianracer_sim {
@@ -29,10 +33,20 @@ std::string colour(const Eigen::Vector4f& c) {
 
 }  // namespace
 
+double worldTimeStep(const WorldDescription& world) { return physicsOptionsFor(world).dt; }
+
+Properties::Properties(Simulator& sim, Simulation& simulation, Scene& scene,
+                       std::function<void()> scene_moved, double max_update_rate)
+    : sim_(sim),
+      simulation_(simulation),
+      scene_(scene),
+      scene_moved_(std::move(scene_moved)),
+      max_update_rate_(max_update_rate) {}
+
 // --- physics ----------------------------------------------------------------------------------
 
-PhysicsProperties Simulator::physicsProperties() const {
-  const PhysicsWorld& w = sim_.physics();
+PhysicsProperties Properties::physicsProperties() const {
+  const PhysicsWorld& w = simulation_.physics();
   PhysicsProperties p;
   p.time_step = w.dt();
   p.max_update_rate = max_update_rate_;
@@ -44,7 +58,7 @@ PhysicsProperties Simulator::physicsProperties() const {
   return p;
 }
 
-void Simulator::setPhysicsProperties(const PhysicsProperties& p) {
+void Properties::setPhysicsProperties(const PhysicsProperties& p) {
   const PhysicsProperties now = physicsProperties();
   if (!(p.time_step > 0.0 && p.time_step <= kMaxTimeStep)) {
     throw InputError("physics: time_step must be in (0, " + num(kMaxTimeStep) + "] s, got " +
@@ -73,18 +87,18 @@ void Simulator::setPhysicsProperties(const PhysicsProperties& p) {
                      (now.auto_disable_bodies ? "true" : "false") +
                      ": each world model's <allow_auto_disable> decides)");
   }
-  waitFrames();  // the frame in flight was drawn with the old state
-  sim_.setTimeStep(p.time_step);
-  sim_.physics().setGravity(p.gravity);
-  sim_.physics().setSolverIterations(p.solver_iterations);
-  sim_.physics().setContactMaxCorrectingVel(p.contact_max_correcting_vel);
+  sim_.waitFrames();  // the frame in flight was drawn with the old state
+  simulation_.setTimeStep(p.time_step);
+  simulation_.physics().setGravity(p.gravity);
+  simulation_.physics().setSolverIterations(p.solver_iterations);
+  simulation_.physics().setContactMaxCorrectingVel(p.contact_max_correcting_vel);
   max_update_rate_ = p.max_update_rate;
 }
 
 // --- joints -----------------------------------------------------------------------------------
 
-JointProperties Simulator::jointProperties(const std::string& name) const {
-  const JointRef ref = entities().joint(name);
+JointProperties Properties::jointProperties(const std::string& name) const {
+  const JointRef ref = sim_.entities().joint(name);
   const PhysicsRobot& p = *ref.body;
   const int i = ref.index;
   JointProperties j;
@@ -95,8 +109,8 @@ JointProperties Simulator::jointProperties(const std::string& name) const {
   return j;
 }
 
-void Simulator::setJointProperties(const std::string& name, const JointPropertiesChange& c) {
-  const JointRef ref = entities().joint(name);
+void Properties::setJointProperties(const std::string& name, const JointPropertiesChange& c) {
+  const JointRef ref = sim_.entities().joint(name);
   PhysicsRobot& p = *ref.body;
   const int i = ref.index;
   const JointInfo& j = p.joints()[i];
@@ -135,12 +149,12 @@ void Simulator::setJointProperties(const std::string& name, const JointPropertie
   if (c.velocity) p.setJointVelocityTarget(i, *c.velocity, *c.fmax);
 }
 
-void Simulator::setModelConfiguration(const std::string& model,
+void Properties::setModelConfiguration(const std::string& model,
                                       const std::vector<std::string>& joints,
                                       const std::vector<double>& positions) {
-  const ModelId id = findModel(model);
+  const ModelId id = sim_.findModel(model);
   if (id == kNoModel) throw InputError("set_model_configuration: no model named '" + model + "'");
-  PhysicsRobot* p = const_cast<PhysicsRobot*>(physicsOf(id));
+  PhysicsRobot* p = sim_.physicsOf(id);
   if (!p) throw InputError("set_model_configuration: model '" + model + "' is static: its joints do not move");
   if (joints.size() != positions.size()) {
     throw InputError("set_model_configuration: model '" + model + "': " +
@@ -160,15 +174,15 @@ void Simulator::setModelConfiguration(const std::string& model,
     }
   }
   for (std::size_t k = 0; k < joints.size(); ++k) p->setJointState(index[k], positions[k], 0.0);
-  scene_step_ = ~0ull;  // links moved between steps
+  scene_moved_();  // links moved between steps
 }
 
 // --- links ------------------------------------------------------------------------------------
 
-LinkProperties Simulator::linkProperties(const std::string& name) const {
+LinkProperties Properties::linkProperties(const std::string& name) const {
   Entity e;
   try {
-    e = entities().find(name, false);
+    e = sim_.entities().find(name, false);
   } catch (const InputError& err) {
     throw InputError("link '" + name + "': " + err.what());
   }
@@ -205,7 +219,7 @@ LinkProperties Simulator::linkProperties(const std::string& name) const {
 
 // --- lights -----------------------------------------------------------------------------------
 
-void Simulator::setLight(const std::string& name, const LightChange& c) {
+void Properties::setLight(const std::string& name, const LightChange& c) {
   DirectionalLight* light = nullptr;
   std::string known;
   for (DirectionalLight& l : scene_.lights) {
@@ -231,7 +245,7 @@ void Simulator::setLight(const std::string& name, const LightChange& c) {
   litColours(light);
 }
 
-void Simulator::deleteLight(const std::string& name) {
+void Properties::deleteLight(const std::string& name) {
   for (auto it = scene_.lights.begin(); it != scene_.lights.end(); ++it) {
     if (it->name == name) {
       scene_.lights.erase(it);
