@@ -44,14 +44,18 @@ if ((HOGS > 0)); then
 fi
 echo "==> [test] building and running all tests (log: $WS/logs/test.log)"
 start=$(date +%s)
+# The workspace's generator (make or Ninja: scripts/catkin_generator.sh), as setup.sh built it.
+# shellcheck source=scripts/catkin_generator.sh
+source "$REPO/scripts/catkin_generator.sh"
+mapfile -t generator < <(catkin_generator "$WS")
 # The test executables first (timed apart: on a fresh clone compiling them is much of the time).
-catkin_make -C "$WS" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 -j"$(nproc)" \
+catkin_make "${generator[@]}" -C "$WS" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 -j"$(nproc)" \
   tests >"$WS/logs/test.log" 2>&1
 build_rc=$?
 built=$(date +%s)
 # catkin_make run_tests exits 0 even when tests fail: the verdict comes from the result files.
 if ((build_rc == 0)); then
-  catkin_make -C "$WS" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 -j"$(nproc)" \
+  catkin_make "${generator[@]}" -C "$WS" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 -j"$(nproc)" \
     run_tests >>"$WS/logs/test.log" 2>&1
   build_rc=$?
 fi
@@ -62,7 +66,7 @@ echo "==> [test] ran in $((end - start)) s (tests built in $((built - start)) s,
 # The verdict comes from the result files: every test case counted once, failures named.
 if ((build_rc != 0)); then
   echo "ERROR [test] building or running the tests failed (exit $build_rc):" >&2
-  grep -E 'error|Error|\*\*\*' "$WS/logs/test.log" | head -30 >&2
+  grep -E 'error|Error|\*\*\*|^FAILED: ' "$WS/logs/test.log" | head -30 >&2
 fi
 summary="$(/usr/bin/python3 "$REPO/scripts/count_test_results.py" "$WS/build/test_results")"
 counted_rc=$?

@@ -3,18 +3,22 @@
 # scratch workspace, as scripts/setup.sh runs it, with ccache off and every compile and link
 # timed (CPU user+sys per object through CMAKE_CXX_COMPILER_LAUNCHER). Prints the wall and
 # CPU time of the build and its heaviest translation units.
-#   scripts/build_profile.sh [--release] [--top N] [DIR]   DIR: default /tmp/tianracer_build_profile
-# --release builds as ./run.sh does on a new workspace (scripts/setup.sh --demo); any
-# other argument starting with -D goes to CMake (e.g. -DTIANRACER_PCH=OFF).
+#   scripts/build_profile.sh [--release] [--make|--ninja] [--top N] [DIR]
+#   DIR: default /tmp/tianracer_build_profile
+# --release builds as ./run.sh does on a new workspace (scripts/setup.sh --demo); the generator
+# is the one scripts/setup.sh picks for a new workspace (Ninja when installed) unless --make or
+# --ninja says; any other argument starting with -D goes to CMake (e.g. -DTIANRACER_PCH=OFF).
 set -euo pipefail
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-TYPE=RelWithDebInfo; TOP=25; DIR=/tmp/tianracer_build_profile; EXTRA=()
+TYPE=RelWithDebInfo; TOP=25; DIR=/tmp/tianracer_build_profile; EXTRA=(); GEN=default
 while (($#)); do
   case "$1" in
     --release) TYPE=Release; EXTRA=(-DTIANRACER_EXTRAS=OFF "${EXTRA[@]}") ;;
     --top) TOP="$2"; shift ;;
+    --make) GEN=make ;;
+    --ninja) GEN=ninja ;;
     -D*) EXTRA+=("$1") ;;
-    -*) echo "usage: $0 [--release] [--top N] [-DVAR=VALUE...] [DIR]" >&2; exit 2 ;;
+    -*) echo "usage: $0 [--release] [--make|--ninja] [--top N] [-DVAR=VALUE...] [DIR]" >&2; exit 2 ;;
     *) DIR="$1" ;;
   esac
   shift
@@ -23,6 +27,14 @@ command -v /usr/bin/time >/dev/null || { echo "ERROR [build_profile] needs /usr/
 [[ "$DIR" == "$REPO/.build" ]] && { echo "ERROR [build_profile] $DIR is the repo's own workspace: give a scratch folder" >&2; exit 1; }
 
 rm -rf "$DIR"; mkdir -p "$DIR"
+# shellcheck source=catkin_generator.sh
+source "$REPO/scripts/catkin_generator.sh"
+case "$GEN" in
+  default) mapfile -t GEN_ARG < <(catkin_generator "$DIR") ;;
+  make) GEN_ARG=() ;;
+  ninja) command -v ninja >/dev/null || { echo "ERROR [build_profile] --ninja: ninja is not installed (apt-get install ninja-build)" >&2; exit 1; }
+         GEN_ARG=(--use-ninja) ;;
+esac
 LOG="$DIR/objects.log"
 WRAP="$DIR/timed_compiler"
 # One line per object: CPU user, CPU sys, peak RSS (kB), compile|link, output file, and the
@@ -43,10 +55,10 @@ chmod +x "$WRAP"
 
 export PATH="/usr/bin:$PATH" CCACHE_DISABLE=1
 unset CC CXX  # a fresh machine has no ccache wrapper
-echo "==> [build_profile] clean catkin_make -j$(nproc) ($TYPE) in $DIR; load before: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "==> [build_profile] clean catkin_make ${GEN_ARG[*]:-(make)} -j$(nproc) ($TYPE) in $DIR; load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 build_start="$(date +%s.%N)"
 /usr/bin/time -o "$DIR/total.txt" -f "%e %U %S" \
-  catkin_make -C "$DIR" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+  catkin_make "${GEN_ARG[@]}" -C "$DIR" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 \
   -DCMAKE_BUILD_TYPE="$TYPE" -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" -DCMAKE_C_FLAGS_RELEASE="-O2 -DNDEBUG" \
   -DCMAKE_CXX_COMPILER_LAUNCHER="$WRAP" -DCMAKE_CXX_LINKER_LAUNCHER="$WRAP" "${EXTRA[@]}" \
   -j"$(nproc)" >"$DIR/build.log" 2>&1 || { tail -30 "$DIR/build.log" >&2; exit 1; }

@@ -7,6 +7,8 @@
 #   scripts/setup.sh --demo     what ./run.sh uses: --release, and on a new workspace only
 #                               what the demo runs (no Python bindings, benchmarks, corpus
 #                               tools; TIANRACER_EXTRAS=OFF), without the benchmark's venv.
+#   A new workspace is built with Ninja (ninja-build), one already built keeps its generator
+#   (scripts/catkin_generator.sh; one target: cmake --build .build/build --target X).
 #   A workspace already built keeps its build type either way, so nothing is compiled again;
 #   without --demo the extras are built (./test.sh after ./run.sh compiles only those and the
 #   tests; docs/performance.md, First build).
@@ -36,7 +38,7 @@ APT_PACKAGES=(
   libsensor-msgs-dev python3-sensor-msgs libgeometry-msgs-dev libnav-msgs-dev python3-nav-msgs
   libtf2-ros-dev python3-tf2-ros liburdf-dev liburdfdom-dev libbullet-dev libbullet-extras-dev
   libeigen3-dev libassimp-dev libosmesa6-dev libembree-dev libpng-dev libstb-dev ros-robot-state-publisher python3-pip g++ cmake make
-  git pkg-config libtinyxml2-dev libyaml-cpp-dev libgtest-dev libgmock-dev liburdfdom-tools
+  ninja-build git pkg-config libtinyxml2-dev libyaml-cpp-dev libgtest-dev libgmock-dev liburdfdom-tools
   libstd-srvs-dev python3-std-srvs libtopic-tools-dev libdiagnostic-msgs-dev python3-diagnostic-msgs
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   libros-rosgraph-msgs-dev python3-rosgraph-msgs python3-numpy python3-pil python3-yaml python3-catkin-pkg python3-nose
@@ -138,14 +140,19 @@ if [[ -f "$WS/build/CMakeCache.txt" ]]; then
   build_type="${cached:-RelWithDebInfo}"  # none: the packages' own default
   ((DEMO)) && extras=()  # keep what the workspace has
 fi
-say "build: catkin_make ($build_type) in $WS (log: $LOG_DIR/build.log)"
+# shellcheck source=catkin_generator.sh
+source "$REPO/scripts/catkin_generator.sh"
+mapfile -t generator < <(catkin_generator "$WS")
+say "build: catkin_make ${generator[*]:-(make)} ($build_type) in $WS (log: $LOG_DIR/build.log)"
 start=$(date +%s)
-if ! catkin_make -C "$WS" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+if ! catkin_make "${generator[@]}" -C "$WS" --source "$REPO" -DPYTHON_EXECUTABLE=/usr/bin/python3 \
       -DCMAKE_BUILD_TYPE="$build_type" -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" \
       -DCMAKE_C_FLAGS_RELEASE="-O2 -DNDEBUG" "${extras[@]}" -j"$(nproc)" >"$LOG_DIR/build.log" 2>&1; then
   # Name the failing package and step: a CMake error follows the package's add_subdirectory
-  # line; a compile error shows as 'make[N]: *** [<package>/CMakeFiles/...'.
-  pkg="$(grep -oE 'make\[[0-9]+\]: \*\*\* \[[^/]+' "$LOG_DIR/build.log" | head -1 | sed 's/.*\[//' || true)"
+  # line; a compile error shows as 'make[N]: *** [<package>/CMakeFiles/...' or Ninja's
+  # 'FAILED: <package>/CMakeFiles/...'.
+  pkg="$(grep -oE 'make\[[0-9]+\]: \*\*\* \[[^/]+|^FAILED: [^/]+' "$LOG_DIR/build.log" | head -1 \
+         | sed 's/.*\[//; s/^FAILED: //' || true)"
   step="compile/link"
   if [[ -z "$pkg" ]] && grep -q "CMake Error" "$LOG_DIR/build.log"; then
     step="configure (cmake)"

@@ -2,6 +2,9 @@
 #ifndef TIANRACER_SIM_PHYSICS_BULLET_H
 #define TIANRACER_SIM_PHYSICS_BULLET_H
 
+#include <algorithm>
+#include <cmath>
+
 #include <Eigen/Geometry>
 
 // Bullet's headers trip -Wunused-parameter (and GImpact's btAABB -Wdeprecated-copy); keep our own warnings meaningful.
@@ -65,9 +68,32 @@ inline bool multiBodyAsleep(const btMultiBody& mb) {
   return false;
 }
 
-/// A rotation taking +Y to `axis` (unit), for Bullet's Y-up cylinders.
+/// A rotation taking +Y to `axis` (unit), for Bullet's Y-up cylinders: Eigen's
+/// Quaternion::FromTwoVectors(UnitY, axis), the same operations, without the JacobiSVD it
+/// instantiates for an axis within 1e-12 of -Y (14 s of every first build's compile:
+/// docs/performance.md, First build, part two). There it turns about the normal of +Y and
+/// `axis` (the null vector the SVD looks for), or about +Z for -Y itself, which is the SVD's
+/// answer for -Y (test_physics_rotation_y_to.cpp compares the two).
 inline Eigen::Matrix3d rotationYTo(const Eigen::Vector3d& axis) {
-  return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), axis).toRotationMatrix();
+  const Eigen::Vector3d v0 = Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d v1 = axis.normalized();
+  double c = v1.dot(v0);
+  Eigen::Quaterniond q;
+  if (c < -1.0 + Eigen::NumTraits<double>::dummy_precision()) {
+    c = std::max(c, -1.0);
+    const Eigen::Vector3d n = v0.cross(v1);
+    const double len = n.norm();
+    const Eigen::Vector3d unit_n = len > 0.0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::UnitZ();
+    const double w2 = (1.0 + c) * 0.5;
+    q.w() = std::sqrt(w2);
+    q.vec() = unit_n * std::sqrt(1.0 - w2);
+  } else {
+    const double s = std::sqrt((1.0 + c) * 2.0);
+    const double invs = 1.0 / s;
+    q.vec() = v0.cross(v1) * invs;
+    q.w() = s * 0.5;
+  }
+  return q.toRotationMatrix();
 }
 
 }  // namespace tianracer_sim
