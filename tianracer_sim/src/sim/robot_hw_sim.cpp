@@ -10,6 +10,7 @@
 #include <tianracer_control/pid_params.h>
 
 #include "tianracer_sim/common/text.h"
+#include "tianracer_sim/physics/world.h"
 
 namespace tianracer_sim {
 
@@ -84,6 +85,22 @@ void applyJointLimitsParams(const JointParams& p, tc::JointLimits* l) {
 }
 
 }  // namespace
+
+tc::JointHandle makeJointHandle(const std::string& name, tc::JointHandle::Interface iface,
+                                const JointInfo* joint) {
+  tc::JointHandle h;
+  h.name = name;
+  h.interface = iface;
+  if (joint) {
+    h.has_position_limits = joint->has_position_limits;
+    h.lower = joint->lower;
+    h.upper = joint->upper;
+    h.velocity_limit = joint->velocity_limit;
+    h.effort_limit = joint->effort_limit;
+    h.continuous = joint->type == JointType::kContinuous;
+  }
+  return h;
+}
 
 void RobotHwSim::init(const RobotModel& model, const std::vector<tc::JointHandle>& handles,
                       const RobotHwSimParams& params, const WarningSink& warn) {

@@ -47,16 +47,8 @@ void buildJointHandles(const RobotModel& model, const PhysicsRobot& robot,
                        "' has no hardwareInterface");
     }
     const JointInfo& info = robot.joints()[j];
-    tc::JointHandle h;
-    h.name = info.name;
-    h.interface = toHandleInterface(t.joint_interfaces.front());
-    h.has_position_limits = info.has_position_limits;
-    h.lower = info.lower;
-    h.upper = info.upper;
-    h.velocity_limit = info.velocity_limit;
-    h.effort_limit = info.effort_limit;
-    h.continuous = info.type == JointType::kContinuous;
-    handles->push_back(h);
+    handles->push_back(
+        makeJointHandle(info.name, toHandleInterface(t.joint_interfaces.front()), &info));
     handle_joint->push_back(j);
   }
 }

@@ -147,19 +147,7 @@ void SteerBotHwSim::init(const RobotModel& model, const PhysicsRobot& robot,
     if (e.driven && j < 0)
       p.fail(e.param, "names joint '" + e.name + "', which is not a movable joint of robot '" +
                           robot.name() + "'");
-    tc::JointHandle hd;
-    hd.name = e.name;
-    hd.interface = e.iface;
-    if (j >= 0) {
-      const JointInfo& info = robot.joints()[j];
-      hd.has_position_limits = info.has_position_limits;
-      hd.lower = info.lower;
-      hd.upper = info.upper;
-      hd.velocity_limit = info.velocity_limit;
-      hd.effort_limit = info.effort_limit;
-      hd.continuous = info.type == JointType::kContinuous;
-    }
-    hs.push_back(hd);
+    hs.push_back(makeJointHandle(e.name, e.iface, j >= 0 ? &robot.joints()[j] : nullptr));
     joint_[k] = e.driven ? j : -1;
   }
 

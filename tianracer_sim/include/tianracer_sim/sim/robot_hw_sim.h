@@ -48,6 +48,14 @@ struct RobotHwSimParams {
 };
 
 /// What the hardware sends to one joint after a write.
+struct JointInfo;
+
+/// A joint's handle as the hardware registers it: its name and interface, and, when the joint
+/// is in the physics (`joint` not null), its URDF limits and whether it is continuous.
+tianracer_control::JointHandle makeJointHandle(const std::string& name,
+                                               tianracer_control::JointHandle::Interface iface,
+                                               const JointInfo* joint);
+
 struct JointDrive {
   enum class Mode {
     kEffort,    // value: N m / N (SetForce)
