@@ -30,34 +30,6 @@ class MultiBodyWorld : public btMultiBodyDynamicsWorld {
   void pruneWheelManifolds();
 };
 
-/// Bullet's multibody solver with the friction directions of a sliding contact along its slip.
-/// Bullet 3.24's btMultiBodyConstraintSolver::convertMultiBodyContact takes every contact's two
-/// friction rows along the normal's fixed tangent basis (btPlaneSpace1: world x and y on the
-/// ground) and clips their impulse pair radially to the cone mu N, each row's impulse being the
-/// one that would stop the slip along it alone. A row's impulse scales with its effective mass,
-/// so the clipped force is not opposite to the slip: a wheel (light along its rolling direction,
-/// heavy across it) got a force that resisted its sideways slip ~20 times too much whenever the
-/// basis lay along the wheel, and a skid-steer robot turned at a rate that depended on its heading
-/// (docs/physics.md, Friction). As Bullet's own rigid-body solver does
-/// (btSequentialImpulseConstraintSolver::convertContact), a contact that slides gets its first
-/// row along the relative tangential velocity and its second across it, so the cone's clip is
-/// along the slip: Coulomb's force mu N opposite to the slip. A contact at rest keeps the basis,
-/// and so does one whose collider has anisotropic friction (its cone needs the axes).
-class ContactSolver : public btMultiBodyConstraintSolver {
- protected:
-  btScalar solveGroupCacheFriendlySetup(btCollisionObject** bodies, int numBodies,
-                                        btPersistentManifold** manifolds, int numManifolds,
-                                        btTypedConstraint** constraints, int numConstraints,
-                                        const btContactSolverInfo& info, btIDebugDraw* debug) override;
-
- private:
-  void alignFrictionWithSlip(const btContactSolverInfo& info);
-  /// Turns a contact's two friction rows (multibody or static sides) to dir1, dir2.
-  void turnRows(btMultiBodySolverConstraint& c1, btMultiBodySolverConstraint& c2,
-                const btVector3& dir1, const btVector3& dir2, const btVector3& slip,
-                const btContactSolverInfo& info);
-};
-
 /// The broadphase's pair filter: the collision groups and masks as Bullet's default, and two
 /// bodies of one world model (user index <= -2, the same) only when either self-collides
 /// (user index 3; SDF <self_collide>, Gazebo's rule). Bodies joined by a joint are in one

@@ -250,7 +250,7 @@ PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
   dispatcher->registerCollisionCreateFunc(GIMPACT_SHAPE_PROXYTYPE, TRIANGLE_MESH_SHAPE_PROXYTYPE, &g_mesh_trimesh);
   dispatcher->registerCollisionCreateFunc(TRIANGLE_MESH_SHAPE_PROXYTYPE, GIMPACT_SHAPE_PROXYTYPE, &g_trimesh_mesh);
   broadphase = std::make_unique<btDbvtBroadphase>();
-  solver = std::make_unique<ContactSolver>();
+  solver = std::make_unique<btMultiBodyConstraintSolver>();
   auto mbw = std::make_unique<MultiBodyWorld>(dispatcher.get(), broadphase.get(), solver.get(),
                                               config.get());
   mbw->max_correcting_vel = options.contact_max_correcting_vel;
