@@ -1,6 +1,7 @@
 #include "contact_solver.h"
 
 #include <algorithm>
+#include <tuple>
 
 namespace tianracer_sim {
 
@@ -142,6 +143,132 @@ void MultiBodyWorld::pruneWheelManifolds() {
     const btManifoldPoint keep = pm->getContactPoint(fresh >= 0 ? fresh : deepest);  // warm start
     pm->clearManifold();
     pm->addManifoldPoint(keep);
+  }
+}
+
+btScalar ContactSolver::solveGroupCacheFriendlySetup(btCollisionObject** bodies, int numBodies,
+                                                     btPersistentManifold** manifolds,
+                                                     int numManifolds,
+                                                     btTypedConstraint** constraints,
+                                                     int numConstraints,
+                                                     const btContactSolverInfo& info,
+                                                     btIDebugDraw* debug) {
+  const btScalar r = btMultiBodyConstraintSolver::solveGroupCacheFriendlySetup(
+      bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debug);
+  alignFrictionWithSlip(info);
+  return r;
+}
+
+namespace {
+
+/// The rows' (r1, r2) <- (a11 r1 + a12 r2, a21 r1 + a22 r2).
+template <typename T>
+void mix(T& r1, T& r2, btScalar a11, btScalar a12, btScalar a21, btScalar a22) {
+  const T o1 = r1, o2 = r2;
+  r1 = o1 * a11 + o2 * a12;
+  r2 = o1 * a21 + o2 * a22;
+}
+
+}  // namespace
+
+/// The rows as Bullet set them up: pairs (first, second direction) of one contact, in order,
+/// each with the relative velocity along it in m_rhs = -v / (J M^-1 J^T) (friction has no
+/// position error and no warm start here). A pair whose tangential slip is not zero is turned
+/// in the tangent plane to lie along the slip; the normal rows are untouched. A row's Jacobian,
+/// its M^-1 J^T and its lever arms are linear in its direction, and the new directions are
+/// combinations of the old two, so the turned rows are the same combinations of the old rows
+/// (what Bullet's setupMultiBodyContactConstraint would compute along the new directions,
+/// without a second pass over the multibody); a side that is a dynamic btRigidBody (none here:
+/// robots and world models are multibodies, static shapes have no body) is set up again by it.
+void ContactSolver::alignFrictionWithSlip(const btContactSolverInfo& info) {
+  if (!slip_aligned_ || !(info.m_solverMode & SOLVER_USE_2_FRICTION_DIRECTIONS) ||
+      (info.m_solverMode & SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION)) {
+    return;
+  }
+  for (int i = 0; i + 1 < m_multiBodyFrictionContactConstraints.size(); i += 2) {
+    btMultiBodySolverConstraint& c1 = m_multiBodyFrictionContactConstraints[i];
+    btMultiBodySolverConstraint& c2 = m_multiBodyFrictionContactConstraints[i + 1];
+    auto* cp = static_cast<btManifoldPoint*>(c1.m_originalContactPoint);
+    if (cp == nullptr || c2.m_originalContactPoint != cp || c1.m_frictionIndex != c2.m_frictionIndex ||
+        !(c1.m_jacDiagABInv > 0.0) || !(c2.m_jacDiagABInv > 0.0) ||
+        (cp->m_contactPointFlags & BT_CONTACT_FLAG_FRICTION_ANCHOR)) {
+      continue;
+    }
+    if (c1.m_appliedImpulse != 0.0 || c2.m_appliedImpulse != 0.0) continue;  // warm-started
+    const auto collider = [](const btMultiBody* mb, int link) -> const btCollisionObject* {
+      if (mb == nullptr) return nullptr;
+      return link < 0 ? mb->getBaseCollider() : mb->getLinkCollider(link);
+    };
+    const btCollisionObject* a = collider(c1.m_multiBodyA, c1.m_linkA);
+    const btCollisionObject* b = collider(c1.m_multiBodyB, c1.m_linkB);
+    if ((a && a->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION)) ||
+        (b && b->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION))) {
+      continue;
+    }
+    // Sticks or slides: each row's m_rhs is the impulse that would stop the slip along it alone;
+    // a contact whose friction (mu times the last step's normal impulse) can give that pair
+    // sticks, and keeps Bullet's basis: its rows end inside the cone, so the basis does not
+    // shape the force. Only a contact that slides gets its rows along the slip; so does one
+    // that carried no load in the last step (new, or lifted), whose friction is not known.
+    const btScalar stop2 = c1.m_rhs * c1.m_rhs + c2.m_rhs * c2.m_rhs;
+    const btScalar hold = c1.m_friction * cp->m_appliedImpulse;
+    if (hold > 0.0 && !(stop2 > hold * hold)) continue;
+    const btVector3 slip = c1.m_contactNormal1 * (-c1.m_rhs / c1.m_jacDiagABInv) +
+                           c2.m_contactNormal1 * (-c2.m_rhs / c2.m_jacDiagABInv);
+    if (!(slip.length2() > SIMD_EPSILON)) continue;  // Bullet's threshold (convertContact)
+    const btVector3 dir1 = slip.normalized();
+    const btVector3 dir2 = dir1.cross(cp->m_normalWorldOnB).normalized();
+    const bool rigid_a = !c1.m_multiBodyA && c1.m_solverBodyIdA >= 0 &&
+                         m_tmpSolverBodyPool[c1.m_solverBodyIdA].m_originalBody != nullptr;
+    const bool rigid_b = !c1.m_multiBodyB && c1.m_solverBodyIdB >= 0 &&
+                         m_tmpSolverBodyPool[c1.m_solverBodyIdB].m_originalBody != nullptr;
+    if (rigid_a || rigid_b) {
+      btScalar relaxation;
+      setupMultiBodyContactConstraint(c1, dir1, 0, *cp, info, relaxation, true);
+      setupMultiBodyContactConstraint(c2, dir2, 0, *cp, info, relaxation, true);
+    } else {
+      turnRows(c1, c2, dir1, dir2, slip, info);
+    }
+    cp->m_lateralFrictionDir1 = dir1;
+    cp->m_lateralFrictionDir2 = dir2;
+  }
+}
+
+void ContactSolver::turnRows(btMultiBodySolverConstraint& c1, btMultiBodySolverConstraint& c2,
+                             const btVector3& dir1, const btVector3& dir2, const btVector3& slip,
+                             const btContactSolverInfo& info) {
+  const btVector3 d1 = c1.m_contactNormal1, d2 = c2.m_contactNormal1;  // orthonormal, tangent
+  const btScalar a11 = dir1.dot(d1), a12 = dir1.dot(d2), a21 = dir2.dot(d1), a22 = dir2.dot(d2);
+  mix(c1.m_contactNormal1, c2.m_contactNormal1, a11, a12, a21, a22);
+  mix(c1.m_contactNormal2, c2.m_contactNormal2, a11, a12, a21, a22);
+  mix(c1.m_relpos1CrossNormal, c2.m_relpos1CrossNormal, a11, a12, a21, a22);
+  mix(c1.m_relpos2CrossNormal, c2.m_relpos2CrossNormal, a11, a12, a21, a22);
+  mix(c1.m_angularComponentA, c2.m_angularComponentA, a11, a12, a21, a22);
+  mix(c1.m_angularComponentB, c2.m_angularComponentB, a11, a12, a21, a22);
+  btScalar denom1 = 0.0, denom2 = 0.0;  // J M^-1 J^T of each new row
+  const auto side = [&](btMultiBody* mb, int jac1, int jac2) {
+    if (mb == nullptr) return;
+    btScalar* j1 = &m_data.m_jacobians[jac1];
+    btScalar* j2 = &m_data.m_jacobians[jac2];
+    btScalar* u1 = &m_data.m_deltaVelocitiesUnitImpulse[jac1];
+    btScalar* u2 = &m_data.m_deltaVelocitiesUnitImpulse[jac2];
+    for (int k = 0; k < mb->getNumDofs() + 6; ++k) {
+      mix(j1[k], j2[k], a11, a12, a21, a22);
+      mix(u1[k], u2[k], a11, a12, a21, a22);
+      denom1 += j1[k] * u1[k];
+      denom2 += j2[k] * u2[k];
+    }
+  };
+  side(c1.m_multiBodyA, c1.m_jacAindex, c2.m_jacAindex);
+  side(c1.m_multiBodyB, c1.m_jacBindex, c2.m_jacBindex);
+  // As setupMultiBodyContactConstraint for a friction row without an anchor: rhs = -v / (d + cfm).
+  const btScalar cfm = info.m_frictionCFM / info.m_timeStep;
+  for (auto [c, denom, v] : {std::make_tuple(&c1, denom1, slip.dot(dir1)),
+                             std::make_tuple(&c2, denom2, slip.dot(dir2))}) {
+    const btScalar d = denom + cfm;
+    c->m_jacDiagABInv = d > SIMD_EPSILON ? info.m_sor / d : 0.0;
+    c->m_rhs = -v * c->m_jacDiagABInv;
+    c->m_cfm = cfm * c->m_jacDiagABInv;
   }
 }
 

@@ -30,6 +30,42 @@ class MultiBodyWorld : public btMultiBodyDynamicsWorld {
   void pruneWheelManifolds();
 };
 
+/// Bullet's multibody solver, with Coulomb's cone for FrictionModel::kCone (SDF cone_model).
+/// Bullet 3.24's btMultiBodyConstraintSolver::convertMultiBodyContact takes every contact's two
+/// friction rows along the normal's fixed tangent basis (btPlaneSpace1: world x and y on the
+/// ground) and clips their impulse pair radially to the cone mu N, each row's impulse being the
+/// one that would stop the slip along it alone. A row's impulse scales with its effective mass,
+/// so the clipped force of a sliding contact is not opposite to its slip: a wheel (light along
+/// its rolling direction, heavy across it) resists a sideways slip ~20 times too much when the
+/// basis lies along it, and a skid-steer robot turns at a rate set by its heading. With
+/// set_slip_aligned(true), as Bullet's own rigid-body solver does
+/// (btSequentialImpulseConstraintSolver::convertContact), a contact that slides (the impulse
+/// that would stop its slip is beyond mu times its last normal impulse) gets its first row
+/// along the relative tangential velocity and its second across it, so the cone's clip is mu N
+/// opposite to the slip. A contact that sticks keeps the basis (its rows end inside the cone),
+/// and so does one whose collider has anisotropic friction (its cone needs the axes). Off by
+/// default: Gazebo's default (ODE's pyramid) holds a longitudinally sliding wheel sideways, and
+/// so does the basis (docs/physics.md, Friction).
+class ContactSolver : public btMultiBodyConstraintSolver {
+ protected:
+  btScalar solveGroupCacheFriendlySetup(btCollisionObject** bodies, int numBodies,
+                                        btPersistentManifold** manifolds, int numManifolds,
+                                        btTypedConstraint** constraints, int numConstraints,
+                                        const btContactSolverInfo& info, btIDebugDraw* debug) override;
+
+ public:
+  void setSlipAligned(bool on) { slip_aligned_ = on; }
+  bool slipAligned() const { return slip_aligned_; }
+
+ private:
+  bool slip_aligned_ = false;
+  void alignFrictionWithSlip(const btContactSolverInfo& info);
+  /// Turns a contact's two friction rows (multibody or static sides) to dir1, dir2.
+  void turnRows(btMultiBodySolverConstraint& c1, btMultiBodySolverConstraint& c2,
+                const btVector3& dir1, const btVector3& dir2, const btVector3& slip,
+                const btContactSolverInfo& info);
+};
+
 /// The broadphase's pair filter: the collision groups and masks as Bullet's default, and two
 /// bodies of one world model (user index <= -2, the same) only when either self-collides
 /// (user index 3; SDF <self_collide>, Gazebo's rule). Bodies joined by a joint are in one

@@ -250,7 +250,9 @@ PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
   dispatcher->registerCollisionCreateFunc(GIMPACT_SHAPE_PROXYTYPE, TRIANGLE_MESH_SHAPE_PROXYTYPE, &g_mesh_trimesh);
   dispatcher->registerCollisionCreateFunc(TRIANGLE_MESH_SHAPE_PROXYTYPE, GIMPACT_SHAPE_PROXYTYPE, &g_trimesh_mesh);
   broadphase = std::make_unique<btDbvtBroadphase>();
-  solver = std::make_unique<btMultiBodyConstraintSolver>();
+  auto contact_solver = std::make_unique<ContactSolver>();
+  contact_solver->setSlipAligned(options.friction_model == FrictionModel::kCone);
+  solver = std::move(contact_solver);
   auto mbw = std::make_unique<MultiBodyWorld>(dispatcher.get(), broadphase.get(), solver.get(),
                                               config.get());
   mbw->max_correcting_vel = options.contact_max_correcting_vel;

@@ -102,6 +102,9 @@ PhysicsOptions physicsOptionsFor(const WorldDescription& world, PhysicsOptions b
   base.ground_plane = world.ground_plane;
   base.ground_mu = world.ground_friction.mu;
   base.ground_mu2 = world.ground_friction.mu2;
+  if (world.physics.friction_model == "cone_model") base.friction_model = FrictionModel::kCone;
+  else if (world.physics.friction_model == "box_model") base.friction_model = FrictionModel::kBox;
+  else base.friction_model = FrictionModel::kPyramid;
   return base;
 }
 

@@ -142,8 +142,34 @@ void Parser::parsePhysics(const XMLElement* e, PhysicsSettings& physics) {
           nonNegative(c, "<physics>", physics.real_time_update_rate);
     } else if (tag == "gravity") {
       if (!keepsDefault(c)) physics.gravity = gravity(c, "<physics>");
+    } else if (tag == "ode") {
+      parsePhysicsOde(c, physics);
     } else {
       unsupported(c);
+    }
+  }
+}
+
+// <physics><ode>: only <solver><friction_model> is read; ODE's other solver and constraint
+// settings have no counterpart in Bullet's solver and are reported as not supported.
+void Parser::parsePhysicsOde(const XMLElement* e, PhysicsSettings& physics) {
+  for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    if (std::string(c->Name()) != "solver") {
+      unsupported(c);
+      continue;
+    }
+    for (const XMLElement* k = c->FirstChildElement(); k; k = k->NextSiblingElement()) {
+      if (std::string(k->Name()) != "friction_model") {
+        unsupported(k);
+        continue;
+      }
+      const std::string model = text(k);
+      if (model == "pyramid_model" || model == "cone_model" || model == "box_model") {
+        physics.friction_model = model;
+      } else {  // as Gazebo's ODEPhysics::SetFrictionModel: said, and the default kept
+        warn(k, "<physics><ode><solver>: unknown <friction_model> '" + model +
+                    "' (pyramid_model, cone_model, box_model); pyramid_model is used");
+      }
     }
   }
 }

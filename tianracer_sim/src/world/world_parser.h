@@ -44,6 +44,7 @@ class Parser : public XmlReader {
 
  private:
   void parsePhysics(const XMLElement* e, PhysicsSettings& physics);
+  void parsePhysicsOde(const XMLElement* e, PhysicsSettings& physics);
   void parseScene(const XMLElement* e, WorldDescription& world);
   /// A <gravity> vector within limits::kGravity.
   Eigen::Vector3d gravity(const XMLElement* e, const std::string& what);

@@ -303,6 +303,31 @@ TEST(PhysicsWorld, FrictionCombinesByMinimum) {
   EXPECT_NEAR(std::atan2(r.baseTwist().linear.y(), r.baseTwist().linear.x()), std::atan2(0.8, 0.6), 0.05);
 }
 
+// SDF cone_model (FrictionModel::kCone): a sliding contact's friction rows lie along its slip,
+// so the same diagonal slide decelerates at Coulomb's mu g along its own direction.
+TEST(PhysicsWorld, ConeModelSlidesDiagonallyAtCoulomb) {
+  TestRobot m = modelFrom(boxRobot("<geometry><box size='0.2 0.2 0.02'/></geometry>"));
+  SurfaceParams e;
+  e.mu1 = e.mu2 = 0.5;
+  m.surfaces["base_link"] = e;
+  PhysicsOptions o;
+  o.friction_model = FrictionModel::kCone;
+  PhysicsWorld w(o);
+  PhysicsRobot& r = w.robot(addTestRobot(w, m, at(0, 0, 0.01, 0.3), "box"));
+  for (int k = 0; k < 200; ++k) w.step();
+  const Eigen::Vector3d p_rest = r.basePose().translation();
+  for (int k = 0; k < 200; ++k) w.step();
+  // At rest the contacts stick: the slip alignment leaves a resting box where it is.
+  EXPECT_LT((r.basePose().translation() - p_rest).norm(), 1e-6);
+  r.setBaseTwist({Eigen::Vector3d(0.6, 0.8, 0), Eigen::Vector3d::Zero()});
+  for (int k = 0; k < 100; ++k) w.step();
+  const double decel = (1.0 - r.baseTwist().linear.head<2>().norm()) / 0.1;
+  std::cout << "[sliding box] diagonal, mu 0.5, cone_model: deceleration " << decel
+            << " m/s^2, Coulomb " << 0.5 * 9.8 << "\n";
+  EXPECT_NEAR(decel, 0.5 * 9.8, 0.02 * 0.5 * 9.8);
+  EXPECT_NEAR(std::atan2(r.baseTwist().linear.y(), r.baseTwist().linear.x()), std::atan2(0.8, 0.6), 0.02);
+}
+
 // URDF <dynamics damping friction>: viscous decay and Coulomb deceleration of a free joint.
 TEST(PhysicsWorld, JointDampingAndFriction) {
   const PhysicsOptions o = weightless();

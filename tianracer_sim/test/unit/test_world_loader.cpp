@@ -121,7 +121,7 @@ TEST(WorldLoader, FeaturesWorld) {
   // Unsupported elements: each warned exactly once, with the file and line.
   EXPECT_EQ(c.count("<gui> in <world> is not supported"), 1) << ::testing::PrintToString(c.warnings);
   EXPECT_EQ(c.count("features.world:17: <gui>"), 1);
-  EXPECT_EQ(c.count("<ode> in <physics>"), 1);
+  EXPECT_EQ(c.count("<iters> in <solver> is not supported"), 1);  // <ode><solver><iters>
   EXPECT_EQ(c.count("<shadows> in <scene>"), 1);
   EXPECT_EQ(c.count("<cast_shadows> in <light>"), 1);
   EXPECT_EQ(c.count("<light name='bulb'> (point) is approximated by a directional light"), 1);
@@ -352,6 +352,36 @@ TEST(WorldLoader, EmptySdfValuesKeepTheirDefaults) {
   EXPECT_EQ(errorOfString("<sdf><world name='w'>\n<model name='m'>\n<pose>1 2</pose>\n"
                           "</model></world></sdf>"),
             "inline.world:3: model 'm': <pose> '1 2' is not 6 numbers \"x y z roll pitch yaw\"");
+}
+
+// <physics><ode><solver><friction_model> is read (Gazebo 11's three values); an unknown one is
+// said at its line and the default kept, as Gazebo's ODEPhysics does; ODE's other solver
+// settings are reported as not supported, each at its line.
+TEST(WorldLoader, OdeFrictionModelIsRead) {
+  const auto load = [](const std::string& model, Collected* c) {
+    return loadWorldString("<sdf version='1.6'><world name='w'>\n<physics type='ode'>\n"
+                           "<ode><solver><type>quick</type>\n<friction_model>" + model +
+                               "</friction_model></solver></ode></physics>\n</world></sdf>",
+                           "fm.world", kData, c->options());
+  };
+  Collected c;
+  EXPECT_EQ(load("cone_model", &c).physics.friction_model, "cone_model");
+  ASSERT_EQ(c.warnings.size(), 1u) << ::testing::PrintToString(c.warnings);
+  EXPECT_NE(c.warnings[0].find("fm.world:3"), std::string::npos) << c.warnings[0];  // <type>
+  EXPECT_NE(c.warnings[0].find("type"), std::string::npos) << c.warnings[0];
+  Collected d;
+  EXPECT_EQ(load("box_model", &d).physics.friction_model, "box_model");
+  Collected bad;
+  EXPECT_EQ(load("round_model", &bad).physics.friction_model, "pyramid_model");
+  ASSERT_EQ(bad.warnings.size(), 2u) << ::testing::PrintToString(bad.warnings);
+  EXPECT_NE(bad.warnings[1].find("fm.world:4"), std::string::npos) << bad.warnings[1];
+  EXPECT_NE(bad.warnings[1].find("unknown <friction_model> 'round_model'"), std::string::npos)
+      << bad.warnings[1];
+  Collected none;
+  EXPECT_EQ(loadWorldString("<sdf version='1.6'><world name='w'></world></sdf>", "n.world", kData,
+                            none.options())
+                .physics.friction_model,
+            "pyramid_model");
 }
 
 // An <include> without <uri> (SDF 1.3's <include filename='...'>, as in Gazebo's

@@ -43,6 +43,12 @@ enum class WheelShape {
   kMeshHull,
 };
 
+/// SDF <physics><ode><solver><friction_model> (Gazebo 11: pyramid_model, the default, cone_model,
+/// box_model). kCone: the friction of a contact that slides lies along its slip, mu N opposite to
+/// it (Coulomb's cone, ODE's cone_model); kPyramid and kBox keep Bullet's fixed tangent basis
+/// with its cone clip (docs/physics.md, Friction: what each gives and why the default stays).
+enum class FrictionModel { kPyramid, kCone, kBox };
+
 struct PhysicsOptions {
   double dt = 0.001;                             // s, one step
   Eigen::Vector3d gravity{0.0, 0.0, -9.8};       // Gazebo's default
@@ -57,6 +63,7 @@ struct PhysicsOptions {
   /// exact solution). A function of the state only, so still deterministic.
   double solver_residual_threshold = 0.0;
   double collision_margin = 0.0005;              // m, hulls and cylinders
+  FrictionModel friction_model = FrictionModel::kPyramid;
   WheelShape wheel_shape = WheelShape::kRoundedCylinder;
   /// Max torque of a velocity motor on a joint whose URDF gives no effort limit (N m).
   double default_motor_effort = 10.0;

@@ -44,6 +44,8 @@ struct PhysicsSettings {
   double real_time_factor = 1.0;          // 0 = as fast as possible
   double real_time_update_rate = 1000.0;  // Hz
   Eigen::Vector3d gravity{0.0, 0.0, -9.8};
+  /// <ode><solver><friction_model>: pyramid_model (Gazebo's default), cone_model or box_model.
+  std::string friction_model = "pyramid_model";
 };
 
 /// <surface><friction><ode>: Coulomb coefficients along the two friction directions.
