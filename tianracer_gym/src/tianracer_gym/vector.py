@@ -5,8 +5,6 @@ autoreset (NEXT_STEP: the step after an episode ends resets that env and ignores
 Each env i is exactly the single TianracerEnv with the same arguments and reset seed seed + i:
 same observations, rewards and ends, bit for bit.
 """
-import copy
-
 import numpy as np
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
@@ -50,7 +48,8 @@ class TianracerVectorEnv(VectorEnv):
         return {k: v[i] for k, v in self._obs.items()}
 
     def _result_obs(self):
-        return copy.deepcopy(self._obs) if self.copy_observations else self._obs
+        # A dict of arrays: copying each array is what deepcopy does, without its machinery.
+        return {k: v.copy() for k, v in self._obs.items()} if self.copy_observations else self._obs
 
     def reset(self, *, seed=None, options=None):
         if seed is None:
@@ -76,11 +75,17 @@ class TianracerVectorEnv(VectorEnv):
         if actions.shape != self.action_space.shape:
             raise ValueError("actions have shape %s; the action space is %s" %
                              (actions.shape, self.action_space))
-        rows = np.empty(actions.shape, dtype=np.float64)
         active = ~self._autoreset
-        for i in np.flatnonzero(active):
-            rows[i] = self.envs[i]._checked(actions[i])
-        rows[~active] = 0.0
+        # Every env has the same action space: all rows at once; the first bad one raises its
+        # env's message (TianracerEnv._checked).
+        rows = np.asarray(actions, dtype=np.float64)
+        rows32 = rows.astype(np.float32)
+        low, high = self.envs[0]._low, self.envs[0]._high
+        ok = ((rows32 >= low) & (rows32 <= high) & np.isfinite(rows)).all(axis=1)
+        if not ok[active].all():
+            for i in np.flatnonzero(active & ~ok):
+                self.envs[i]._checked(actions[i])
+        rows = np.where(active[:, None], rows, 0.0)
         infos = {}
         # Envs whose episode ended at the last step start a new one (their action is ignored).
         for i in np.flatnonzero(~active):
