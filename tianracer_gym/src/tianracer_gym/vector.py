@@ -86,13 +86,13 @@ class TianracerVectorEnv(VectorEnv):
             for i in np.flatnonzero(active & ~ok):
                 self.envs[i]._checked(actions[i])
         rows = np.where(active[:, None], rows, 0.0)
-        infos = {}
+        infos = [None] * self.num_envs
         # Envs whose episode ended at the last step start a new one (their action is ignored).
         for i in np.flatnonzero(~active):
             _, info = self.envs[i].reset()
             self.batch.read(i, self._obs)
             self.envs[i]._fix(self._row(i))
-            infos = self._add_info(infos, info, i)
+            infos[i] = info
         self._contacts[:] = 0
         if active.any():
             self.batch.step(rows, self.envs[0].action_mode, self.envs[0].steps_per_action,
@@ -108,10 +108,33 @@ class TianracerVectorEnv(VectorEnv):
             self._rewards[i] = reward
             self._terminated[i] = terminated
             self._truncated[i] = truncated
-            infos = self._add_info(infos, info, i)
+            infos[i] = info
         self._autoreset = self._terminated | self._truncated
         return (self._result_obs(), self._rewards.copy(), self._terminated.copy(),
-                self._truncated.copy(), infos)
+                self._truncated.copy(), self._batched_infos(infos))
+
+    def _batched_infos(self, infos):
+        """What VectorEnv._add_info makes of the envs' infos (one per env, in order), built in one
+        go when they are what the env gives (the same keys, each a float or a bool of one type
+        across the envs); anything else (a reward callable may add to info) through _add_info."""
+        first = infos[0]
+        out = {}
+        for key, value in first.items():
+            kind = type(value)
+            if kind not in (float, bool) or key == "final_obs":
+                break
+            values = [info.get(key) for info in infos]
+            if any(type(v) is not kind for v in values):
+                break
+            out[key] = np.array(values, dtype=kind)
+            out["_" + key] = np.ones(self.num_envs, dtype=np.bool_)
+        else:
+            if all(len(info) == len(first) for info in infos):
+                return out
+        out = {}
+        for i, info in enumerate(infos):
+            out = self._add_info(out, info, i)
+        return out
 
     def close_extras(self, **kwargs):
         self.batch = None
