@@ -26,6 +26,50 @@ def actions(k):
     return np.array([[2.5, 0.5 * np.sin(0.3 * k + i)] for i in range(N)], np.float32)
 
 
+class BatchedInfos(unittest.TestCase):
+    """The vector env builds its infos in one go; they are what gymnasium's _add_info makes."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.vec = TianracerVectorEnv(N, threads=1, **KWARGS)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.vec.close()
+
+    def expected(self, infos):
+        out = {}
+        for i, info in enumerate(infos):
+            out = gym.vector.VectorEnv._add_info(self.vec, out, info, i)
+        return out
+
+    def same(self, got, want):
+        self.assertEqual(list(got), list(want))
+        for key in want:
+            if isinstance(want[key], dict):
+                self.same(got[key], want[key])
+                continue
+            self.assertEqual(got[key].dtype, want[key].dtype, key)
+            self.assertEqual(got[key].tolist(), want[key].tolist(), key)
+
+    def check(self, infos):
+        self.same(self.vec._batched_infos(infos), self.expected(infos))
+
+    def test_the_envs_infos(self):
+        self.check([{'time': 0.01 * i, 'progress': 0.5 + i, 'collision': i == 1} for i in range(N)])
+
+    def test_other_infos_take_add_info(self):
+        base = [{'time': 0.01, 'progress': 0.5, 'collision': False} for _ in range(N)]
+        extra = [dict(b) for b in base]
+        extra[1]['lap'] = 2  # a reward callable added a key to one env's info
+        self.check(extra)
+        mixed = [dict(b) for b in base]
+        mixed[2]['progress'] = np.float64(0.25)  # another type in one env
+        self.check(mixed)
+        nested = [dict(b, detail={'a': 1.0}) for b in base]
+        self.check(nested)
+
+
 class VectorEqualsSingles(unittest.TestCase):
     def test_same_results_as_n_single_envs_with_autoreset(self):
         vec = TianracerVectorEnv(N, threads=2, **KWARGS)
@@ -44,12 +88,16 @@ class VectorEqualsSingles(unittest.TestCase):
             obs, rewards, terminated, truncated, infos = vec.step(a)
             for i, env in enumerate(singles):
                 if pending[i]:
-                    o, _ = env.reset()
+                    o, info = env.reset()
                     r, te, tr = 0.0, False, False
                     resets += 1
                 else:
-                    o, r, te, tr, _ = env.step(a[i])
+                    o, r, te, tr, info = env.step(a[i])
                 pending[i] = te or tr
+                for key, value in info.items():  # the info too, as gymnasium batches it
+                    self.assertEqual(infos[key][i], value, 'step %d env %d info %s' % (k, i, key))
+                    self.assertEqual(infos[key].dtype, np.dtype(type(value)), key)
+                    self.assertTrue(infos['_' + key][i], key)
                 for key in o:
                     self.assertEqual(obs[key][i].tobytes(), o[key].tobytes(),
                                      'step %d env %d %s' % (k, i, key))

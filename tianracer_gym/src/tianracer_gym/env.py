@@ -110,7 +110,15 @@ class TianracerEnv(gym.Env):
         else:
             raise ValueError("action must be 'ackermann' or 'commands', got %r" % (action,))
         self.action_mode = action
+        # What every step reads: the bounds once, not through the space's properties.
+        self._shape = self.action_space.shape
+        self._low, self._high = self.action_space.low, self.action_space.high
+        # Finite bounds: NaN and +-inf already fail the bounds test (one test per step).
+        self._finite_bounds = bool(np.isfinite(self._low).all() and np.isfinite(self._high).all())
         self.observation_space = observation_space_of(self.sim)
+        # The reward's position: from the observation when it holds the odometry (the same
+        # numbers, SimEnv::odom), else one more call.
+        self._odom_in_obs = "odom" in self.observation_space.spaces
         self._depth_keys = [k for k, kind in self.sim.observation_kinds.items() if kind == "depth"]
 
         # Reward, start poses, limits.
@@ -165,15 +173,16 @@ class TianracerEnv(gym.Env):
     # -- shared with the vector env ---------------------------------------------------------
     def _checked(self, action):
         a = np.asarray(action, dtype=np.float64)
-        if a.shape != self.action_space.shape:
+        if a.shape != self._shape:
             raise ValueError("action %r has shape %s; the action space is %s" %
                              (action, a.shape, self.action_space))
-        if not np.all(np.isfinite(a)):
-            raise ValueError("action %r is not finite" % (action,))
-        low, high = self.action_space.low, self.action_space.high
         # Bounds are float32: compare there, so that a float32 action at a bound is inside.
         a32 = a.astype(np.float32)
-        if np.any(a32 < low) or np.any(a32 > high):
+        low, high = self._low, self._high
+        if not (((a32 >= low) & (a32 <= high)).all() and
+                (self._finite_bounds or np.isfinite(a).all())):
+            if not np.isfinite(a).all():
+                raise ValueError("action %r is not finite" % (action,))
             raise ValueError("action %s is outside the action space [%s, %s]" %
                              (a.tolist(), low.tolist(), high.tolist()))
         return a
@@ -202,8 +211,8 @@ class TianracerEnv(gym.Env):
     def _outcome(self, obs, contacts):
         """Reward, terminated, truncated and info after a step (obs: this env's values)."""
         if self.centreline is not None:
-            x, y = self.sim.odom()[:2]
-            s, _, self._segment = self.centreline.project(x, y, self._segment)
+            odom = obs["odom"] if self._odom_in_obs else self.sim.odom()
+            s, _, self._segment = self.centreline.project(odom[0], odom[1], self._segment)
             delta = self.centreline.advance(self._s, s)
             self._s = s
             self.progress += delta

@@ -5,8 +5,6 @@ autoreset (NEXT_STEP: the step after an episode ends resets that env and ignores
 Each env i is exactly the single TianracerEnv with the same arguments and reset seed seed + i:
 same observations, rewards and ends, bit for bit.
 """
-import copy
-
 import numpy as np
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
@@ -50,7 +48,8 @@ class TianracerVectorEnv(VectorEnv):
         return {k: v[i] for k, v in self._obs.items()}
 
     def _result_obs(self):
-        return copy.deepcopy(self._obs) if self.copy_observations else self._obs
+        # A dict of arrays: copying each array is what deepcopy does, without its machinery.
+        return {k: v.copy() for k, v in self._obs.items()} if self.copy_observations else self._obs
 
     def reset(self, *, seed=None, options=None):
         if seed is None:
@@ -76,18 +75,24 @@ class TianracerVectorEnv(VectorEnv):
         if actions.shape != self.action_space.shape:
             raise ValueError("actions have shape %s; the action space is %s" %
                              (actions.shape, self.action_space))
-        rows = np.empty(actions.shape, dtype=np.float64)
         active = ~self._autoreset
-        for i in np.flatnonzero(active):
-            rows[i] = self.envs[i]._checked(actions[i])
-        rows[~active] = 0.0
-        infos = {}
+        # Every env has the same action space: all rows at once; the first bad one raises its
+        # env's message (TianracerEnv._checked).
+        rows = np.asarray(actions, dtype=np.float64)
+        rows32 = rows.astype(np.float32)
+        low, high = self.envs[0]._low, self.envs[0]._high
+        ok = ((rows32 >= low) & (rows32 <= high) & np.isfinite(rows)).all(axis=1)
+        if not ok[active].all():
+            for i in np.flatnonzero(active & ~ok):
+                self.envs[i]._checked(actions[i])
+        rows = np.where(active[:, None], rows, 0.0)
+        infos = [None] * self.num_envs
         # Envs whose episode ended at the last step start a new one (their action is ignored).
         for i in np.flatnonzero(~active):
             _, info = self.envs[i].reset()
             self.batch.read(i, self._obs)
             self.envs[i]._fix(self._row(i))
-            infos = self._add_info(infos, info, i)
+            infos[i] = info
         self._contacts[:] = 0
         if active.any():
             self.batch.step(rows, self.envs[0].action_mode, self.envs[0].steps_per_action,
@@ -103,10 +108,33 @@ class TianracerVectorEnv(VectorEnv):
             self._rewards[i] = reward
             self._terminated[i] = terminated
             self._truncated[i] = truncated
-            infos = self._add_info(infos, info, i)
+            infos[i] = info
         self._autoreset = self._terminated | self._truncated
         return (self._result_obs(), self._rewards.copy(), self._terminated.copy(),
-                self._truncated.copy(), infos)
+                self._truncated.copy(), self._batched_infos(infos))
+
+    def _batched_infos(self, infos):
+        """What VectorEnv._add_info makes of the envs' infos (one per env, in order), built in one
+        go when they are what the env gives (the same keys, each a float or a bool of one type
+        across the envs); anything else (a reward callable may add to info) through _add_info."""
+        first = infos[0]
+        out = {}
+        for key, value in first.items():
+            kind = type(value)
+            if kind not in (float, bool) or key == "final_obs":
+                break
+            values = [info.get(key) for info in infos]
+            if any(type(v) is not kind for v in values):
+                break
+            out[key] = np.array(values, dtype=kind)
+            out["_" + key] = np.ones(self.num_envs, dtype=np.bool_)
+        else:
+            if all(len(info) == len(first) for info in infos):
+                return out
+        out = {}
+        for i, info in enumerate(infos):
+            out = self._add_info(out, info, i)
+        return out
 
     def close_extras(self, **kwargs):
         self.batch = None
