@@ -98,7 +98,7 @@ class GazeboPropertiesTest(unittest.TestCase):
         self.assertTrue(p.pause)
         self.assertAlmostEqual(p.time_step, 0.001)
         self.assertAlmostEqual(p.gravity.z, -9.8)
-        self.assertEqual(p.ode_config.sor_pgs_iters, 10)  # PhysicsOptions::solver_iterations (issue 41)
+        self.assertEqual(p.ode_config.sor_pgs_iters, 20)
         ode = p.ode_config
         ode.sor_pgs_iters = 40
         res = self.set_physics_properties(0.002, 500.0, Vector3(0, 0, -1.62), ode)

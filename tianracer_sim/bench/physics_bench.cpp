@@ -391,10 +391,6 @@ int main(int argc, char** argv) {
       {"parked", 0.0, 0.0, def, 1},
       {"straight 1 m/s", 0.0, 1.0, def, 1},
       {"full lock 2 m/s", 0.6, 2.0, def, 1},
-      // The sweeps before issue 41 (20; default now 10 with 20 for capped penetration recovery).
-      {"parked, 20 sweeps", 0.0, 0.0, 20, 1},
-      {"straight 1 m/s, 20 sweeps", 0.0, 1.0, 20, 1},
-      {"full lock 2 m/s, 20 sweeps", 0.6, 2.0, 20, 1},
       {"straight 1 m/s, 30 sweeps", 0.0, 1.0, 30, 1},
       {"straight 1 m/s, 50 sweeps", 0.0, 1.0, 50, 1},
       {"two cars, 1 m/s", 0.0, 1.0, def, 2},

@@ -211,52 +211,14 @@ class MeshTriMeshAlgorithm : public OwnManifoldAlgorithm<MeshTriMeshAlgorithm> {
 
 MeshTriMeshAlgorithm::CreateFunc g_mesh_trimesh, g_trimesh_mesh;
 
-/// MultiBodyWorld whose sweeps are chosen per step: PhysicsOptions::solver_recovery_iterations
-/// when a contact's penetration recovery is held back this step (capCorrection will give it a
-/// capped ERP or a min_depth), else PhysicsOptions::solver_iterations. Decided from the
-/// manifolds before the solve, by the same rule (cappedErp) that capCorrection applies, so a
-/// function of the state only.
-class SweepChoosingWorld : public MultiBodyWorld {
- public:
-  using MultiBodyWorld::MultiBodyWorld;
-  int sweeps = 10, recovery_sweeps = 20;
-
-  void solveConstraints(btContactSolverInfo& info) override {
-    info.m_numIterations = recovery_sweeps > sweeps && recoveryHeldBack(info) ? recovery_sweeps : sweeps;
-    MultiBodyWorld::solveConstraints(info);
-  }
-
- private:
-  bool recoveryHeldBack(const btContactSolverInfo& info) {
-    btDispatcher* d = getDispatcher();
-    for (int m = 0; m < d->getNumManifolds(); ++m) {
-      const btPersistentManifold* pm = d->getManifoldByIndexInternal(m);
-      const auto* c0 = static_cast<const ColliderSurfaces*>(pm->getBody0()->getUserPointer());
-      const auto* c1 = static_cast<const ColliderSurfaces*>(pm->getBody1()->getUserPointer());
-      if (c0 == nullptr || c1 == nullptr) continue;
-      for (int p = 0; p < pm->getNumContacts(); ++p) {
-        const btManifoldPoint& cp = pm->getContactPoint(p);
-        const double depth = -cp.getDistance();
-        if (!(depth > 0.0)) continue;
-        const ContactLaw law = contactLaw(*c0, c0->at(cp.m_index0), *c1, c1->at(cp.m_index1));
-        const double erp = law.soft ? softErpCfm(law.kp, law.kd, info.m_timeStep).erp : info.m_erp2;
-        if (cappedErp(law, erp, depth, info.m_timeStep, max_correcting_vel)) return true;
-      }
-    }
-    return false;
-  }
-};
-
 }  // namespace
 
 PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
   if (!(options.dt > 0.0) || !std::isfinite(options.dt)) {
     throw PhysicsError("physics: dt must be positive, got " + std::to_string(options.dt));
   }
-  if (options.solver_iterations < 1 || options.solver_recovery_iterations < 1) {
-    throw PhysicsError("physics: solver_iterations and solver_recovery_iterations must be >= 1, got " +
-                       std::to_string(options.solver_iterations) + " and " +
-                       std::to_string(options.solver_recovery_iterations));
+  if (options.solver_iterations < 1) {
+    throw PhysicsError("physics: solver_iterations must be >= 1");
   }
   if (!(options.tyre_stiffness >= 0.0) || !std::isfinite(options.tyre_stiffness) ||
       !(options.tyre_damping_ratio >= 0.0) || !std::isfinite(options.tyre_damping_ratio)) {
@@ -289,11 +251,9 @@ PhysicsWorld::Impl::Impl(const PhysicsOptions& o) : options(o) {
   dispatcher->registerCollisionCreateFunc(TRIANGLE_MESH_SHAPE_PROXYTYPE, GIMPACT_SHAPE_PROXYTYPE, &g_trimesh_mesh);
   broadphase = std::make_unique<btDbvtBroadphase>();
   solver = std::make_unique<btMultiBodyConstraintSolver>();
-  auto mbw = std::make_unique<SweepChoosingWorld>(dispatcher.get(), broadphase.get(), solver.get(),
-                                                  config.get());
+  auto mbw = std::make_unique<MultiBodyWorld>(dispatcher.get(), broadphase.get(), solver.get(),
+                                              config.get());
   mbw->max_correcting_vel = options.contact_max_correcting_vel;
-  mbw->sweeps = options.solver_iterations;
-  mbw->recovery_sweeps = options.solver_recovery_iterations;
   world = std::move(mbw);
   world->setGravity(toBt(options.gravity));
   // Static shapes never move: their AABBs are computed once, when added (below they are put
@@ -628,7 +588,6 @@ void PhysicsWorld::setSolverIterations(int iterations) {
   }
   impl_->options.solver_iterations = iterations;
   impl_->world->getSolverInfo().m_numIterations = iterations;
-  static_cast<SweepChoosingWorld*>(impl_->world.get())->sweeps = iterations;
 }
 
 void PhysicsWorld::setContactMaxCorrectingVel(double v) {
@@ -643,7 +602,7 @@ void PhysicsWorld::setContactMaxCorrectingVel(double v) {
 SolverSettings PhysicsWorld::solverSettings() const {
   const btContactSolverInfo& si = impl_->world->getSolverInfo();
   SolverSettings s;
-  s.iterations = impl_->options.solver_iterations;  // m_numIterations: this step's (SweepChoosingWorld)
+  s.iterations = si.m_numIterations;
   s.sor = si.m_sor;
   s.residual_threshold = si.m_leastSquaresResidualThreshold;
   s.global_cfm = si.m_globalCfm;

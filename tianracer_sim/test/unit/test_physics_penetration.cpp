@@ -143,41 +143,5 @@ TEST(PenetrationRecovery, HalfBuriedCubeStaysBoundedOnTheGround) {
   EXPECT_LT(r.baseTwist().linear.norm(), 1e-3);
 }
 
-// The cap holds at the default 10 sweeps because a step with a capped contact gets
-// solver_recovery_iterations (20): without them (recovery sweeps = sweeps) the cube of
-// CubeInAStaticBoxLeavesAtTheCap leaves measurably off the cap (1.8e-5 m/s sideways and
-// 4e-4 rad/s of spin at 10 sweeps; 1.3e-6 in all with the recovery sweeps).
-TEST(PenetrationRecovery, RecoverySweepsHoldTheCap) {
-  auto exit_error = [](int recovery) {
-    PhysicsOptions o = weightless();
-    o.solver_recovery_iterations = recovery;
-    PhysicsWorld w(o);
-    w.addStaticShape(block());
-    PhysicsRobot& r = w.robot(addTestRobot(w, cube(), at(0.5 + 0.05 - 0.03, 0, 0), "cube"));
-    run(w, r, 1.0);
-    const Twist t = r.baseTwist();
-    return std::abs(t.linear.x() - o.contact_max_vel) + t.linear.tail<2>().norm() + t.angular.norm();
-  };
-  const int sweeps = PhysicsOptions().solver_iterations;
-  const double with = exit_error(PhysicsOptions().solver_recovery_iterations), without = exit_error(sweeps);
-  std::cout << "[recovery sweeps] exit velocity error " << with << " with "
-            << PhysicsOptions().solver_recovery_iterations << " recovery sweeps, " << without
-            << " with " << sweeps << "\n";
-  EXPECT_LT(with, 1e-5);  // CubeInAStaticBoxLeavesAtTheCap's bounds
-  EXPECT_GT(without, 1e-4);
-}
-
-TEST(PenetrationRecovery, RecoverySweepsMustBePositive) {
-  PhysicsOptions o;
-  o.solver_recovery_iterations = 0;
-  try {
-    PhysicsWorld w(o);
-    ADD_FAILURE() << "no error";
-  } catch (const PhysicsError& e) {
-    EXPECT_NE(std::string(e.what()).find("solver_recovery_iterations must be >= 1, got 10 and 0"),
-              std::string::npos) << e.what();
-  }
-}
-
 }  // namespace
 }  // namespace tianracer_sim

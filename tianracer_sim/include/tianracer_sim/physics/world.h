@@ -49,16 +49,10 @@ struct PhysicsOptions {
   bool ground_plane = true;                      // z = 0, normal +z
   double ground_mu = 100.0, ground_mu2 = 50.0;   // Gazebo's model://ground_plane
   double ground_kp = 1e12, ground_kd = 1.0;      // SDF defaults (rigid)
-  /// PGS sweeps per step. 10 keeps every SPEC 9 figure of the tianracer (parked: 0.07 mm in
-  /// 60 s; heading drift 0.09 deg over 10 m; circle +0.5 %) at half the sweeps of 20 (issue 41,
-  /// docs/performance.md "A cheaper step"); 20 was the default before. Raise it for stacked or
+  /// PGS sweeps per step. 20 keeps the parked tianracer within 0.06 mm per minute and its
+  /// heading within 0.1 deg over 10 m (10 sweeps: 1.2 deg); raise it for stacked or
   /// many-contact scenes (Gazebo's and PyBullet's default is 50).
-  int solver_iterations = 10;
-  /// PGS sweeps of a step in which some contact's penetration recovery is held back (Gazebo's
-  /// <maxVel> / contact_max_correcting_vel cap, or <min_depth>: a body spawned into another):
-  /// the cap is a velocity the solver must reach exactly, which 10 sweeps miss (a half-buried
-  /// cube left at 0.19 m/s for a 0.1 cap). Used when larger than solver_iterations.
-  int solver_recovery_iterations = 20;
+  int solver_iterations = 20;
   /// The sweeps stop early once the squared residual falls below this (0: never, except at an
   /// exact solution). A function of the state only, so still deterministic.
   double solver_residual_threshold = 0.0;
