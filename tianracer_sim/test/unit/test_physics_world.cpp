@@ -282,50 +282,54 @@ TEST(PhysicsWorld, AnisotropicSlidingFriction) {
   }
 }
 
-// Ground friction combines by min(): a box with mu 0.5 on Gazebo's ground (mu 100).
-TEST(PhysicsWorld, FrictionCombinesByMinimum) {
+/// A 0.2 m box with mu 0.5 on Gazebo's ground (mu 100), rested for 0.2 s, then (after
+/// `rest_steps` more steps) pushed diagonally at 1 m/s for 0.1 s. Returns its deceleration
+/// (m/s^2) and its heading of travel; `rest_drift` is how far it moved while resting.
+struct DiagonalSlide {
+  double decel, heading, rest_drift;
+};
+DiagonalSlide slideDiagonally(const PhysicsOptions& options, int rest_steps) {
   TestRobot m = modelFrom(boxRobot("<geometry><box size='0.2 0.2 0.02'/></geometry>"));
   SurfaceParams e;
   e.mu1 = e.mu2 = 0.5;
   m.surfaces["base_link"] = e;
-  PhysicsWorld w;
-  PhysicsRobot& r = w.robot(addTestRobot(w, m, at(0, 0, 0.01, 0.3), "box"));
-  for (int k = 0; k < 200; ++k) w.step();
-  r.setBaseTwist({Eigen::Vector3d(0.6, 0.8, 0), Eigen::Vector3d::Zero()});
-  for (int k = 0; k < 100; ++k) w.step();
-  // Isotropic: decelerates at 0.5 g (a product rule would give 50 g). Bullet solves the two
-  // friction rows and then clamps them to the cone, which leaves a diagonal slide up to ~10%
-  // below Coulomb (axis-aligned slides are exact, see above).
-  const double decel = (1.0 - r.baseTwist().linear.head<2>().norm()) / 0.1;
-  std::cout << "[sliding box] diagonal, mu 0.5: deceleration " << decel << " m/s^2, Coulomb "
-            << 0.5 * 9.8 << "\n";
-  EXPECT_NEAR(decel, 0.5 * 9.8, 0.1 * 0.5 * 9.8);
-  EXPECT_NEAR(std::atan2(r.baseTwist().linear.y(), r.baseTwist().linear.x()), std::atan2(0.8, 0.6), 0.05);
-}
-
-// SDF cone_model (FrictionModel::kCone): a sliding contact's friction rows lie along its slip,
-// so the same diagonal slide decelerates at Coulomb's mu g along its own direction.
-TEST(PhysicsWorld, ConeModelSlidesDiagonallyAtCoulomb) {
-  TestRobot m = modelFrom(boxRobot("<geometry><box size='0.2 0.2 0.02'/></geometry>"));
-  SurfaceParams e;
-  e.mu1 = e.mu2 = 0.5;
-  m.surfaces["base_link"] = e;
-  PhysicsOptions o;
-  o.friction_model = FrictionModel::kCone;
-  PhysicsWorld w(o);
+  PhysicsWorld w(options);
   PhysicsRobot& r = w.robot(addTestRobot(w, m, at(0, 0, 0.01, 0.3), "box"));
   for (int k = 0; k < 200; ++k) w.step();
   const Eigen::Vector3d p_rest = r.basePose().translation();
-  for (int k = 0; k < 200; ++k) w.step();
-  // At rest the contacts stick: the slip alignment leaves a resting box where it is.
-  EXPECT_LT((r.basePose().translation() - p_rest).norm(), 1e-6);
+  for (int k = 0; k < rest_steps; ++k) w.step();
+  DiagonalSlide d{};
+  d.rest_drift = (r.basePose().translation() - p_rest).norm();
   r.setBaseTwist({Eigen::Vector3d(0.6, 0.8, 0), Eigen::Vector3d::Zero()});
   for (int k = 0; k < 100; ++k) w.step();
-  const double decel = (1.0 - r.baseTwist().linear.head<2>().norm()) / 0.1;
-  std::cout << "[sliding box] diagonal, mu 0.5, cone_model: deceleration " << decel
+  d.decel = (1.0 - r.baseTwist().linear.head<2>().norm()) / 0.1;
+  d.heading = std::atan2(r.baseTwist().linear.y(), r.baseTwist().linear.x());
+  return d;
+}
+
+// Ground friction combines by min(): the box decelerates at 0.5 g (a product rule would give
+// 50 g). Bullet solves the two friction rows and then clamps them to the cone, which leaves a
+// diagonal slide up to ~10% below Coulomb (axis-aligned slides are exact, see above).
+TEST(PhysicsWorld, FrictionCombinesByMinimum) {
+  const DiagonalSlide d = slideDiagonally(PhysicsOptions(), 0);
+  std::cout << "[sliding box] diagonal, mu 0.5: deceleration " << d.decel << " m/s^2, Coulomb "
+            << 0.5 * 9.8 << "\n";
+  EXPECT_NEAR(d.decel, 0.5 * 9.8, 0.1 * 0.5 * 9.8);
+  EXPECT_NEAR(d.heading, std::atan2(0.8, 0.6), 0.05);
+}
+
+// SDF cone_model (FrictionModel::kCone): a sliding contact's friction rows lie along its slip,
+// so the same diagonal slide decelerates at Coulomb's mu g along its own direction; at rest the
+// contacts stick, and the box stays where it is.
+TEST(PhysicsWorld, ConeModelSlidesDiagonallyAtCoulomb) {
+  PhysicsOptions o;
+  o.friction_model = FrictionModel::kCone;
+  const DiagonalSlide d = slideDiagonally(o, 200);
+  std::cout << "[sliding box] diagonal, mu 0.5, cone_model: deceleration " << d.decel
             << " m/s^2, Coulomb " << 0.5 * 9.8 << "\n";
-  EXPECT_NEAR(decel, 0.5 * 9.8, 0.02 * 0.5 * 9.8);
-  EXPECT_NEAR(std::atan2(r.baseTwist().linear.y(), r.baseTwist().linear.x()), std::atan2(0.8, 0.6), 0.02);
+  EXPECT_LT(d.rest_drift, 1e-6);
+  EXPECT_NEAR(d.decel, 0.5 * 9.8, 0.02 * 0.5 * 9.8);
+  EXPECT_NEAR(d.heading, std::atan2(0.8, 0.6), 0.02);
 }
 
 // URDF <dynamics damping friction>: viscous decay and Coulomb deceleration of a free joint.
