@@ -173,8 +173,8 @@ void mix(T& r1, T& r2, btScalar a11, btScalar a12, btScalar a21, btScalar a22) {
 
 /// The rows as Bullet set them up: pairs (first, second direction) of one contact, in order,
 /// each with the relative velocity along it in m_rhs = -v / (J M^-1 J^T) (friction has no
-/// position error and no warm start here). A pair whose tangential slip is not zero is turned
-/// in the tangent plane to lie along the slip; the normal rows are untouched. A row's Jacobian,
+/// position error and no warm start here). With set_slip_aligned(true), a pair that slides
+/// (below) is turned in the tangent plane to lie along the slip; the normal rows are untouched. A row's Jacobian,
 /// its M^-1 J^T and its lever arms are linear in its direction, and the new directions are
 /// combinations of the old two, so the turned rows are the same combinations of the old rows
 /// (what Bullet's setupMultiBodyContactConstraint would compute along the new directions,
