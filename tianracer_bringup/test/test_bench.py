@@ -73,6 +73,22 @@ class BenchHarnessTest(unittest.TestCase):
                                "boxes: world bench/worlds/free_boxes.world; "
                                "lidar3d: model bench/models/tianracer_lidar3d.xacro)")
 
+    def test_the_targets_are_spec_9s(self):
+        # SPEC §9: the full seed set has two goals (RTF 2 on 2 cores and 15x PyBullet); the report
+        # gives each its verdict, and a scenario with one goal keeps the one-pair form.
+        harness = load_script(HARNESS)
+        self.assertEqual(harness.targets("full"), (("rtf", 2.0), ("ratio", 15.0)))
+        self.assertEqual(harness.targets("lidar"), (("ratio", 10.0),))
+        self.assertEqual(harness.targets("cars8"), (("rtf", 3.0),))
+
+        def side(rtf):
+            return dict(rtf=rtf, sim_seconds=10.0, sim_cpu_seconds=10.0 / rtf, cpu_seconds=10.0 / rtf)
+        f = harness.figures("full", dict(ours=side(2.1), pybullet=side(0.15)))
+        self.assertEqual(harness.target_cell("full", f), "RTF ≥ 2 (met); ratio ≥ 15× (**not met**)")
+        f = harness.figures("lidar", dict(ours=side(20.0), pybullet=side(1.9), mujoco=side(10.5)))
+        self.assertEqual(harness.target_cell("lidar", f), "ratio ≥ 10× (met); ≥ 2× MuJoCo (**not met**)")
+        self.assertEqual(harness.target_cell("cars8", harness.figures("cars8", dict(ours=None))), "RTF ≥ 3")
+
     def test_the_last_lines_compare_us_with_each_peer(self):
         harness = load_script(HARNESS)
 
@@ -132,6 +148,10 @@ class BenchHarnessTest(unittest.TestCase):
             for col in ("ours sim s/wall s", "PyBullet sim s/wall s", "MuJoCo sim s/wall s", "MuJoCo sim s/CPU s"):
                 self.assertRegex(rows[title][col], r"^\d+\.\d\d$", "%s has no figure in: %s" % (col, rows[title]))
             self.assertRegex(rows[title]["ratio vs MuJoCo"], r"^\d+\.\d\d×$", rows[title])
+        # The targets are SPEC §9's: physics >= 3x PyBullet and >= MuJoCo; lidar >= 10x and >= 2x MuJoCo.
+        self.assertRegex(rows["physics only"]["target"], r"^ratio ≥ 3× \(.*\); ≥ 1× MuJoCo \(.*\)$")
+        self.assertRegex(rows["physics + lidar (1081 beams, 40 Hz)"]["target"],
+                         r"^ratio ≥ 10× \(.*\); ≥ 2× MuJoCo \(.*\)$")
         self.assertRegex(text, r"physics \+ lidar \(1081 beams, 40 Hz\), MuJoCo: lidar (1[89]|2[01]) calls")
         # The lap check: every side drove it, and none turned over.
         m = re.search(r"Lap check .*: ours (\d\.\d+) m/s, radius (\d\.\d+) m, upright; PyBullet \d\.\d+ m/s "
