@@ -176,16 +176,20 @@ class TianracerEnv(gym.Env):
         if a.shape != self._shape:
             raise ValueError("action %r has shape %s; the action space is %s" %
                              (action, a.shape, self.action_space))
-        # Bounds are float32: compare there, so that a float32 action at a bound is inside.
-        a32 = a.astype(np.float32)
-        low, high = self._low, self._high
-        if not (((a32 >= low) & (a32 <= high)).all() and
-                (self._finite_bounds or np.isfinite(a).all())):
+        if not self._within_bounds(a):
             if not np.isfinite(a).all():
                 raise ValueError("action %r is not finite" % (action,))
             raise ValueError("action %s is outside the action space [%s, %s]" %
-                             (a.tolist(), low.tolist(), high.tolist()))
+                             (a.tolist(), self._low.tolist(), self._high.tolist()))
         return a
+
+    def _within_bounds(self, a):
+        """Whether each action (the last axis; a batch of rows too) is finite and within the
+        space's bounds. Bounds are float32: compared there, so that a float32 action at a bound
+        is inside; NaN and +-inf fail finite bounds, so finiteness is tested only without them."""
+        a32 = a.astype(np.float32)
+        ok = ((a32 >= self._low) & (a32 <= self._high)).all(axis=-1)
+        return ok if self._finite_bounds else ok & np.isfinite(a).all(axis=-1)
 
     def _apply(self, a):
         if self.action_mode == "ackermann":

@@ -79,9 +79,7 @@ class TianracerVectorEnv(VectorEnv):
         # Every env has the same action space: all rows at once; the first bad one raises its
         # env's message (TianracerEnv._checked).
         rows = np.asarray(actions, dtype=np.float64)
-        rows32 = rows.astype(np.float32)
-        low, high = self.envs[0]._low, self.envs[0]._high
-        ok = ((rows32 >= low) & (rows32 <= high) & np.isfinite(rows)).all(axis=1)
+        ok = self.envs[0]._within_bounds(rows)
         if not ok[active].all():
             for i in np.flatnonzero(active & ~ok):
                 self.envs[i]._checked(actions[i])
