@@ -284,7 +284,7 @@ int costTable(ts::Renderer& renderer, const Seed& seed, int frames, const std::s
   printCost(std::string(cam_name) + " sensor (render + noise + format)", measureCost(renderer, frames, [&] {
               seed.camera->render(scene, seed.X_W_cam);
             }));
-  printCost(std::string(rs_name) + " sensor (render + noise + depth range)", measureCost(renderer, frames, [&] {
+  printCost(std::string(rs_name) + " sensor (render + depth range; no noise in the seed)", measureCost(renderer, frames, [&] {
               seed.depth->render(scene, seed.X_W_rs, {true, true, false});
             }));
 
