@@ -7,6 +7,7 @@
 //   render_bench [--frames N] [--world PATH] [--png-dir DIR]
 //   LP_NUM_THREADS=1 render_bench   # Mesa llvmpipe's rasteriser threads (default: the cores)
 //   render_bench --cost-table [--frames N]   # what a frame costs, part by part (see costTable)
+//   render_bench --threads-probe [--frames N]  # one line of the cost table's thread rows (its child)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -377,7 +378,7 @@ int main(int argc, char** argv) {
       --i;
       continue;
     }
-    if (i + 1 >= argc) {
+    if (i + 1 >= argc && (a == "--frames" || a == "--world" || a == "--png-dir")) {
       std::cerr << "render_bench: " << a << " needs a value\n";
       return 2;
     }
