@@ -73,7 +73,7 @@ struct Renderer::Impl {
     Uniforms u{};
   };
   static constexpr int kMaxLights = 4;
-  Program programs[kMaxLights + 1][2][2];  // by light count, grid, texture; built on first use
+  Program programs[kMaxLights + 1][2][2][2];  // by light count, grid, texture, flat probe; on first use
 
   GLuint vao = 0;
   GLuint vbo = 0;
@@ -206,12 +206,12 @@ struct Renderer::Impl {
   };
   std::map<std::pair<int, int>, Target> targets;
 
-  Program& program(int num_lights, bool grid, bool texture) {
-    Program& p = programs[num_lights][grid ? 1 : 0][texture ? 1 : 0];
+  Program& program(int num_lights, bool grid, bool texture, bool flat = false) {
+    Program& p = programs[num_lights][grid ? 1 : 0][texture ? 1 : 0][flat ? 1 : 0];
     if (p.id != 0) return p;
     const std::string defines = "#version 330 core\n#define NUM_LIGHTS " + std::to_string(num_lights) +
                                 "\n#define GRID " + (grid ? "1" : "0") + "\n#define TEXTURE " +
-                                (texture ? "1" : "0") + "\n";
+                                (texture ? "1" : "0") + "\n#define FLAT " + (flat ? "1" : "0") + "\n";
     const GLuint id = ri::linkProgram(defines);
     auto loc = [&](const char* name) { return glGetUniformLocation(id, name); };
     p.u.model_view = loc("u_model_view");
@@ -367,8 +367,10 @@ Renderer::~Renderer() {
     }
     for (const auto& by_grid : impl_->programs) {
       for (const auto& by_texture : by_grid) {
-        for (const auto& p : by_texture) {
-          if (p.id != 0) glDeleteProgram(p.id);
+        for (const auto& by_flat : by_texture) {
+          for (const auto& p : by_flat) {
+            if (p.id != 0) glDeleteProgram(p.id);
+          }
         }
       }
     }
@@ -468,12 +470,14 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
   const Impl::Uniforms* current = nullptr;
   int current_kind = -1;       // 0 plain, 1 textured, 2 grid
   bool frame_uniforms[3] = {false, false, false};
+  stats_ = FrameStats{};
   auto use = [&](bool grid, bool texture) {
     const int kind = grid ? 2 : (texture ? 1 : 0);
     if (kind == current_kind) return;
-    const Impl::Program& prog = m.program(num_lights, grid, texture);
+    const Impl::Program& prog = m.program(num_lights, grid, texture, flat_probe_);
     const Impl::Uniforms& u = prog.u;
     glUseProgram(prog.id);
+    ++stats_.program_switches;
     if (!frame_uniforms[kind]) {
       glUniformMatrix4fv(u.projection, 1, GL_FALSE, Pf.data());
       if (num_lights > 0) glUniform3fv(u.to_light, num_lights, to_light);
@@ -511,6 +515,8 @@ void Renderer::renderView(const Scene& scene, const Eigen::Isometry3d& X_WC,
     }
     glUniform1f(u.shininess, std::max(shininess, 1.0f));
     glDrawArrays(GL_TRIANGLES, range.first, range.count);
+    ++stats_.draw_calls;
+    stats_.triangles += static_cast<std::size_t>(range.count / 3);
   };
 
   for (std::size_t i = 0; i < scene.items.size(); ++i) {

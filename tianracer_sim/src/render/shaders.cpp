@@ -70,6 +70,12 @@ uniform vec3 u_specular[NUM_LIGHTS];  // light specular * material specular
 uniform vec3 u_ambient;               // scene ambient * material ambient
 uniform float u_shininess;
 void main() {
+#if FLAT
+  // render_bench's probe of the shading cost: the ambient colour only.
+  o_color = vec4(u_ambient, 1.0);
+  o_depth = -v_eye_position.z;
+  return;
+#endif
   vec3 n = normalize(v_eye_normal);
   if (!gl_FrontFacing) n = -n;
   float k = 1.0;  // the grid's darkening of ambient and diffuse

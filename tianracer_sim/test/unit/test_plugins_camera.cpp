@@ -13,6 +13,7 @@
 #include <tinyxml2.h>
 
 #include "tianracer_sim/plugins/camera/camera_sensor.h"
+#include "tianracer_sim/plugins/camera/image_noise.h"
 #include "tianracer_sim/scene/materials.h"
 #include "tianracer_sim/render/png_writer.h"
 
@@ -282,6 +283,47 @@ TEST(RenderCameraSensor, NoiseStatisticsMatchTheConfiguredStddev) {
     EXPECT_EQ(again.image(), cam.image());
     cam.render(scene, Eigen::Isometry3d::Identity());
     EXPECT_NE(again.image(), cam.image());
+  }
+}
+
+// The 3-channel noise runs 16 pixels at a time with saturating byte operations (SSE2); the
+// one-channel path is plain per-byte arithmetic. With the same seed both draw the same samples,
+// so each channel of a colour image must come out as that channel alone as a mono image: byte
+// for byte, saturation at 0 and 255 and the tail after the last 16-pixel group included.
+TEST(ImageNoise, ColourPathGivesTheSameBytesAsThePerChannelPath) {
+  const std::size_t pixels = 16 * 37 + 7;  // a tail that is neither a group nor a block
+  std::vector<uint8_t> rgb(3 * pixels);
+  uint32_t x = 12345;
+  for (auto& b : rgb) {
+    x = x * 1664525u + 1013904223u;
+    b = static_cast<uint8_t>(x >> 24);
+  }
+  for (const double stddev : {0.007, 0.3}) {  // 0.3: many samples saturate at both ends
+    for (int frame = 0; frame < 3; ++frame) {
+      std::vector<uint8_t> colour = rgb;
+      ImageNoise noise(0.01, stddev, 7);
+      for (int f = 0; f <= frame; ++f) {
+        colour = rgb;
+        noise.apply(colour.data(), pixels, 3);
+      }
+      std::size_t changed = 0;
+      for (int c = 0; c < 3; ++c) {
+        std::vector<uint8_t> mono(pixels);
+        for (std::size_t i = 0; i < pixels; ++i) mono[i] = rgb[3 * i + c];
+        ImageNoise alone(0.01, stddev, 7);
+        std::vector<uint8_t> out;
+        for (int f = 0; f <= frame; ++f) {
+          out = mono;
+          alone.apply(out.data(), pixels, 1);
+        }
+        for (std::size_t i = 0; i < pixels; ++i) {
+          ASSERT_EQ(colour[3 * i + c], out[i]) << "stddev " << stddev << " frame " << frame << " pixel "
+                                               << i << " channel " << c;
+          changed += out[i] != mono[i];
+        }
+      }
+      EXPECT_GT(changed, pixels / 2) << "the noise is visible";
+    }
   }
 }
 

@@ -66,6 +66,41 @@ TEST(RenderRenderer, CentrePixelIsTheLitGazeboMaterial) {
   }
 }
 
+// render_bench's cost table reads these: one draw per untextured item, the ground plane's two
+// triangles last in its own program, and the flat probe draws the ambient product only (the
+// probe is off again afterwards: the lit colour comes back).
+TEST(RenderRenderer, FrameStatsAndTheFlatShadingProbe) {
+  Renderer renderer;
+  const CameraIntrinsics K = CameraIntrinsics::fromHorizontalFov(64, 48, 1.0, 0.05, 8.0);
+  std::vector<uint8_t> rgb(64 * 48 * 3);
+  Scene scene = boxScene(1.0, "Gazebo/Red");
+  renderer.renderView(scene, Eigen::Isometry3d::Identity(), K, rgb.data());
+  EXPECT_EQ(renderer.lastFrameStats().draw_calls, 1);
+  EXPECT_EQ(renderer.lastFrameStats().triangles, 12u);
+  EXPECT_EQ(renderer.lastFrameStats().program_switches, 1);
+  scene.ground_plane = true;
+  scene.items.push_back(scene.items[0]);
+  scene.items.back().X_BS.translation().y() += 1000.0;  // out of view: still drawn (no culling of items)
+  renderer.renderView(scene, Eigen::Isometry3d::Identity(), K, rgb.data());
+  EXPECT_EQ(renderer.lastFrameStats().draw_calls, 3);
+  EXPECT_EQ(renderer.lastFrameStats().triangles, 26u);
+  EXPECT_EQ(renderer.lastFrameStats().program_switches, 2);
+
+  const Scene box = boxScene(1.0, "Gazebo/Red");
+  const GazeboMaterial red = *findGazeboMaterial("Gazebo/Red");  // returned by value
+  const uint8_t* px = &rgb[(24 * 64 + 32) * 3];
+  renderer.setFlatShadingProbe(true);
+  renderer.renderView(box, Eigen::Isometry3d::Identity(), K, rgb.data());
+  const Eigen::Vector3d flat =
+      255.0 * box.ambient.head<3>().cast<double>().cwiseProduct(red.material.ambient.head<3>().cast<double>());
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(px[c], flat[c], 1.0) << "channel " << c;
+  renderer.setFlatShadingProbe(false);
+  renderer.renderView(box, Eigen::Isometry3d::Identity(), K, rgb.data());
+  const Eigen::Vector3d lit = 255.0 * expectedCentreColour(box, red);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(px[c], lit[c], 2.0) << "channel " << c;
+  EXPECT_GT(lit[0] - flat[0], 20.0) << "the probe's colour differs visibly from the lit one";
+}
+
 TEST(RenderRenderer, SkyWhereNothingIsHitAndDepthInfinite) {
   Renderer renderer;
   Scene scene;

@@ -4,6 +4,7 @@
 #ifndef TIANRACER_SIM_RENDER_RENDERER_H
 #define TIANRACER_SIM_RENDER_RENDERER_H
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
@@ -48,6 +49,20 @@ class Renderer {
 
   /// Frames rendered so far (by this renderer).
   uint64_t frameCount() const { return frames_; }
+
+  /// What the last renderView() drew: glDrawArrays calls, triangles handed to GL (before
+  /// clipping and culling; the ground plane's two included) and glUseProgram switches.
+  struct FrameStats {
+    int draw_calls = 0;
+    std::size_t triangles = 0;
+    int program_switches = 0;
+  };
+  const FrameStats& lastFrameStats() const { return stats_; }
+
+  /// A cost probe for render_bench, not a camera feature: with `flat` every surface is drawn
+  /// in its ambient colour (no lighting, grid or texture sampling), so that the fragment
+  /// shader's share of a frame can be measured on the same geometry. Off by default.
+  void setFlatShadingProbe(bool flat) { flat_probe_ = flat; }
   /// "OpenGL 4.5 (Compatibility Profile) Mesa 22.3.6, llvmpipe (LLVM 15.0.6, 256 bits)".
   std::string glInfo() const;
 
@@ -60,6 +75,8 @@ class Renderer {
   struct Impl;
   std::unique_ptr<Impl> impl_;
   uint64_t frames_ = 0;
+  FrameStats stats_;
+  bool flat_probe_ = false;
   StepProfile* profile_ = nullptr;
   int draw_row_ = -1, readback_row_ = -1;
 };

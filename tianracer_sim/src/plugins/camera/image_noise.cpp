@@ -89,23 +89,36 @@ void ImageNoise::apply(uint8_t* data, std::size_t pixels, int channels) {
     // 16 pixels (48 bytes, four hashes) at a time: each pixel's (positive, negative) part is
     // replicated into its 3 bytes of two 48-byte rows, then added to and subtracted from the
     // pixels with saturation, 16 bytes per instruction. Same samples, same bytes as below.
+    // The rows are assembled in 64-bit registers (6 words each), not with byte stores to a
+    // scratch row: a 16-byte load of bytes just written by narrower stores cannot be
+    // forwarded and stalls (the noise was about 1.4 ms of an 800x800 frame that way).
     const uint16_t* sat = saturating_.data();
-    alignas(16) uint8_t add_row[48 + 4], sub_row[48 + 4];
     for (; k + 4 <= blocks; k += 4) {
+      uint64_t up[6] = {0, 0, 0, 0, 0, 0}, down[6] = {0, 0, 0, 0, 0, 0};
+#pragma GCC unroll 4
       for (int b = 0; b < 4; ++b) {
         const uint64_t r = splitmix64(frame_seed + 0x9e3779b97f4a7c15ULL * (k + b + 1));
+#pragma GCC unroll 4
         for (int j = 0; j < 4; ++j) {
           const uint32_t v = sat[(r >> (16 * j)) & 0xffff];
-          const uint32_t up = (v & 0xff) * 0x010101u, down = (v >> 8) * 0x010101u;
-          std::memcpy(add_row + 12 * b + 3 * j, &up, 4);  // the 4th byte is the next pixel's
-          std::memcpy(sub_row + 12 * b + 3 * j, &down, 4);
+          const uint64_t u3 = (v & 0xff) * 0x010101ull, d3 = (v >> 8) * 0x010101ull;
+          const int bit = 24 * (4 * b + j), w = bit / 64, sh = bit % 64;
+          up[w] |= u3 << sh;
+          down[w] |= d3 << sh;
+          if (sh > 40) {  // the pixel's bytes straddle two words
+            up[w + 1] |= u3 >> (64 - sh);
+            down[w + 1] |= d3 >> (64 - sh);
+          }
         }
       }
       uint8_t* p = data + 4 * k * 3;
+#pragma GCC unroll 3
       for (int q = 0; q < 3; ++q) {
         __m128i px = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 16 * q));
-        px = _mm_adds_epu8(px, _mm_load_si128(reinterpret_cast<const __m128i*>(add_row + 16 * q)));
-        px = _mm_subs_epu8(px, _mm_load_si128(reinterpret_cast<const __m128i*>(sub_row + 16 * q)));
+        px = _mm_adds_epu8(px, _mm_set_epi64x(static_cast<long long>(up[2 * q + 1]),
+                                              static_cast<long long>(up[2 * q])));
+        px = _mm_subs_epu8(px, _mm_set_epi64x(static_cast<long long>(down[2 * q + 1]),
+                                              static_cast<long long>(down[2 * q])));
         _mm_storeu_si128(reinterpret_cast<__m128i*>(p + 16 * q), px);
       }
     }
