@@ -26,6 +26,7 @@ import signal
 import subprocess
 import sys
 import time
+import xmlrpc.client
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, '..', '..', '..', 'tianracer_sim', 'python'))
@@ -103,6 +104,24 @@ def harness_files(pkg, gtests, test_dirs, ws_deps=()):
     return pkgxml, '\n'.join(lines) + '\n'
 
 
+def sim_time_master(uri, env, log):
+    """Starts roscore at uri (its processes carry env's RCP_RUN_TOKEN, so reap() ends them) and
+    sets /use_sim_time on it; 0 when done, 1 (logged) when the master did not answer in 30 s."""
+    subprocess.Popen(['roscore', '-p', uri.rsplit(':', 1)[1]], stdout=log, stderr=subprocess.STDOUT, env=env)
+    proxy = xmlrpc.client.ServerProxy(uri)
+    deadline = time.time() + 30
+    while time.time() < deadline:
+        try:
+            if proxy.getPid('/rcp_runner')[0] == 1:
+                proxy.setParam('/rcp_runner', '/use_sim_time', True)
+                return 0
+        except OSError:
+            pass
+        time.sleep(0.1)
+    log.write('run.py: the master at %s did not answer in 30 s\n' % uri)
+    return 1
+
+
 def reap(token):
     left = []
     for pid in os.listdir('/proc'):
@@ -138,6 +157,9 @@ def main():
                     help='bare git dir of github: ros-controls/realtime_tools (Debian 12 has none; the '
                          "joint_trajectory_controller test nodes include its headers): built in WS's own workspace")
     ap.add_argument('--realtime-tools-ref', default='noetic-devel')
+    ap.add_argument('--rrbot-gravity', action='store_true',
+                    help='simulate the rrbot fixtures (joint_trajectory_controller) with gravity; by default '
+                         'their links are weightless, as the upstream nodes, which simulate no dynamics')
     a = ap.parse_args()
 
     up = os.path.abspath(a.upstream)
@@ -255,6 +277,7 @@ def main():
                 fh.write('#!/bin/sh\n# stand-in for upstream %s/%s: tianracer sim\nexec /usr/bin/python3 "%s" %s "$@"\n'
                          % (p, ' '.join(plan[p][0][node]), os.path.join(HERE, 'standin_hw.py'), node))
             os.chmod(path, 0o755)
+    env['RCP_RRBOT_GRAVITY'] = 'on' if a.rrbot_gravity else 'off'
     env['ROS_HOME'] = os.path.join(ws, 'ros_home')
     env['ROS_LOG_DIR'] = os.path.join(ws, 'logs', 'ros')
 
@@ -264,13 +287,21 @@ def main():
         name = os.path.splitext(os.path.basename(t))[0]
         log = os.path.join(ws, 'logs', name + '.log')
         token = '%d-%s' % (os.getpid(), name)
-        e = dict(env, RCP_RUN_TOKEN=token, ROS_MASTER_URI='http://localhost:%d' % free_port())
+        master = 'http://localhost:%d' % free_port()
+        e = dict(env, RCP_RUN_TOKEN=token, ROS_MASTER_URI=master)
         start = time.time()
         with open(log, 'w') as fh:
             try:
-                rc = subprocess.call(['timeout', '--signal=INT', '--kill-after=30', str(a.limit),
-                                      'rostest', '--results-base-dir=' + os.path.join(ws, 'test_results'),
-                                      os.path.join(ws, 'src', t)], stdout=fh, stderr=subprocess.STDOUT, env=e)
+                # The test's nodes on the simulator's clock: a master with /use_sim_time set before
+                # rostest starts them, as a simulator's launch sets it before its users' nodes
+                # (roscpp and rospy read it once, at start; the simulator sets it too, but only once
+                # it runs, after the test node may have started on wall time).
+                rc = sim_time_master(master, e, fh)
+                if rc == 0:
+                    rc = subprocess.call(['timeout', '--signal=INT', '--kill-after=30', str(a.limit),
+                                          'rostest', '--reuse-master',
+                                          '--results-base-dir=' + os.path.join(ws, 'test_results'),
+                                          os.path.join(ws, 'src', t)], stdout=fh, stderr=subprocess.STDOUT, env=e)
             finally:
                 reap(token)
         secs = time.time() - start

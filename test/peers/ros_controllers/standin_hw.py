@@ -11,7 +11,9 @@ test's /robot_description is left as it is) with, exactly as the upstream node r
   * <hardwareInterface> on each transmission joint that names none (INTERFACES below);
   * a SimpleTransmission for each movable joint the node registers that has no transmission (rrbot);
   * <gazebo><plugin filename="libgazebo_ros_control.so"> with robotNamespace '/' (the upstream node
-    runs its ControllerManager on the root node handle).
+    runs its ControllerManager on the root node handle);
+  * for rrbot and rrbot_wrapping, <gazebo reference="LINK"><turnGravityOff>true</turnGravityOff> on each
+    link (WEIGHTLESS below), unless RCP_RRBOT_GRAVITY=on (run.py --rrbot-gravity).
 Usage (by roslaunch, through the per-node wrapper the runner writes): standin_hw.py HW_NODE [ros args]
 """
 import os
@@ -48,6 +50,13 @@ INTERFACES = {
 }
 
 
+# Fixture nodes that integrate their commands without any dynamics (rrbot.cpp, rrbot_wrapping.cpp:
+# the state is the command, or the command integrated), so without gravity: their arm, upright
+# links of 1 kg on 20 N m joints, is given no weight unless the runner is asked for it
+# (run.py --rrbot-gravity: as Gazebo would simulate rrbot.xacro, which falls under the controllers).
+WEIGHTLESS = ('rrbot', 'rrbot_wrapping')
+
+
 def flatten(prefix, value, out):
     if isinstance(value, dict):
         for k, v in value.items():
@@ -56,7 +65,7 @@ def flatten(prefix, value, out):
         out.append((prefix, value))
 
 
-def augment(urdf, rule, params):
+def augment(urdf, rule, params, weightless=False):
     root = ET.fromstring(urdf)
     notes = []
     movable = [j.get('name') for j in root.findall('joint') if j.get('type') not in ('fixed', None)]
@@ -85,6 +94,10 @@ def augment(urdf, rule, params):
         if plugin.get('filename') == 'libgazebo_ros_control.so' and plugin.find('robotNamespace') is None:
             ET.SubElement(plugin, 'robotNamespace').text = '/'
             notes.append('its gazebo_ros_control plugin given robotNamespace /')
+    if weightless:
+        for link in root.findall('link'):
+            ET.SubElement(ET.SubElement(root, 'gazebo', reference=link.get('name')), 'turnGravityOff').text = 'true'
+        notes.append('gravity off on every link (the upstream node simulates no gravity)')
     if not any(p.get('filename') == 'libgazebo_ros_control.so' for p in root.iter('plugin')):
         plugin = ET.SubElement(ET.SubElement(root, 'gazebo'), 'plugin',
                                name='gazebo_ros_control', filename='libgazebo_ros_control.so')
@@ -109,7 +122,8 @@ def main():
             time.sleep(0.2)
     params = []
     flatten('', master.getParam('/'), params)
-    text, notes = augment(urdf, INTERFACES[hw], params)
+    weightless = hw in WEIGHTLESS and os.environ.get('RCP_RRBOT_GRAVITY', 'off') != 'on'
+    text, notes = augment(urdf, INTERFACES[hw], params, weightless)
     param = '/%s/standin_robot_description' % name.strip('/')
     master.setParam(param, text)
     print('standin_hw: %s -> tianracer_sim_node on /robot_description + %s' % (hw, '; '.join(notes)),
