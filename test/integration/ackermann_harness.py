@@ -327,6 +327,16 @@ class Harness(object):
         with self.lock:
             return self.odom[-1]
 
+    def odom_at(self, t):
+        """The first wheel odometry sample stamped t or later. Waits for it: on a loaded machine
+        the odometry node can lag the sim, and its latest sample may be from before t."""
+        def arrived():
+            with self.lock:
+                return self.odom and self.odom[-1].t >= t - 1e-9
+        wait_for(arrived, 'wheel odometry stamped %.3f' % t)
+        with self.lock:
+            return next(s for s in self.odom if s.t >= t - 1e-9)
+
     def truth_between(self, t0, t1):
         """Ground truth stamped t0..t1 (all of it: waits for a sample stamped t1 or later)."""
         self.wait_truth(t1)

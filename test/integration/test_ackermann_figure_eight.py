@@ -32,7 +32,8 @@ class AckermannFigureEight(AckermannTestCase):
     def test_d_wheel_odometry_figure_eight(self):
         h = self.h
         h.stop_and_settle()
-        g0, o0 = h.latest_truth(), h.latest_odom()
+        g0 = h.latest_truth()
+        o0 = h.odom_at(g0.t)
         distance_cmd = 10.0
         radius = distance_cmd / (4.0 * math.pi)
         speed = 0.5
@@ -53,7 +54,8 @@ class AckermannFigureEight(AckermannTestCase):
                 proc.wait()
         self.assertEqual(proc.returncode, 0, 'scripted_driver exited %d' % proc.returncode)
         h.stop_and_settle()
-        g1, o1 = h.latest_truth(), h.latest_odom()
+        g1 = h.latest_truth()
+        o1 = h.odom_at(g1.t)
 
         path = [p.point(self.geometry['rear_axle_x'], self.geometry['rear_axle_y'])
                 for p in h.truth_between(t_start, g1.t)]
@@ -66,9 +68,10 @@ class AckermannFigureEight(AckermannTestCase):
             'figure-eight (R %.3f m, %.2f m/s, scripted_driver): travelled %.3f m (rear axle, '
             'ground truth); end displacement in the start frame: ground truth (%.4f, %.4f) m, '
             '%.3f deg; wheel odometry (%.4f, %.4f) m, %.3f deg; position error %.4f m = %.3f %% '
-            'of the distance; heading error %.3f deg', radius, speed, travelled, gx, gy,
+            'of the distance; heading error %.3f deg (stamps: ground truth %.3f, %.3f s; '
+            'odometry %.3f, %.3f s)', radius, speed, travelled, gx, gy,
             math.degrees(gyaw), ox, oy, math.degrees(oyaw), pos_err,
-            100.0 * pos_err / travelled, math.degrees(yaw_err))
+            100.0 * pos_err / travelled, math.degrees(yaw_err), g0.t, g1.t, o0.t, o1.t)
         self.assertGreater(travelled, 0.9 * distance_cmd, text)
         self.assertLess(pos_err, ODOM_POS_TOL * travelled, text)
         self.assertLess(abs(yaw_err), ODOM_YAW_TOL, text)
