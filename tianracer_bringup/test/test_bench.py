@@ -109,6 +109,47 @@ class BenchHarnessTest(unittest.TestCase):
         del results["cars8"]["pybullet"]
         self.assertEqual(harness.vs_lines(results), ["vs PyBullet: physics 2.00x, lidar 9.20x"])
 
+    def test_repeats_give_the_median_run_and_the_range(self):
+        harness = load_script(HARNESS)
+
+        def ours(rtf, cpu):
+            return dict(rtf=rtf, sim_seconds=10.0, sim_cpu_seconds=10.0 / cpu, tag=rtf)
+        # Three runs: the median by sim s/wall s is the run as a whole (its CPU figure too, not
+        # the median of the CPU figures); the spread is each figure's lowest-highest.
+        med = harness.median_run([ours(9.0, 12.0), ours(11.0, 10.0), ours(8.0, 11.0)], "sim_cpu_seconds")
+        self.assertEqual(med["tag"], 9.0)
+        self.assertEqual(med["spread"]["runs"], 3)
+        self.assertEqual(med["spread"]["rtf"], (8.0, 11.0))
+        self.assertAlmostEqual(med["spread"]["cpu"][0], 10.0)
+        self.assertAlmostEqual(med["spread"]["cpu"][1], 12.0)
+        # An even count takes the lower middle run; one run has no spread.
+        self.assertEqual(harness.median_run([ours(5.0, 5.0), ours(7.0, 7.0)], "sim_cpu_seconds")["tag"], 5.0)
+        one = harness.median_run([ours(5.0, 5.0)], "sim_cpu_seconds")
+        self.assertNotIn("spread", one)
+        self.assertEqual(harness.cell(5.0, one, "rtf"), "5.00")
+        self.assertEqual(harness.cell(9.0, med, "rtf"), "9.00 (8.00–11.00)")
+        self.assertEqual(harness.cell(12.0, med, "cpu"), "12.00 (10.00–12.00)")
+        self.assertEqual(harness.cell(None, None, "rtf"), "—")
+
+    def test_repeat_runs_each_side_several_times(self):
+        out_md = os.path.join(self.tmp, "repeat.md")
+        rc, out = self.harness("--duration", "0.3", "--scenarios", "physics", "--repeat", "3", "--no-pybullet",
+                               "--first-scan-runs", "0", "--output", out_md)
+        self.assertEqual(rc, 0, out)
+        self.assertEqual(len(re.findall(r"\[physics\] ours: \d+\.\d\d sim s/wall s", out)), 3, out)
+        self.assertIn("(run 3 of 3)", out)
+        with open(out_md) as f:
+            text = f.read()
+        cell = table_rows(text)["physics only"]["ours sim s/wall s"]
+        m = re.match(r"^(\d+\.\d\d) \((\d+\.\d\d)–(\d+\.\d\d)\)$", cell)
+        self.assertIsNotNone(m, cell)
+        lo, med, hi = float(m.group(2)), float(m.group(1)), float(m.group(3))
+        self.assertTrue(lo <= med <= hi, cell)
+        self.assertIn("ran 3 times, interleaved", text)
+        rc, out = self.harness("--repeat", "0", "--no-pybullet", timeout=60)
+        self.assertEqual(rc, 2, out)
+        self.assertIn("--repeat must be 1 or more (got 0)", out)
+
     def test_a_lap_is_measured_from_the_track(self):
         # A car on a circle of radius 1.3 m at 1 m/s, sampled at 50 Hz for 10 s: the start (before
         # lap.SETTLE) is left out, so a slow start does not count.
