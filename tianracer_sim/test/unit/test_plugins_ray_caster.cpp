@@ -508,12 +508,9 @@ TEST(RayCaster, SensorFarOutsideTheWorldSeesNothing) {
   EXPECT_NEAR(lidar.scan(scene, pose(0, 0, 0.5))[540], 2.0, 0.05);  // still works
 }
 
-// A body at 1e30 or NaN at run time (a body flung by the physics; spawn, set_model_state and
-// set_link_state refuse such poses): its pose would reach Embree as an instance transform or as
-// the static scene's vertices (Embree aborts near 2e9 m, issue 43). The caster leaves such a body
-// out of the scene (it is out of any sensor's reach) until it comes back.
-TEST(RayCaster, MovingBodyFarOutsideTheWorldIsLeftOut) {
-  Scene scene;
+// The 6 m room of addRoom with a moving crate ("crate::link") at (1, 0, 0.5): its 0.4 x 0.5 x
+// 1 m box at X_BG in the body. Returns the crate's body index.
+static int addRoomWithCrate(Scene& scene, const Eigen::Isometry3d& X_BG) {
   addRoom(scene, -3, 3, -3, 3);
   SceneBody crate;
   crate.name = "crate::link";
@@ -521,7 +518,17 @@ TEST(RayCaster, MovingBodyFarOutsideTheWorldIsLeftOut) {
   crate.is_static = false;
   crate.X_WB = pose(1.0, 0, 0.5);
   const int b = scene.addBody(crate);
-  scene.items.push_back(boxItem(b, pose(0.1, 0, 0), {0.4, 0.5, 1.0}));
+  scene.items.push_back(boxItem(b, X_BG, {0.4, 0.5, 1.0}));
+  return b;
+}
+
+// A body at 1e30 or NaN at run time (a body flung by the physics; spawn, set_model_state and
+// set_link_state refuse such poses): its pose would reach Embree as an instance transform or as
+// the static scene's vertices (Embree aborts near 2e9 m, issue 43). The caster leaves such a body
+// out of the scene (it is out of any sensor's reach) until it comes back.
+TEST(RayCaster, MovingBodyFarOutsideTheWorldIsLeftOut) {
+  Scene scene;
+  const int b = addRoomWithCrate(scene, pose(0.1, 0, 0));
   Scene room;  // the same room without the crate
   addRoom(room, -3, 3, -3, 3);
   SeedLidar alone;
@@ -632,14 +639,7 @@ TEST(RayCaster, SameSeedSameScansDifferentSeedDifferent) {
 
 TEST(RayCaster, MovingBodyIsSeenByTheNextScan) {
   Scene scene;
-  addRoom(scene, -3, 3, -3, 3);
-  SceneBody crate;
-  crate.name = "crate::link";
-  crate.model = "crate";
-  crate.is_static = false;
-  crate.X_WB = pose(1.0, 0, 0.5);
-  const int b = scene.addBody(crate);
-  scene.items.push_back(boxItem(b, pose(0.1, 0, 0), {0.4, 0.5, 1.0}));  // offset in the body
+  const int b = addRoomWithCrate(scene, pose(0.1, 0, 0));  // the box offset in the body
 
   SeedLidar lidar;
   std::vector<float> r = lidar.scan(scene, pose(0, 0, 0.5));
@@ -690,14 +690,7 @@ TEST(RayCaster, ByDefaultEveryCommitAndCastRunsOnTheCallingThread) {
   // caller. A moving crate makes every scan commit the scene again.
   EXPECT_EQ(RayCasterOptions().embree_config, "threads=1");
   Scene scene;
-  addRoom(scene, -3, 3, -3, 3);
-  SceneBody crate;
-  crate.name = "crate::link";
-  crate.model = "crate";
-  crate.is_static = false;
-  crate.X_WB = pose(1.0, 0, 0.5);
-  const int b = scene.addBody(crate);
-  scene.items.push_back(boxItem(b, pose(0, 0, 0), {0.4, 0.5, 1.0}));
+  const int b = addRoomWithCrate(scene, pose(0, 0, 0));
   SeedLidar lidar;
   const double others0 = otherThreadsCpuSeconds(), self0 = thisThreadCpuSeconds();
   std::vector<float> r;
